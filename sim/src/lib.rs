@@ -1,0 +1,1 @@
+//! shearcut-sim: the cutting model.
