@@ -1,1 +1,14 @@
-//! shearcut-sim: the cutting model.
+//! shearcut-sim: the cutting model of shearcut.
+//!
+//! Materials, knives and objects; the analytic mechanics of seed 000 (strip
+//! loads, principal strain, the slice-push toughness ratio) and seed 001 (line
+//! loads, nucleation scalings); and, built on them, the cross-section FEM,
+//! the multi-section plant and its surrogates. SI units throughout.
+
+pub mod blade;
+pub mod invalid_setting;
+pub mod material;
+
+pub use blade::BladeSection;
+pub use invalid_setting::InvalidSetting;
+pub use material::{Material, MaterialPreset};
