@@ -7,8 +7,14 @@
 
 pub mod blade;
 pub mod invalid_setting;
+pub mod knife;
 pub mod material;
+pub mod mechanics;
+pub mod object;
 
 pub use blade::BladeSection;
 pub use invalid_setting::InvalidSetting;
+pub use knife::{EdgeShape, Knife, KnifeEdge, KnifePreset, KnifeSettings, SensorMount};
 pub use material::{Material, MaterialPreset};
+pub use mechanics::{SlicePushRatio, toughness_ratio};
+pub use object::{Cuboid, ObjectShape};
