@@ -1,1 +1,11 @@
-//! shearcut application.
+//! shearcut, the application: command line, scenario config, plots, and (as
+//! they land) the plant and controller processes, the iceoryx2 transport and
+//! run orchestration.
+
+pub mod cli;
+pub mod commands;
+pub mod error;
+pub mod logging;
+pub mod plot;
+pub mod run_dir;
+pub mod scenario;

@@ -1,1 +1,27 @@
-fn main() {}
+//! The `shearcut` binary.
+
+use std::process::ExitCode;
+
+use clap::Parser;
+use shearcut::cli::{Cli, Command};
+use shearcut::commands;
+use shearcut::error::RunError;
+
+fn main() -> ExitCode {
+    shearcut::logging::init();
+    let cli = Cli::parse();
+    let result: Result<(), RunError> = match cli.command {
+        None => commands::default_job::run(),
+        Some(Command::Toughness { nu, xi, plot }) => {
+            commands::toughness::run(nu, xi, plot.as_deref())
+        }
+        Some(Command::Check { scenario }) => commands::check::run(&scenario),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::from(e.exit_code())
+        }
+    }
+}

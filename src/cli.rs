@@ -1,0 +1,41 @@
+//! The `shearcut` command line.
+
+use std::path::PathBuf;
+
+use clap::{Parser, Subcommand};
+
+/// shearcut: robotic slicing of fruits and vegetables — a fracture-mechanics
+/// cutting model (seed 000), its surrogates, an MPC and an arm-style loop.
+///
+/// With no subcommand, runs the main job on the built-in default scenario.
+#[derive(Debug, Parser)]
+#[command(name = "shearcut", version, about, long_about)]
+pub struct Cli {
+    /// What to do (default: the main job on the built-in default scenario).
+    #[command(subcommand)]
+    pub command: Option<Command>,
+}
+
+/// The subcommands.
+#[derive(Debug, Subcommand)]
+pub enum Command {
+    /// Print the slice-push toughness law r(ξ,ν) (seed 000 eq. 6) and, with
+    /// --plot, draw seed 000 Fig. 3 and write its CSV.
+    Toughness {
+        /// Poisson's ratio ν, in (0, 0.5).
+        #[arg(long, allow_negative_numbers = true)]
+        nu: f64,
+        /// Slice-push ratio ξ = tan α, ≥ 0.
+        #[arg(long, allow_negative_numbers = true)]
+        xi: f64,
+        /// Draw Fig. 3 (r against ν for several ξ) to this .svg or .png file;
+        /// the table goes to the same name with extension .csv.
+        #[arg(long, value_name = "FILE")]
+        plot: Option<PathBuf>,
+    },
+    /// Validate a scenario and print its resolved values.
+    Check {
+        /// Scenario TOML file, or the name of a built-in scenario (fig7-potato, fig7-eggplant).
+        scenario: String,
+    },
+}

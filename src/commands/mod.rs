@@ -1,0 +1,5 @@
+//! One module per `shearcut` subcommand.
+
+pub mod check;
+pub mod default_job;
+pub mod toughness;

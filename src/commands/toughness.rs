@@ -1,0 +1,103 @@
+//! `shearcut toughness`: the slice-push toughness law of seed 000 §III.B.
+
+use std::path::{Path, PathBuf};
+
+use shearcut_sim::InvalidSetting;
+use shearcut_sim::mechanics::{force_ratio, normal_force_ratio, toughness_ratio};
+
+use crate::error::{ConfigError, RunError};
+use crate::plot::ensure_parent;
+use crate::plot::toughness_ratio::{FIG3_SLICE_PUSH_RATIOS, draw_fig3, fig3_table};
+use crate::render_plot;
+
+/// The law evaluated at one (ξ, ν).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ToughnessReport {
+    /// Slice-push ratio ξ.
+    pub xi: f64,
+    /// Poisson's ratio ν.
+    pub nu: f64,
+    /// r(ξ, ν) = R_c^s / R_c (eq. 6).
+    pub toughness_ratio: f64,
+    /// F_t / F_n = ξ/(2(1+ν)).
+    pub force_ratio: f64,
+    /// f_n^s / f_n^p.
+    pub normal_force_ratio: f64,
+}
+
+/// Validates ν and ξ and evaluates the law.
+pub fn evaluate(nu: f64, xi: f64) -> Result<ToughnessReport, ConfigError> {
+    if !(nu.is_finite() && nu > 0.0 && nu < 0.5) {
+        return Err(ConfigError::Argument(InvalidSetting::new(
+            "--nu",
+            nu,
+            "must be in the open interval (0, 0.5)",
+        )));
+    }
+    if !(xi.is_finite() && xi >= 0.0) {
+        return Err(ConfigError::Argument(InvalidSetting::new(
+            "--xi",
+            xi,
+            "must be a finite number >= 0",
+        )));
+    }
+    Ok(ToughnessReport {
+        xi,
+        nu,
+        toughness_ratio: toughness_ratio(xi, nu),
+        force_ratio: force_ratio(xi, nu),
+        normal_force_ratio: normal_force_ratio(xi, nu),
+    })
+}
+
+/// Runs the subcommand: prints the law and, with `plot`, draws Fig. 3 and writes its CSV.
+pub fn run(nu: f64, xi: f64, plot: Option<&Path>) -> Result<(), RunError> {
+    let r = evaluate(nu, xi)?;
+    println!("r(xi={}, nu={}) = {:.4}", r.xi, r.nu, r.toughness_ratio);
+    println!("F_t/F_n         = {:.4}", r.force_ratio);
+    println!("f_n^s/f_n^p     = {:.4}", r.normal_force_ratio);
+    if let Some(path) = plot {
+        let csv = write_fig3(path)?;
+        println!("wrote {} and {}", path.display(), csv.display());
+    }
+    Ok(())
+}
+
+/// Draws Fig. 3 to `path` and its table to the same path with extension `.csv`.
+pub fn write_fig3(path: &Path) -> Result<PathBuf, RunError> {
+    crate::plot::ImageFormat::from_path(path)?;
+    ensure_parent(path)?;
+    render_plot!(path, (800, 560), draw_fig3)?;
+    let csv_path = path.with_extension("csv");
+    let mut w = csv::Writer::from_path(&csv_path).map_err(|e| RunError::write(&csv_path, e))?;
+    let mut header = vec!["poisson_ratio".to_string()];
+    header.extend(FIG3_SLICE_PUSH_RATIOS.iter().map(|xi| format!("r_xi_{xi}")));
+    w.write_record(&header)
+        .map_err(|e| RunError::write(&csv_path, e))?;
+    for (nu, r) in fig3_table() {
+        let mut row = vec![format!("{nu}")];
+        row.extend(r.iter().map(|v| format!("{v}")));
+        w.write_record(&row)
+            .map_err(|e| RunError::write(&csv_path, e))?;
+    }
+    w.flush().map_err(|e| RunError::write(&csv_path, e))?;
+    Ok(csv_path)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn issue_example_prints_0_6224() {
+        let r = evaluate(0.4, 0.75).unwrap();
+        assert_eq!(format!("{:.4}", r.toughness_ratio), "0.6224");
+        assert_eq!(format!("{:.4}", r.force_ratio), "0.2679");
+    }
+
+    #[test]
+    fn nu_out_of_range_is_refused() {
+        let e = evaluate(0.7, 0.75).unwrap_err().to_string();
+        assert_eq!(e, "`--nu` = 0.7: must be in the open interval (0, 0.5)");
+    }
+}

@@ -1,0 +1,565 @@
+//! Scenario files: what is cut, with which knife, how, and in which loop.
+//!
+//! A scenario is a TOML file (see `config/scenarios/` and the README's
+//! "Config format"). Every table is `deny_unknown_fields`; after parsing, the
+//! scenario is resolved (presets expanded) and validated, and every error names
+//! the key, the value and what is allowed.
+
+use std::path::Path;
+
+use serde::{Deserialize, Serialize};
+use shearcut_sim::{
+    BladeSection, EdgeShape, InvalidSetting, KnifePreset, KnifeSettings, Material, MaterialPreset,
+    ObjectShape, SensorMount,
+};
+
+use crate::error::ConfigError;
+
+/// A scenario as written in a file, before presets are resolved.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ScenarioFile {
+    /// Name of the scenario, used in result directory names (default: the file stem).
+    pub name: Option<String>,
+    /// Free text describing the scenario.
+    pub description: Option<String>,
+    /// Seed of every random process (sensor noise), default 0.
+    #[serde(default)]
+    pub seed: u64,
+    /// The material: a preset, optionally with fields overridden, or all fields inline.
+    pub material: MaterialSpec,
+    /// The knife: a preset, optionally with tables overridden, or inline.
+    pub knife: KnifeSpec,
+    /// The object on the board.
+    pub object: ObjectShape,
+    /// The prescribed open-loop motion.
+    #[serde(default)]
+    pub motion: MotionSettings,
+    /// Settings of the control loop.
+    #[serde(default, rename = "loop")]
+    pub control_loop: LoopSettings,
+}
+
+/// `[material]`: `preset = "…"` and/or the five fields of [`Material`].
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialSpec {
+    /// A preset name: potato-cuboid, eggplant-cuboid, potato-whole, eggplant-whole, agar.
+    pub preset: Option<String>,
+    /// Young's modulus E, Pa (overrides the preset).
+    pub youngs_modulus: Option<f64>,
+    /// Poisson's ratio ν in (0, 0.5) (overrides the preset).
+    pub poisson_ratio: Option<f64>,
+    /// Blade–material friction coefficient μ (overrides the preset).
+    pub friction_coefficient: Option<f64>,
+    /// Interior fracture toughness R_c, N/m (overrides the preset).
+    pub fracture_toughness: Option<f64>,
+    /// Initial fracture toughness R'_c, N/m (overrides the preset).
+    pub initial_fracture_toughness: Option<f64>,
+}
+
+/// `[knife]`: `preset = "…"` and/or `edge`, `blade`, `sensor` tables.
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct KnifeSpec {
+    /// A preset name: straight, chef, wire.
+    pub preset: Option<String>,
+    /// Edge shape (overrides the preset's).
+    pub edge: Option<EdgeShape>,
+    /// Blade section (overrides the preset's).
+    pub blade: Option<BladeSection>,
+    /// Sensor mount (overrides the preset's).
+    pub sensor: Option<SensorMount>,
+}
+
+/// `[motion]`: the prescribed straight knife motion of `shearcut simulate`.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct MotionSettings {
+    /// Knife speed along its velocity, m/s (default 0.00625, seed 000 §V).
+    pub speed: f64,
+    /// Slice-push ratios ξ = tan α to run, one cut each (default [0.0]).
+    pub slice_push_ratios: Vec<f64>,
+    /// Distance along the edge from the heel to the object's near face, m
+    /// (default 0.02; seed 000 Fig. 6(b)'s z₀).
+    pub z0: f64,
+    /// Depth of the cut below the object's top, m (default: 0.8 × object height).
+    pub depth: Option<f64>,
+}
+
+impl Default for MotionSettings {
+    fn default() -> Self {
+        Self {
+            speed: 0.00625,
+            slice_push_ratios: vec![0.0],
+            z0: 0.02,
+            depth: None,
+        }
+    }
+}
+
+/// How the loop's time advances.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum ClockMode {
+    /// The plant advances simulated time once per command: deterministic, as fast as the model allows.
+    Lockstep,
+    /// Paced by wall-clock time at the loop rate; deadline misses are counted.
+    Realtime,
+}
+
+/// `[loop]`: the arm-style control loop between controller and plant.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct LoopSettings {
+    /// Loop rate, Hz (default 1000, an arm's servo rate).
+    pub rate_hz: f64,
+    /// Clock mode (default lockstep).
+    pub clock: ClockMode,
+    /// Consecutive missed commands after which the plant brakes (default 20, as libfranka).
+    pub missed_command_limit: u32,
+    /// Arm limits on the knife's translation, checked by finite differences.
+    pub arm_limits: ArmLimits,
+}
+
+impl Default for LoopSettings {
+    fn default() -> Self {
+        Self {
+            rate_hz: 1000.0,
+            clock: ClockMode::Lockstep,
+            missed_command_limit: 20,
+            arm_limits: ArmLimits::default(),
+        }
+    }
+}
+
+/// Cartesian translation limits of the arm (defaults: Franka FR3).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct ArmLimits {
+    /// Maximum speed, m/s (default 3.0).
+    pub velocity: f64,
+    /// Maximum acceleration, m/s² (default 9.0).
+    pub acceleration: f64,
+    /// Maximum jerk, m/s³ (default 4500).
+    pub jerk: f64,
+}
+
+impl Default for ArmLimits {
+    fn default() -> Self {
+        Self {
+            velocity: 3.0,
+            acceleration: 9.0,
+            jerk: 4500.0,
+        }
+    }
+}
+
+/// A scenario with presets resolved and every value validated.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Scenario {
+    /// Name used in result directories.
+    pub name: String,
+    /// Free text.
+    pub description: String,
+    /// Seed of every random process.
+    pub seed: u64,
+    /// The material.
+    pub material: Material,
+    /// The knife.
+    pub knife: KnifeSettings,
+    /// The object.
+    pub object: ObjectShape,
+    /// The prescribed motion.
+    pub motion: MotionSettings,
+    /// The loop.
+    #[serde(rename = "loop")]
+    pub control_loop: LoopSettings,
+}
+
+/// The scenario that `shearcut` runs when given none.
+pub const DEFAULT_SCENARIO: (&str, &str) = (
+    "fig7-potato",
+    include_str!("../config/scenarios/fig7-potato.toml"),
+);
+
+/// Scenarios shipped with shearcut, available by name as well as by path.
+pub const BUILT_IN_SCENARIOS: [(&str, &str); 2] = [
+    DEFAULT_SCENARIO,
+    (
+        "fig7-eggplant",
+        include_str!("../config/scenarios/fig7-eggplant.toml"),
+    ),
+];
+
+impl Scenario {
+    /// Loads a scenario from a path, or by the name of a built-in scenario.
+    pub fn load(path_or_name: &str) -> Result<Self, ConfigError> {
+        let path = Path::new(path_or_name);
+        if !path.exists()
+            && let Some((name, text)) = BUILT_IN_SCENARIOS.iter().find(|(n, _)| *n == path_or_name)
+        {
+            return Self::parse(text, name, name);
+        }
+        let text = std::fs::read_to_string(path).map_err(|source| ConfigError::Read {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        let stem = path
+            .file_stem()
+            .and_then(|s| s.to_str())
+            .unwrap_or("scenario");
+        Self::parse(&text, &path.display().to_string(), stem)
+    }
+
+    /// Parses, resolves and validates scenario TOML. `origin` names the text in
+    /// errors; `default_name` is used when the file has no `name`.
+    pub fn parse(text: &str, origin: &str, default_name: &str) -> Result<Self, ConfigError> {
+        let file: ScenarioFile = toml::from_str(text).map_err(|e| parse_error(origin, text, &e))?;
+        file.resolve(default_name)
+            .map_err(|setting| ConfigError::Invalid {
+                path: origin.to_string(),
+                setting,
+            })
+    }
+}
+
+/// A one-line parse error with line and column.
+fn parse_error(origin: &str, text: &str, e: &toml::de::Error) -> ConfigError {
+    let (line, column) = match e.span() {
+        Some(span) => {
+            let before = &text[..span.start.min(text.len())];
+            let line = before.matches('\n').count() + 1;
+            let column = before.len() - before.rfind('\n').map_or(0, |i| i + 1) + 1;
+            (line, column)
+        }
+        None => (1, 1),
+    };
+    ConfigError::Parse {
+        path: origin.to_string(),
+        line,
+        column,
+        message: e.message().split_whitespace().collect::<Vec<_>>().join(" "),
+    }
+}
+
+impl ScenarioFile {
+    /// Expands presets and validates every value.
+    pub fn resolve(self, default_name: &str) -> Result<Scenario, InvalidSetting> {
+        let material = self
+            .material
+            .resolve()
+            .map_err(|e| e.prefixed("material"))?;
+        let knife = self.knife.resolve().map_err(|e| e.prefixed("knife"))?;
+        self.object.validate().map_err(|e| e.prefixed("object"))?;
+        self.motion
+            .validate(self.object.height())
+            .map_err(|e| e.prefixed("motion"))?;
+        self.control_loop
+            .validate()
+            .map_err(|e| e.prefixed("loop"))?;
+        let name = self.name.unwrap_or_else(|| default_name.to_string());
+        if name.is_empty() || name.contains(['/', '\\']) {
+            return Err(InvalidSetting::new(
+                "name",
+                format!("{name:?}"),
+                "must be non-empty and contain no path separators",
+            ));
+        }
+        Ok(Scenario {
+            name,
+            description: self.description.unwrap_or_default(),
+            seed: self.seed,
+            material,
+            knife,
+            object: self.object,
+            motion: self.motion,
+            control_loop: self.control_loop,
+        })
+    }
+}
+
+impl MaterialSpec {
+    /// The material: the preset with overrides, or the inline fields.
+    pub fn resolve(&self) -> Result<Material, InvalidSetting> {
+        let base = match &self.preset {
+            Some(name) => Some(
+                MaterialPreset::from_name(name)
+                    .ok_or_else(|| {
+                        InvalidSetting::new(
+                            "preset",
+                            format!("{name:?}"),
+                            format!(
+                                "must be one of {}",
+                                preset_list(MaterialPreset::ALL.map(|p| p.name()))
+                            ),
+                        )
+                    })?
+                    .material(),
+            ),
+            None => None,
+        };
+        let field = |key: &'static str, given: Option<f64>, from_preset: Option<f64>| {
+            given.or(from_preset).ok_or_else(|| {
+                InvalidSetting::new(
+                    key,
+                    "missing",
+                    "give it, or name a `preset` that supplies it",
+                )
+            })
+        };
+        let m = Material {
+            youngs_modulus: field(
+                "youngs_modulus",
+                self.youngs_modulus,
+                base.map(|b| b.youngs_modulus),
+            )?,
+            poisson_ratio: field(
+                "poisson_ratio",
+                self.poisson_ratio,
+                base.map(|b| b.poisson_ratio),
+            )?,
+            friction_coefficient: field(
+                "friction_coefficient",
+                self.friction_coefficient,
+                base.map(|b| b.friction_coefficient),
+            )?,
+            fracture_toughness: field(
+                "fracture_toughness",
+                self.fracture_toughness,
+                base.map(|b| b.fracture_toughness),
+            )?,
+            initial_fracture_toughness: field(
+                "initial_fracture_toughness",
+                self.initial_fracture_toughness,
+                base.map(|b| b.initial_fracture_toughness),
+            )?,
+        };
+        m.validate()?;
+        Ok(m)
+    }
+}
+
+impl KnifeSpec {
+    /// The knife: the preset with overrides, or the inline tables.
+    pub fn resolve(&self) -> Result<KnifeSettings, InvalidSetting> {
+        let base = match &self.preset {
+            Some(name) => Some(
+                KnifePreset::from_name(name)
+                    .ok_or_else(|| {
+                        InvalidSetting::new(
+                            "preset",
+                            format!("{name:?}"),
+                            format!(
+                                "must be one of {}",
+                                preset_list(KnifePreset::ALL.map(|p| p.name()))
+                            ),
+                        )
+                    })?
+                    .settings(),
+            ),
+            None => None,
+        };
+        let edge = match (&self.edge, &base) {
+            (Some(e), _) => e.clone(),
+            (None, Some(b)) => b.edge.clone(),
+            (None, None) => {
+                return Err(InvalidSetting::new(
+                    "edge",
+                    "missing",
+                    "give an `edge` table, or name a `preset`",
+                ));
+            }
+        };
+        let k = KnifeSettings {
+            edge,
+            blade: self
+                .blade
+                .or(base.as_ref().map(|b| b.blade))
+                .unwrap_or_default(),
+            sensor: self
+                .sensor
+                .or(base.as_ref().map(|b| b.sensor))
+                .unwrap_or_default(),
+        };
+        k.validate()?;
+        Ok(k)
+    }
+}
+
+impl MotionSettings {
+    /// Checks speed, ratios, z₀ and depth against an object of height `object_height`.
+    pub fn validate(&self, object_height: f64) -> Result<(), InvalidSetting> {
+        if !(self.speed.is_finite() && self.speed > 0.0) {
+            return Err(InvalidSetting::new(
+                "speed",
+                self.speed,
+                "must be a finite number > 0 m/s",
+            ));
+        }
+        if self.slice_push_ratios.is_empty() {
+            return Err(InvalidSetting::new(
+                "slice_push_ratios",
+                "[]",
+                "needs at least one ratio",
+            ));
+        }
+        for (i, xi) in self.slice_push_ratios.iter().enumerate() {
+            if !(xi.is_finite() && *xi >= 0.0 && *xi <= 20.0) {
+                return Err(InvalidSetting::new(
+                    format!("slice_push_ratios[{i}]"),
+                    xi,
+                    "must be in [0, 20] (ξ = tan α; 20 is α ≈ 87°)",
+                ));
+            }
+        }
+        if !(self.z0.is_finite() && self.z0 >= 0.0) {
+            return Err(InvalidSetting::new(
+                "z0",
+                self.z0,
+                "must be a finite number >= 0 m",
+            ));
+        }
+        if let Some(d) = self.depth
+            && !(d.is_finite() && d > 0.0 && d < object_height)
+        {
+            return Err(InvalidSetting::new(
+                "depth",
+                d,
+                format!("must be in (0, {object_height}) m, the object's height"),
+            ));
+        }
+        Ok(())
+    }
+}
+
+impl LoopSettings {
+    /// Checks rate, limits and the missed-command limit.
+    pub fn validate(&self) -> Result<(), InvalidSetting> {
+        if !(self.rate_hz.is_finite() && self.rate_hz >= 1.0 && self.rate_hz <= 20_000.0) {
+            return Err(InvalidSetting::new(
+                "rate_hz",
+                self.rate_hz,
+                "must be in [1, 20000] Hz",
+            ));
+        }
+        if self.missed_command_limit == 0 {
+            return Err(InvalidSetting::new(
+                "missed_command_limit",
+                0,
+                "must be at least 1",
+            ));
+        }
+        let l = &self.arm_limits;
+        for (key, v) in [
+            ("arm_limits.velocity", l.velocity),
+            ("arm_limits.acceleration", l.acceleration),
+            ("arm_limits.jerk", l.jerk),
+        ] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(InvalidSetting::new(key, v, "must be a finite number > 0"));
+            }
+        }
+        Ok(())
+    }
+}
+
+fn preset_list<const N: usize>(names: [&str; N]) -> String {
+    names.join(", ")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const MINIMAL: &str = r#"
+        [material]
+        preset = "potato-cuboid"
+        [knife]
+        preset = "straight"
+        [object]
+        kind = "cuboid"
+        width = 0.03
+        height = 0.03
+        length = 0.04
+    "#;
+
+    #[test]
+    fn built_in_scenarios_resolve() {
+        for (name, text) in BUILT_IN_SCENARIOS {
+            let s = Scenario::parse(text, name, name).unwrap();
+            assert_eq!(s.name, name);
+        }
+    }
+
+    #[test]
+    fn minimal_scenario_takes_documented_defaults() {
+        let s = Scenario::parse(MINIMAL, "t", "minimal").unwrap();
+        assert_eq!(s.name, "minimal");
+        assert_eq!(s.motion.speed, 0.00625);
+        assert_eq!(s.control_loop.rate_hz, 1000.0);
+        assert_eq!(s.control_loop.missed_command_limit, 20);
+        assert_eq!(s.material, MaterialPreset::PotatoCuboid.material());
+    }
+
+    #[test]
+    fn override_of_a_preset_field() {
+        let text = MINIMAL.replace(
+            "preset = \"potato-cuboid\"",
+            "preset = \"potato-cuboid\"\nfracture_toughness = 99.0",
+        );
+        let s = Scenario::parse(&text, "t", "t").unwrap();
+        assert_eq!(s.material.fracture_toughness, 99.0);
+        assert_eq!(s.material.youngs_modulus, 2.0e6);
+    }
+
+    #[test]
+    fn poisson_ratio_out_of_range_is_one_line_naming_the_key() {
+        let text = MINIMAL.replace(
+            "preset = \"potato-cuboid\"",
+            "preset = \"potato-cuboid\"\npoisson_ratio = 0.7",
+        );
+        let e = Scenario::parse(&text, "bad.toml", "t")
+            .unwrap_err()
+            .to_string();
+        assert_eq!(
+            e,
+            "bad.toml: `material.poisson_ratio` = 0.7: must be in the open interval (0, 0.5)"
+        );
+    }
+
+    #[test]
+    fn unknown_key_reports_line_and_column() {
+        let text = MINIMAL.replace("width = 0.03", "widht = 0.03");
+        let e = Scenario::parse(&text, "bad.toml", "t")
+            .unwrap_err()
+            .to_string();
+        // toml spans the table that holds the unknown key: `[object]` on line 6.
+        assert!(e.starts_with("bad.toml:6:"), "{e}");
+        assert!(e.contains("widht") && !e.contains('\n'), "{e}");
+    }
+
+    #[test]
+    fn unknown_preset_lists_the_allowed_ones() {
+        let text = MINIMAL.replace("\"straight\"", "\"sword\"");
+        let e = Scenario::parse(&text, "x", "t").unwrap_err().to_string();
+        assert!(
+            e.contains("`knife.preset` = \"sword\": must be one of straight, chef, wire"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn missing_material_field_without_preset() {
+        let text = MINIMAL.replace("preset = \"potato-cuboid\"", "youngs_modulus = 1e6");
+        let e = Scenario::parse(&text, "x", "t").unwrap_err().to_string();
+        assert!(e.contains("`material.poisson_ratio` = missing"), "{e}");
+    }
+
+    #[test]
+    fn depth_must_be_inside_the_object() {
+        let text = format!("{MINIMAL}\n[motion]\ndepth = 0.05\n");
+        let e = Scenario::parse(&text, "x", "t").unwrap_err().to_string();
+        assert!(e.contains("`motion.depth` = 0.05"), "{e}");
+    }
+}

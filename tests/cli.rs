@@ -1,0 +1,118 @@
+//! The `shearcut` command line as a user meets it: outputs, exit codes, errors.
+
+use std::process::{Command, Output};
+
+fn shearcut(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_shearcut"))
+        .args(args)
+        .env("RUST_LOG", "error")
+        .output()
+        .expect("the shearcut binary runs")
+}
+
+fn stdout(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stdout).into_owned()
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+#[test]
+fn toughness_prints_the_issue_value() {
+    let o = shearcut(&["toughness", "--nu", "0.4", "--xi", "0.75"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stdout(&o).contains("= 0.6224"), "{}", stdout(&o));
+}
+
+#[test]
+fn toughness_plot_writes_svg_and_csv() {
+    let dir = std::env::temp_dir().join(format!("shearcut-cli-{}", std::process::id()));
+    let svg = dir.join("fig3.svg");
+    let o = shearcut(&[
+        "toughness",
+        "--nu",
+        "0.35",
+        "--xi",
+        "0.33",
+        "--plot",
+        svg.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&svg).unwrap();
+    assert!(text.starts_with("<svg") && text.contains("Poisson"));
+    let csv = std::fs::read_to_string(dir.join("fig3.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert!(lines.next().unwrap().starts_with("poisson_ratio,r_xi_0,"));
+    // Every row has ν and six ratios; the ξ = 0 column is exactly 1.
+    for line in lines {
+        let cols: Vec<f64> = line.split(',').map(|c| c.parse().unwrap()).collect();
+        assert_eq!(cols.len(), 7);
+        assert_eq!(cols[1], 1.0);
+    }
+    std::fs::remove_dir_all(dir).ok();
+}
+
+#[test]
+fn bad_plot_extension_is_exit_2() {
+    let o = shearcut(&["toughness", "--nu", "0.4", "--xi", "1", "--plot", "x.jpg"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("--plot"));
+}
+
+#[test]
+fn scenario_with_bad_poisson_ratio_is_refused_in_one_line() {
+    let dir = std::env::temp_dir().join(format!("shearcut-cli-nu-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("bad.toml");
+    let text = include_str!("../config/scenarios/fig7-potato.toml").replace(
+        "preset = \"potato-cuboid\"",
+        "preset = \"potato-cuboid\"\npoisson_ratio = 0.7",
+    );
+    std::fs::write(&path, text).unwrap();
+    let o = shearcut(&["check", path.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = stderr(&o);
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(
+        err.contains("`material.poisson_ratio` = 0.7: must be in the open interval (0, 0.5)"),
+        "{err}"
+    );
+    assert!(!err.contains("panicked"));
+    std::fs::remove_dir_all(dir).ok();
+}
+
+#[test]
+fn missing_scenario_file_is_exit_2() {
+    let o = shearcut(&["check", "/nonexistent/scenario.toml"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("cannot read `/nonexistent/scenario.toml`"));
+}
+
+#[test]
+fn check_resolves_a_built_in_scenario() {
+    let o = shearcut(&["check", "fig7-eggplant"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = stdout(&o);
+    assert!(
+        out.contains("youngs_modulus = 400000.0")
+            && out.contains("initial_fracture_toughness = 275.0")
+    );
+}
+
+#[test]
+fn shipped_scenarios_all_check() {
+    for entry in
+        std::fs::read_dir(concat!(env!("CARGO_MANIFEST_DIR"), "/config/scenarios")).unwrap()
+    {
+        let path = entry.unwrap().path();
+        let o = shearcut(&["check", path.to_str().unwrap()]);
+        assert!(o.status.success(), "{}: {}", path.display(), stderr(&o));
+    }
+}
+
+#[test]
+fn unknown_subcommand_is_exit_2() {
+    let o = shearcut(&["frobnicate"]);
+    assert_eq!(o.status.code(), Some(2));
+}
