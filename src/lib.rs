@@ -4,6 +4,7 @@
 
 pub mod cli;
 pub mod commands;
+pub mod cut_record;
 pub mod error;
 pub mod logging;
 pub mod plot;

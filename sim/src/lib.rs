@@ -6,6 +6,7 @@
 //! the multi-section plant and its surrogates. SI units throughout.
 
 pub mod blade;
+pub mod geometry;
 pub mod invalid_setting;
 pub mod knife;
 pub mod material;

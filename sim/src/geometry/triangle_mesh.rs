@@ -1,0 +1,263 @@
+//! Closed triangle meshes of objects.
+
+use std::collections::HashMap;
+
+use nalgebra::Vector3;
+
+/// Why a mesh cannot be used as a solid object.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum MeshError {
+    /// The file could not be read.
+    #[error("cannot read mesh `{path}`: {message}")]
+    Read {
+        /// The file.
+        path: String,
+        /// Why.
+        message: String,
+    },
+    /// The file is not a valid OBJ or STL (truncated, malformed).
+    #[error("mesh `{path}` is malformed: {message}")]
+    Malformed {
+        /// The file.
+        path: String,
+        /// What the parser said.
+        message: String,
+    },
+    /// The file extension is neither .obj nor .stl.
+    #[error("mesh `{path}`: unknown format (expected a .obj or .stl file)")]
+    UnknownFormat {
+        /// The file.
+        path: String,
+    },
+    /// No triangles.
+    #[error("mesh has no triangles")]
+    Empty,
+    /// A coordinate is NaN or infinite.
+    #[error("mesh vertex {vertex} has a non-finite coordinate")]
+    NonFinite {
+        /// Index of the vertex.
+        vertex: usize,
+    },
+    /// A triangle refers to a vertex that does not exist.
+    #[error(
+        "mesh triangle {triangle} refers to vertex {vertex}, but there are only {count} vertices"
+    )]
+    BadIndex {
+        /// Index of the triangle.
+        triangle: usize,
+        /// The index it holds.
+        vertex: usize,
+        /// Number of vertices.
+        count: usize,
+    },
+    /// The surface is not closed: an edge belongs to other than two triangles.
+    #[error(
+        "mesh is not closed: the edge between vertices {a} and {b} belongs to {count} triangle(s), a closed surface needs exactly 2"
+    )]
+    NotClosed {
+        /// First vertex of the edge.
+        a: usize,
+        /// Second vertex of the edge.
+        b: usize,
+        /// How many triangles share it.
+        count: usize,
+    },
+    /// The enclosed volume is zero (flat or degenerate mesh).
+    #[error("mesh encloses no volume")]
+    NoVolume,
+}
+
+/// A closed, consistently usable triangle surface bounding a solid, in world
+/// coordinates (m). Built only through [`TriangleMesh::new`], which checks it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TriangleMesh {
+    vertices: Vec<Vector3<f64>>,
+    triangles: Vec<[usize; 3]>,
+}
+
+impl TriangleMesh {
+    /// A mesh from vertices and triangles, after checking that it is a closed
+    /// surface (every edge shared by exactly two triangles, after merging
+    /// vertices that coincide to 1e-9 of the mesh size), finite, and encloses a
+    /// volume.
+    pub fn new(vertices: Vec<Vector3<f64>>, triangles: Vec<[usize; 3]>) -> Result<Self, MeshError> {
+        if triangles.is_empty() {
+            return Err(MeshError::Empty);
+        }
+        if let Some(v) = vertices
+            .iter()
+            .position(|p| !p.iter().all(|c| c.is_finite()))
+        {
+            return Err(MeshError::NonFinite { vertex: v });
+        }
+        for (t, tri) in triangles.iter().enumerate() {
+            if let Some(&v) = tri.iter().find(|&&v| v >= vertices.len()) {
+                return Err(MeshError::BadIndex {
+                    triangle: t,
+                    vertex: v,
+                    count: vertices.len(),
+                });
+            }
+        }
+        let (vertices, triangles) = weld(vertices, triangles);
+        let mut edges: HashMap<(usize, usize), usize> = HashMap::new();
+        for tri in &triangles {
+            for k in 0..3 {
+                let (a, b) = (tri[k], tri[(k + 1) % 3]);
+                *edges.entry((a.min(b), a.max(b))).or_insert(0) += 1;
+            }
+        }
+        let mut bad: Vec<_> = edges.into_iter().filter(|&(_, c)| c != 2).collect();
+        bad.sort_unstable();
+        if let Some(&((a, b), count)) = bad.first() {
+            return Err(MeshError::NotClosed { a, b, count });
+        }
+        let mesh = Self {
+            vertices,
+            triangles,
+        };
+        if mesh.volume().abs() <= 1e-12 * mesh.size().powi(3) {
+            return Err(MeshError::NoVolume);
+        }
+        Ok(mesh)
+    }
+
+    /// The vertices, m.
+    pub fn vertices(&self) -> &[Vector3<f64>] {
+        &self.vertices
+    }
+
+    /// The triangles as vertex indices.
+    pub fn triangles(&self) -> &[[usize; 3]] {
+        &self.triangles
+    }
+
+    /// (min, max) corners of the bounding box, m.
+    pub fn bounds(&self) -> (Vector3<f64>, Vector3<f64>) {
+        let mut lo = Vector3::repeat(f64::INFINITY);
+        let mut hi = Vector3::repeat(f64::NEG_INFINITY);
+        for p in &self.vertices {
+            lo = lo.inf(p);
+            hi = hi.sup(p);
+        }
+        (lo, hi)
+    }
+
+    /// Length of the bounding box diagonal, m.
+    pub fn size(&self) -> f64 {
+        let (lo, hi) = self.bounds();
+        (hi - lo).norm()
+    }
+
+    /// Enclosed volume by the divergence theorem, m³ (absolute value: the
+    /// orientation of the triangles is not assumed).
+    pub fn volume(&self) -> f64 {
+        self.triangles
+            .iter()
+            .map(|t| {
+                let (a, b, c) = (
+                    self.vertices[t[0]],
+                    self.vertices[t[1]],
+                    self.vertices[t[2]],
+                );
+                a.dot(&b.cross(&c)) / 6.0
+            })
+            .sum::<f64>()
+            .abs()
+    }
+
+    /// A closed box mesh [x0, x1] × [y0, y1] × [z0, z1].
+    pub fn cuboid(min: Vector3<f64>, max: Vector3<f64>) -> Self {
+        let c = |i: usize| {
+            Vector3::new(
+                if i & 1 == 0 { min.x } else { max.x },
+                if i & 2 == 0 { min.y } else { max.y },
+                if i & 4 == 0 { min.z } else { max.z },
+            )
+        };
+        let vertices = (0..8).map(c).collect();
+        let triangles = vec![
+            [0, 2, 1],
+            [1, 2, 3], // z = min
+            [4, 5, 6],
+            [5, 7, 6], // z = max
+            [0, 1, 4],
+            [1, 5, 4], // y = min
+            [2, 6, 3],
+            [3, 6, 7], // y = max
+            [0, 4, 2],
+            [2, 4, 6], // x = min
+            [1, 3, 5],
+            [3, 7, 5], // x = max
+        ];
+        Self::new(vertices, triangles).expect("a box is closed")
+    }
+}
+
+/// Merges vertices closer than 1e-9 × the bounding-box diagonal (STL stores
+/// each triangle's corners separately), drops triangles that collapse.
+fn weld(
+    vertices: Vec<Vector3<f64>>,
+    triangles: Vec<[usize; 3]>,
+) -> (Vec<Vector3<f64>>, Vec<[usize; 3]>) {
+    let mut lo = Vector3::repeat(f64::INFINITY);
+    let mut hi = Vector3::repeat(f64::NEG_INFINITY);
+    for p in &vertices {
+        lo = lo.inf(p);
+        hi = hi.sup(p);
+    }
+    let tol = 1e-9 * (hi - lo).norm().max(f64::MIN_POSITIVE);
+    let key = |p: &Vector3<f64>| {
+        let q = (p - lo) / tol;
+        (q.x.round() as i64, q.y.round() as i64, q.z.round() as i64)
+    };
+    let mut map: HashMap<(i64, i64, i64), usize> = HashMap::new();
+    let mut new_vertices = Vec::new();
+    let remap: Vec<usize> = vertices
+        .iter()
+        .map(|p| {
+            *map.entry(key(p)).or_insert_with(|| {
+                new_vertices.push(*p);
+                new_vertices.len() - 1
+            })
+        })
+        .collect();
+    let new_triangles = triangles
+        .into_iter()
+        .map(|t| [remap[t[0]], remap[t[1]], remap[t[2]]])
+        .filter(|t| t[0] != t[1] && t[1] != t[2] && t[0] != t[2])
+        .collect();
+    (new_vertices, new_triangles)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn box_volume() {
+        let m = TriangleMesh::cuboid(
+            Vector3::new(-0.01, 0.0, 0.0),
+            Vector3::new(0.01, 0.03, 0.04),
+        );
+        assert!((m.volume() - 0.02 * 0.03 * 0.04).abs() < 1e-15);
+    }
+
+    #[test]
+    fn open_mesh_is_refused() {
+        let m = TriangleMesh::cuboid(Vector3::zeros(), Vector3::repeat(1.0));
+        let mut tris = m.triangles().to_vec();
+        tris.pop();
+        let e = TriangleMesh::new(m.vertices().to_vec(), tris).unwrap_err();
+        assert!(matches!(e, MeshError::NotClosed { count: 1, .. }), "{e}");
+    }
+
+    #[test]
+    fn bad_index_and_nan_are_refused() {
+        let e = TriangleMesh::new(vec![Vector3::zeros(); 3], vec![[0, 1, 5]]).unwrap_err();
+        assert!(matches!(e, MeshError::BadIndex { vertex: 5, .. }));
+        let e = TriangleMesh::new(vec![Vector3::new(f64::NAN, 0.0, 0.0); 3], vec![[0, 1, 2]])
+            .unwrap_err();
+        assert!(matches!(e, MeshError::NonFinite { vertex: 0 }));
+    }
+}
