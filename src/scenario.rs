@@ -8,6 +8,7 @@
 use std::path::Path;
 
 use serde::{Deserialize, Serialize};
+use shearcut_sim::plant::ArmLimits;
 use shearcut_sim::{
     BladeSection, EdgeShape, InvalidSetting, KnifePreset, KnifeSettings, Material, MaterialPreset,
     ObjectShape, SensorMount,
@@ -129,28 +130,6 @@ impl Default for LoopSettings {
             clock: ClockMode::Lockstep,
             missed_command_limit: 20,
             arm_limits: ArmLimits::default(),
-        }
-    }
-}
-
-/// Cartesian translation limits of the arm (defaults: Franka FR3).
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct ArmLimits {
-    /// Maximum speed, m/s (default 3.0).
-    pub velocity: f64,
-    /// Maximum acceleration, m/s² (default 9.0).
-    pub acceleration: f64,
-    /// Maximum jerk, m/s³ (default 4500).
-    pub jerk: f64,
-}
-
-impl Default for ArmLimits {
-    fn default() -> Self {
-        Self {
-            velocity: 3.0,
-            acceleration: 9.0,
-            jerk: 4500.0,
         }
     }
 }
@@ -450,17 +429,9 @@ impl LoopSettings {
                 "must be at least 1",
             ));
         }
-        let l = &self.arm_limits;
-        for (key, v) in [
-            ("arm_limits.velocity", l.velocity),
-            ("arm_limits.acceleration", l.acceleration),
-            ("arm_limits.jerk", l.jerk),
-        ] {
-            if !(v.is_finite() && v > 0.0) {
-                return Err(InvalidSetting::new(key, v, "must be a finite number > 0"));
-            }
-        }
-        Ok(())
+        self.arm_limits
+            .validate()
+            .map_err(|e| e.prefixed("arm_limits"))
     }
 }
 

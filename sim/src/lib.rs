@@ -12,6 +12,7 @@ pub mod knife;
 pub mod material;
 pub mod mechanics;
 pub mod object;
+pub mod plant;
 
 pub use blade::BladeSection;
 pub use invalid_setting::InvalidSetting;

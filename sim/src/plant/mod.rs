@@ -1,0 +1,17 @@
+//! The plant: a whole knife cutting a whole object (seed 000 §IV–V), driven
+//! tick by tick like a robot arm, reporting what an F/T sensor would read.
+//!
+//! Files: `crack_front` (the quadratic crack front fitted over the sections'
+//! crack tips), `wrench` (section forces summed into force and torque at the
+//! sensor), `arm_limits` (an arm's finite-difference reflexes), `ft_sensor`
+//! (noise, bias and sample rate of the F/T signal).
+
+pub mod arm_limits;
+pub mod crack_front;
+pub mod ft_sensor;
+pub mod wrench;
+
+pub use arm_limits::{ArmLimitMonitor, ArmLimits, LimitViolation};
+pub use crack_front::CrackFront;
+pub use ft_sensor::{FtSensor, FtSensorSettings};
+pub use wrench::{SegmentLoad, Wrench, wrench_at};
