@@ -8,7 +8,11 @@
 pub mod blade;
 pub mod invalid_setting;
 pub mod material;
+pub mod section;
 
 pub use blade::BladeSection;
 pub use invalid_setting::InvalidSetting;
 pub use material::{Material, MaterialPreset};
+pub use section::{
+    CrossSection, SectionError, SectionGeometry, SectionSettings, SectionStep, StepStatus, WorkSplit,
+};

@@ -1,0 +1,143 @@
+//! Fracture of a section by the energy balance of seed 000 eq. (1),
+//! dW = R_c^s ds + dU, with the slicing toughness R_c^s = r(ξ,ν)·R_c of eq. (6)
+//! and the crack extension found by bracketing and bisection (§III.C).
+
+/// Toughness ratio r(ξ, ν) = R_c^s / R_c of seed 000 eq. (6):
+/// r = 2/(1+√(1+(ξ/(1−ν−2ν²))²)) · (1 + ξ²/(2(1+ν))).
+// replaced by crate::mechanics::toughness_ratio on merge
+pub(crate) fn toughness_ratio(xi: f64, nu: f64) -> f64 {
+    let a = 1.0 - nu - 2.0 * nu * nu;
+    2.0 / (1.0 + (1.0 + (xi / a).powi(2)).sqrt()) * (1.0 + xi * xi / (2.0 * (1.0 + nu)))
+}
+
+/// Outcome of solving R(s) = T for the crack extension s of one step.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) enum Extension {
+    /// R(δ₀) < T: the crack does not grow in this step.
+    None,
+    /// R(s) = T within tolerance at extension `s` (m), `r` = R(s).
+    Balanced {
+        /// Crack extension, m.
+        s: f64,
+        /// Energy release rate at s, N/m.
+        r: f64,
+    },
+    /// R(s_max) ≥ T: the crack runs to the end of the line (`s` = s_max).
+    RunsThrough {
+        /// Crack extension, m.
+        s: f64,
+        /// Energy release rate at s, N/m.
+        r: f64,
+    },
+    /// No bracket within the allowed doublings (the step keeps the largest
+    /// extension tried, whose R still exceeds T).
+    Unbracketed {
+        /// Crack extension, m.
+        s: f64,
+        /// Energy release rate at s, N/m.
+        r: f64,
+    },
+}
+
+/// Bracketing and bisection of seed 000 §III.C.
+///
+/// `release(s)` is the energy release rate R(s) = (dW − dU)/s for a trial
+/// extension s. Growth starts when R(δ₀) ≥ `trigger`; the extension then
+/// solves R(s) = `target` (≤ trigger): δ is grown in integer multiples
+/// (doubling) until R(kδ₀) < target brackets the root, or s reaches `s_max`,
+/// then bisected until |R − target| ≤ tol·target.
+pub(crate) fn solve_extension(
+    mut release: impl FnMut(f64) -> f64,
+    delta0: f64,
+    s_max: f64,
+    trigger: f64,
+    target: f64,
+    tol: f64,
+    max_doublings: u32,
+    max_bisections: u32,
+) -> Extension {
+    if s_max <= 0.0 {
+        return Extension::None;
+    }
+    let d0 = delta0.min(s_max);
+    let r0 = release(d0);
+    if r0 < trigger {
+        return Extension::None;
+    }
+    let (mut lo, mut r_lo) = (d0, r0);
+    let mut hi = d0;
+    let mut r_hi = r0;
+    let mut bracketed = false;
+    for _ in 0..max_doublings {
+        if hi >= s_max {
+            break;
+        }
+        hi = (2.0 * hi).min(s_max);
+        r_hi = release(hi);
+        if r_hi < target {
+            bracketed = true;
+            break;
+        }
+        lo = hi;
+        r_lo = r_hi;
+    }
+    if !bracketed {
+        return if hi >= s_max {
+            Extension::RunsThrough { s: hi, r: r_hi }
+        } else {
+            Extension::Unbracketed { s: lo, r: r_lo }
+        };
+    }
+    if (r_lo - target).abs() <= tol * target {
+        return Extension::Balanced { s: lo, r: r_lo };
+    }
+    let (mut s, mut r) = (lo, r_lo);
+    for _ in 0..max_bisections {
+        s = 0.5 * (lo + hi);
+        r = release(s);
+        if (r - target).abs() <= tol * target || hi - lo <= 4.0 * f64::EPSILON * hi {
+            break;
+        }
+        if r >= target {
+            lo = s;
+        } else {
+            hi = s;
+        }
+    }
+    Extension::Balanced { s, r }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn toughness_ratio_values() {
+        assert_eq!(toughness_ratio(0.0, 0.4), 1.0);
+        // ν = 0.4: 1 − ν − 2ν² = 0.28.
+        let r = toughness_ratio(0.75, 0.4);
+        let expect = 2.0 / (1.0 + (1.0 + (0.75f64 / 0.28).powi(2)).sqrt()) * (1.0 + 0.5625 / 2.8);
+        assert!((r - expect).abs() < 1e-15);
+    }
+
+    #[test]
+    fn bisection_finds_the_root_of_a_decreasing_rate() {
+        // R(s) = 200 − 1e6 s: R = 150 at s = 5e-5.
+        let e = solve_extension(|s| 200.0 - 1e6 * s, 1e-6, 1.0, 150.0, 150.0, 1e-9, 60, 200);
+        match e {
+            Extension::Balanced { s, r } => {
+                assert!((s - 5e-5).abs() < 1e-12);
+                assert!((r - 150.0).abs() < 1e-6);
+            }
+            other => panic!("{other:?}"),
+        }
+        assert_eq!(
+            solve_extension(|_| 100.0, 1e-6, 1.0, 150.0, 150.0, 1e-9, 60, 200),
+            Extension::None
+        );
+        assert!(matches!(
+            solve_extension(|_| 200.0, 1e-6, 1e-3, 150.0, 150.0, 1e-9, 60, 200),
+            Extension::RunsThrough { .. }
+        ));
+    }
+}
