@@ -19,7 +19,11 @@ pub struct InvalidSetting {
 
 impl InvalidSetting {
     /// A new error for `key` with `value` and the `allowed` range.
-    pub fn new(key: impl Into<String>, value: impl fmt::Display, allowed: impl Into<String>) -> Self {
+    pub fn new(
+        key: impl Into<String>,
+        value: impl fmt::Display,
+        allowed: impl Into<String>,
+    ) -> Self {
         Self {
             key: key.into(),
             value: value.to_string(),
@@ -48,7 +52,11 @@ pub(crate) fn positive(key: &str, value: f64) -> Result<(), InvalidSetting> {
     if value.is_finite() && value > 0.0 {
         Ok(())
     } else {
-        Err(InvalidSetting::new(key, value, "must be a finite number > 0"))
+        Err(InvalidSetting::new(
+            key,
+            value,
+            "must be a finite number > 0",
+        ))
     }
 }
 
@@ -57,6 +65,10 @@ pub(crate) fn non_negative(key: &str, value: f64) -> Result<(), InvalidSetting> 
     if value.is_finite() && value >= 0.0 {
         Ok(())
     } else {
-        Err(InvalidSetting::new(key, value, "must be a finite number >= 0"))
+        Err(InvalidSetting::new(
+            key,
+            value,
+            "must be a finite number >= 0",
+        ))
     }
 }

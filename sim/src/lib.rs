@@ -14,5 +14,6 @@ pub use blade::BladeSection;
 pub use invalid_setting::InvalidSetting;
 pub use material::{Material, MaterialPreset};
 pub use section::{
-    CrossSection, SectionError, SectionGeometry, SectionSettings, SectionStep, StepStatus, WorkSplit,
+    CrossSection, SectionError, SectionGeometry, SectionSettings, SectionStep, StepStatus,
+    WorkSplit,
 };

@@ -165,7 +165,10 @@ impl Material {
         }
         non_negative("friction_coefficient", self.friction_coefficient)?;
         positive("fracture_toughness", self.fracture_toughness)?;
-        positive("initial_fracture_toughness", self.initial_fracture_toughness)?;
+        positive(
+            "initial_fracture_toughness",
+            self.initial_fracture_toughness,
+        )?;
         Ok(())
     }
 }

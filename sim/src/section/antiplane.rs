@@ -13,7 +13,12 @@ const GAUSS: f64 = 0.577_350_269_189_625_8;
 /// 4×4 Laplace stiffness G ∫ ∇N·∇N of one Q4 element, per unit thickness.
 pub(crate) fn element_stiffness(p: &[[f64; 2]; 4], g_mod: f64) -> [[f64; 4]; 4] {
     let mut K = [[0.0; 4]; 4];
-    for (xi, eta) in [(-GAUSS, -GAUSS), (GAUSS, -GAUSS), (GAUSS, GAUSS), (-GAUSS, GAUSS)] {
+    for (xi, eta) in [
+        (-GAUSS, -GAUSS),
+        (GAUSS, -GAUSS),
+        (GAUSS, GAUSS),
+        (-GAUSS, GAUSS),
+    ] {
         let (g, det) = q4_gradients(p, xi, eta);
         for a in 0..4 {
             for b in 0..4 {

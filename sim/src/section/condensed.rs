@@ -25,11 +25,9 @@
 //!
 //! # Memory allocation
 //! Construction allocates the matrices (|Y|² + |Y|·R + R² + |Z|² doubles, a few
-//! MB for the default mesh). [`CondensedLine::solve`] allocates nothing;
-//! [`CondensedLine::solve_with_free`] (released X DOFs, used for unilateral
-//! contact and tests) allocates its dense system.
+//! MB for the default mesh). [`CondensedLine::solve`] allocates nothing.
 
-#![allow(non_snake_case)]
+#![allow(non_snake_case, clippy::needless_range_loop)]
 
 use faer::linalg::solvers::Solve;
 use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
@@ -269,7 +267,10 @@ impl CondensedLine {
                 *r = s.value;
                 for (q, w) in self.taps(a, s) {
                     if w != 0.0 {
-                        *r += w * dot(&self.Et.col_as_slice(q)[first_nonzero..], &g[first_nonzero..]);
+                        *r += w * dot(
+                            &self.Et.col_as_slice(q)[first_nonzero..],
+                            &g[first_nonzero..],
+                        );
                     }
                 }
             }
@@ -298,8 +299,31 @@ impl CondensedLine {
         }
     }
 
+    /// Mean over the strip columns of the interpolated u_y at the strip
+    /// position when only the gaps `g` act (no strip force), m.
+    pub fn strip_free_uy(&self, g: &[f64], first_nonzero: usize, s: &StripConstraint) -> f64 {
+        let mut u = 0.0;
+        for a in 0..self.k {
+            for (q, w) in self.taps(a, s) {
+                if w != 0.0 {
+                    u -= w * dot(
+                        &self.Et.col_as_slice(q)[first_nonzero..],
+                        &g[first_nonzero..],
+                    );
+                }
+            }
+        }
+        u / self.k as f64
+    }
+
     /// u_y at strip column 0 (the cut line), row r, after [`Self::solve`].
-    pub fn line_uy(&self, r: usize, g: &[f64], strip: Option<&StripConstraint>, lambda: &[f64; MAX_STRIP]) -> f64 {
+    pub fn line_uy(
+        &self,
+        r: usize,
+        g: &[f64],
+        strip: Option<&StripConstraint>,
+        lambda: &[f64; MAX_STRIP],
+    ) -> f64 {
         let q = self.yi(0, r);
         let mut u = -dot(self.Et.col_as_slice(q), g);
         if let Some(s) = strip {
@@ -322,88 +346,6 @@ impl CondensedLine {
         small_solve(&mut M, &mut rhs, self.k);
         let f: f64 = rhs[..self.k].iter().sum();
         (0.5 * strip.value * f, f)
-    }
-
-    /// In-plane solve where the X DOFs marked `free` are unknown and loaded by
-    /// `fx` (N/m), the others prescribed to `g`. On return `g` holds every u_x
-    /// and `p` every X force. Allocates its dense system.
-    pub fn solve_with_free(
-        &self,
-        g: &mut [f64],
-        free: &[bool],
-        fx: &[f64],
-        strip: Option<&StripConstraint>,
-        p: &mut [f64],
-        lambda: &mut [f64; MAX_STRIP],
-    ) -> InPlane {
-        let n = self.n;
-        let fr: Vec<usize> = (0..n).filter(|&i| free[i]).collect();
-        let nk = if strip.is_some() { self.k } else { 0 };
-        let size = fr.len() + nk;
-        for &i in &fr {
-            g[i] = 0.0;
-        }
-        // Q[a][i] = Σ_r w_r E[(a,r), i]
-        let q_row = |a: usize, i: usize, s: &StripConstraint| -> f64 {
-            self.taps(a, s)
-                .iter()
-                .map(|&(q, w)| if w != 0.0 { w * self.Et[(i, q)] } else { 0.0 })
-                .sum()
-        };
-        let mut Msys = Mat::<f64>::zeros(size, size);
-        let mut rhs = Mat::<f64>::zeros(size, 1);
-        for (a, &i) in fr.iter().enumerate() {
-            for (b, &j) in fr.iter().enumerate() {
-                Msys[(a, b)] = self.A[(i, j)];
-            }
-            let ag: f64 = (0..n).map(|j| self.A[(i, j)] * g[j]).sum();
-            rhs[(a, 0)] = fx[i] - ag;
-        }
-        if let Some(s) = strip {
-            let M = self.strip_matrix(&self.C, s);
-            for a in 0..self.k {
-                let row = fr.len() + a;
-                for (b, &i) in fr.iter().enumerate() {
-                    let qai = q_row(a, i, s);
-                    Msys[(b, row)] = qai;
-                    Msys[(row, b)] = -qai;
-                }
-                for b in 0..self.k {
-                    Msys[(row, fr.len() + b)] = M[a][b];
-                }
-                let qg: f64 = (0..n).map(|i| q_row(a, i, s) * g[i]).sum();
-                rhs[(row, 0)] = s.value + qg;
-            }
-        }
-        let x = Msys.partial_piv_lu().solve(&rhs);
-        for (a, &i) in fr.iter().enumerate() {
-            g[i] = x[(a, 0)];
-        }
-        *lambda = [0.0; MAX_STRIP];
-        for a in 0..nk {
-            lambda[a] = x[(fr.len() + a, 0)];
-        }
-        p[..n].fill(0.0);
-        for (i, &gi) in g.iter().enumerate() {
-            if gi != 0.0 {
-                axpy(gi, self.A.col_as_slice(i), p);
-            }
-        }
-        let mut energy_strip = 0.0;
-        if let Some(s) = strip {
-            for a in 0..self.k {
-                for (q, w) in self.taps(a, s) {
-                    if w != 0.0 {
-                        axpy(w * lambda[a], self.Et.col_as_slice(q), p);
-                    }
-                }
-            }
-            energy_strip = s.value * lambda[..self.k].iter().sum::<f64>();
-        }
-        InPlane {
-            energy: 0.5 * (dot(g, p) + energy_strip),
-            strip_force: lambda[..self.k].iter().sum(),
-        }
     }
 }
 

@@ -42,13 +42,20 @@ pub(crate) enum Extension {
 /// Bracketing and bisection of seed 000 §III.C.
 ///
 /// `release(s)` is the energy release rate R(s) = (dW − dU)/s for a trial
-/// extension s. Growth starts when R(δ₀) ≥ `trigger`; the extension then
+/// extension s. Growth starts when R(δ₀) ≥ `trigger`, or when R(2ᵏδ₀) ≥
+/// `trigger` for a larger trial up to `s_scan`: R(s) need not be monotone,
+/// because the stiffness under the edge changes with the crack depth (near the
+/// top surface the strip stiffens as the crack faces beside it form, so the
+/// balance can be met only by an extension that releases the indentation's
+/// stored energy). The extension then
 /// solves R(s) = `target` (≤ trigger): δ is grown in integer multiples
 /// (doubling) until R(kδ₀) < target brackets the root, or s reaches `s_max`,
 /// then bisected until |R − target| ≤ tol·target.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn solve_extension(
     mut release: impl FnMut(f64) -> f64,
     delta0: f64,
+    s_scan: f64,
     s_max: f64,
     trigger: f64,
     target: f64,
@@ -59,10 +66,14 @@ pub(crate) fn solve_extension(
     if s_max <= 0.0 {
         return Extension::None;
     }
-    let d0 = delta0.min(s_max);
-    let r0 = release(d0);
-    if r0 < trigger {
-        return Extension::None;
+    let mut d0 = delta0.min(s_max);
+    let mut r0 = release(d0);
+    while r0 < trigger {
+        if d0 >= s_scan.min(s_max) {
+            return Extension::None;
+        }
+        d0 = (2.0 * d0).min(s_scan.min(s_max));
+        r0 = release(d0);
     }
     let (mut lo, mut r_lo) = (d0, r0);
     let mut hi = d0;
@@ -123,7 +134,17 @@ mod tests {
     #[test]
     fn bisection_finds_the_root_of_a_decreasing_rate() {
         // R(s) = 200 − 1e6 s: R = 150 at s = 5e-5.
-        let e = solve_extension(|s| 200.0 - 1e6 * s, 1e-6, 1.0, 150.0, 150.0, 1e-9, 60, 200);
+        let e = solve_extension(
+            |s| 200.0 - 1e6 * s,
+            1e-6,
+            1e-6,
+            1.0,
+            150.0,
+            150.0,
+            1e-9,
+            60,
+            200,
+        );
         match e {
             Extension::Balanced { s, r } => {
                 assert!((s - 5e-5).abs() < 1e-12);
@@ -132,11 +153,11 @@ mod tests {
             other => panic!("{other:?}"),
         }
         assert_eq!(
-            solve_extension(|_| 100.0, 1e-6, 1.0, 150.0, 150.0, 1e-9, 60, 200),
+            solve_extension(|_| 100.0, 1e-6, 1e-3, 1.0, 150.0, 150.0, 1e-9, 60, 200),
             Extension::None
         );
         assert!(matches!(
-            solve_extension(|_| 200.0, 1e-6, 1e-3, 150.0, 150.0, 1e-9, 60, 200),
+            solve_extension(|_| 200.0, 1e-6, 1e-6, 1e-3, 150.0, 150.0, 1e-9, 60, 200),
             Extension::RunsThrough { .. }
         ));
     }

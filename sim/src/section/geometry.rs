@@ -39,10 +39,14 @@ impl SectionGeometry {
     /// boundary is not a function of x (see the type's documentation).
     pub fn from_polygon(vertices: &[[f64; 2]]) -> Result<Self, SectionError> {
         if vertices.len() < 3 {
-            return Err(SectionError::UnsupportedShape("a polygon needs at least 3 vertices"));
+            return Err(SectionError::UnsupportedShape(
+                "a polygon needs at least 3 vertices",
+            ));
         }
         if vertices.iter().flatten().any(|v| !v.is_finite()) {
-            return Err(SectionError::UnsupportedShape("polygon vertices must be finite"));
+            return Err(SectionError::UnsupportedShape(
+                "polygon vertices must be finite",
+            ));
         }
         let size = vertices
             .iter()
@@ -50,7 +54,9 @@ impl SectionGeometry {
             .fold(0.0f64, |m, v| m.max(v.abs()));
         let tol = 1e-9 * size.max(1e-12);
         if vertices.iter().any(|v| v[1] < -tol) {
-            return Err(SectionError::UnsupportedShape("the polygon must lie on or above the board (y >= 0)"));
+            return Err(SectionError::UnsupportedShape(
+                "the polygon must lie on or above the board (y >= 0)",
+            ));
         }
         let x_max = vertices.iter().fold(f64::MIN, |m, v| m.max(v[0]));
         let x_min = vertices.iter().fold(f64::MAX, |m, v| m.min(v[0]));
@@ -90,19 +96,23 @@ impl SectionGeometry {
         });
         if top.is_empty() || top[0][0] > tol {
             // Add the point on the cut line by symmetry (mirror of the left chain).
-            let left = vertices
-                .iter()
-                .filter(|v| !on_base(v) && v[0] < 0.0)
-                .fold(None::<[f64; 2]>, |m, v| match m {
+            let left = vertices.iter().filter(|v| !on_base(v) && v[0] < 0.0).fold(
+                None::<[f64; 2]>,
+                |m, v| match m {
                     Some(m) if m[0] > v[0] => Some(m),
                     _ => Some(*v),
-                });
+                },
+            );
             match (left, top.first()) {
                 (Some(l), Some(r)) => {
                     let t = (0.0 - l[0]) / (r[0] - l[0]);
                     top.insert(0, [0.0, l[1] + t * (r[1] - l[1])]);
                 }
-                _ => return Err(SectionError::UnsupportedShape("the polygon has no upper boundary over the cut line")),
+                _ => {
+                    return Err(SectionError::UnsupportedShape(
+                        "the polygon has no upper boundary over the cut line",
+                    ));
+                }
             }
         }
         // Check symmetry of the heights: every left vertex mirrors onto the chain.
@@ -185,9 +195,19 @@ mod tests {
 
     #[test]
     fn asymmetric_or_floating_polygons_are_refused() {
-        let e = SectionGeometry::from_polygon(&[[-0.01, 0.0], [0.02, 0.0], [0.02, 0.01], [-0.01, 0.01]]);
+        let e = SectionGeometry::from_polygon(&[
+            [-0.01, 0.0],
+            [0.02, 0.0],
+            [0.02, 0.01],
+            [-0.01, 0.01],
+        ]);
         assert!(matches!(e, Err(SectionError::UnsupportedShape(_))));
-        let e = SectionGeometry::from_polygon(&[[-0.01, 0.001], [0.01, 0.001], [0.01, 0.01], [-0.01, 0.01]]);
+        let e = SectionGeometry::from_polygon(&[
+            [-0.01, 0.001],
+            [0.01, 0.001],
+            [0.01, 0.01],
+            [-0.01, 0.01],
+        ]);
         assert!(matches!(e, Err(SectionError::UnsupportedShape(_))));
         let e = SectionGeometry::from_polygon(&[
             [-0.01, 0.0],

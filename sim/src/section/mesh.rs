@@ -122,7 +122,10 @@ mod tests {
         assert_eq!(m.xs[s.strip_elements], 5e-5);
         assert_eq!(*m.xs.last().unwrap(), 0.015);
         assert!(m.xs.windows(2).all(|w| w[1] > w[0]));
-        assert!(m.xs.windows(2).all(|w| w[1] - w[0] <= s.max_element_width * 1.31));
+        assert!(
+            m.xs.windows(2)
+                .all(|w| w[1] - w[0] <= s.max_element_width * 1.31)
+        );
         assert_eq!(m.rows, 100);
         assert!((m.h - 2e-4).abs() < 1e-15);
         // Element areas add up to the half section.
@@ -131,7 +134,8 @@ mod tests {
             .iter()
             .map(|e| {
                 let p: Vec<_> = e.iter().map(|&i| m.nodes[i]).collect();
-                0.5 * ((p[2][0] - p[0][0]) * (p[3][1] - p[1][1]) - (p[3][0] - p[1][0]) * (p[2][1] - p[0][1]))
+                0.5 * ((p[2][0] - p[0][0]) * (p[3][1] - p[1][1])
+                    - (p[3][0] - p[1][0]) * (p[2][1] - p[0][1]))
             })
             .sum();
         assert!((area - 0.5 * g.area()).abs() < 1e-12);

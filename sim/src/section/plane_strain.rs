@@ -30,7 +30,10 @@ pub(crate) fn q4_gradients(p: &[[f64; 2]; 4], xi: f64, eta: f64) -> ([[f64; 2]; 
     }
     // j[k][l] = d x_l / d ξ_k
     let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
-    let inv = [[j[1][1] / det, -j[0][1] / det], [-j[1][0] / det, j[0][0] / det]];
+    let inv = [
+        [j[1][1] / det, -j[0][1] / det],
+        [-j[1][0] / det, j[0][0] / det],
+    ];
     let mut g = [[0.0; 2]; 4];
     for a in 0..4 {
         // d N / d x_l = Σ_k (J^{-1})_{l k} dN/dξ_k
@@ -42,13 +45,21 @@ pub(crate) fn q4_gradients(p: &[[f64; 2]; 4], xi: f64, eta: f64) -> ([[f64; 2]; 
 
 /// Lamé constants (λ, μ) from E (Pa) and ν.
 pub(crate) fn lame(e: f64, nu: f64) -> (f64, f64) {
-    (e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)), e / (2.0 * (1.0 + nu)))
+    (
+        e * nu / ((1.0 + nu) * (1.0 - 2.0 * nu)),
+        e / (2.0 * (1.0 + nu)),
+    )
 }
 
 /// 8×8 plane-strain stiffness of one Q4 element (DOFs x0, y0, x1, y1, …), per unit thickness.
 pub(crate) fn element_stiffness(p: &[[f64; 2]; 4], lambda: f64, mu: f64) -> [[f64; 8]; 8] {
     let mut K = [[0.0; 8]; 8];
-    for (xi, eta) in [(-GAUSS, -GAUSS), (GAUSS, -GAUSS), (GAUSS, GAUSS), (-GAUSS, GAUSS)] {
+    for (xi, eta) in [
+        (-GAUSS, -GAUSS),
+        (GAUSS, -GAUSS),
+        (GAUSS, GAUSS),
+        (-GAUSS, GAUSS),
+    ] {
         let (g, det) = q4_gradients(p, xi, eta);
         for a in 0..4 {
             for b in 0..4 {
@@ -88,17 +99,31 @@ pub(crate) fn centre_stress(p: &[[f64; 2]; 4], u: &[f64; 8], lambda: f64, mu: f6
         gxy += g[a][1] * u[2 * a] + g[a][0] * u[2 * a + 1];
     }
     let tr = exx + eyy;
-    [lambda * tr + 2.0 * mu * exx, lambda * tr + 2.0 * mu * eyy, mu * gxy]
+    [
+        lambda * tr + 2.0 * mu * exx,
+        lambda * tr + 2.0 * mu * eyy,
+        mu * gxy,
+    ]
 }
 
 /// Element corner coordinates.
 pub(crate) fn corners(mesh: &SectionMesh, e: &[usize; 4]) -> [[f64; 2]; 4] {
-    [mesh.nodes[e[0]], mesh.nodes[e[1]], mesh.nodes[e[2]], mesh.nodes[e[3]]]
+    [
+        mesh.nodes[e[0]],
+        mesh.nodes[e[1]],
+        mesh.nodes[e[2]],
+        mesh.nodes[e[3]],
+    ]
 }
 
 /// Calls `add(i, j, k_ij)` for every entry of the global in-plane stiffness
 /// (DOF 2·node + component), per unit thickness.
-pub(crate) fn assemble(mesh: &SectionMesh, e_mod: f64, nu: f64, mut add: impl FnMut(usize, usize, f64)) {
+pub(crate) fn assemble(
+    mesh: &SectionMesh,
+    e_mod: f64,
+    nu: f64,
+    mut add: impl FnMut(usize, usize, f64),
+) {
     let (lambda, mu) = lame(e_mod, nu);
     for e in &mesh.elements {
         let K = element_stiffness(&corners(mesh, e), lambda, mu);
@@ -124,7 +149,9 @@ mod tests {
         let modes: [[f64; 8]; 3] = [
             [1.0, 0.0, 1.0, 0.0, 1.0, 0.0, 1.0, 0.0],
             [0.0, 1.0, 0.0, 1.0, 0.0, 1.0, 0.0, 1.0],
-            [-p[0][1], p[0][0], -p[1][1], p[1][0], -p[2][1], p[2][0], -p[3][1], p[3][0]],
+            [
+                -p[0][1], p[0][0], -p[1][1], p[1][0], -p[2][1], p[2][0], -p[3][1], p[3][0],
+            ],
         ];
         for u in modes {
             for row in K {
@@ -133,7 +160,8 @@ mod tests {
             }
         }
         // Uniform εyy = 1e-3: σyy = (λ+2μ)·1e-3 at the centre.
-        let u: [f64; 8] = std::array::from_fn(|i| if i % 2 == 1 { 1e-3 * p[i / 2][1] } else { 0.0 });
+        let u: [f64; 8] =
+            std::array::from_fn(|i| if i % 2 == 1 { 1e-3 * p[i / 2][1] } else { 0.0 });
         let s = centre_stress(&p, &u, l, m);
         assert!((s[1] - (l + 2.0 * m) * 1e-3).abs() < 1e-9 * s[1].abs());
         assert!((s[0] - l * 1e-3).abs() < 1e-9 * s[1].abs());

@@ -301,10 +301,14 @@ impl CrossSection {
     /// the slice-push ratio of the step is ξ = |dt|/dn. Returns the new state.
     pub fn advance(&mut self, dn: f64, dt: f64) -> Result<SectionStep, SectionError> {
         if !(dn.is_finite() && dn >= 0.0) {
-            return Err(SectionError::InvalidStep("the vertical increment must be finite and >= 0"));
+            return Err(SectionError::InvalidStep(
+                "the vertical increment must be finite and >= 0",
+            ));
         }
         if !dt.is_finite() {
-            return Err(SectionError::InvalidStep("the tangential increment must be finite"));
+            return Err(SectionError::InvalidStep(
+                "the tangential increment must be finite",
+            ));
         }
         let model = &self.model;
         let ws = &mut self.ws;
@@ -343,11 +347,16 @@ impl CrossSection {
         };
         let mut release = |s: f64| -> f64 {
             let e = evaluate(model, ws, st.y_tip - s, y_edge1, drag_at(s), dn, dt_abs);
-            let w = 0.5 * (e0.f_elastic_n() + e.f_elastic_n()) * dn + 0.5 * (e0.f_t + e.f_t) * dt_abs;
+            let w =
+                0.5 * (e0.f_elastic_n() + e.f_elastic_n()) * dn + 0.5 * (e0.f_t + e.f_t) * dt_abs;
             (w - (e.energy - u0)) / s
         };
         let mat = &model.material;
-        let r = if xi.is_finite() { toughness_ratio(xi, mat.poisson_ratio) } else { f64::INFINITY };
+        let r = if xi.is_finite() {
+            toughness_ratio(xi, mat.poisson_ratio)
+        } else {
+            f64::INFINITY
+        };
         let (trigger, target) = if st.fractured {
             (r * mat.fracture_toughness, r * mat.fracture_toughness)
         } else {
@@ -362,6 +371,7 @@ impl CrossSection {
             solve_extension(
                 &mut release,
                 set.initial_crack_extension,
+                (st.y_tip - y_edge1).max(0.0) + model.h,
                 s_max,
                 trigger,
                 target,
@@ -386,8 +396,10 @@ impl CrossSection {
         if d1 <= 0.0 && s == 0.0 {
             status = StepStatus::NoContact;
         }
-        let w_el = 0.5 * (e0.f_elastic_n() + e1.f_elastic_n()) * dn + 0.5 * (e0.f_t + e1.f_t) * dt_abs;
-        let w_fric = 0.5 * (e0.f_fric_n + e1.f_fric_n) * dn + 0.5 * (e0.f_fric_t + e1.f_fric_t) * dt_abs;
+        let w_el =
+            0.5 * (e0.f_elastic_n() + e1.f_elastic_n()) * dn + 0.5 * (e0.f_t + e1.f_t) * dt_abs;
+        let w_fric =
+            0.5 * (e0.f_fric_n + e1.f_fric_n) * dn + 0.5 * (e0.f_fric_t + e1.f_fric_t) * dt_abs;
         let mut work = st.step.work;
         work.knife += w_el + w_fric;
         work.friction += w_fric;
@@ -397,13 +409,19 @@ impl CrossSection {
             // Fracture takes R(s)·s (= W − ΔU exactly); R = target within the
             // tolerance when balanced. A crack that runs through releases
             // more: the excess is reported as unstable release.
-            let fracture = if matches!(status, StepStatus::Cutting) { r_s * s } else { target * s };
+            let fracture = if matches!(status, StepStatus::Cutting) {
+                r_s * s
+            } else {
+                target * s
+            };
             work.fracture += fracture;
             work.unstable += (w_el - (e1.energy - u0)) - fracture;
         }
         let completed = matches!(status, StepStatus::CutThrough);
         let strip = strip_of(model, y_tip1, y_edge1);
-        let surface = -model.line.line_uy(model.n, &ws.g, strip.as_ref(), &ws.lambda);
+        let surface = -model
+            .line
+            .line_uy(model.n, &ws.g, strip.as_ref(), &ws.lambda);
         let step = SectionStep {
             knife_displacement: st.step.knife_displacement + dn,
             edge_height: y_edge1,
@@ -437,9 +455,16 @@ impl CrossSection {
     /// the cut) in steps of at most `max_step` (m), with `xi` tangential
     /// displacement per unit vertical; returns the last state. Convenience
     /// for sweeps; the plant calls [`Self::advance`] per tick.
-    pub fn advance_to(&mut self, edge_depth: f64, xi: f64, max_step: f64) -> Result<SectionStep, SectionError> {
+    pub fn advance_to(
+        &mut self,
+        edge_depth: f64,
+        xi: f64,
+        max_step: f64,
+    ) -> Result<SectionStep, SectionError> {
         if !(max_step.is_finite() && max_step > 0.0) {
-            return Err(SectionError::InvalidStep("the step size must be finite and > 0"));
+            return Err(SectionError::InvalidStep(
+                "the step size must be finite and > 0",
+            ));
         }
         let mut last = self.state.step;
         while last.knife_displacement < edge_depth - 1e-15 {
@@ -450,14 +475,17 @@ impl CrossSection {
     }
 }
 
-/// The strip constraint of the edge at (y_tip, y_edge), if the edge touches.
+/// The strip constraint of the edge at (y_tip, y_edge): the material at the
+/// tip moved to the edge, u_y = y_edge − y_tip. It acts only where the edge
+/// penetrates the deformed material (checked by the caller).
 fn strip_of(model: &Model, y_tip: f64, y_edge: f64) -> Option<StripConstraint> {
     let d = y_tip - y_edge;
-    if d <= 0.0 {
-        return None;
-    }
     let (row, phi) = tip_row(model, y_tip);
-    Some(StripConstraint { row, phi, value: -d })
+    Some(StripConstraint {
+        row,
+        phi,
+        value: -d,
+    })
 }
 
 /// Row j and weight φ of the tip: y_tip = (j + φ)·h, 1 ≤ j ≤ R.
@@ -481,7 +509,15 @@ fn tip_row(model: &Model, y_tip: f64) -> (usize, f64) {
 /// Solves the configuration (tip, edge, drag) and returns forces and energies
 /// of the full section, with friction for knife increments (dn, dt ≥ 0).
 /// Leaves the gaps in `ws.g`, the reactions in `ws.p`. Allocation-free.
-fn evaluate(model: &Model, ws: &mut Workspace, y_tip: f64, y_edge: f64, drag: f64, dn: f64, dt: f64) -> Eval {
+fn evaluate(
+    model: &Model,
+    ws: &mut Workspace,
+    y_tip: f64,
+    y_edge: f64,
+    drag: f64,
+    dn: f64,
+    dt: f64,
+) -> Eval {
     let h = model.h;
     let (j, _) = tip_row(model, y_tip);
     // Gaps: rows above the tip open to the blade, measured from the tip while
@@ -490,13 +526,24 @@ fn evaluate(model: &Model, ws: &mut Workspace, y_tip: f64, y_edge: f64, drag: f6
     let first = j; // index of row j+1
     for (i, g) in ws.g.iter_mut().enumerate() {
         let y = (i + 1) as f64 * h;
-        *g = if i < first || y <= y_tip { 0.0 } else { model.profile.width(y - y_ref) };
+        *g = if i < first || y <= y_tip {
+            0.0
+        } else {
+            model.profile.width(y - y_ref)
+        };
     }
-    let strip = strip_of(model, y_tip, y_edge);
-    let edge_contact = strip.is_some();
-    let ip = model.line.solve(&ws.g, first, strip.as_ref(), &mut ws.p, &mut ws.lambda);
+    // Unilateral edge contact: the edge presses only if it is below where the
+    // material at the tip would be without it (the wedge alone moves it).
+    let strip = strip_of(model, y_tip, y_edge)
+        .filter(|s| s.value < model.line.strip_free_uy(&ws.g, first, s));
+    let edge_contact = y_tip > y_edge;
+    let ip = model
+        .line
+        .solve(&ws.g, first, strip.as_ref(), &mut ws.p, &mut ws.lambda);
     let (u_anti, f_anti) = match &strip {
-        Some(s) if drag != 0.0 => model.line.solve_antiplane(&StripConstraint { value: drag, ..*s }),
+        Some(s) if drag != 0.0 => model
+            .line
+            .solve_antiplane(&StripConstraint { value: drag, ..*s }),
         _ => (0.0, 0.0),
     };
     let mu = model.material.friction_coefficient;
