@@ -9,7 +9,7 @@
 use std::hint::black_box;
 use std::time::Instant;
 
-use criterion::{Criterion, criterion_group, criterion_main};
+use criterion::{Criterion, criterion_main};
 use shearcut_sim::{BladeSection, CrossSection, MaterialPreset, SectionGeometry, SectionSettings};
 
 const DN: f64 = 6.25e-6;
@@ -79,5 +79,9 @@ fn bench(c: &mut Criterion) {
     );
 }
 
-criterion_group!(benches, bench);
+#[allow(missing_docs)]
+mod group {
+    criterion::criterion_group!(benches, super::bench);
+}
+use group::benches;
 criterion_main!(benches);
