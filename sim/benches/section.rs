@@ -14,7 +14,12 @@ use shearcut_sim::{BladeSection, CrossSection, MaterialPreset, SectionGeometry, 
 
 const DN: f64 = 6.25e-6;
 
-fn setup() -> (SectionGeometry, shearcut_sim::Material, BladeSection, SectionSettings) {
+fn setup() -> (
+    SectionGeometry,
+    shearcut_sim::Material,
+    BladeSection,
+    SectionSettings,
+) {
     (
         SectionGeometry::rectangle(0.03, 0.03).unwrap(),
         MaterialPreset::PotatoCuboid.material(),

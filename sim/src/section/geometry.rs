@@ -125,6 +125,18 @@ impl SectionGeometry {
                 ));
             }
         }
+        // The two vertical sides must reach the same height.
+        let side = |sign: f64| {
+            vertices
+                .iter()
+                .filter(|v| (v[0] - sign * x_max).abs() <= tol)
+                .fold(0.0f64, |m, v| m.max(v[1]))
+        };
+        if (side(1.0) - side(-1.0)).abs() > 1e-6 * size.max(1e-12) {
+            return Err(SectionError::UnsupportedShape(
+                "the polygon must be symmetric about x = 0 (its sides differ in height)",
+            ));
+        }
         if geometry.top.iter().any(|p| p[1] <= tol) {
             return Err(SectionError::UnsupportedShape(
                 "the upper boundary must stay above the board (clip the rim at a small height)",
