@@ -13,6 +13,7 @@ pub mod material;
 pub mod mechanics;
 pub mod object;
 pub mod plant;
+pub mod section;
 
 pub use blade::BladeSection;
 pub use invalid_setting::InvalidSetting;
@@ -20,3 +21,7 @@ pub use knife::{EdgeShape, Knife, KnifeEdge, KnifePreset, KnifeSettings, SensorM
 pub use material::{Material, MaterialPreset};
 pub use mechanics::{SlicePushRatio, toughness_ratio};
 pub use object::{Cuboid, ObjectShape};
+pub use section::{
+    CrossSection, SectionError, SectionGeometry, SectionSettings, SectionStep, StepStatus,
+    WorkSplit,
+};

@@ -1,0 +1,389 @@
+//! Static condensation of the section's stiffness onto the cut line
+//! (DESIGN §3.2a): every boundary condition that changes during a cut lives on
+//! the line x = 0 and on the strip of nodes under the edge flat, so the
+//! stiffness is factorised once (sparse Cholesky, faer) and reduced to a few
+//! dense matrices; each crack/contact configuration is then a small dense solve.
+//!
+//! # In-plane (plane strain)
+//! Degrees of freedom kept: X = u_x of the cut-line nodes (rows 1..=R), Y = u_y
+//! of the nodes of the strip columns 0..=m (rows 1..=R). All others are
+//! eliminated. With the bottom row fixed and the X DOFs prescribed (g), the
+//! response to forces f_Y on the Y DOFs is
+//!
+//! ```text
+//! u_Y = C f_Y − E g,      p = A g + Eᵀ f_Y,
+//! ```
+//!
+//! with C = S_YY⁻¹, E = C S_YX, A = S_XX − S_XY C S_YX (S the Schur complement
+//! of the stiffness onto X ∪ Y) and p the reactions on the X DOFs. The matrices
+//! are computed from one sparse factorisation of the stiffness with X and the
+//! bottom fixed: C from unit loads on Y, E and A from unit displacements of X.
+//!
+//! # Antiplane (seed 000 §III.C, ∇²u_t = 0)
+//! Kept: Z = u_t of the strip columns; only the bottom is fixed, so the
+//! flexibility C_z = S_ZZ⁻¹ is the antiplane stiffness's inverse on Z.
+//!
+//! # Memory allocation
+//! Construction allocates the matrices (|Y|² + |Y|·R + R² + |Z|² doubles, a few
+//! MB for the default mesh). [`CondensedLine::solve`] allocates nothing.
+
+#![allow(non_snake_case, clippy::needless_range_loop)]
+
+use faer::linalg::solvers::Solve;
+use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
+use faer::sparse::{SparseColMat, Triplet};
+use faer::{Mat, Side};
+
+use super::error::SectionError;
+use super::mesh::SectionMesh;
+use super::{antiplane, plane_strain};
+
+/// Columns solved at once when condensing.
+const BLOCK: usize = 64;
+
+/// Largest number of strip columns (strip_elements + 1).
+pub(crate) const MAX_STRIP: usize = 9;
+
+/// The condensed line of a section. Row r of the line (1..=R) is index r − 1;
+/// Y/Z index of strip column c, row r is c·R + r − 1.
+#[derive(Debug, Clone)]
+pub(crate) struct CondensedLine {
+    /// Rows R of the line (excluding the fixed bottom node).
+    pub n: usize,
+    /// Strip columns m + 1.
+    pub k: usize,
+    /// C = S_YY⁻¹ (|Y|×|Y|).
+    C: Mat<f64>,
+    /// Eᵀ (R×|Y|): column q is row q of E.
+    Et: Mat<f64>,
+    /// A (R×R), symmetric.
+    A: Mat<f64>,
+    /// Antiplane flexibility C_z (|Z|×|Z|).
+    Cz: Mat<f64>,
+}
+
+/// The edge-flat constraint: the material at the crack tip's reference height,
+/// interpolated between rows j and j+1 with weight φ, moves with the edge.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct StripConstraint {
+    /// Lower row j (1..=R).
+    pub row: usize,
+    /// Interpolation weight of row j+1, in [0, 1).
+    pub phi: f64,
+    /// Prescribed value (u_y of the strip, m; or u_t for antiplane).
+    pub value: f64,
+}
+
+/// Result of an in-plane solve.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(crate) struct InPlane {
+    /// Strain energy of the half model, J/m.
+    pub energy: f64,
+    /// Sum of the strip forces on the material along +y, N/m (half model).
+    pub strip_force: f64,
+}
+
+fn sparse_llt(
+    n: usize,
+    triplets: &[Triplet<usize, usize, f64>],
+) -> Result<Llt<usize, f64>, SectionError> {
+    let K = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, triplets)
+        .map_err(|_| SectionError::Factorisation("sparse assembly failed"))?;
+    let symbolic = SymbolicLlt::try_new(K.symbolic(), Side::Lower)
+        .map_err(|_| SectionError::Factorisation("symbolic Cholesky failed"))?;
+    Llt::try_new_with_symbolic(symbolic, K.as_ref(), Side::Lower)
+        .map_err(|_| SectionError::Factorisation("stiffness is not positive definite"))
+}
+
+impl CondensedLine {
+    /// Factorises the stiffness of `mesh` (E in Pa, ν) and condenses it.
+    pub fn new(mesh: &SectionMesh, e_mod: f64, nu: f64) -> Result<Self, SectionError> {
+        let n = mesh.rows;
+        let k = mesh.strip + 1;
+        let nn = mesh.node_count();
+        // ---- in-plane: classify DOFs.
+        const FIXED: usize = usize::MAX;
+        let mut x_of = vec![FIXED; 2 * nn]; // DOF -> X index
+        let mut free_of = vec![FIXED; 2 * nn]; // DOF -> free index
+        for r in 1..=n {
+            x_of[2 * mesh.node(0, r)] = r - 1;
+        }
+        let mut nf = 0;
+        for dof in 0..2 * nn {
+            let node = dof / 2;
+            if node >= mesh.columns() && x_of[dof] == FIXED {
+                free_of[dof] = nf;
+                nf += 1;
+            }
+        }
+        let mut kff = Vec::new();
+        let mut kfx: Vec<Vec<(usize, f64)>> = vec![Vec::new(); n]; // per X column
+        let mut kxx = Mat::<f64>::zeros(n, n);
+        plane_strain::assemble(mesh, e_mod, nu, |i, j, v| {
+            match (free_of[i], free_of[j], x_of[i], x_of[j]) {
+                (fi, fj, _, _) if fi != FIXED && fj != FIXED => kff.push(Triplet::new(fi, fj, v)),
+                (fi, _, _, xj) if fi != FIXED && xj != FIXED => kfx[xj].push((fi, v)),
+                (_, _, xi, xj) if xi != FIXED && xj != FIXED => kxx[(xi, xj)] += v,
+                _ => {}
+            }
+        });
+        let llt = sparse_llt(nf, &kff)?;
+        let ny = k * n;
+        let y_free: Vec<usize> = (0..k)
+            .flat_map(|c| (1..=n).map(move |r| (c, r)))
+            .map(|(c, r)| free_of[2 * mesh.node(c, r) + 1])
+            .collect();
+        let mut C = Mat::<f64>::zeros(ny, ny);
+        let mut Et = Mat::<f64>::zeros(n, ny);
+        let mut A = kxx;
+        let total = ny + n;
+        let mut start = 0;
+        while start < total {
+            let cols = BLOCK.min(total - start);
+            let mut rhs = Mat::<f64>::zeros(nf, cols);
+            for j in 0..cols {
+                let q = start + j;
+                if q < ny {
+                    rhs[(y_free[q], j)] = 1.0;
+                } else {
+                    for &(fi, v) in &kfx[q - ny] {
+                        rhs[(fi, j)] -= v;
+                    }
+                }
+            }
+            llt.solve_in_place(rhs.as_mut());
+            for j in 0..cols {
+                let q = start + j;
+                if q < ny {
+                    for (a, &fa) in y_free.iter().enumerate() {
+                        C[(a, q)] = rhs[(fa, j)];
+                    }
+                } else {
+                    let i = q - ny;
+                    for (a, &fa) in y_free.iter().enumerate() {
+                        Et[(i, a)] = -rhs[(fa, j)];
+                    }
+                    // A[:, i] += K_Xf v: K_Xf = K_fXᵀ.
+                    for (xi, col) in kfx.iter().enumerate() {
+                        let s: f64 = col.iter().map(|&(fi, v)| v * rhs[(fi, j)]).sum();
+                        A[(xi, i)] += s;
+                    }
+                }
+            }
+            start += cols;
+        }
+        // ---- antiplane.
+        let mut zfree = vec![FIXED; nn];
+        let mut nz = 0;
+        for (node, z) in zfree.iter_mut().enumerate() {
+            if node >= mesh.columns() {
+                *z = nz;
+                nz += 1;
+            }
+        }
+        let mut kzz = Vec::new();
+        antiplane::assemble(mesh, e_mod / (2.0 * (1.0 + nu)), |i, j, v| {
+            if zfree[i] != FIXED && zfree[j] != FIXED {
+                kzz.push(Triplet::new(zfree[i], zfree[j], v));
+            }
+        });
+        let lltz = sparse_llt(nz, &kzz)?;
+        let z_free: Vec<usize> = (0..k)
+            .flat_map(|c| (1..=n).map(move |r| (c, r)))
+            .map(|(c, r)| zfree[mesh.node(c, r)])
+            .collect();
+        let mut Cz = Mat::<f64>::zeros(ny, ny);
+        let mut start = 0;
+        while start < ny {
+            let cols = BLOCK.min(ny - start);
+            let mut rhs = Mat::<f64>::zeros(nz, cols);
+            for j in 0..cols {
+                rhs[(z_free[start + j], j)] = 1.0;
+            }
+            lltz.solve_in_place(rhs.as_mut());
+            for j in 0..cols {
+                for (a, &fa) in z_free.iter().enumerate() {
+                    Cz[(a, start + j)] = rhs[(fa, j)];
+                }
+            }
+            start += cols;
+        }
+        Ok(Self { n, k, C, Et, A, Cz })
+    }
+
+    /// Y/Z index of strip column c, row r (1..=R).
+    #[inline]
+    fn yi(&self, c: usize, r: usize) -> usize {
+        c * self.n + r - 1
+    }
+
+    /// The (index, weight) pairs of the strip constraint of column c.
+    #[inline]
+    fn taps(&self, c: usize, s: &StripConstraint) -> [(usize, f64); 2] {
+        let lo = (self.yi(c, s.row), 1.0 - s.phi);
+        if s.phi > 0.0 {
+            [lo, (self.yi(c, s.row + 1), s.phi)]
+        } else {
+            [lo, (lo.0, 0.0)]
+        }
+    }
+
+    /// M = P F Pᵀ for flexibility F (C or C_z).
+    fn strip_matrix(&self, F: &Mat<f64>, s: &StripConstraint) -> [[f64; MAX_STRIP]; MAX_STRIP] {
+        let mut M = [[0.0; MAX_STRIP]; MAX_STRIP];
+        for (a, row) in M.iter_mut().enumerate().take(self.k) {
+            let ta = self.taps(a, s);
+            for (b, m) in row.iter_mut().enumerate().take(self.k) {
+                let tb = self.taps(b, s);
+                for &(ia, wa) in &ta {
+                    for &(ib, wb) in &tb {
+                        *m += wa * wb * F[(ia, ib)];
+                    }
+                }
+            }
+        }
+        M
+    }
+
+    /// In-plane solve with every X DOF prescribed to `g` (gaps, m) and, if
+    /// `strip` is given, the strip constraint. Writes the X reactions into `p`
+    /// (N/m, +x on the material) and the strip forces into `lambda` (N/m, +y on
+    /// the material). Allocation-free.
+    pub fn solve(
+        &self,
+        g: &[f64],
+        first_nonzero: usize,
+        strip: Option<&StripConstraint>,
+        p: &mut [f64],
+        lambda: &mut [f64; MAX_STRIP],
+    ) -> InPlane {
+        let n = self.n;
+        *lambda = [0.0; MAX_STRIP];
+        let mut energy_strip = 0.0;
+        if let Some(s) = strip {
+            let mut M = self.strip_matrix(&self.C, s);
+            let mut rhs = [0.0; MAX_STRIP];
+            for (a, r) in rhs.iter_mut().enumerate().take(self.k) {
+                *r = s.value;
+                for (q, w) in self.taps(a, s) {
+                    if w != 0.0 {
+                        *r += w * dot(
+                            &self.Et.col_as_slice(q)[first_nonzero..],
+                            &g[first_nonzero..],
+                        );
+                    }
+                }
+            }
+            small_solve(&mut M, &mut rhs, self.k);
+            lambda[..self.k].copy_from_slice(&rhs[..self.k]);
+            energy_strip = s.value * rhs[..self.k].iter().sum::<f64>();
+        }
+        p[..n].fill(0.0);
+        for (i, &gi) in g.iter().enumerate().skip(first_nonzero) {
+            if gi != 0.0 {
+                axpy(gi, self.A.col_as_slice(i), p);
+            }
+        }
+        if let Some(s) = strip {
+            for a in 0..self.k {
+                for (q, w) in self.taps(a, s) {
+                    if w != 0.0 {
+                        axpy(w * lambda[a], self.Et.col_as_slice(q), p);
+                    }
+                }
+            }
+        }
+        InPlane {
+            energy: 0.5 * (dot(g, p) + energy_strip),
+            strip_force: lambda[..self.k].iter().sum(),
+        }
+    }
+
+    /// Mean over the strip columns of the interpolated u_y at the strip
+    /// position when only the gaps `g` act (no strip force), m.
+    pub fn strip_free_uy(&self, g: &[f64], first_nonzero: usize, s: &StripConstraint) -> f64 {
+        let mut u = 0.0;
+        for a in 0..self.k {
+            for (q, w) in self.taps(a, s) {
+                if w != 0.0 {
+                    u -= w * dot(
+                        &self.Et.col_as_slice(q)[first_nonzero..],
+                        &g[first_nonzero..],
+                    );
+                }
+            }
+        }
+        u / self.k as f64
+    }
+
+    /// u_y at strip column 0 (the cut line), row r, after [`Self::solve`].
+    pub fn line_uy(
+        &self,
+        r: usize,
+        g: &[f64],
+        strip: Option<&StripConstraint>,
+        lambda: &[f64; MAX_STRIP],
+    ) -> f64 {
+        let q = self.yi(0, r);
+        let mut u = -dot(self.Et.col_as_slice(q), g);
+        if let Some(s) = strip {
+            for (a, &la) in lambda.iter().enumerate().take(self.k) {
+                for (qa, w) in self.taps(a, s) {
+                    u += w * la * self.C[(q, qa)];
+                }
+            }
+        }
+        u
+    }
+
+    /// Antiplane solve with the strip constraint (u_t = `strip.value` on the
+    /// strip at the tip). Returns (energy J/m, sum of strip forces N/m) of the
+    /// half model. Allocation-free.
+    pub fn solve_antiplane(&self, strip: &StripConstraint) -> (f64, f64) {
+        let mut M = self.strip_matrix(&self.Cz, strip);
+        let mut rhs = [0.0; MAX_STRIP];
+        rhs[..self.k].fill(strip.value);
+        small_solve(&mut M, &mut rhs, self.k);
+        let f: f64 = rhs[..self.k].iter().sum();
+        (0.5 * strip.value * f, f)
+    }
+}
+
+#[inline]
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+#[inline]
+fn axpy(alpha: f64, x: &[f64], y: &mut [f64]) {
+    for (yi, xi) in y.iter_mut().zip(x) {
+        *yi += alpha * xi;
+    }
+}
+
+/// Solves the k×k system M x = b in place (b ← x) by Gaussian elimination
+/// with partial pivoting; k ≤ MAX_STRIP (the strip constraints).
+fn small_solve(M: &mut [[f64; MAX_STRIP]; MAX_STRIP], b: &mut [f64; MAX_STRIP], k: usize) {
+    for col in 0..k {
+        let piv = (col..k)
+            .max_by(|&i, &j| M[i][col].abs().total_cmp(&M[j][col].abs()))
+            .unwrap_or(col);
+        M.swap(col, piv);
+        b.swap(col, piv);
+        let d = M[col][col];
+        for row in col + 1..k {
+            let f = M[row][col] / d;
+            for c in col..k {
+                M[row][c] -= f * M[col][c];
+            }
+            b[row] -= f * b[col];
+        }
+    }
+    for col in (0..k).rev() {
+        let mut s = b[col];
+        for c in col + 1..k {
+            s -= M[col][c] * b[c];
+        }
+        b[col] = s / M[col][col];
+    }
+}

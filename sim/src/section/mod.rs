@@ -1,0 +1,26 @@
+//! Cutting one 2D cross section with a straight knife edge (seed 000 §III,
+//! DESIGN §3.2): plane-strain and antiplane FEM condensed onto the cut line,
+//! wedge contact with Coulomb friction, and fracture by the seed's energy
+//! balance (eq. 1) with the slicing toughness r(ξ,ν)·R_c (eq. 6).
+//!
+//! Files: `geometry` (the section polygon), `mesh` (graded Q4 mesh of the half
+//! section), `plane_strain` and `antiplane` (element stiffnesses), `condensed`
+//! (factorisation and Schur complement onto the cut line), `contact` (wedge
+//! profile and friction), `fracture` (toughness ratio, bracketing and
+//! bisection), `simulation` ([`CrossSection`]), `settings`, `error`.
+
+mod antiplane;
+mod condensed;
+mod contact;
+mod error;
+mod fracture;
+mod geometry;
+mod mesh;
+mod plane_strain;
+mod settings;
+mod simulation;
+
+pub use error::SectionError;
+pub use geometry::SectionGeometry;
+pub use settings::SectionSettings;
+pub use simulation::{CrossSection, SectionStep, StepStatus, WorkSplit};

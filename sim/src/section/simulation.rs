@@ -1,0 +1,579 @@
+//! A cross section cut by a straight knife edge: the section simulation
+//! driven by knife motion (seed 000 §III.C, DESIGN §3.2–3.2a).
+
+use crate::blade::BladeSection;
+use crate::material::Material;
+
+use super::condensed::{CondensedLine, MAX_STRIP, StripConstraint};
+use super::contact::{WedgeProfile, friction};
+use super::error::SectionError;
+use super::fracture::{Extension, solve_extension, toughness_ratio};
+use super::geometry::SectionGeometry;
+use super::mesh::SectionMesh;
+use super::settings::SectionSettings;
+
+/// What a knife step did.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StepStatus {
+    /// The edge is not touching the material below the crack tip.
+    NoContact,
+    /// The knife pressed on without the crack growing (R(δ₀) < R_c^s).
+    Indenting,
+    /// The crack grew, balanced: R = R_c^s within the bisection tolerance.
+    Cutting,
+    /// The crack reached the board: the section is cut through.
+    CutThrough,
+    /// R(s) stayed above R_c^s for every trial extension allowed by
+    /// `max_bracket_doublings`; the step took the largest one.
+    Unbracketed,
+}
+
+/// Cumulative energies of a section, per unit length of edge, J/m (= N).
+///
+/// Balance (seed 000 eq. 1 with friction): `knife = fracture + strain_energy
+/// + friction + unstable` after every step.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct WorkSplit {
+    /// Work done by the knife: ∫ F_n dn + F_t dt (trapezoidal per step), J/m.
+    pub knife: f64,
+    /// Energy spent on crack growth, Σ R·ds with R = R_c^s (to the bisection
+    /// tolerance), J/m.
+    pub fracture: f64,
+    /// Strain energy stored now, in-plane plus antiplane, J/m.
+    pub strain_energy: f64,
+    /// Of which antiplane (tangential) strain energy, J/m.
+    pub strain_energy_antiplane: f64,
+    /// Energy dissipated by friction on the wedge faces, J/m.
+    pub friction: f64,
+    /// Energy released in excess of R_c^s by a crack running unstably through
+    /// the section (status `CutThrough` or `Unbracketed`), J/m.
+    pub unstable: f64,
+}
+
+/// The state of a section after a knife step. Forces are those the material
+/// exerts on the knife per unit length of edge (N/m), resistance positive
+/// (seed 000's plot convention).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SectionStep {
+    /// Knife displacement since the edge first touched the top surface, m.
+    pub knife_displacement: f64,
+    /// Height of the knife edge above the board, m.
+    pub edge_height: f64,
+    /// Height of the crack tip above the board, m.
+    pub crack_tip_height: f64,
+    /// Depth of the crack below the top surface on the cut line, m.
+    pub crack_depth: f64,
+    /// Indentation: how far the edge is below the crack tip's reference
+    /// position, m (0 when not in contact).
+    pub indentation: f64,
+    /// How far the top surface next to the blade (on the cut line) is pushed
+    /// down, m.
+    pub surface_deflection: f64,
+    /// Vertical force F_n, N/m: edge + wedge normal pressure + friction.
+    pub force_vertical: f64,
+    /// Horizontal force along the edge F_t, N/m: antiplane shear + friction.
+    pub force_tangential: f64,
+    /// Part of F_n from the wedge faces' normal pressure when the crack runs
+    /// ahead of the edge, N/m. While the edge presses below the tip the faces
+    /// next to it ride down with it, and the work of opening them reaches the
+    /// knife through the edge force (energy balance), so this part is 0.
+    pub force_vertical_wedge: f64,
+    /// Part of F_n from friction, N/m.
+    pub force_vertical_friction: f64,
+    /// Part of F_t from friction, N/m.
+    pub force_tangential_friction: f64,
+    /// Crack extension in this step, m.
+    pub crack_extension: f64,
+    /// Whether the first fracture has happened (the toughness is R_c, not R'_c).
+    pub fractured: bool,
+    /// What the step did.
+    pub status: StepStatus,
+    /// Cumulative energies.
+    pub work: WorkSplit,
+    /// Face nodes whose contact reaction is tensile (bilateral contact holds
+    /// them on the blade), a quality indicator; 0 in normal cutting.
+    pub tensile_contacts: usize,
+}
+
+/// Immutable model of a section: mesh data and the condensed stiffness.
+#[derive(Debug, Clone)]
+struct Model {
+    line: CondensedLine,
+    profile: WedgeProfile,
+    material: Material,
+    settings: SectionSettings,
+    /// Row spacing on the cut line, m.
+    h: f64,
+    /// Rows R of the line.
+    n: usize,
+    /// Height of the section at the cut, m.
+    height: f64,
+    /// Nodes and elements (kept for callers that inspect the mesh).
+    elements: usize,
+}
+
+/// Result of evaluating a configuration (full section, both halves).
+#[derive(Debug, Clone, Copy, Default)]
+struct Eval {
+    f_edge: f64,
+    f_wedge: f64,
+    f_t: f64,
+    f_fric_n: f64,
+    f_fric_t: f64,
+    energy: f64,
+    energy_anti: f64,
+    tensile: usize,
+}
+
+impl Eval {
+    fn f_elastic_n(&self) -> f64 {
+        self.f_edge + self.f_wedge
+    }
+}
+
+/// Preallocated buffers of a section.
+#[derive(Debug, Clone)]
+struct Workspace {
+    g: Vec<f64>,
+    p: Vec<f64>,
+    lambda: [f64; MAX_STRIP],
+}
+
+/// Mutable state between steps.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct State {
+    y_edge: f64,
+    y_tip: f64,
+    drag: f64,
+    fractured: bool,
+    completed: bool,
+    step: SectionStep,
+}
+
+/// One cross section normal to a straight knife edge, cut by the knife's
+/// motion (seed 000 §III; DESIGN §3.2, §3.2a).
+///
+/// # Formulation
+/// Half model x ≥ 0 of a [`SectionGeometry`], plane strain (E, ν) for the
+/// in-plane response and antiplane shear (G) for the tangential one
+/// (generalised plane strain, seed 000 assumption A1), bottom fixed on the
+/// board, meshed with graded Q4 elements and condensed once onto the cut line
+/// ([`condensed`](super) module docs). On the cut line below the crack tip the
+/// symmetry condition u_x = 0 holds; above it the crack faces are pushed out to
+/// the blade's half-thickness (wedge contact, `contact` module).
+///
+/// The edge flat (width b = `edge_width`) is a rigid strip: the material
+/// at the crack tip's reference height (interpolated between the two rows
+/// around the tip, so the tip moves continuously) is moved down by the
+/// indentation d = y_tip − y_edge and along the edge by the drag τ. The drag
+/// follows the seed's "nodes in contact are fixed on the edge": it grows by
+/// the knife's tangential increment while the edge indents, and is kept while
+/// the edge follows the crack (τ = ξ·d for a constant ξ).
+///
+/// # Fracture (seed 000 eq. 1, §III.C)
+/// A step moves the knife by (dn, dt), ξ = dt/dn. For a trial crack extension
+/// s the end state has the tip at y_tip − s and the edge at y_edge − dn; the
+/// knife's elastic work over the step is W(s) = ½(F_n⁰ + F_n(s))·dn +
+/// ½(F_t⁰ + F_t(s))·dt and the energy release rate R(s) = (W(s) − ΔU(s))/s
+/// (dW = F_n·δ + F_t·ξδ while the edge follows the tip, DESIGN §3.2a; the
+/// classical −∂U/∂a at a held knife is not used). The crack grows when
+/// R(δ₀) ≥ r(ξ,ν)·R'_c before the first fracture, r(ξ,ν)·R_c after it (r of
+/// seed 000 eq. 6); the extension solves R(s) = r·R_c by bracketing (δ doubled)
+/// and bisection. In steady cutting of a deep section ΔU → 0, so
+/// F_n + ξ·F_t → r·R_c: the knife work per unit cut area is r·R_c.
+///
+/// The step is energy-consistent: knife work = fracture + strain energy +
+/// friction (+ unstable release), with fracture = Σ R(s)·s and |R − r·R_c| ≤
+/// tol·r·R_c.
+///
+/// # Memory allocation
+/// [`CrossSection::new`] allocates the mesh, the condensed matrices and a
+/// workspace; [`CrossSection::advance`] allocates nothing.
+#[derive(Debug, Clone)]
+pub struct CrossSection {
+    model: Model,
+    ws: Workspace,
+    state: State,
+    initial: State,
+}
+
+impl CrossSection {
+    /// Builds the section: validates, meshes, assembles, factorises and
+    /// condenses. The knife starts with its edge on the top surface at the cut
+    /// line, not yet pressing.
+    pub fn new(
+        geometry: &SectionGeometry,
+        material: &Material,
+        blade: &BladeSection,
+        settings: &SectionSettings,
+    ) -> Result<Self, SectionError> {
+        material.validate().map_err(|e| e.prefixed("material"))?;
+        blade.validate().map_err(|e| e.prefixed("blade"))?;
+        settings.validate().map_err(|e| e.prefixed("section"))?;
+        let mesh = SectionMesh::new(geometry, blade.edge_width, settings)?;
+        let line = CondensedLine::new(&mesh, material.youngs_modulus, material.poisson_ratio)?;
+        let n = mesh.rows;
+        let model = Model {
+            line,
+            profile: WedgeProfile::new(blade, mesh.h),
+            material: *material,
+            settings: *settings,
+            h: mesh.h,
+            n,
+            height: geometry.height_at_cut(),
+            elements: mesh.elements.len(),
+        };
+        let h = model.height;
+        let step = SectionStep {
+            knife_displacement: 0.0,
+            edge_height: h,
+            crack_tip_height: h,
+            crack_depth: 0.0,
+            indentation: 0.0,
+            surface_deflection: 0.0,
+            force_vertical: 0.0,
+            force_tangential: 0.0,
+            force_vertical_wedge: 0.0,
+            force_vertical_friction: 0.0,
+            force_tangential_friction: 0.0,
+            crack_extension: 0.0,
+            fractured: false,
+            status: StepStatus::NoContact,
+            work: WorkSplit::default(),
+            tensile_contacts: 0,
+        };
+        let state = State {
+            y_edge: h,
+            y_tip: h,
+            drag: 0.0,
+            fractured: false,
+            completed: false,
+            step,
+        };
+        Ok(Self {
+            ws: Workspace {
+                g: vec![0.0; n],
+                p: vec![0.0; n],
+                lambda: [0.0; MAX_STRIP],
+            },
+            model,
+            state,
+            initial: state,
+        })
+    }
+
+    /// Back to the state right after construction (keeps the factorisation).
+    pub fn reset(&mut self) {
+        self.state = self.initial;
+    }
+
+    /// The state after the last step (or the initial state).
+    pub fn state(&self) -> &SectionStep {
+        &self.state.step
+    }
+
+    /// Height of the section at the cut line, m.
+    pub fn height(&self) -> f64 {
+        self.model.height
+    }
+
+    /// Row spacing of the mesh on the cut line, m.
+    pub fn row_spacing(&self) -> f64 {
+        self.model.h
+    }
+
+    /// Number of elements of the half-section mesh.
+    pub fn element_count(&self) -> usize {
+        self.model.elements
+    }
+
+    /// Number of condensed in-plane degrees of freedom (cut line and strip).
+    pub fn condensed_dofs(&self) -> usize {
+        self.model.n * (self.model.line.k + 1)
+    }
+
+    /// Whether the section is cut through.
+    pub fn is_cut_through(&self) -> bool {
+        self.state.completed
+    }
+
+    /// Moves the knife down by `dn` ≥ 0 (m) and along the edge by `dt` (m);
+    /// the slice-push ratio of the step is ξ = |dt|/dn. Returns the new state.
+    pub fn advance(&mut self, dn: f64, dt: f64) -> Result<SectionStep, SectionError> {
+        if !(dn.is_finite() && dn >= 0.0) {
+            return Err(SectionError::InvalidStep(
+                "the vertical increment must be finite and >= 0",
+            ));
+        }
+        if !dt.is_finite() {
+            return Err(SectionError::InvalidStep(
+                "the tangential increment must be finite",
+            ));
+        }
+        let model = &self.model;
+        let ws = &mut self.ws;
+        let st = self.state;
+        let y_edge1 = st.y_edge - dn;
+        if st.completed {
+            let mut step = st.step;
+            step.knife_displacement += dn;
+            step.edge_height = y_edge1;
+            step.status = StepStatus::CutThrough;
+            step.crack_extension = 0.0;
+            step.force_vertical = 0.0;
+            step.force_tangential = 0.0;
+            step.force_vertical_wedge = 0.0;
+            step.force_vertical_friction = 0.0;
+            step.force_tangential_friction = 0.0;
+            self.state.y_edge = y_edge1;
+            self.state.step = step;
+            return Ok(step);
+        }
+        let dt_abs = dt.abs();
+        let xi = if dn > 0.0 { dt_abs / dn } else { f64::INFINITY };
+        // Start of the step: elastic part from the state, friction for this direction.
+        let e0 = evaluate(model, ws, st.y_tip, st.y_edge, st.drag, dn, dt_abs);
+        let u0 = e0.energy;
+        let d0 = st.y_tip - st.y_edge;
+        let drag_at = |s: f64| -> f64 {
+            let d1 = st.y_tip - s - y_edge1;
+            if d1 <= 0.0 {
+                0.0
+            } else if d0 <= 0.0 {
+                if dn > 0.0 { dt_abs * d1 / dn } else { 0.0 }
+            } else {
+                st.drag + dt_abs - xi.min(f64::MAX) * s
+            }
+        };
+        let mut release = |s: f64| -> f64 {
+            let e = evaluate(model, ws, st.y_tip - s, y_edge1, drag_at(s), dn, dt_abs);
+            let w =
+                0.5 * (e0.f_elastic_n() + e.f_elastic_n()) * dn + 0.5 * (e0.f_t + e.f_t) * dt_abs;
+            (w - (e.energy - u0)) / s
+        };
+        let mat = &model.material;
+        let r = if xi.is_finite() {
+            toughness_ratio(xi, mat.poisson_ratio)
+        } else {
+            f64::INFINITY
+        };
+        let (trigger, target) = if st.fractured {
+            (r * mat.fracture_toughness, r * mat.fracture_toughness)
+        } else {
+            (
+                r * mat.initial_fracture_toughness,
+                r * mat.initial_fracture_toughness.min(mat.fracture_toughness),
+            )
+        };
+        let s_max = st.y_tip - model.h;
+        let set = &model.settings;
+        let ext = if dn > 0.0 && trigger.is_finite() && s_max > 0.0 {
+            solve_extension(
+                &mut release,
+                set.initial_crack_extension,
+                (st.y_tip - y_edge1).max(0.0) + model.h,
+                s_max,
+                trigger,
+                target,
+                set.bisection_tolerance,
+                set.max_bracket_doublings,
+                set.max_bisection_iterations,
+            )
+        } else {
+            Extension::None
+        };
+        let (s, r_s, mut status) = match ext {
+            Extension::None => (0.0, 0.0, StepStatus::Indenting),
+            Extension::Balanced { s, r } => (s, r, StepStatus::Cutting),
+            Extension::RunsThrough { s, r } => (s, r, StepStatus::CutThrough),
+            Extension::Unbracketed { s, r } => (s, r, StepStatus::Unbracketed),
+        };
+        // Commit the end state.
+        let y_tip1 = st.y_tip - s;
+        let drag1 = drag_at(s);
+        let e1 = evaluate(model, ws, y_tip1, y_edge1, drag1, dn, dt_abs);
+        let d1 = y_tip1 - y_edge1;
+        if d1 <= 0.0 && s == 0.0 {
+            status = StepStatus::NoContact;
+        }
+        let w_el =
+            0.5 * (e0.f_elastic_n() + e1.f_elastic_n()) * dn + 0.5 * (e0.f_t + e1.f_t) * dt_abs;
+        let w_fric =
+            0.5 * (e0.f_fric_n + e1.f_fric_n) * dn + 0.5 * (e0.f_fric_t + e1.f_fric_t) * dt_abs;
+        let mut work = st.step.work;
+        work.knife += w_el + w_fric;
+        work.friction += w_fric;
+        work.strain_energy = e1.energy;
+        work.strain_energy_antiplane = e1.energy_anti;
+        if s > 0.0 {
+            // Fracture takes R(s)·s (= W − ΔU exactly); R = target within the
+            // tolerance when balanced. A crack that runs through releases
+            // more: the excess is reported as unstable release.
+            let fracture = if matches!(status, StepStatus::Cutting) {
+                r_s * s
+            } else {
+                target * s
+            };
+            work.fracture += fracture;
+            work.unstable += (w_el - (e1.energy - u0)) - fracture;
+        }
+        let completed = matches!(status, StepStatus::CutThrough);
+        let strip = strip_of(model, y_tip1, y_edge1);
+        let surface = -model
+            .line
+            .line_uy(model.n, &ws.g, strip.as_ref(), &ws.lambda);
+        let step = SectionStep {
+            knife_displacement: st.step.knife_displacement + dn,
+            edge_height: y_edge1,
+            crack_tip_height: y_tip1,
+            crack_depth: model.height - y_tip1,
+            indentation: d1.max(0.0),
+            surface_deflection: surface,
+            force_vertical: e1.f_elastic_n() + e1.f_fric_n,
+            force_tangential: e1.f_t + e1.f_fric_t,
+            force_vertical_wedge: e1.f_wedge,
+            force_vertical_friction: e1.f_fric_n,
+            force_tangential_friction: e1.f_fric_t,
+            crack_extension: s,
+            fractured: st.fractured || s > 0.0,
+            status,
+            work,
+            tensile_contacts: e1.tensile,
+        };
+        self.state = State {
+            y_edge: y_edge1,
+            y_tip: y_tip1,
+            drag: drag1,
+            fractured: step.fractured,
+            completed,
+            step,
+        };
+        Ok(step)
+    }
+
+    /// Moves the knife edge down to `edge_depth` (m below the top surface at
+    /// the cut) in steps of at most `max_step` (m), with `xi` tangential
+    /// displacement per unit vertical; returns the last state. Convenience
+    /// for sweeps; the plant calls [`Self::advance`] per tick.
+    pub fn advance_to(
+        &mut self,
+        edge_depth: f64,
+        xi: f64,
+        max_step: f64,
+    ) -> Result<SectionStep, SectionError> {
+        if !(max_step.is_finite() && max_step > 0.0) {
+            return Err(SectionError::InvalidStep(
+                "the step size must be finite and > 0",
+            ));
+        }
+        let mut last = self.state.step;
+        while last.knife_displacement < edge_depth - 1e-15 {
+            let dn = max_step.min(edge_depth - last.knife_displacement);
+            last = self.advance(dn, xi * dn)?;
+        }
+        Ok(last)
+    }
+}
+
+/// The strip constraint of the edge at (y_tip, y_edge): the material at the
+/// tip moved to the edge, u_y = y_edge − y_tip. It acts only where the edge
+/// penetrates the deformed material (checked by the caller).
+fn strip_of(model: &Model, y_tip: f64, y_edge: f64) -> Option<StripConstraint> {
+    let d = y_tip - y_edge;
+    let (row, phi) = tip_row(model, y_tip);
+    Some(StripConstraint {
+        row,
+        phi,
+        value: -d,
+    })
+}
+
+/// Row j and weight φ of the tip: y_tip = (j + φ)·h, 1 ≤ j ≤ R.
+fn tip_row(model: &Model, y_tip: f64) -> (usize, f64) {
+    let t = y_tip / model.h;
+    let mut j = t.floor();
+    let mut phi = t - j;
+    if phi > 1.0 - 1e-9 {
+        j += 1.0;
+        phi = 0.0;
+    } else if phi < 1e-9 {
+        phi = 0.0;
+    }
+    let j = (j as usize).clamp(1, model.n);
+    if j == model.n {
+        phi = 0.0;
+    }
+    (j, phi)
+}
+
+/// Solves the configuration (tip, edge, drag) and returns forces and energies
+/// of the full section, with friction for knife increments (dn, dt ≥ 0).
+/// Leaves the gaps in `ws.g`, the reactions in `ws.p`. Allocation-free.
+fn evaluate(
+    model: &Model,
+    ws: &mut Workspace,
+    y_tip: f64,
+    y_edge: f64,
+    drag: f64,
+    dn: f64,
+    dt: f64,
+) -> Eval {
+    let h = model.h;
+    let (j, _) = tip_row(model, y_tip);
+    // Gaps: rows above the tip open to the blade, measured from the tip while
+    // the edge presses below it, from the edge when the crack runs ahead.
+    let y_ref = y_tip.max(y_edge);
+    let first = j; // index of row j+1
+    for (i, g) in ws.g.iter_mut().enumerate() {
+        let y = (i + 1) as f64 * h;
+        *g = if i < first || y <= y_tip {
+            0.0
+        } else {
+            model.profile.width(y - y_ref)
+        };
+    }
+    // Unilateral edge contact: the edge presses only if it is below where the
+    // material at the tip would be without it (the wedge alone moves it).
+    let strip = strip_of(model, y_tip, y_edge)
+        .filter(|s| s.value < model.line.strip_free_uy(&ws.g, first, s));
+    let edge_contact = y_tip > y_edge;
+    let ip = model
+        .line
+        .solve(&ws.g, first, strip.as_ref(), &mut ws.p, &mut ws.lambda);
+    let (u_anti, f_anti) = match &strip {
+        Some(s) if drag != 0.0 => model
+            .line
+            .solve_antiplane(&StripConstraint { value: drag, ..*s }),
+        _ => (0.0, 0.0),
+    };
+    let mu = model.material.friction_coefficient;
+    let mut e = Eval {
+        f_edge: -2.0 * ip.strip_force,
+        f_t: 2.0 * f_anti,
+        energy: 2.0 * (ip.energy + u_anti),
+        energy_anti: 2.0 * u_anti,
+        ..Default::default()
+    };
+    for i in first..model.n {
+        let y = (i + 1) as f64 * h;
+        if y <= y_tip {
+            continue;
+        }
+        let slope = model.profile.slope(y - y_ref);
+        let p = ws.p[i];
+        // The knife's vertical force from the faces' pressure is the
+        // derivative of the energy with respect to the knife position at a
+        // fixed crack: nonzero only when the faces are measured from the edge.
+        if !edge_contact {
+            e.f_wedge += 2.0 * p * slope;
+        }
+        if p < -1e-9 * model.material.fracture_toughness {
+            e.tensile += 1;
+        }
+        let normal = p.max(0.0) * (1.0 + slope * slope).sqrt();
+        let (fn_, ft) = friction(mu, normal, slope, dn, dt);
+        e.f_fric_n += 2.0 * fn_;
+        e.f_fric_t += 2.0 * ft;
+    }
+    e
+}
