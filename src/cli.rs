@@ -33,6 +33,15 @@ pub enum Command {
         #[arg(long, value_name = "FILE")]
         plot: Option<PathBuf>,
     },
+    /// Cut the scenario's object open-loop with its prescribed motion, one cut
+    /// per slice-push ratio, and write time series, summary and plots.
+    Simulate {
+        /// Scenario TOML file, or the name of a built-in scenario.
+        scenario: String,
+        /// Result directory (default: runs/<scenario>-<UTC time>).
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+    },
     /// Validate a scenario and print its resolved values.
     Check {
         /// Scenario TOML file, or the name of a built-in scenario (fig7-potato, fig7-eggplant).

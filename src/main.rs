@@ -15,6 +15,9 @@ fn main() -> ExitCode {
         Some(Command::Toughness { nu, xi, plot }) => {
             commands::toughness::run(nu, xi, plot.as_deref())
         }
+        Some(Command::Simulate { scenario, out }) => {
+            commands::simulate::run(&scenario, out.as_deref())
+        }
         Some(Command::Check { scenario }) => commands::check::run(&scenario),
     };
     match result {

@@ -11,7 +11,7 @@ use serde::{Deserialize, Serialize};
 use shearcut_sim::plant::ArmLimits;
 use shearcut_sim::{
     BladeSection, EdgeShape, InvalidSetting, KnifePreset, KnifeSettings, Material, MaterialPreset,
-    ObjectShape, SensorMount,
+    ObjectShape, SectionSettings, SensorMount,
 };
 
 use crate::error::ConfigError;
@@ -36,6 +36,9 @@ pub struct ScenarioFile {
     /// The prescribed open-loop motion.
     #[serde(default)]
     pub motion: MotionSettings,
+    /// Mesh and fracture-solver settings of the cross-section model.
+    #[serde(default)]
+    pub section: SectionSettings,
     /// Settings of the control loop.
     #[serde(default, rename = "loop")]
     pub control_loop: LoopSettings,
@@ -86,6 +89,8 @@ pub struct MotionSettings {
     pub z0: f64,
     /// Depth of the cut below the object's top, m (default: 0.8 × object height).
     pub depth: Option<f64>,
+    /// Vertical knife displacement per model step, m (default 1e-5).
+    pub step: f64,
 }
 
 impl Default for MotionSettings {
@@ -95,6 +100,7 @@ impl Default for MotionSettings {
             slice_push_ratios: vec![0.0],
             z0: 0.02,
             depth: None,
+            step: 1e-5,
         }
     }
 }
@@ -151,6 +157,8 @@ pub struct Scenario {
     pub object: ObjectShape,
     /// The prescribed motion.
     pub motion: MotionSettings,
+    /// The cross-section model's settings.
+    pub section: SectionSettings,
     /// The loop.
     #[serde(rename = "loop")]
     pub control_loop: LoopSettings,
@@ -253,6 +261,7 @@ impl ScenarioFile {
             knife,
             object: self.object,
             motion: self.motion,
+            section: self.section,
             control_loop: self.control_loop,
         })
     }
@@ -397,6 +406,13 @@ impl MotionSettings {
                 "z0",
                 self.z0,
                 "must be a finite number >= 0 m",
+            ));
+        }
+        if !(self.step.is_finite() && self.step > 0.0 && self.step <= 1e-3) {
+            return Err(InvalidSetting::new(
+                "step",
+                self.step,
+                "must be in (0, 0.001] m",
             ));
         }
         if let Some(d) = self.depth

@@ -2,4 +2,5 @@
 
 pub mod check;
 pub mod default_job;
+pub mod simulate;
 pub mod toughness;

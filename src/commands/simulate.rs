@@ -49,7 +49,10 @@ pub fn simulate(scenario: &Scenario) -> Result<SimulationOutput, RunError> {
         ObjectShape::Cuboid(c) => *c,
     };
     let knife = Knife::new(&scenario.knife).map_err(|e| invalid(e.prefixed("knife")))?;
-    if !matches!(scenario.knife.edge, EdgeShape::Straight { .. } | EdgeShape::Wire { .. }) {
+    if !matches!(
+        scenario.knife.edge,
+        EdgeShape::Straight { .. } | EdgeShape::Wire { .. }
+    ) {
         return Err(invalid(InvalidSetting::new(
             "knife.edge.kind",
             "curved",
@@ -73,8 +76,13 @@ pub fn simulate(scenario: &Scenario) -> Result<SimulationOutput, RunError> {
     }
     let geometry = SectionGeometry::rectangle(cuboid.width, cuboid.height)
         .map_err(|e| invalid(InvalidSetting::new("object", "cuboid", e.to_string())))?;
-    let mut section = CrossSection::new(&geometry, &scenario.material, knife.blade(), &scenario.section)
-        .map_err(|e| invalid(InvalidSetting::new("section", "model", e.to_string())))?;
+    let mut section = CrossSection::new(
+        &geometry,
+        &scenario.material,
+        knife.blade(),
+        &scenario.section,
+    )
+    .map_err(|e| invalid(InvalidSetting::new("section", "model", e.to_string())))?;
     let step = scenario.motion.step;
     let speed = scenario.motion.speed;
     let length = cuboid.length;
@@ -151,22 +159,34 @@ pub fn run_scenario(s: &Scenario, out: Option<&Path>) -> Result<(), RunError> {
         },
     )?;
     let resolved = crate::commands::check::resolved_toml(s);
-    std::fs::write(dir.join("scenario.toml"), resolved).map_err(|e| RunError::write(dir.join("scenario.toml"), e))?;
+    std::fs::write(dir.join("scenario.toml"), resolved)
+        .map_err(|e| RunError::write(dir.join("scenario.toml"), e))?;
     let cuts: Vec<&[CutSample]> = output
         .samples
         .chunk_by(|a, b| a.xi.to_bits() == b.xi.to_bits())
         .collect();
-    let title = format!("{}: force and work per unit length (seed 000 Fig. 7 style)", s.name);
-    let plot = dir.join("forces_work.svg");
-    render_plot!(&plot, (1500, 500), |root| draw_cut_curves(root, &title, &cuts))?;
+    let title = format!(
+        "{}: force and work per unit length (seed 000 Fig. 7 style)",
+        s.name
+    );
+    for name in ["forces_work.svg", "forces_work.png"] {
+        render_plot!(&dir.join(name), (1500, 500), |root| draw_cut_curves(
+            root, &title, &cuts
+        ))?;
+    }
     print_summary(s, &output.summaries);
-    println!("results: {}/ (timeseries.csv, summary.json, scenario.toml, forces_work.svg)", dir.display());
+    println!(
+        "results: {}/ (timeseries.csv, summary.json, scenario.toml, forces_work.svg/.png)",
+        dir.display()
+    );
     Ok(())
 }
 
 fn print_summary(s: &Scenario, summaries: &[CutSummary]) {
     println!("{}: {}", s.name, s.description);
-    println!("   xi   work (J)  peak Fv (N)  peak Fh (N)  first fracture (mm)  max deform. (mm)  depth (mm)  completed");
+    println!(
+        "   xi   work (J)  peak Fv (N)  peak Fh (N)  first fracture (mm)  max deform. (mm)  depth (mm)  completed"
+    );
     for c in summaries {
         println!(
             "{:>5.2}  {:>9.4}  {:>11.3}  {:>11.3}  {:>19}  {:>16.3}  {:>10.2}  {}",

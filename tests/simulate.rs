@@ -1,0 +1,112 @@
+//! `shearcut simulate` end to end: files, columns, summary, physics trends.
+
+use std::process::Command;
+
+fn shearcut(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_shearcut"))
+        .args(args)
+        .env("RUST_LOG", "error")
+        .output()
+        .expect("the shearcut binary runs")
+}
+
+#[test]
+fn fig7_potato_writes_results_with_the_seed_trends() {
+    let dir = std::env::temp_dir().join(format!("shearcut-sim-{}", std::process::id()));
+    let o = shearcut(&["simulate", "fig7-potato", "--out", dir.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    for f in [
+        "timeseries.csv",
+        "summary.json",
+        "scenario.toml",
+        "forces_work.svg",
+        "forces_work.png",
+    ] {
+        assert!(dir.join(f).is_file(), "{f} missing");
+    }
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    let cuts = summary["cuts"].as_array().unwrap();
+    assert_eq!(cuts.len(), 4);
+    let work: Vec<f64> = cuts.iter().map(|c| c["work_j"].as_f64().unwrap()).collect();
+    for c in cuts {
+        for key in [
+            "work_j",
+            "peak_force_vertical_n",
+            "peak_force_horizontal_n",
+            "max_deformation_m",
+            "cut_depth_m",
+        ] {
+            assert!(c[key].as_f64().unwrap().is_finite(), "{key}");
+        }
+        assert_eq!(c["completed"], true);
+        assert!((c["cut_depth_m"].as_f64().unwrap() - 0.02).abs() < 1e-3);
+    }
+    // Seed 000 §V.A: total work falls from ξ = 0 to 0.33 to 0.75 and rises
+    // again at 1.8 (friction over the longer path outgrows the saturating
+    // toughness drop).
+    assert!(
+        work[0] > work[1] && work[1] > work[2] && work[3] > work[2],
+        "{work:?}"
+    );
+    // Pressing makes no horizontal force; slicing does, and more with ξ.
+    let fh: Vec<f64> = cuts
+        .iter()
+        .map(|c| c["peak_force_horizontal_n"].as_f64().unwrap())
+        .collect();
+    assert!(
+        fh[0].abs() < 1e-12 && fh[1] < fh[2] && fh[2] < fh[3],
+        "{fh:?}"
+    );
+    // Slicing fractures earlier: less deformation before the first fracture.
+    let first: Vec<f64> = cuts
+        .iter()
+        .map(|c| c["first_fracture_displacement_m"].as_f64().unwrap())
+        .collect();
+    assert!(
+        first[0] > first[1] && first[1] > first[2] && first[2] > first[3],
+        "{first:?}"
+    );
+    // The time series has a header and rows of 16 columns, all parseable.
+    let csv = std::fs::read_to_string(dir.join("timeseries.csv")).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    assert_eq!(header.len(), 16);
+    assert_eq!(header[0], "xi");
+    assert!(lines.count() > 1000);
+    std::fs::remove_dir_all(dir).ok();
+}
+
+#[test]
+fn curved_knife_is_refused_until_the_plant_lands() {
+    let dir = std::env::temp_dir().join(format!("shearcut-sim-bad-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("chef.toml");
+    let text = include_str!("../config/scenarios/fig7-potato.toml")
+        .replace("preset = \"straight\"", "preset = \"chef\"");
+    std::fs::write(&path, text).unwrap();
+    let o = shearcut(&["simulate", path.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(String::from_utf8_lossy(&o.stderr).contains("knife.edge.kind"));
+    std::fs::remove_dir_all(dir).ok();
+}
+
+#[test]
+fn blade_too_short_for_the_travel_is_refused() {
+    let dir = std::env::temp_dir().join(format!("shearcut-sim-short-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("short.toml");
+    let text = include_str!("../config/scenarios/fig7-potato.toml").replace(
+        "slice_push_ratios = [0.0, 0.33, 0.75, 1.8]",
+        "slice_push_ratios = [0.0, 9.0]",
+    );
+    std::fs::write(&path, text).unwrap();
+    let o = shearcut(&["simulate", path.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("motion.slice_push_ratios[1]") && err.contains("exceeds the edge"),
+        "{err}"
+    );
+    std::fs::remove_dir_all(dir).ok();
+}
