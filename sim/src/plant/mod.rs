@@ -7,11 +7,13 @@
 //! (noise, bias and sample rate of the F/T signal).
 
 pub mod arm_limits;
+pub mod contact_arc;
 pub mod crack_front;
 pub mod ft_sensor;
 pub mod wrench;
 
 pub use arm_limits::{ArmLimitMonitor, ArmLimits, LimitViolation};
+pub use contact_arc::{EdgeSegment, contact_arc, knife_plane_silhouette, segments};
 pub use crack_front::CrackFront;
 pub use ft_sensor::{FtSensor, FtSensorSettings};
 pub use wrench::{SegmentLoad, Wrench, wrench_at};
