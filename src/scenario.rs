@@ -240,7 +240,7 @@ impl ScenarioFile {
         let knife = self.knife.resolve().map_err(|e| e.prefixed("knife"))?;
         self.object.validate().map_err(|e| e.prefixed("object"))?;
         self.motion
-            .validate(self.object.height())
+            .validate(self.object.nominal_height())
             .map_err(|e| e.prefixed("motion"))?;
         self.control_loop
             .validate()
@@ -376,8 +376,9 @@ impl KnifeSpec {
 }
 
 impl MotionSettings {
-    /// Checks speed, ratios, z₀ and depth against an object of height `object_height`.
-    pub fn validate(&self, object_height: f64) -> Result<(), InvalidSetting> {
+    /// Checks speed, ratios, z₀ and depth against an object of height
+    /// `object_height` (when known before loading a mesh).
+    pub fn validate(&self, object_height: Option<f64>) -> Result<(), InvalidSetting> {
         if !(self.speed.is_finite() && self.speed > 0.0) {
             return Err(InvalidSetting::new(
                 "speed",
@@ -415,14 +416,15 @@ impl MotionSettings {
                 "must be in (0, 0.001] m",
             ));
         }
-        if let Some(d) = self.depth
-            && !(d.is_finite() && d > 0.0 && d < object_height)
-        {
-            return Err(InvalidSetting::new(
-                "depth",
-                d,
-                format!("must be in (0, {object_height}) m, the object's height"),
-            ));
+        if let Some(d) = self.depth {
+            let h = object_height.unwrap_or(f64::INFINITY);
+            if !(d.is_finite() && d > 0.0 && d < h) {
+                return Err(InvalidSetting::new(
+                    "depth",
+                    d,
+                    format!("must be in (0, {h}) m, the object's height"),
+                ));
+            }
         }
         Ok(())
     }

@@ -7,6 +7,12 @@
 
 use serde::{Deserialize, Serialize};
 
+use std::path::PathBuf;
+
+use nalgebra::Vector3;
+
+use crate::geometry::natural_shapes::{Tessellation, eggplant, half_potato};
+use crate::geometry::{MeshError, TriangleMesh, read_mesh};
 use crate::invalid_setting::{InvalidSetting, positive};
 
 /// An object's shape and size, as written in config (`object = { kind = … }`).
@@ -15,6 +21,38 @@ use crate::invalid_setting::{InvalidSetting, positive};
 pub enum ObjectShape {
     /// A cuboid piece (seed 000 §V.A–B), centred on x = 0, base on the board.
     Cuboid(Cuboid),
+    /// A potato halved lengthwise and laid on its flat cut (seed 000 §V.C): half
+    /// an ellipsoid.
+    HalfPotato {
+        /// Extent along the edge (world z), m.
+        length: f64,
+        /// Extent across the cut (world x), m.
+        width: f64,
+        /// Height above the board, m.
+        height: f64,
+    },
+    /// An eggplant lying along the edge (world z), slightly flattened where it
+    /// rests on the board.
+    Eggplant {
+        /// Length along z, m.
+        length: f64,
+        /// Largest diameter, m.
+        diameter: f64,
+        /// Depth of the flat on which it rests, m (default 0.004).
+        #[serde(default = "default_eggplant_flat")]
+        flat: f64,
+    },
+    /// A closed triangle mesh from an OBJ or STL file, in metres. It is placed
+    /// centred on x = 0 (bounding box), resting on the board (min y = 0),
+    /// starting at z = 0 (min z = 0).
+    Mesh {
+        /// Path of the .obj or .stl file.
+        path: PathBuf,
+    },
+}
+
+fn default_eggplant_flat() -> f64 {
+    0.004
 }
 
 /// A cuboid piece.
@@ -43,20 +81,80 @@ impl ObjectShape {
     pub fn validate(&self) -> Result<(), InvalidSetting> {
         match self {
             ObjectShape::Cuboid(c) => c.validate(),
+            ObjectShape::HalfPotato {
+                length,
+                width,
+                height,
+            } => {
+                positive("length", *length)?;
+                positive("width", *width)?;
+                positive("height", *height)
+            }
+            ObjectShape::Eggplant {
+                length,
+                diameter,
+                flat,
+            } => {
+                positive("length", *length)?;
+                positive("diameter", *diameter)?;
+                if !(flat.is_finite() && *flat >= 0.0 && *flat < 0.25 * diameter) {
+                    return Err(InvalidSetting::new(
+                        "flat",
+                        flat,
+                        "must be in [0, diameter/4) m",
+                    ));
+                }
+                Ok(())
+            }
+            ObjectShape::Mesh { path } => {
+                if path.as_os_str().is_empty() {
+                    return Err(InvalidSetting::new(
+                        "path",
+                        "\"\"",
+                        "must name an .obj or .stl file",
+                    ));
+                }
+                Ok(())
+            }
         }
     }
 
-    /// Height of the object's highest point above the board, m.
-    pub fn height(&self) -> f64 {
+    /// Height of the highest point above the board, m, for the built-in shapes
+    /// (None for a mesh file, known only once it is read).
+    pub fn nominal_height(&self) -> Option<f64> {
         match self {
-            ObjectShape::Cuboid(c) => c.height,
+            ObjectShape::Cuboid(c) => Some(c.height),
+            ObjectShape::HalfPotato { height, .. } => Some(*height),
+            ObjectShape::Eggplant { diameter, flat, .. } => Some(diameter - flat),
+            ObjectShape::Mesh { .. } => None,
         }
     }
 
-    /// Extent of the object along z, m.
-    pub fn length(&self) -> f64 {
-        match self {
-            ObjectShape::Cuboid(c) => c.length,
-        }
+    /// The object's closed surface, placed centred on x = 0, on the board, from z = 0.
+    pub fn mesh(&self) -> Result<TriangleMesh, MeshError> {
+        let tess = Tessellation::default();
+        let raw = match self {
+            ObjectShape::Cuboid(c) => TriangleMesh::cuboid(
+                Vector3::new(-0.5 * c.width, 0.0, 0.0),
+                Vector3::new(0.5 * c.width, c.height, c.length),
+            ),
+            ObjectShape::HalfPotato {
+                length,
+                width,
+                height,
+            } => half_potato(*length, *width, *height, tess),
+            ObjectShape::Eggplant {
+                length,
+                diameter,
+                flat,
+            } => eggplant(*length, *diameter, *flat, tess),
+            ObjectShape::Mesh { path } => read_mesh(path)?,
+        };
+        let (lo, hi) = raw.bounds();
+        let shift = Vector3::new(-0.5 * (lo.x + hi.x), -lo.y, -lo.z);
+        TriangleMesh::new(
+            raw.vertices().iter().map(|v| v + shift).collect(),
+            raw.triangles().to_vec(),
+        )
     }
 }

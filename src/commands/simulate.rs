@@ -47,6 +47,13 @@ pub fn simulate(scenario: &Scenario) -> Result<SimulationOutput, RunError> {
     };
     let cuboid = match &scenario.object {
         ObjectShape::Cuboid(c) => *c,
+        _ => {
+            return Err(invalid(InvalidSetting::new(
+                "object.kind",
+                "not a cuboid",
+                "a single-section cut needs a cuboid (natural shapes need the multi-section plant)",
+            )));
+        }
     };
     let knife = Knife::new(&scenario.knife).map_err(|e| invalid(e.prefixed("knife")))?;
     if !matches!(
@@ -142,13 +149,11 @@ pub fn run_scenario(s: &Scenario, out: Option<&Path>) -> Result<(), RunError> {
     let output = simulate(s)?;
     let dir = run_dir::create(&s.name, out)?;
     write_timeseries(&dir.join("timeseries.csv"), &output.samples)?;
-    let contact_length_m = match &s.object {
-        ObjectShape::Cuboid(c) => c.length,
+    let (contact_length_m, height) = match &s.object {
+        ObjectShape::Cuboid(c) => (c.length, c.height),
+        _ => (0.0, 0.0),
     };
-    let target_depth_m = output
-        .summaries
-        .first()
-        .map_or(0.0, |_| s.motion.depth.unwrap_or(0.8 * s.object.height()));
+    let target_depth_m = s.motion.depth.unwrap_or(0.8 * height);
     write_json(
         &dir.join("summary.json"),
         &SummaryFile {

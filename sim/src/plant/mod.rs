@@ -10,10 +10,14 @@ pub mod arm_limits;
 pub mod contact_arc;
 pub mod crack_front;
 pub mod ft_sensor;
+#[allow(clippy::module_inception)]
+pub mod plant;
+pub mod section_shape;
 pub mod wrench;
 
 pub use arm_limits::{ArmLimitMonitor, ArmLimits, LimitViolation};
 pub use contact_arc::{EdgeSegment, contact_arc, knife_plane_silhouette, segments};
 pub use crack_front::CrackFront;
 pub use ft_sensor::{FtSensor, FtSensorSettings};
+pub use plant::{KnifeCommand, Measurement, Plant, PlantError, PlantSettings, PlantStatus};
 pub use wrench::{SegmentLoad, Wrench, wrench_at};
