@@ -10,28 +10,53 @@ use shearcut_sim::{
     CrossSection, Knife, KnifePreset, MaterialPreset, SectionGeometry, SectionSettings,
 };
 
-/// A coarser section mesh than the default keeps these tests fast; the
-/// comparisons are between models built with the same settings.
+/// Noise-free sensor for exact comparisons.
 fn settings(segments: usize) -> PlantSettings {
     PlantSettings {
         segments,
-        section: SectionSettings {
-            row_spacing: 5e-4,
-            ..SectionSettings::default()
-        },
         sensor: shearcut_sim::plant::FtSensorSettings {
             force_noise: 0.0,
             torque_noise: 0.0,
             ..Default::default()
         },
-        // Tests command step velocities; the limit test uses the real limits.
-        arm_limits: ArmLimits {
-            velocity: 1.0,
-            acceleration: 1e9,
-            jerk: 1e15,
-        },
         ..PlantSettings::default()
     }
+}
+
+/// A coarser section mesh than the default keeps these tests fast; the
+/// comparisons are between models built with the same settings.
+const SECTION: SectionSettings = SectionSettings {
+    row_spacing: 5e-4,
+    strip_elements: 1,
+    grading_ratio: 1.3,
+    max_element_width: 2.0e-3,
+    initial_crack_extension: 1.0e-6,
+    bisection_tolerance: 1.0e-7,
+    max_bracket_doublings: 60,
+    max_bisection_iterations: 200,
+};
+
+/// Tests command step velocities; the limit test uses the real limits.
+const LOOSE: ArmLimits = ArmLimits {
+    velocity: 1.0,
+    acceleration: 1e9,
+    jerk: 1e15,
+};
+
+fn plant(
+    material: &shearcut_sim::Material,
+    knife: &Knife,
+    object: &TriangleMesh,
+    z0: f64,
+    direction: Vector2<f64>,
+    s: &PlantSettings,
+    limits: &ArmLimits,
+    seed: u64,
+) -> Plant {
+    Plant::new(
+        material, knife, object, z0, direction, s, &SECTION, limits, seed,
+    )
+    .unwrap()
 }
 
 fn cuboid(width: f64, height: f64, length: f64) -> TriangleMesh {
@@ -50,18 +75,18 @@ fn straight_edge_plant_is_one_section_times_the_length() {
     let knife = Knife::new(&KnifePreset::Straight.settings()).unwrap();
     let (w, h, l) = (0.03, 0.02, 0.03);
     let s = settings(3);
-    let mut plant = Plant::new(
+    let mut plant = plant(
         &material,
         &knife,
         &cuboid(w, h, l),
         0.02,
         Vector2::new(0.0, -1.0),
         &s,
+        &LOOSE,
         0,
-    )
-    .unwrap();
+    );
     let geometry = SectionGeometry::rectangle(w, h).unwrap();
-    let mut single = CrossSection::new(&geometry, &material, knife.blade(), &s.section).unwrap();
+    let mut single = CrossSection::new(&geometry, &material, knife.blade(), &SECTION).unwrap();
     // The edge starts start_gap = 1 mm above the top.
     let cmd = KnifeCommand {
         velocity: Vector3::new(0.0, -SPEED, 0.0),
@@ -93,16 +118,16 @@ fn torque_is_the_moment_of_the_section_forces() {
     let material = MaterialPreset::PotatoCuboid.material();
     let knife = Knife::new(&KnifePreset::Chef.settings()).unwrap();
     let s = settings(6);
-    let mut plant = Plant::new(
+    let mut plant = plant(
         &material,
         &knife,
         &cuboid(0.03, 0.02, 0.03),
         0.11,
         Vector2::new(0.0, -1.0),
         &s,
+        &LOOSE,
         0,
-    )
-    .unwrap();
+    );
     let cmd = KnifeCommand {
         velocity: Vector3::new(0.0, -SPEED, 0.0),
     };
@@ -152,16 +177,16 @@ fn curved_pressing(z0: f64) -> (f64, f64) {
         start_gap: 0.0,
         ..settings(10)
     };
-    let mut plant = Plant::new(
+    let mut plant = plant(
         &material,
         &knife,
         &cuboid(0.03, 0.025, 0.03),
         z0,
         Vector2::new(0.0, -1.0),
         &s,
+        &LOOSE,
         0,
-    )
-    .unwrap();
+    );
     let cmd = KnifeCommand {
         velocity: Vector3::new(0.0, -SPEED, 0.0),
     };
@@ -202,20 +227,17 @@ fn curved_edge_pressing_later_contact_lower_initial_slope() {
 fn arm_limits_refuse_a_velocity_step() {
     let material = MaterialPreset::PotatoCuboid.material();
     let knife = Knife::new(&KnifePreset::Straight.settings()).unwrap();
-    let s = PlantSettings {
-        arm_limits: ArmLimits::default(),
-        ..settings(1)
-    };
-    let mut plant = Plant::new(
+    let s = settings(1);
+    let mut plant = plant(
         &material,
         &knife,
         &cuboid(0.03, 0.02, 0.03),
         0.02,
         Vector2::new(0.0, -1.0),
         &s,
+        &ArmLimits::default(),
         0,
-    )
-    .unwrap();
+    );
     let start = plant.position();
     // 0 → 6.25 mm/s in one millisecond: jerk 6250 m/s³ > 4500 (FR3).
     let m = plant
@@ -262,7 +284,7 @@ fn same_seed_gives_bit_identical_measurements() {
     .unwrap();
     let dir = Vector2::new(-0.5, -1.0);
     let run = || {
-        let mut plant = Plant::new(&material, &knife, &object, 0.05, dir, &s, 42).unwrap();
+        let mut plant = plant(&material, &knife, &object, 0.05, dir, &s, &LOOSE, 42);
         let cmd = KnifeCommand {
             velocity: Vector3::new(0.0, -SPEED, -0.5 * SPEED),
         };

@@ -26,12 +26,8 @@ pub struct PlantSettings {
     /// Rim height below which a dome-shaped section is clipped, as a fraction
     /// of the section's height (default 0.05).
     pub rim_fraction: f64,
-    /// The cross-section model's settings.
-    pub section: SectionSettings,
     /// The F/T sensor.
     pub sensor: FtSensorSettings,
-    /// The arm's limits, checked on every command.
-    pub arm_limits: ArmLimits,
 }
 
 impl Default for PlantSettings {
@@ -40,9 +36,7 @@ impl Default for PlantSettings {
             segments: 10,
             start_gap: 1e-3,
             rim_fraction: 0.05,
-            section: SectionSettings::default(),
             sensor: FtSensorSettings::default(),
-            arm_limits: ArmLimits::default(),
         }
     }
 }
@@ -71,11 +65,7 @@ impl PlantSettings {
                 "must be in (0, 0.5)",
             ));
         }
-        self.section.validate().map_err(|e| e.prefixed("section"))?;
-        self.sensor.validate().map_err(|e| e.prefixed("sensor"))?;
-        self.arm_limits
-            .validate()
-            .map_err(|e| e.prefixed("arm_limits"))
+        self.sensor.validate().map_err(|e| e.prefixed("sensor"))
     }
 }
 
@@ -191,7 +181,8 @@ impl Plant {
     /// origin starts at z = `object_z − z0` (so the piece is z₀ from the heel
     /// along z, seed 000 Fig. 6(b)), with its edge `start_gap` above the
     /// object along the planned `direction` of motion (knife plane (z, y),
-    /// pointing down into the object).
+    /// pointing down into the object). `section` configures every cross
+    /// section; `arm_limits` are the reflexes checked on every command.
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         material: &Material,
@@ -200,9 +191,15 @@ impl Plant {
         z0: f64,
         direction: Vector2<f64>,
         settings: &PlantSettings,
+        section: &SectionSettings,
+        arm_limits: &ArmLimits,
         seed: u64,
     ) -> Result<Self, PlantError> {
         settings.validate()?;
+        section.validate().map_err(|e| e.prefixed("section"))?;
+        arm_limits
+            .validate()
+            .map_err(|e| e.prefixed("arm_limits"))?;
         material.validate().map_err(|e| e.prefixed("material"))?;
         let d = direction
             .try_normalize(0.0)
@@ -251,7 +248,7 @@ impl Plant {
             let height = polygon.bounds().1.y;
             let geometry = section_geometry(&polygon, settings.rim_fraction * height)
                 .map_err(|source| PlantError::Section { index, source })?;
-            let section = CrossSection::new(&geometry, material, knife.blade(), &settings.section)
+            let section = CrossSection::new(&geometry, material, knife.blade(), section)
                 .map_err(|source| PlantError::Section { index, source })?;
             sections.push(SegmentSection {
                 segment,
@@ -268,7 +265,7 @@ impl Plant {
         Ok(Self {
             loads,
             sections,
-            monitor: ArmLimitMonitor::new(settings.arm_limits),
+            monitor: ArmLimitMonitor::new(*arm_limits),
             sensor: FtSensor::new(settings.sensor, seed).map_err(|e| e.prefixed("sensor"))?,
             sensor_offset: knife.sensor_position(),
             position: Vector3::new(0.0, origin.y, origin.x),
