@@ -43,6 +43,7 @@ const LOOSE: ArmLimits = ArmLimits {
     jerk: 1e15,
 };
 
+#[allow(clippy::too_many_arguments)]
 fn plant(
     material: &shearcut_sim::Material,
     knife: &Knife,
