@@ -16,6 +16,8 @@ use crate::error::RunError;
 pub struct CutSample {
     /// Slice-push ratio of this cut.
     pub xi: f64,
+    /// Distance from the heel to the object along the edge, m.
+    pub z0_m: f64,
     /// Simulated time since the knife touched the object, s.
     pub time_s: f64,
     /// Vertical knife displacement since first contact (downwards positive), m.
@@ -30,6 +32,14 @@ pub struct CutSample {
     pub force_vertical_n: f64,
     /// Total horizontal force on the knife, N.
     pub force_horizontal_n: f64,
+    /// Torque about the F/T sensor's x axis (normal to the blade), N·m.
+    pub torque_x_nm: f64,
+    /// Torque about the sensor's y axis, N·m (0 for a symmetric cut).
+    pub torque_y_nm: f64,
+    /// Torque about the sensor's z axis, N·m (0 for a symmetric cut).
+    pub torque_z_nm: f64,
+    /// Length of edge in contact with the object, m.
+    pub contact_length_m: f64,
     /// Cumulative knife work per unit length, J/m.
     pub work_j_per_m: f64,
     /// Cumulative knife work, J.
@@ -53,6 +63,8 @@ pub struct CutSample {
 pub struct CutSummary {
     /// Slice-push ratio.
     pub xi: f64,
+    /// Distance from the heel to the object along the edge, m.
+    pub z0_m: f64,
     /// Total knife work, J.
     pub work_j: f64,
     /// Total knife work per unit length of edge, J/m.
@@ -61,6 +73,8 @@ pub struct CutSummary {
     pub peak_force_vertical_n: f64,
     /// Peak horizontal force, N.
     pub peak_force_horizontal_n: f64,
+    /// Peak magnitude of the torque at the sensor, N·m.
+    pub peak_torque_nm: f64,
     /// Largest surface deformation, m.
     pub max_deformation_m: f64,
     /// Depth of the crack at the end, m.
@@ -80,6 +94,7 @@ impl CutSummary {
     pub fn from_samples(samples: &[CutSample], target_depth_m: f64) -> Self {
         let last = samples.last().copied().unwrap_or(CutSample {
             xi: 0.0,
+            z0_m: 0.0,
             time_s: 0.0,
             displacement_m: 0.0,
             tangential_displacement_m: 0.0,
@@ -87,6 +102,10 @@ impl CutSummary {
             force_horizontal_n_per_m: 0.0,
             force_vertical_n: 0.0,
             force_horizontal_n: 0.0,
+            torque_x_nm: 0.0,
+            torque_y_nm: 0.0,
+            torque_z_nm: 0.0,
+            contact_length_m: 0.0,
             work_j_per_m: 0.0,
             work_j: 0.0,
             fracture_energy_j_per_m: 0.0,
@@ -99,10 +118,17 @@ impl CutSummary {
         let max = |f: fn(&CutSample) -> f64| samples.iter().map(f).fold(0.0, f64::max);
         Self {
             xi: last.xi,
+            z0_m: last.z0_m,
             work_j: last.work_j,
             work_j_per_m: last.work_j_per_m,
             peak_force_vertical_n: max(|s| s.force_vertical_n),
             peak_force_horizontal_n: max(|s| s.force_horizontal_n.abs()),
+            peak_torque_nm: max(|s| {
+                (s.torque_x_nm * s.torque_x_nm
+                    + s.torque_y_nm * s.torque_y_nm
+                    + s.torque_z_nm * s.torque_z_nm)
+                    .sqrt()
+            }),
             max_deformation_m: max(|s| s.deformation_m),
             cut_depth_m: last.crack_depth_m,
             first_fracture_displacement_m: samples

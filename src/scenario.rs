@@ -8,7 +8,7 @@
 use std::path::Path;
 
 use serde::{Deserialize, Serialize};
-use shearcut_sim::plant::ArmLimits;
+use shearcut_sim::plant::{ArmLimits, PlantSettings};
 use shearcut_sim::{
     BladeSection, EdgeShape, InvalidSetting, KnifePreset, KnifeSettings, Material, MaterialPreset,
     ObjectShape, SectionSettings, SensorMount,
@@ -39,6 +39,9 @@ pub struct ScenarioFile {
     /// Mesh and fracture-solver settings of the cross-section model.
     #[serde(default)]
     pub section: SectionSettings,
+    /// The multi-section plant: segments, start gap, F/T sensor.
+    #[serde(default)]
+    pub plant: PlantSettings,
     /// Settings of the control loop.
     #[serde(default, rename = "loop")]
     pub control_loop: LoopSettings,
@@ -85,8 +88,11 @@ pub struct MotionSettings {
     /// Slice-push ratios ξ = tan α to run, one cut each (default [0.0]).
     pub slice_push_ratios: Vec<f64>,
     /// Distance along the edge from the heel to the object's near face, m
-    /// (default 0.02; seed 000 Fig. 6(b)'s z₀).
-    pub z0: f64,
+    /// (default 0.02; seed 000 Fig. 6(b)'s z₀). A number, or a list paired
+    /// with `slice_push_ratios` by index; a list of one (or a ratio list of
+    /// one) is repeated to the other's length.
+    #[serde(deserialize_with = "one_or_many")]
+    pub z0: Vec<f64>,
     /// Depth of the cut below the object's top, m (default: 0.8 × object height).
     pub depth: Option<f64>,
     /// Vertical knife displacement per model step, m (default 1e-5).
@@ -98,7 +104,7 @@ impl Default for MotionSettings {
         Self {
             speed: 0.00625,
             slice_push_ratios: vec![0.0],
-            z0: 0.02,
+            z0: vec![0.02],
             depth: None,
             step: 1e-5,
         }
@@ -159,6 +165,8 @@ pub struct Scenario {
     pub motion: MotionSettings,
     /// The cross-section model's settings.
     pub section: SectionSettings,
+    /// The plant's settings.
+    pub plant: PlantSettings,
     /// The loop.
     #[serde(rename = "loop")]
     pub control_loop: LoopSettings,
@@ -262,6 +270,7 @@ impl ScenarioFile {
             object: self.object,
             motion: self.motion,
             section: self.section,
+            plant: self.plant,
             control_loop: self.control_loop,
         })
     }
@@ -402,11 +411,21 @@ impl MotionSettings {
                 ));
             }
         }
-        if !(self.z0.is_finite() && self.z0 >= 0.0) {
+        for (i, z0) in self.z0.iter().enumerate() {
+            if !(z0.is_finite() && *z0 >= 0.0) {
+                return Err(InvalidSetting::new(
+                    format!("z0[{i}]"),
+                    z0,
+                    "must be a finite number >= 0 m",
+                ));
+            }
+        }
+        let (nx, nz) = (self.slice_push_ratios.len(), self.z0.len());
+        if nz == 0 || (nx != nz && nx != 1 && nz != 1) {
             return Err(InvalidSetting::new(
                 "z0",
-                self.z0,
-                "must be a finite number >= 0 m",
+                format!("{nz} value(s)"),
+                format!("must be one value or as many as slice_push_ratios ({nx})"),
             ));
         }
         if !(self.step.is_finite() && self.step > 0.0 && self.step <= 1e-3) {
@@ -428,6 +447,34 @@ impl MotionSettings {
         }
         Ok(())
     }
+}
+
+impl MotionSettings {
+    /// The cuts to run: (ξ, z₀) pairs, broadcasting a single value.
+    pub fn cuts(&self) -> Vec<(f64, f64)> {
+        let n = self.slice_push_ratios.len().max(self.z0.len());
+        (0..n)
+            .map(|i| {
+                let xi = self.slice_push_ratios[i.min(self.slice_push_ratios.len() - 1)];
+                let z0 = self.z0[i.min(self.z0.len() - 1)];
+                (xi, z0)
+            })
+            .collect()
+    }
+}
+
+/// Accepts `key = 0.02` as well as `key = [0.02, 0.05]`.
+fn one_or_many<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Vec<f64>, D::Error> {
+    #[derive(Deserialize)]
+    #[serde(untagged)]
+    enum OneOrMany {
+        One(f64),
+        Many(Vec<f64>),
+    }
+    Ok(match OneOrMany::deserialize(d)? {
+        OneOrMany::One(v) => vec![v],
+        OneOrMany::Many(v) => v,
+    })
 }
 
 impl LoopSettings {

@@ -67,27 +67,52 @@ fn fig7_potato_writes_results_with_the_seed_trends() {
         first[0] > first[1] && first[1] > first[2] && first[2] > first[3],
         "{first:?}"
     );
-    // The time series has a header and rows of 16 columns, all parseable.
+    // The time series has a header of 21 columns (see cut_record::CutSample).
     let csv = std::fs::read_to_string(dir.join("timeseries.csv")).unwrap();
     let mut lines = csv.lines();
     let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    assert_eq!(header.len(), 16);
+    assert_eq!(header.len(), 21);
     assert_eq!(header[0], "xi");
     assert!(lines.count() > 1000);
     std::fs::remove_dir_all(dir).ok();
 }
 
 #[test]
-fn curved_knife_is_refused_until_the_plant_lands() {
-    let dir = std::env::temp_dir().join(format!("shearcut-sim-bad-{}", std::process::id()));
+fn curved_knife_runs_the_plant_and_reports_torques() {
+    let dir = std::env::temp_dir().join(format!("shearcut-sim-chef-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let path = dir.join("chef.toml");
-    let text = include_str!("../config/scenarios/fig7-potato.toml")
-        .replace("preset = \"straight\"", "preset = \"chef\"");
+    // Fig. 8 shortened: two pieces, 4 mm deep, a coarser section mesh.
+    let text = include_str!("../config/scenarios/fig8-potato.toml")
+        .replace("z0 = [0.02, 0.0765, 0.1135, 0.14]", "z0 = [0.02, 0.14]")
+        .replace("depth = 0.02", "depth = 0.004")
+        .replace(
+            "segments = 10",
+            "segments = 5\n\n[section]\nrow_spacing = 0.0005",
+        );
     std::fs::write(&path, text).unwrap();
-    let o = shearcut(&["simulate", path.to_str().unwrap()]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(String::from_utf8_lossy(&o.stderr).contains("knife.edge.kind"));
+    let out = dir.join("out");
+    let o = shearcut(&[
+        "simulate",
+        path.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["model"], "multi-section plant");
+    let cuts = summary["cuts"].as_array().unwrap();
+    assert_eq!(cuts.len(), 2);
+    for c in cuts {
+        assert_eq!(c["completed"], true);
+        // The sensor sits behind the heel: the cutting force has a lever arm.
+        assert!(c["peak_torque_nm"].as_f64().unwrap() > 0.0);
+    }
+    // On the curved part of the edge (z0 = 0.14) the pressing knife is also
+    // pushed towards the heel; on the flat part (z0 = 0.02) it is not.
+    let fh = |i: usize| cuts[i]["peak_force_horizontal_n"].as_f64().unwrap();
+    assert!(fh(0) < 1e-9 && fh(1) > 0.1, "{} {}", fh(0), fh(1));
     std::fs::remove_dir_all(dir).ok();
 }
 

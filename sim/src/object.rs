@@ -31,10 +31,10 @@ pub enum ObjectShape {
         /// Height above the board, m.
         height: f64,
     },
-    /// An eggplant lying along the edge (world z), slightly flattened where it
-    /// rests on the board.
+    /// An eggplant lying across the knife (its axis along world x, the knife
+    /// plane through its middle), slightly flattened where it rests on the board.
     Eggplant {
-        /// Length along z, m.
+        /// Length along its axis (world x), m.
         length: f64,
         /// Largest diameter, m.
         diameter: f64,

@@ -1,15 +1,21 @@
-//! `shearcut simulate`: an open-loop cut with a prescribed straight motion.
+//! `shearcut simulate`: open-loop cuts with a prescribed straight motion.
 //!
-//! For every slice-push ratio ξ of the scenario the knife moves at the
-//! scenario's speed along the direction α = atan ξ from −y, and one cross
-//! section of the object (seed 000 §V.A: a uniform cuboid is one section ×
-//! its length) is cut by the FEM model until the crack reaches the target
-//! depth. The section's factorisation is built once and reused for every ξ.
+//! For every (ξ, z₀) of the scenario the knife moves at the scenario's speed
+//! along the direction α = atan ξ from −y (towards the tip when slicing).
+//!
+//! - A cuboid cut by a straight (or wire) edge is one uniform cross section ×
+//!   the piece's length (seed 000 §V.A): the section's factorisation is built
+//!   once and reused for every ξ.
+//! - Anything else (curved edges, natural shapes, meshes) runs the
+//!   multi-section plant at the loop rate (seed 000 §IV, §V.B–C), with a short
+//!   linear velocity ramp so that the arm's jerk limit is respected.
 
 use std::path::Path;
 
+use nalgebra::{Vector2, Vector3};
+use shearcut_sim::plant::{KnifeCommand, Plant, PlantStatus, SegmentLoad, wrench_at};
 use shearcut_sim::section::{CrossSection, SectionGeometry, SectionStep};
-use shearcut_sim::{EdgeShape, InvalidSetting, Knife, ObjectShape};
+use shearcut_sim::{Cuboid, EdgeShape, InvalidSetting, Knife, ObjectShape};
 
 use crate::cut_record::{CutSample, CutSummary, write_json, write_timeseries};
 use crate::error::{ConfigError, RunError};
@@ -23,109 +29,162 @@ use crate::scenario::Scenario;
 pub struct SimulationOutput {
     /// All samples, cut after cut.
     pub samples: Vec<CutSample>,
-    /// One summary per cut, in the scenario's ξ order.
+    /// One summary per cut, in the scenario's order.
     pub summaries: Vec<CutSummary>,
+    /// Target depth of every cut, m.
+    pub target_depth_m: f64,
+    /// Which model ran.
+    pub model: &'static str,
 }
 
 /// The summary file's content.
 #[derive(Debug, serde::Serialize)]
 struct SummaryFile<'a> {
     scenario: &'a str,
-    /// Length of edge in contact, m (the cuboid's length along the edge).
-    contact_length_m: f64,
+    model: &'a str,
     target_depth_m: f64,
     cuts: &'a [CutSummary],
 }
 
+/// Model name of the single-section path.
+pub const SINGLE_SECTION: &str = "single cross section x piece length";
+/// Model name of the plant path.
+pub const MULTI_SECTION: &str = "multi-section plant";
+
+/// Duration of the velocity ramp at the start of a plant run, s.
+const RAMP_S: f64 = 0.05;
+
 /// Runs the cuts of `scenario` (no files written).
 pub fn simulate(scenario: &Scenario) -> Result<SimulationOutput, RunError> {
-    let invalid = |setting: InvalidSetting| {
-        RunError::Config(ConfigError::Invalid {
-            path: scenario.name.clone(),
-            setting,
-        })
-    };
-    let cuboid = match &scenario.object {
-        ObjectShape::Cuboid(c) => *c,
-        _ => {
-            return Err(invalid(InvalidSetting::new(
-                "object.kind",
-                "not a cuboid",
-                "a single-section cut needs a cuboid (natural shapes need the multi-section plant)",
-            )));
+    let knife = Knife::new(&scenario.knife).map_err(|e| invalid(scenario, e.prefixed("knife")))?;
+    match (&scenario.object, &scenario.knife.edge) {
+        (ObjectShape::Cuboid(c), EdgeShape::Straight { .. } | EdgeShape::Wire { .. }) => {
+            simulate_section(scenario, &knife, c)
         }
-    };
-    let knife = Knife::new(&scenario.knife).map_err(|e| invalid(e.prefixed("knife")))?;
-    if !matches!(
-        scenario.knife.edge,
-        EdgeShape::Straight { .. } | EdgeShape::Wire { .. }
-    ) {
-        return Err(invalid(InvalidSetting::new(
-            "knife.edge.kind",
-            "curved",
-            "a single-section cut needs a straight or wire edge (curved edges need the multi-section plant)",
-        )));
+        _ => simulate_plant(scenario, &knife),
     }
+}
+
+fn invalid(scenario: &Scenario, setting: InvalidSetting) -> RunError {
+    RunError::Config(ConfigError::Invalid {
+        path: scenario.name.clone(),
+        setting,
+    })
+}
+
+/// One uniform section × the cuboid's length.
+fn simulate_section(
+    scenario: &Scenario,
+    knife: &Knife,
+    cuboid: &Cuboid,
+) -> Result<SimulationOutput, RunError> {
     let depth = scenario.motion.depth.unwrap_or(0.8 * cuboid.height);
     let edge_length = knife.edge().length();
-    for (i, &xi) in scenario.motion.slice_push_ratios.iter().enumerate() {
+    let cuts = scenario.motion.cuts();
+    for (i, &(xi, z0)) in cuts.iter().enumerate() {
         let travel = xi * depth;
-        let needed = scenario.motion.z0 + cuboid.length + travel;
+        let needed = z0 + cuboid.length + travel;
         if needed > edge_length {
-            return Err(invalid(InvalidSetting::new(
-                format!("motion.slice_push_ratios[{i}]"),
-                xi,
-                format!(
-                    "the blade would travel {travel:.4} m along the edge; z0 + piece length + travel = {needed:.4} m exceeds the edge's {edge_length:.4} m"
+            return Err(invalid(
+                scenario,
+                InvalidSetting::new(
+                    format!("motion.slice_push_ratios[{i}]"),
+                    xi,
+                    format!(
+                        "the blade would travel {travel:.4} m along the edge; z0 + piece length + travel = {needed:.4} m exceeds the edge's {edge_length:.4} m"
+                    ),
                 ),
-            )));
+            ));
         }
     }
-    let geometry = SectionGeometry::rectangle(cuboid.width, cuboid.height)
-        .map_err(|e| invalid(InvalidSetting::new("object", "cuboid", e.to_string())))?;
+    let geometry = SectionGeometry::rectangle(cuboid.width, cuboid.height).map_err(|e| {
+        invalid(
+            scenario,
+            InvalidSetting::new("object", "cuboid", e.to_string()),
+        )
+    })?;
     let mut section = CrossSection::new(
         &geometry,
         &scenario.material,
         knife.blade(),
         &scenario.section,
     )
-    .map_err(|e| invalid(InvalidSetting::new("section", "model", e.to_string())))?;
+    .map_err(|e| {
+        invalid(
+            scenario,
+            InvalidSetting::new("section", "model", e.to_string()),
+        )
+    })?;
     let step = scenario.motion.step;
-    let speed = scenario.motion.speed;
-    let length = cuboid.length;
     let mut samples = Vec::new();
     let mut summaries = Vec::new();
-    for &xi in &scenario.motion.slice_push_ratios {
+    for &(xi, z0) in &cuts {
         section.reset();
-        // Vertical speed: |v| cos α with tan α = ξ.
-        let v_n = speed / (1.0 + xi * xi).sqrt();
+        let v_n = scenario.motion.speed / (1.0 + xi * xi).sqrt();
         let first = samples.len();
-        // Safety bound: the edge cannot go below the board.
         while section.state().crack_depth < depth - 1e-12
             && section.state().knife_displacement < cuboid.height - step
             && !section.is_cut_through()
         {
-            let s = section
-                .advance(step, xi * step)
-                .map_err(|e| invalid(InvalidSetting::new("section", "step", e.to_string())))?;
-            samples.push(sample(xi, &s, v_n, length));
+            let s = section.advance(step, xi * step).map_err(|e| {
+                invalid(
+                    scenario,
+                    InvalidSetting::new("section", "step", e.to_string()),
+                )
+            })?;
+            samples.push(section_sample(knife, xi, z0, &s, v_n, cuboid));
         }
         summaries.push(CutSummary::from_samples(&samples[first..], depth));
     }
-    Ok(SimulationOutput { samples, summaries })
+    Ok(SimulationOutput {
+        samples,
+        summaries,
+        target_depth_m: depth,
+        model: SINGLE_SECTION,
+    })
 }
 
-fn sample(xi: f64, s: &SectionStep, v_n: f64, length: f64) -> CutSample {
+fn section_sample(
+    knife: &Knife,
+    xi: f64,
+    z0: f64,
+    s: &SectionStep,
+    v_n: f64,
+    cuboid: &Cuboid,
+) -> CutSample {
+    let length = cuboid.length;
     let w = &s.work;
+    // The knife moves towards the tip: the piece's contact centre sits at
+    // z0 + L/2 − ξ·d along the edge, and the section force acts there.
+    let travel = xi * s.knife_displacement;
+    let knife_origin = Vector3::new(0.0, cuboid.height - s.knife_displacement, -z0 + travel);
+    let load = SegmentLoad {
+        midpoint: knife_origin + Vector3::new(0.0, 0.0, z0 + 0.5 * length - travel),
+        normal: -Vector3::y(),
+        tangent: Vector3::z(),
+        length,
+        force_normal: s.force_vertical,
+        force_tangent: if xi > 0.0 { -s.force_tangential } else { 0.0 },
+    };
+    let wrench = wrench_at(&(knife_origin + knife.sensor_position()), &[load]);
     CutSample {
         xi,
+        z0_m: z0,
         time_s: s.knife_displacement / v_n,
         displacement_m: s.knife_displacement,
-        tangential_displacement_m: xi * s.knife_displacement,
+        tangential_displacement_m: travel,
         force_vertical_n_per_m: s.force_vertical,
         force_horizontal_n_per_m: s.force_tangential,
         force_vertical_n: s.force_vertical * length,
         force_horizontal_n: s.force_tangential * length,
+        torque_x_nm: wrench.torque.x,
+        torque_y_nm: wrench.torque.y,
+        torque_z_nm: wrench.torque.z,
+        contact_length_m: if s.knife_displacement > 0.0 {
+            length
+        } else {
+            0.0
+        },
         work_j_per_m: w.knife,
         work_j: w.knife * length,
         fracture_energy_j_per_m: w.fracture,
@@ -135,6 +194,127 @@ fn sample(xi: f64, s: &SectionStep, v_n: f64, length: f64) -> CutSample {
         deformation_m: s.surface_deflection,
         fractured: s.fractured,
     }
+}
+
+/// The multi-section plant at the loop rate.
+fn simulate_plant(scenario: &Scenario, knife: &Knife) -> Result<SimulationOutput, RunError> {
+    let mesh = scenario.object.mesh().map_err(|e| {
+        invalid(
+            scenario,
+            InvalidSetting::new("object", "mesh", e.to_string()),
+        )
+    })?;
+    let (lo, hi) = mesh.bounds();
+    let height = hi.y - lo.y;
+    let depth = scenario.motion.depth.unwrap_or(0.8 * height);
+    let dt = 1.0 / scenario.control_loop.rate_hz;
+    let gap = scenario.plant.start_gap;
+    let mut samples = Vec::new();
+    let mut summaries = Vec::new();
+    for (i, (xi, z0)) in scenario.motion.cuts().into_iter().enumerate() {
+        let alpha = xi.atan();
+        let direction = Vector2::new(alpha.sin(), -alpha.cos());
+        let mut plant = Plant::new(
+            &scenario.material,
+            knife,
+            &mesh,
+            z0,
+            direction,
+            &scenario.plant,
+            &scenario.section,
+            &scenario.control_loop.arm_limits,
+            scenario.seed,
+        )
+        .map_err(|e| {
+            invalid(
+                scenario,
+                InvalidSetting::new(
+                    format!("motion (cut {i})"),
+                    format!("xi = {xi}, z0 = {z0}"),
+                    e.to_string(),
+                ),
+            )
+        })?;
+        let start = plant.position();
+        let v_full = Vector3::new(0.0, -alpha.cos(), alpha.sin()) * scenario.motion.speed;
+        let first = samples.len();
+        // Stop at the target depth, through the object, or after the knife has
+        // travelled twice the object's height (a cut that does not progress).
+        let max_ticks =
+            ((2.0 * height + gap) / (scenario.motion.speed * alpha.cos() * dt)).ceil() as usize;
+        for tick in 1..=max_ticks {
+            let t = tick as f64 * dt;
+            let v = v_full * (t / RAMP_S).min(1.0);
+            let m = plant.step(&KnifeCommand { velocity: v }, dt).map_err(|e| {
+                invalid(
+                    scenario,
+                    InvalidSetting::new("section", "step", e.to_string()),
+                )
+            })?;
+            if let PlantStatus::LimitViolation(why) = m.status {
+                return Err(invalid(
+                    scenario,
+                    InvalidSetting::new(
+                        "loop.arm_limits",
+                        why.to_string(),
+                        "the prescribed motion must respect the arm limits",
+                    ),
+                ));
+            }
+            let displacement = start.y - m.position.y - gap;
+            if displacement >= 0.0 {
+                let per_length = |f: f64| {
+                    if m.contact_length > 0.0 {
+                        f / m.contact_length
+                    } else {
+                        0.0
+                    }
+                };
+                let w = &m.true_wrench;
+                // Resistance positive: the object pushes the knife up (+y) and
+                // against its tangential motion (−z when moving towards the tip).
+                let fv = w.force.y;
+                let fh = if xi > 0.0 {
+                    -w.force.z
+                } else {
+                    w.force.z.abs()
+                };
+                samples.push(CutSample {
+                    xi,
+                    z0_m: z0,
+                    time_s: m.time,
+                    displacement_m: displacement,
+                    tangential_displacement_m: m.position.z - start.z,
+                    force_vertical_n_per_m: per_length(fv),
+                    force_horizontal_n_per_m: per_length(fh),
+                    force_vertical_n: fv,
+                    force_horizontal_n: fh,
+                    torque_x_nm: m.wrench[3],
+                    torque_y_nm: m.wrench[4],
+                    torque_z_nm: m.wrench[5],
+                    contact_length_m: m.contact_length,
+                    work_j_per_m: per_length(m.work),
+                    work_j: m.work,
+                    fracture_energy_j_per_m: 0.0,
+                    strain_energy_j_per_m: 0.0,
+                    friction_work_j_per_m: 0.0,
+                    crack_depth_m: m.crack_depth,
+                    deformation_m: m.deformation,
+                    fractured: m.fractured_sections > 0,
+                });
+            }
+            if m.crack_depth >= depth {
+                break;
+            }
+        }
+        summaries.push(CutSummary::from_samples(&samples[first..], depth));
+    }
+    Ok(SimulationOutput {
+        samples,
+        summaries,
+        target_depth_m: depth,
+        model: MULTI_SECTION,
+    })
 }
 
 /// Runs the subcommand: simulate, write the results into `out` (or a fresh
@@ -149,17 +329,12 @@ pub fn run_scenario(s: &Scenario, out: Option<&Path>) -> Result<(), RunError> {
     let output = simulate(s)?;
     let dir = run_dir::create(&s.name, out)?;
     write_timeseries(&dir.join("timeseries.csv"), &output.samples)?;
-    let (contact_length_m, height) = match &s.object {
-        ObjectShape::Cuboid(c) => (c.length, c.height),
-        _ => (0.0, 0.0),
-    };
-    let target_depth_m = s.motion.depth.unwrap_or(0.8 * height);
     write_json(
         &dir.join("summary.json"),
         &SummaryFile {
             scenario: &s.name,
-            contact_length_m,
-            target_depth_m,
+            model: output.model,
+            target_depth_m: output.target_depth_m,
             cuts: &output.summaries,
         },
     )?;
@@ -168,18 +343,26 @@ pub fn run_scenario(s: &Scenario, out: Option<&Path>) -> Result<(), RunError> {
         .map_err(|e| RunError::write(dir.join("scenario.toml"), e))?;
     let cuts: Vec<&[CutSample]> = output
         .samples
-        .chunk_by(|a, b| a.xi.to_bits() == b.xi.to_bits())
+        .chunk_by(|a, b| a.xi.to_bits() == b.xi.to_bits() && a.z0_m.to_bits() == b.z0_m.to_bits())
         .collect();
-    let title = format!(
-        "{}: force and work per unit length (seed 000 Fig. 7 style)",
-        s.name
-    );
+    let per_length = output.model == SINGLE_SECTION;
+    let title = if per_length {
+        format!(
+            "{}: force and work per unit length of edge (seed 000 Fig. 7 style)",
+            s.name
+        )
+    } else {
+        format!(
+            "{}: force and work on the knife (seed 000 Figs. 8-11 style)",
+            s.name
+        )
+    };
     for name in ["forces_work.svg", "forces_work.png"] {
         render_plot!(&dir.join(name), (1500, 500), |root| draw_cut_curves(
-            root, &title, &cuts
+            root, &title, &cuts, per_length
         ))?;
     }
-    print_summary(s, &output.summaries);
+    print_summary(s, output.model, &output.summaries);
     println!(
         "results: {}/ (timeseries.csv, summary.json, scenario.toml, forces_work.svg/.png)",
         dir.display()
@@ -187,18 +370,20 @@ pub fn run_scenario(s: &Scenario, out: Option<&Path>) -> Result<(), RunError> {
     Ok(())
 }
 
-fn print_summary(s: &Scenario, summaries: &[CutSummary]) {
-    println!("{}: {}", s.name, s.description);
+fn print_summary(s: &Scenario, model: &str, summaries: &[CutSummary]) {
+    println!("{}: {} [{model}]", s.name, s.description);
     println!(
-        "   xi   work (J)  peak Fv (N)  peak Fh (N)  first fracture (mm)  max deform. (mm)  depth (mm)  completed"
+        "   xi   z0 (m)  work (J)  peak Fv (N)  peak Fh (N)  peak torque (Nm)  first fracture (mm)  max deform. (mm)  depth (mm)  completed"
     );
     for c in summaries {
         println!(
-            "{:>5.2}  {:>9.4}  {:>11.3}  {:>11.3}  {:>19}  {:>16.3}  {:>10.2}  {}",
+            "{:>5.2}  {:>7.4}  {:>8.4}  {:>11.3}  {:>11.3}  {:>16.4}  {:>19}  {:>16.3}  {:>10.2}  {}",
             c.xi,
+            c.z0_m,
             c.work_j,
             c.peak_force_vertical_n,
             c.peak_force_horizontal_n,
+            c.peak_torque_nm,
             c.first_fracture_displacement_m
                 .map_or("-".to_string(), |d| format!("{:.3}", d * 1e3)),
             c.max_deformation_m * 1e3,

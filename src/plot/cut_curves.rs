@@ -14,7 +14,8 @@ struct Panel {
     value: fn(&CutSample) -> f64,
 }
 
-const PANELS: [Panel; 3] = [
+/// Per unit length of edge, as seed 000 Fig. 7 (uniform cuboids).
+const PER_LENGTH: [Panel; 3] = [
     Panel {
         title: "Vertical force",
         unit: "N/m",
@@ -32,12 +33,34 @@ const PANELS: [Panel; 3] = [
     },
 ];
 
-/// Draws the three panels for `cuts` (each a slice of samples of one ξ).
+/// Totals on the knife, as seed 000 Figs. 8–11 (curved edges, natural shapes).
+const TOTALS: [Panel; 3] = [
+    Panel {
+        title: "Vertical force",
+        unit: "N",
+        value: |s| s.force_vertical_n,
+    },
+    Panel {
+        title: "Horizontal force",
+        unit: "N",
+        value: |s| s.force_horizontal_n,
+    },
+    Panel {
+        title: "Total work",
+        unit: "J",
+        value: |s| s.work_j,
+    },
+];
+
+/// Draws the three panels for `cuts` (each a slice of samples of one cut),
+/// per unit length of edge or as totals on the knife.
 pub fn draw_cut_curves<DB: DrawingBackend>(
     root: &DrawingArea<DB, Shift>,
     title: &str,
     cuts: &[&[CutSample]],
+    per_length: bool,
 ) -> Result<(), DrawingAreaErrorKind<DB::ErrorType>> {
+    let panels_def = if per_length { &PER_LENGTH } else { &TOTALS };
     root.fill(&WHITE)?;
     let root = root.titled(title, ("sans-serif", 22))?;
     let panels = root.split_evenly((1, 3));
@@ -46,7 +69,7 @@ pub fn draw_cut_curves<DB: DrawingBackend>(
         .flat_map(|c| c.iter())
         .map(|s| s.displacement_m * 1e3)
         .fold(1e-3, f64::max);
-    for (area, panel) in panels.iter().zip(PANELS.iter()) {
+    for (area, panel) in panels.iter().zip(panels_def.iter()) {
         let values = cuts.iter().flat_map(|c| c.iter()).map(panel.value);
         let (lo, hi) = values.fold((0.0f64, 0.0f64), |(lo, hi), v| (lo.min(v), hi.max(v)));
         let pad = 0.05 * (hi - lo).max(1e-9);
@@ -63,14 +86,14 @@ pub fn draw_cut_curves<DB: DrawingBackend>(
             .draw()?;
         for (k, cut) in cuts.iter().enumerate() {
             let color = CURVE_COLORS[k % CURVE_COLORS.len()];
-            let xi = cut.first().map_or(0.0, |s| s.xi);
+            let (xi, z0) = cut.first().map_or((0.0, 0.0), |s| (s.xi, s.z0_m));
             chart
                 .draw_series(LineSeries::new(
                     cut.iter()
                         .map(|s| (s.displacement_m * 1e3, (panel.value)(s))),
                     color.stroke_width(2),
                 ))?
-                .label(format!("ξ = {xi}"))
+                .label(format!("ξ = {xi}, z0 = {z0} m"))
                 .legend(move |(x, y)| {
                     PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
                 });

@@ -76,9 +76,10 @@ pub fn eggplant_profile(u: f64) -> f64 {
     closure * swell
 }
 
-/// An eggplant lying on the board along z: a body of revolution of length
-/// `length` and largest diameter `diameter`, flattened at the bottom by
-/// `flat` (m, where its weight rests on the board).
+/// An eggplant lying on the board across the knife (its axis along world x,
+/// stem at −x): a body of revolution of length `length` and largest diameter
+/// `diameter`, flattened at the bottom by `flat` (m, where its weight rests on
+/// the board). The knife plane x = 0 cuts it into slices, as a cook does.
 pub fn eggplant(length: f64, diameter: f64, flat: f64, tess: Tessellation) -> TriangleMesh {
     let rings = tess.rings.max(4);
     let segs = tess.segments.max(8);
@@ -88,7 +89,7 @@ pub fn eggplant(length: f64, diameter: f64, flat: f64, tess: Tessellation) -> Tr
         .map(|k| eggplant_profile(k as f64 / 1000.0))
         .fold(0.0, f64::max);
     let axis_y = r_max - flat;
-    let mut v = vec![Vector3::new(0.0, axis_y, 0.0)];
+    let mut v = vec![Vector3::new(-0.5 * length, axis_y, 0.0)];
     for i in 1..rings {
         let u = i as f64 / rings as f64;
         let r = r_max * eggplant_profile(u) / peak;
@@ -96,11 +97,11 @@ pub fn eggplant(length: f64, diameter: f64, flat: f64, tess: Tessellation) -> Tr
             let ph = 2.0 * PI * j as f64 / segs as f64;
             // Clip to the board: points below y = 0 are pressed flat onto it.
             let y = (axis_y + r * ph.sin()).max(0.0);
-            v.push(Vector3::new(r * ph.cos(), y, u * length));
+            v.push(Vector3::new(u * length - 0.5 * length, y, r * ph.cos()));
         }
     }
     let tip = v.len();
-    v.push(Vector3::new(0.0, axis_y, length));
+    v.push(Vector3::new(0.5 * length, axis_y, 0.0));
     let ring = |i: usize, j: usize| 1 + (i - 1) * segs + (j % segs);
     let mut t = Vec::new();
     for j in 0..segs {
@@ -154,18 +155,31 @@ mod tests {
     }
 
     #[test]
-    fn eggplant_sits_on_the_board_and_swells_towards_the_blossom_end() {
-        let (l, d) = (0.2, 0.07);
-        let m = eggplant(l, d, 0.005, Tessellation::default());
+    fn eggplant_lies_across_the_knife() {
+        let (l, d, flat) = (0.2, 0.07, 0.005);
+        let m = eggplant(l, d, flat, Tessellation::default());
         let (lo, hi) = m.bounds();
         assert!(lo.y.abs() < 1e-15);
-        assert!((hi.z - l).abs() < 1e-12);
-        let width_at = |z: f64| {
-            let plane = SectionPlane::normal_to_segment(Vector3::new(0.0, 0.01, z), Vector3::y());
+        assert!((hi.x - lo.x - l).abs() < 1e-12);
+        // The knife plane x = 0 cuts a near-circular slice: as wide as tall
+        // (plus the flat), at most the diameter.
+        let slice = crate::plant::knife_plane_silhouette(&m).unwrap();
+        let (slo, shi) = slice.bounds();
+        let (wide, tall) = (shi.x - slo.x, shi.y - slo.y);
+        assert!(
+            wide <= d + 1e-12 && (wide - (tall + flat)).abs() < 0.02 * d,
+            "{wide} {tall}"
+        );
+        // Bulb towards +x: the slice at x = +0.05 is larger than at −0.05.
+        let width_at = |x: f64| {
+            let plane = SectionPlane {
+                origin: Vector3::new(x, 0.0, 0.0),
+                u_axis: Vector3::z(),
+                v_axis: Vector3::y(),
+            };
             let (lo, hi) = plane.section(&m).unwrap().bounds();
             hi.x - lo.x
         };
-        assert!(width_at(0.15) > width_at(0.05));
-        assert!(width_at(0.15) <= d + 1e-12);
+        assert!(width_at(0.05) > width_at(-0.05));
     }
 }
