@@ -1,1 +1,3 @@
 //! shearcut application.
+
+pub mod trajectory_cases;

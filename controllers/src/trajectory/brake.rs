@@ -10,8 +10,10 @@
 //!
 //! Outside this set no trajectory respects the limits, and a generator that silently starts a
 //! normal profile overshoots (ruckig's issues #86 and #188). We instead brake first, with the
-//! largest jerk that reduces the violation ("down": jerk −J until `a_min`, then hold `a_min`; or the
-//! mirror image "up"), and stop at the first instant the state is safe. Along −J the quantity
+//! largest jerk that reduces the violation ("down": jerk −J until `a_b`, then hold `a_b`; or the
+//! mirror image "up"), and stop at the first instant the state is safe. The braking acceleration
+//! is `a_b = max(a_min, −√(2J (v_max − v_min)))`: the deepest one from which the state is safe on
+//! re-entering `v ≤ v_max` (braking harder would overshoot `v_min` afterwards). Along −J the quantity
 //! `v + a²/(2J)` is constant while `a > 0`, so the overshoot above `v_max` is the smallest
 //! possible (`v0 + a0²/(2J)`), and since every segment uses the extreme admissible jerk or
 //! acceleration, no other motion reaches the safe set sooner. The main profile then starts from
@@ -66,7 +68,14 @@ fn down_times(v0: f64, a0: f64, l: &Limits, check_velocity: bool) -> Option<(f64
     if j <= 0.0 {
         return None;
     }
-    let t_ramp_full = ((a0 - l.a_min) / j).max(0.0);
+    // Deepest braking acceleration: the limit, and, when velocities are checked, shallow enough
+    // that the state is safe when v returns to v_max (v_max − a²/(2J) ≥ v_min).
+    let a_floor = if check_velocity {
+        l.a_min.max(-(2.0 * j * (l.v_max - l.v_min)).sqrt())
+    } else {
+        l.a_min
+    };
+    let t_ramp_full = ((a0 - a_floor) / j).max(0.0);
     // Acceleration back under a_max.
     let t_a = ((a0 - l.a_max) / j).max(0.0);
     // Velocity back under v_max with a ≤ 0.
@@ -78,12 +87,12 @@ fn down_times(v0: f64, a0: f64, l: &Limits, check_velocity: bool) -> Option<(f64
         if t <= t_ramp_full {
             t_v = t;
         } else {
-            if l.a_min >= 0.0 {
+            if a_floor >= 0.0 {
                 return None;
             }
             let tr = t_ramp_full;
             let vr = v0 + a0 * tr - 0.5 * j * tr * tr;
-            t_v = tr + (vr - l.v_max) / (-l.a_min);
+            t_v = tr + (vr - l.v_max) / (-a_floor);
         }
     }
     let tb = t_a.max(t_v);
