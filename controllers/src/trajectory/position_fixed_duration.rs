@@ -14,7 +14,12 @@
 //! * **Held second trough**: `+J (a0→a1)`, `−J (a1→a2)`, hold `a2` for `t_h`, `+J (a2→af)`;
 //!   symmetric, `a1 = a2 + √(a2² − D(a2))`, solved for `a2`.
 //!
-//! The last two are evaluated in the problem's frame and its mirror image. As everywhere, each
+//! * **Four free arcs** (UDUD without cruise, acceleration not zero between the halves):
+//!   `+J (a0→a1)`, `−J (a1→a_m)`, `+J (a_m→a2)`, `−J (a2→af)`. The duration gives
+//!   `a1 + a2 = S(a_m)`, the velocity equation `a1² + a2² = Q(a_m)`, hence
+//!   `a1,2 = (S ± √(2Q − S²))/2`; solved for `a_m` on both branches.
+//!
+//! The last three are evaluated in the problem's frame and its mirror image. As everywhere, each
 //! candidate is integrated and verified before use.
 
 use super::dof::{Dof, Segments};
@@ -111,6 +116,17 @@ fn peak_cruise(d: &Dof, prefix: &Profile, t: f64) -> Option<Profile> {
     None
 }
 
+/// A radicand that is negative only by rounding (relative to `scale`) is taken as zero, so
+/// that interval end points where two branches meet are evaluated.
+#[inline]
+fn radicand(r: f64, scale: f64) -> f64 {
+    if r < 0.0 && r > -1e-12 * scale {
+        0.0
+    } else {
+        r
+    }
+}
+
 #[inline]
 fn reach(v0: f64, a0: f64, segs: &[(f64, f64)]) -> f64 {
     let (mut p, mut v, mut a) = (0.0, v0, a0);
@@ -133,7 +149,7 @@ fn held(orig: &Dof, d: &Dof, prefix: &Profile, t: f64, dir: f64) -> Option<Profi
         let c = 0.5 * (2.0 * a1 * a1 - a0 * a0 + af * af) + j * t * a1
             - a1 * (2.0 * a1 - a0 + af)
             - j * dv;
-        let r = a1 * a1 + c;
+        let r = radicand(a1 * a1 + c, a1 * a1 + c.abs());
         if r < 0.0 {
             return None;
         }
@@ -150,7 +166,7 @@ fn held(orig: &Dof, d: &Dof, prefix: &Profile, t: f64, dir: f64) -> Option<Profi
     let seg_b = |a2: f64| {
         let c = 0.5 * (-a0 * a0 - 2.0 * a2 * a2 + af * af) + j * t * a2 + a2 * (a0 + 2.0 * a2 - af)
             - j * dv;
-        let r = a2 * a2 - c;
+        let r = radicand(a2 * a2 - c, a2 * a2 + c.abs());
         if r < 0.0 {
             return None;
         }
@@ -163,14 +179,66 @@ fn held(orig: &Dof, d: &Dof, prefix: &Profile, t: f64, dir: f64) -> Option<Profi
             ((af - a2) / j, j),
         ])
     };
-    for fam in 0..2 {
-        let segs = |x: f64| if fam == 0 { seg_a(x) } else { seg_b(x) };
+    // Four free arcs +J (a0→a1), −J (a1→am), +J (am→a2), −J (a2→af), parameter am:
+    // the duration gives a1 + a2 = S, the velocity equation a1² + a2² = Q.
+    let seg_c = |am: f64, branch: f64| {
+        let s = 0.5 * (j * t + a0 + af + 2.0 * am);
+        let q = 0.5 * (2.0 * j * dv + a0 * a0 + af * af + 2.0 * am * am);
+        let r = radicand(2.0 * q - s * s, 2.0 * q.abs() + s * s);
+        if r < 0.0 {
+            return None;
+        }
+        let a1 = 0.5 * (s + branch * r.sqrt());
+        let a2 = s - a1;
+        Some([
+            ((a1 - a0) / j, j),
+            ((a1 - am) / j, -j),
+            ((a2 - am) / j, j),
+            ((a2 - af) / j, -j),
+        ])
+    };
+    for fam in 0..4 {
+        let segs = |x: f64| match fam {
+            0 => seg_a(x),
+            1 => seg_b(x),
+            2 => seg_c(x, 1.0),
+            _ => seg_c(x, -1.0),
+        };
         let mut f = |x: f64| match segs(x) {
             Some(s) => reach(d.v0, a0, &s) - dp,
             None => f64::NAN,
         };
+        // Split the parameter range where the radicand changes sign (analytic, see above).
+        let k = j * t + a0 - af;
+        let m = 0.5 * (af * af - a0 * a0) - j * dv;
+        let mut br = [f64::NAN; 2];
+        match fam {
+            // seg_a: radicand k a1 + m; seg_b: radicand −k a2 − m.
+            0 | 1 => br[0] = -m / k,
+            // seg_c: radicand am² − 2B am + 2A − B².
+            _ => {
+                let b = 0.5 * (j * t + a0 + af);
+                let a = 0.5 * (2.0 * j * dv + a0 * a0 + af * af);
+                let disc = 2.0 * b * b - 2.0 * a;
+                if disc >= 0.0 {
+                    br = [b - disc.sqrt(), b + disc.sqrt()];
+                }
+            }
+        }
+        let mut pts = [d.a_min, d.a_max, d.a_max, d.a_max];
+        let mut n = 1;
+        for x in br {
+            if x > d.a_min && x < d.a_max {
+                pts[n] = x;
+                n += 1;
+            }
+        }
+        pts[n] = d.a_max;
+        pts[..=n].sort_unstable_by(f64::total_cmp);
         let mut roots = Roots::new();
-        scan(&mut f, d.a_min, d.a_max, ARC_SAMPLES, &mut roots);
+        for w in pts[..=n].windows(2) {
+            scan(&mut f, w[0], w[1], ARC_SAMPLES, &mut roots);
+        }
         for &x in roots.as_slice() {
             let Some(s) = segs(x) else { continue };
             let mut sg = Segments::default();
@@ -182,4 +250,40 @@ fn held(orig: &Dof, d: &Dof, prefix: &Profile, t: f64, dir: f64) -> Option<Profi
         }
     }
     None
+}
+
+#[cfg(test)]
+mod debug_tests {
+    use super::*;
+
+    #[test]
+    #[ignore = "debug harness"]
+    fn debug_fixed_from_file() {
+        let Ok(text) = std::fs::read_to_string("/tmp/fixed.txt") else {
+            return;
+        };
+        for line in text.lines() {
+            let x: Vec<f64> = line
+                .split_whitespace()
+                .map(|s| s.parse().unwrap())
+                .collect();
+            let d = Dof {
+                p0: x[0],
+                v0: x[1],
+                a0: x[2],
+                pf: x[3],
+                vf: x[4],
+                af: x[5],
+                v_max: x[6],
+                v_min: -x[6],
+                a_max: x[7],
+                a_min: -x[7],
+                j: x[8],
+            };
+            let t = x[9];
+            let prefix = Profile::new(d.p0, d.v0, d.a0);
+            let r = fixed_duration(&d, &prefix, t);
+            println!("{line} -> {}", r.is_some());
+        }
+    }
 }
