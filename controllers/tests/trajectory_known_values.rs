@@ -1,5 +1,7 @@
 //! Known values of the trajectory generator: analytic durations, zero motion, zero limits.
 
+#![allow(clippy::field_reassign_with_default)] // inputs are built field by field for readability
+
 use shearcut_controllers::trajectory::{
     ControlInterface, Synchronization, Trajectory, TrajectoryError, TrajectoryGenerator,
     TrajectoryInput, TrajectorySettings, TrajectoryStatus,

@@ -61,42 +61,37 @@ pub(crate) fn is_safe(v: f64, a: f64, l: &Limits, check_velocity: bool) -> bool 
     !needs_down(v, a, l, check_velocity) && !needs_down(-v, -a, &l.mirrored(), check_velocity)
 }
 
-/// Down-braking duration from `(v0, a0)`: ramp with −J to `a_min`, then hold `a_min`.
-/// Returns `(ramp duration, hold duration)`.
-fn down_times(v0: f64, a0: f64, l: &Limits, check_velocity: bool) -> Option<(f64, f64)> {
+/// Velocity braking "down" from `(v0, a0)` with `a_min ≤ a0 ≤ a_max`: ramp with ±J towards the
+/// braking acceleration `a_b`, then hold `a_b`, until `v ≤ v_max` with `a ≤ 0`. Returns the
+/// segments `(duration, jerk)` of the ramp and the hold.
+fn down_velocity(v0: f64, a0: f64, l: &Limits) -> Option<[(f64, f64); 2]> {
     let j = l.j;
-    if j <= 0.0 {
+    // Deepest braking acceleration: the limit, and shallow enough that the state is safe when v
+    // returns to v_max (v_max − a²/(2J) ≥ v_min).
+    let a_b = l.a_min.max(-(2.0 * j * (l.v_max - l.v_min)).sqrt());
+    if a_b >= 0.0 {
         return None;
     }
-    // Deepest braking acceleration: the limit, and, when velocities are checked, shallow enough
-    // that the state is safe when v returns to v_max (v_max − a²/(2J) ≥ v_min).
-    let a_floor = if check_velocity {
-        l.a_min.max(-(2.0 * j * (l.v_max - l.v_min)).sqrt())
-    } else {
-        l.a_min
-    };
-    let t_ramp_full = ((a0 - a_floor) / j).max(0.0);
-    // Acceleration back under a_max.
-    let t_a = ((a0 - l.a_max) / j).max(0.0);
-    // Velocity back under v_max with a ≤ 0.
-    let mut t_v = 0.0;
-    let v_bad = v0 > l.v_max || (a0 > 0.0 && v0 + a0 * a0 / (2.0 * j) > l.v_max);
-    if check_velocity && v_bad {
-        let disc = a0 * a0 + 2.0 * j * (v0 - l.v_max);
-        let t = (a0 + disc.max(0.0).sqrt()) / j;
-        if t <= t_ramp_full {
-            t_v = t;
-        } else {
-            if a_floor >= 0.0 {
-                return None;
+    let js = if a0 > a_b { -j } else { j };
+    let t_ramp = (a_b - a0) / js;
+    // v(t) = v0 + a0 t + js t²/2 = v_max on the ramp, after the velocity peak (a ≤ 0).
+    let (qa, qb, qc) = (0.5 * js, a0, v0 - l.v_max);
+    let disc = qb * qb - 4.0 * qa * qc;
+    if disc >= 0.0 {
+        let sq = disc.sqrt();
+        let mut best = f64::INFINITY;
+        for t in [(-qb - sq) / (2.0 * qa), (-qb + sq) / (2.0 * qa)] {
+            if t >= 0.0 && t <= t_ramp && a0 + js * t <= 0.0 && t < best {
+                best = t;
             }
-            let tr = t_ramp_full;
-            let vr = v0 + a0 * tr - 0.5 * j * tr * tr;
-            t_v = tr + (vr - l.v_max) / (-a_floor);
+        }
+        if best.is_finite() {
+            return Some([(best, js), (0.0, 0.0)]);
         }
     }
-    let tb = t_a.max(t_v);
-    Some((tb.min(t_ramp_full), (tb - t_ramp_full).max(0.0)))
+    let vr = v0 + a0 * t_ramp + 0.5 * js * t_ramp * t_ramp;
+    let t_hold = ((vr - l.v_max) / (-a_b)).max(0.0);
+    Some([(t_ramp, js), (t_hold, 0.0)])
 }
 
 /// Outcome of the braking analysis of one DoF.
@@ -109,8 +104,10 @@ pub(crate) struct Brake {
 }
 
 /// Computes the braking pre-phase of one DoF. `check_velocity` is false for the velocity
-/// interface, which constrains only the acceleration. Returns `None` if the limits make braking
-/// impossible (zero jerk or zero acceleration limit on the needed side).
+/// interface, which constrains only the acceleration. First an acceleration outside its limits
+/// is ramped back with the full jerk; then, if the velocity is still unsafe, velocity braking
+/// (down or up) follows; this repeats at most four times. Returns `None` if no safe state is
+/// reached (zero jerk, or a zero acceleration limit on the side needed).
 pub(crate) fn brake(p0: f64, v0: f64, a0: f64, l: &Limits, check_velocity: bool) -> Option<Brake> {
     let mut prefix = Profile::new(p0, v0, a0);
     if is_safe(v0, a0, l, check_velocity) {
@@ -119,19 +116,45 @@ pub(crate) fn brake(p0: f64, v0: f64, a0: f64, l: &Limits, check_velocity: bool)
             active: false,
         });
     }
-    let (dir, lim) = if needs_down(v0, a0, l, check_velocity) {
-        (1.0, *l)
+    if l.j <= 0.0 {
+        return None;
+    }
+    for _ in 0..4 {
+        let s = prefix.end();
+        let (v, a) = (s.velocity, s.acceleration);
+        if is_safe(v, a, l, check_velocity) {
+            prefix.mark_brake();
+            return Some(Brake {
+                prefix,
+                active: true,
+            });
+        }
+        if a > l.a_max {
+            prefix.push((a - l.a_max) / l.j, -l.j);
+        } else if a < l.a_min {
+            prefix.push((l.a_min - a) / l.j, l.j);
+        } else {
+            let (dir, lim) = if needs_down(v, a, l, check_velocity) {
+                (1.0, *l)
+            } else {
+                (-1.0, l.mirrored())
+            };
+            let segs = down_velocity(dir * v, dir * a, &lim)?;
+            for (t, js) in segs {
+                prefix.push(t, dir * js);
+            }
+        }
+    }
+    let s = prefix.end();
+    if is_safe(s.velocity, s.acceleration, l, check_velocity) {
+        prefix.mark_brake();
+        Some(Brake {
+            prefix,
+            active: true,
+        })
     } else {
-        (-1.0, l.mirrored())
-    };
-    let (t_ramp, t_hold) = down_times(dir * v0, dir * a0, &lim, check_velocity)?;
-    prefix.push(t_ramp, -dir * l.j);
-    prefix.push(t_hold, 0.0);
-    prefix.mark_brake();
-    Some(Brake {
-        prefix,
-        active: true,
-    })
+        None
+    }
 }
 
 #[cfg(test)]
@@ -173,6 +196,40 @@ mod tests {
         let e = b.prefix.end();
         assert!(
             b.active && is_safe(e.velocity, e.acceleration, &L, true),
+            "{e:?}"
+        );
+    }
+
+    #[test]
+    fn velocity_too_high_and_acceleration_too_low() {
+        let l = Limits {
+            v_max: 0.522,
+            v_min: -0.522,
+            a_max: 1.595,
+            a_min: -1.595,
+            j: 10.14,
+        };
+        let b = brake(0.0, 0.64, -2.1186, &l, true).unwrap();
+        let e = b.prefix.end();
+        assert!(
+            b.active && is_safe(e.velocity, e.acceleration, &l, true),
+            "{e:?}"
+        );
+    }
+
+    #[test]
+    fn acceleration_deeper_than_safe_braking() {
+        let l = Limits {
+            v_max: 0.1796,
+            v_min: -0.1796,
+            a_max: 10.37,
+            a_min: -10.37,
+            j: 2.757,
+        };
+        let b = brake(0.0, -0.587, 1.453, &l, true).unwrap();
+        let e = b.prefix.end();
+        assert!(
+            b.active && is_safe(e.velocity, e.acceleration, &l, true),
             "{e:?}"
         );
     }

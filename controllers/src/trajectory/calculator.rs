@@ -60,6 +60,7 @@ pub(crate) fn calculate<const N: usize>(
     let mut braking = false;
     let mut work: [Option<DofWork>; N] = [None; N];
     let mut t_min = 0.0_f64;
+    #[allow(clippy::needless_range_loop)] // i indexes several input arrays
     for i in 0..N {
         let l = input.limits(i);
         let b = brake(
@@ -312,6 +313,7 @@ fn phase_synchronize<const N: usize>(
             None => return false,
         }
     }
+    #[allow(clippy::needless_range_loop)] // i indexes several input arrays
     for i in 0..N {
         let li = input.limits(i);
         let dof = Dof {

@@ -32,7 +32,7 @@ const ARC_SAMPLES: usize = 12;
 
 /// A profile of one DoF lasting exactly `t` seconds after the braking `prefix`, if one is found.
 pub(crate) fn fixed_duration(d: &Dof, prefix: &Profile, t: f64) -> Option<Profile> {
-    if !(t >= 0.0) {
+    if t.is_nan() || t < 0.0 {
         return None;
     }
     if t == 0.0 {
@@ -96,7 +96,7 @@ fn peak_cruise(d: &Dof, prefix: &Profile, t: f64) -> Option<Profile> {
     for w in pts.windows(2) {
         let (l, r) = (w[0], w[1]);
         let mid = 0.5 * (l + r);
-        if !(h(mid) <= 0.0) {
+        if h(mid).is_nan() || h(mid) > 0.0 {
             continue;
         }
         let mut roots = Roots::new();

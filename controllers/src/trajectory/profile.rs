@@ -128,7 +128,7 @@ impl Profile {
     /// Appends a segment of `duration` seconds with constant `jerk`; zero-length segments are
     /// skipped. Returns `false` if the profile is full or the duration is negative or not finite.
     pub fn push(&mut self, duration: f64, jerk: f64) -> bool {
-        if !(duration >= 0.0) || !duration.is_finite() || !jerk.is_finite() {
+        if duration.is_nan() || duration < 0.0 || !duration.is_finite() || !jerk.is_finite() {
             return false;
         }
         if duration == 0.0 {
@@ -209,7 +209,7 @@ impl Profile {
     /// that keeps its last command's acceleration.
     #[must_use]
     pub fn state_at(&self, t: f64) -> DofState {
-        if !(t > 0.0) {
+        if t.is_nan() || t <= 0.0 {
             return self.start();
         }
         // Find the segment: linear scan is fastest for ≤ 14 entries.

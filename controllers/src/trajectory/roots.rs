@@ -134,7 +134,7 @@ pub(crate) fn scan<F: FnMut(f64) -> f64>(
     samples: usize,
     out: &mut Roots,
 ) {
-    if !(lo <= hi) || !lo.is_finite() || !hi.is_finite() {
+    if !lo.is_finite() || !hi.is_finite() || lo > hi {
         return;
     }
     if lo == hi {

@@ -141,6 +141,7 @@ pub(crate) fn vel_change(
 /// ramp with jerk `s1·J` to an acceleration `a_p`, hold it for `t_h`, ramp with `s2·J` to `ae`.
 /// With `t_h = T − (s1 (a_p − a_s) + s2 (ae − a_p)) / J` the velocity equation becomes a
 /// quadratic in `a_p`, solved in closed form for the four sign choices.
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn vel_change_timed(
     vs: f64,
     a_s: f64,
