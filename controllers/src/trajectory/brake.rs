@@ -21,6 +21,7 @@
 //! the pre-phase runs.
 
 use super::profile::Profile;
+use super::vel_change::vel_change;
 
 /// Per-DoF limits in the form the solvers use (`v_min ≤ 0 ≤ v_max`, `a_min ≤ 0 ≤ a_max`, `j ≥ 0`).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -155,6 +156,44 @@ pub(crate) fn brake(p0: f64, v0: f64, a0: f64, l: &Limits, check_velocity: bool)
     } else {
         None
     }
+}
+
+/// The alternative braking pre-phase: after bringing the acceleration within its limits, the
+/// time-optimal velocity change ([`vel_change`]) to rest *at* the violated velocity limit,
+/// `(v_max, 0)` (or `(v_min, 0)`). It ends later than [`brake`] but at zero acceleration, which
+/// is faster overall when the target lies beyond the limit velocity; the calculator keeps the
+/// variant with the shorter total duration. `None` if not applicable or not needed.
+pub(crate) fn brake_to_limit(p0: f64, v0: f64, a0: f64, l: &Limits) -> Option<Profile> {
+    if l.j <= 0.0 || is_safe(v0, a0, l, true) {
+        return None;
+    }
+    let mut prefix = Profile::new(p0, v0, a0);
+    let s = prefix.start();
+    if s.acceleration > l.a_max {
+        prefix.push((s.acceleration - l.a_max) / l.j, -l.j);
+    } else if s.acceleration < l.a_min {
+        prefix.push((l.a_min - s.acceleration) / l.j, l.j);
+    }
+    let s = prefix.end();
+    let (v, a) = (s.velocity, s.acceleration);
+    if is_safe(v, a, l, true) {
+        return None;
+    }
+    let target = if needs_down(v, a, l, true) {
+        l.v_max
+    } else {
+        l.v_min
+    };
+    let c = vel_change(v, a, target, 0.0, l.a_max, l.a_min, l.j)?;
+    prefix.push(c.t1, c.j1);
+    prefix.push(c.t2, 0.0);
+    prefix.push(c.t3, c.j3);
+    let e = prefix.end();
+    if (e.velocity - target).abs() > 1e-9 || e.acceleration.abs() > 1e-11 {
+        return None;
+    }
+    prefix.mark_brake();
+    Some(prefix)
 }
 
 #[cfg(test)]

@@ -18,7 +18,7 @@
 //! limits) and mapped to each DoF as `p_i(t) = p_i(0) + u_i s(t)`: a straight line. Otherwise
 //! (or if any DoF brakes) it falls back to time synchronisation.
 
-use super::brake::{Limits, brake};
+use super::brake::{Limits, brake, brake_to_limit};
 use super::dof::{Dof, Segments};
 use super::input::{
     ControlInterface, DurationDiscretization, Synchronization, TrajectoryError, TrajectoryInput,
@@ -72,50 +72,32 @@ pub(crate) fn calculate<const N: usize>(
         )
         .ok_or(TrajectoryError::NoProfile { dof: i })?;
         braking |= b.active;
-        let s = b.prefix.end();
-        let dof = Dof {
-            p0: s.position,
-            v0: s.velocity,
-            a0: s.acceleration,
-            pf: input.target_position[i],
-            vf: input.target_velocity[i],
-            af: input.target_acceleration[i],
-            v_max: l.v_max,
-            v_min: l.v_min,
-            a_max: l.a_max,
-            a_min: l.a_min,
-            j: l.j,
-        };
-        let brake_t = b.prefix.duration();
-        let cands = if position {
-            time_optimal(&dof, &b.prefix)
+        let mut best: Option<DofWork> = None;
+        let alternative = if b.active && position {
+            brake_to_limit(
+                input.current_position[i],
+                input.current_velocity[i],
+                input.current_acceleration[i],
+                &l,
+            )
         } else {
-            let mut c = TimeOptimal::new();
-            if let Some(p) = velocity::time_optimal(&b.prefix, dof.vf, dof.af, &l) {
-                // Store the velocity profile's segments after the prefix as the only candidate.
-                let mut sg = Segments::default();
-                for k in p.brake_segments()..p.len() {
-                    let (t, j) = p.segment(k);
-                    sg.push(t, j, 0.0);
-                }
-                c.n = 1;
-                c.duration[0] = sg.duration();
-                c.segs[0] = sg;
-            }
-            c
+            None
         };
-        if cands.n == 0 {
-            return Err(TrajectoryError::NoProfile { dof: i });
+        for prefix in core::iter::once(b.prefix).chain(alternative) {
+            if let Some(w) = solve_dof(input, i, &l, &prefix, position)
+                && best.as_ref().is_none_or(|bw| {
+                    w.brake_t + w.cands.duration[0] < bw.brake_t + bw.cands.duration[0]
+                })
+            {
+                best = Some(w);
+            }
         }
-        traj.independent_min_durations[i] = brake_t + cands.duration[0];
-        t_min = t_min.max(brake_t + cands.duration[0]);
-        work[i] = Some(DofWork {
-            dof,
-            limits: l,
-            prefix: b.prefix,
-            brake_t,
-            cands,
-        });
+        let Some(best) = best else {
+            return Err(TrajectoryError::NoProfile { dof: i });
+        };
+        traj.independent_min_durations[i] = best.brake_t + best.cands.duration[0];
+        t_min = t_min.max(best.brake_t + best.cands.duration[0]);
+        work[i] = Some(best);
     }
     traj.braking = braking;
     let status = if braking {
@@ -194,6 +176,54 @@ pub(crate) fn calculate<const N: usize>(
         }
         t_cand = next;
     }
+}
+
+/// Step 1 of DoF `i` after the braking `prefix`; `None` if no profile exists.
+fn solve_dof<const N: usize>(
+    input: &TrajectoryInput<N>,
+    i: usize,
+    l: &Limits,
+    prefix: &Profile,
+    position: bool,
+) -> Option<DofWork> {
+    let s = prefix.end();
+    let dof = Dof {
+        p0: s.position,
+        v0: s.velocity,
+        a0: s.acceleration,
+        pf: input.target_position[i],
+        vf: input.target_velocity[i],
+        af: input.target_acceleration[i],
+        v_max: l.v_max,
+        v_min: l.v_min,
+        a_max: l.a_max,
+        a_min: l.a_min,
+        j: l.j,
+    };
+    let cands = if position {
+        time_optimal(&dof, prefix)
+    } else {
+        let mut c = TimeOptimal::new();
+        if let Some(p) = velocity::time_optimal(prefix, dof.vf, dof.af, l) {
+            // The velocity profile's segments after the prefix are the only candidate.
+            let mut sg = Segments::default();
+            for k in p.brake_segments()..p.len() {
+                let (t, j) = p.segment(k);
+                sg.push(t, j, 0.0);
+            }
+            c.n = 1;
+            c.duration[0] = sg.duration();
+            c.segs[0] = sg;
+        }
+        c
+    };
+    (cands.n > 0).then_some(DofWork {
+        dof,
+        limits: *l,
+        prefix: *prefix,
+        brake_t: prefix.duration(),
+        cands,
+    })
 }
 
 fn finished_if_zero<const N: usize>(

@@ -23,7 +23,9 @@
 //! candidate is integrated and verified before use.
 
 use super::dof::{Dof, Segments};
-use super::position_time_optimal::{peak_breaks, peak_distance, peak_parts, peak_segments};
+use super::position_time_optimal::{
+    peak_breaks, peak_distance, peak_parts, peak_segments, scan_peak_window,
+};
 use super::profile::{Profile, integrate};
 use super::roots::{Roots, scan};
 
@@ -72,7 +74,8 @@ fn peak_cruise(d: &Dof, prefix: &Profile, t: f64) -> Option<Profile> {
     let mut n = 0;
     pts[n] = d.v_min;
     n += 1;
-    for &r in ends.as_slice() {
+    // Break points too, so that every window is smooth.
+    for &r in ends.as_slice().iter().chain(&br[1..nb - 1]) {
         if n < 31 {
             pts[n] = r;
             n += 1;
@@ -100,7 +103,7 @@ fn peak_cruise(d: &Dof, prefix: &Profile, t: f64) -> Option<Profile> {
             continue;
         }
         let mut roots = Roots::new();
-        scan(&mut g, l, r, SAMPLES, &mut roots);
+        scan_peak_window(d, &mut g, l, r, &mut roots);
         for &vp in roots.as_slice() {
             if let Some(p) = try_vp(vp) {
                 return Some(p);
@@ -250,40 +253,4 @@ fn held(orig: &Dof, d: &Dof, prefix: &Profile, t: f64, dir: f64) -> Option<Profi
         }
     }
     None
-}
-
-#[cfg(test)]
-mod debug_tests {
-    use super::*;
-
-    #[test]
-    #[ignore = "debug harness"]
-    fn debug_fixed_from_file() {
-        let Ok(text) = std::fs::read_to_string("/tmp/fixed.txt") else {
-            return;
-        };
-        for line in text.lines() {
-            let x: Vec<f64> = line
-                .split_whitespace()
-                .map(|s| s.parse().unwrap())
-                .collect();
-            let d = Dof {
-                p0: x[0],
-                v0: x[1],
-                a0: x[2],
-                pf: x[3],
-                vf: x[4],
-                af: x[5],
-                v_max: x[6],
-                v_min: -x[6],
-                a_max: x[7],
-                a_min: -x[7],
-                j: x[8],
-            };
-            let t = x[9];
-            let prefix = Profile::new(d.p0, d.v0, d.a0);
-            let r = fixed_duration(&d, &prefix, t);
-            println!("{line} -> {}", r.is_some());
-        }
-    }
 }

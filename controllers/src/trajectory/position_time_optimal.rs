@@ -161,6 +161,64 @@ pub(crate) fn peak_breaks(d: &Dof, out: &mut [f64; 8]) -> usize {
     n
 }
 
+/// True if both velocity changes hold an acceleration limit at peak velocity `vp`.
+fn both_hold(d: &Dof, vp: f64) -> bool {
+    peak_parts(d, vp).is_some_and(|(c1, c2)| c1.t2 > 0.0 && c2.t2 > 0.0)
+}
+
+/// Roots of a peak-family residual `f` on one smooth window `[l, r]` between break points.
+///
+/// Where both velocity changes hold an acceleration limit, their ramps have fixed durations and
+/// the holds grow linearly with `v_p`, so the residual is exactly quadratic: it is interpolated
+/// from three points and solved in closed form, then polished. Elsewhere the window is sampled,
+/// more densely when it is wide compared with the velocity `a²/J` gained by one ramp.
+pub(crate) fn scan_peak_window<F: FnMut(f64) -> f64>(
+    d: &Dof,
+    f: &mut F,
+    l: f64,
+    r: f64,
+    out: &mut Roots,
+) {
+    let w = r - l;
+    if w.is_nan() || w <= 0.0 {
+        scan(f, l, r, 1, out);
+        return;
+    }
+    let eps = 1e-9 * w;
+    if both_hold(d, l + eps) && both_hold(d, 0.5 * (l + r)) && both_hold(d, r - eps) {
+        let (f0, f1, f2) = (f(l), f(0.5 * (l + r)), f(r));
+        // f(x) = f0 + b x + c x² in x = vp − l, from three equally spaced points.
+        let h = 0.5 * w;
+        let c = (f2 - 2.0 * f1 + f0) / (2.0 * h * h);
+        let b = (f1 - f0) / h - c * h;
+        let mut xs = [f64::NAN; 2];
+        if c.abs() > 1e-300 {
+            let disc = b * b - 4.0 * c * f0;
+            if disc >= 0.0 {
+                let q = -0.5 * (b + b.signum() * disc.sqrt());
+                xs = [q / c, if q != 0.0 { f0 / q } else { f64::NAN }];
+            }
+        } else if b != 0.0 {
+            xs[0] = -f0 / b;
+        }
+        for x in xs {
+            if x.is_finite() && x >= -eps && x <= w + eps {
+                let x0 = (l + x).clamp(l, r);
+                let dx = 1e-6 * w.min(1.0);
+                scan(f, (x0 - dx).max(l), (x0 + dx).min(r), 2, out);
+            }
+        }
+        return;
+    }
+    let scale = d.a_max.max(-d.a_min).powi(2) / d.j;
+    let samples = if scale > 0.0 {
+        ((w / scale) * 2.0).ceil().clamp(PEAK_SAMPLES as f64, 48.0) as usize
+    } else {
+        PEAK_SAMPLES
+    };
+    scan(f, l, r, samples, out);
+}
+
 /// Segments of a peak-family profile with an optional cruise.
 pub(crate) fn peak_segments(
     c1: &VelChange,
@@ -182,7 +240,7 @@ fn peak_family(d: &Dof, prefix: &Profile, out: &mut TimeOptimal) {
     let nb = peak_breaks(d, &mut br);
     let mut roots = Roots::new();
     for w in br[..nb].windows(2) {
-        scan(&mut f, w[0], w[1], PEAK_SAMPLES, &mut roots);
+        scan_peak_window(d, &mut f, w[0], w[1], &mut roots);
     }
     for &vp in roots.as_slice() {
         if let Some((c1, c2)) = peak_parts(d, vp)
