@@ -3,6 +3,7 @@
 #![allow(unsafe_code)] // GlobalAlloc is an unsafe trait; the impl only forwards to System.
 
 use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use shearcut_controllers::trajectory::{
@@ -14,10 +15,22 @@ struct Counting;
 
 static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
 
+thread_local! {
+    /// Only allocations of the measuring thread count (the test harness allocates concurrently
+    /// on its own threads).
+    static TRACK: Cell<bool> = const { Cell::new(false) };
+}
+
+fn count() {
+    if TRACK.try_with(Cell::get).unwrap_or(false) {
+        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
+    }
+}
+
 // SAFETY: every call is forwarded unchanged to the system allocator.
 unsafe impl GlobalAlloc for Counting {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
+        count();
         // SAFETY: same contract as the caller's.
         unsafe { System.alloc(layout) }
     }
@@ -28,7 +41,7 @@ unsafe impl GlobalAlloc for Counting {
     }
 
     unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
+        count();
         // SAFETY: same contract as the caller's.
         unsafe { System.realloc(ptr, layout, new_size) }
     }
@@ -72,6 +85,15 @@ fn update_and_calculate_do_not_allocate() {
         .map(|&k| input(k))
         .collect();
 
+    // Sanity check that the counter works on this thread.
+    TRACK.with(|t| t.set(true));
+    let probe = ALLOCATIONS.load(Ordering::SeqCst);
+    drop(std::hint::black_box(vec![1u8; 16]));
+    assert!(
+        ALLOCATIONS.load(Ordering::SeqCst) > probe,
+        "counting allocator inactive"
+    );
+
     let before = ALLOCATIONS.load(Ordering::SeqCst);
     let mut finished = 0;
     for inp0 in &inputs {
@@ -86,6 +108,7 @@ fn update_and_calculate_do_not_allocate() {
         }
     }
     let after = ALLOCATIONS.load(Ordering::SeqCst);
+    TRACK.with(|t| t.set(false));
     assert_eq!(
         after - before,
         0,

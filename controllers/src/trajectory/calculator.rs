@@ -137,6 +137,7 @@ pub(crate) fn calculate<const N: usize>(
     }
 
     // Time synchronisation over the candidate durations.
+    let mut densified = [false; N];
     let mut t_cand = t_min;
     let mut failed_dof = 0;
     loop {
@@ -147,7 +148,7 @@ pub(crate) fn calculate<const N: usize>(
         };
         let mut ok = true;
         for i in 0..N {
-            match stretch(w(i), t, position) {
+            match stretch(wk(&work, i), t, position) {
                 Some(p) => traj.profiles[i] = p,
                 None => {
                     ok = false;
@@ -163,7 +164,7 @@ pub(crate) fn calculate<const N: usize>(
         // Next candidate duration strictly after `t`.
         let mut next = f64::INFINITY;
         for i in 0..N {
-            let wi = w(i);
+            let wi = wk(&work, i);
             for k in 0..wi.cands.n {
                 let d = wi.brake_t + wi.cands.duration[k];
                 if d > t + 1e-12 * (1.0 + t) && d < next {
@@ -171,11 +172,30 @@ pub(crate) fn calculate<const N: usize>(
                 }
             }
         }
+        // The DoF that could not be stretched may have an extremal profile (the end of a
+        // blocked interval) that the normal sampling missed: search it once more with eight
+        // times the samples before moving on.
+        if !densified[failed_dof] && position {
+            densified[failed_dof] = true;
+            if let Some(wi) = work[failed_dof].as_mut() {
+                let dense = time_optimal(&wi.dof, &wi.prefix, 8);
+                if dense.n > 0 {
+                    wi.cands = dense;
+                }
+            }
+            continue;
+        }
         if !next.is_finite() {
             return Err(TrajectoryError::Synchronization { dof: failed_dof });
         }
         t_cand = next;
     }
+}
+
+fn wk<const N: usize>(work: &[Option<DofWork>; N], i: usize) -> &DofWork {
+    work[i]
+        .as_ref()
+        .expect("every DoF is solved before synchronisation")
 }
 
 /// Step 1 of DoF `i` after the braking `prefix`; `None` if no profile exists.
@@ -201,7 +221,7 @@ fn solve_dof<const N: usize>(
         j: l.j,
     };
     let cands = if position {
-        time_optimal(&dof, prefix)
+        time_optimal(&dof, prefix, 1)
     } else {
         let mut c = TimeOptimal::new();
         if let Some(p) = velocity::time_optimal(prefix, dof.vf, dof.af, l) {
@@ -331,7 +351,7 @@ fn phase_synchronize<const N: usize>(
         j: l.j,
     };
     let prefix = Profile::new(0.0, line.v0, line.a0);
-    let cands = time_optimal(&line, &prefix);
+    let cands = time_optimal(&line, &prefix, 1);
     if cands.n == 0 {
         return false;
     }

@@ -103,7 +103,7 @@ fn peak_cruise(d: &Dof, prefix: &Profile, t: f64) -> Option<Profile> {
             continue;
         }
         let mut roots = Roots::new();
-        scan_peak_window(d, &mut g, l, r, &mut roots);
+        scan_peak_window(d, &mut g, l, r, 1, &mut roots);
         for &vp in roots.as_slice() {
             if let Some(p) = try_vp(vp) {
                 return Some(p);

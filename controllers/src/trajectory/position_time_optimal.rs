@@ -177,6 +177,7 @@ pub(crate) fn scan_peak_window<F: FnMut(f64) -> f64>(
     f: &mut F,
     l: f64,
     r: f64,
+    density: usize,
     out: &mut Roots,
 ) {
     let w = r - l;
@@ -212,9 +213,11 @@ pub(crate) fn scan_peak_window<F: FnMut(f64) -> f64>(
     }
     let scale = d.a_max.max(-d.a_min).powi(2) / d.j;
     let samples = if scale > 0.0 {
-        ((w / scale) * 2.0).ceil().clamp(PEAK_SAMPLES as f64, 48.0) as usize
+        ((w / scale) * 2.0 * density as f64)
+            .ceil()
+            .clamp((PEAK_SAMPLES * density) as f64, (48 * density) as f64) as usize
     } else {
-        PEAK_SAMPLES
+        PEAK_SAMPLES * density
     };
     scan(f, l, r, samples, out);
 }
@@ -232,7 +235,7 @@ pub(crate) fn peak_segments(
 }
 
 /// Peak family (see the module documentation).
-fn peak_family(d: &Dof, prefix: &Profile, out: &mut TimeOptimal) {
+fn peak_family(d: &Dof, prefix: &Profile, density: usize, out: &mut TimeOptimal) {
     let dp = d.pf - d.p0;
     let scale = 1.0;
     let mut f = |vp: f64| peak_distance(d, vp).0 - dp;
@@ -240,7 +243,7 @@ fn peak_family(d: &Dof, prefix: &Profile, out: &mut TimeOptimal) {
     let nb = peak_breaks(d, &mut br);
     let mut roots = Roots::new();
     for w in br[..nb].windows(2) {
-        scan_peak_window(d, &mut f, w[0], w[1], &mut roots);
+        scan_peak_window(d, &mut f, w[0], w[1], density, &mut roots);
     }
     for &vp in roots.as_slice() {
         if let Some((c1, c2)) = peak_parts(d, vp)
@@ -278,7 +281,21 @@ fn reach(v0: f64, a0: f64, segs: &[(f64, f64)]) -> f64 {
 }
 
 /// Three-arc family in the frame of `d` (call with the mirror image for DUUD shapes).
-fn three_arc_family(orig: &Dof, d: &Dof, prefix: &Profile, dir: f64, out: &mut TimeOptimal) {
+///
+/// Only the profiles whose acceleration keeps its sign between phases 1 and 7 are new here (the
+/// others pass through a = 0 and belong to the peak family), so: the unlimited variant needs
+/// `a2 > 0` (hence `af > 0`) or `a1 < 0` (hence `a0 < 0`); the `a+`-hold variant needs
+/// `0 ≤ a2 ≤ af`; the `a−`-hold variant needs `a0 ≤ a1 ≤ 0`. The scans are restricted
+/// accordingly.
+fn three_arc_family(
+    orig: &Dof,
+    d: &Dof,
+    prefix: &Profile,
+    dir: f64,
+    density: usize,
+    out: &mut TimeOptimal,
+) {
+    let arc_samples = ARC_SAMPLES * density;
     let j = d.j;
     let dp = d.pf - d.p0;
     let dv = d.vf - d.v0;
@@ -289,7 +306,7 @@ fn three_arc_family(orig: &Dof, d: &Dof, prefix: &Profile, dir: f64, out: &mut T
     let k = j * dv + 0.5 * (a0 * a0 - af * af);
     let disc1 = amax * amax - k;
     let disc2 = amin * amin + k;
-    if disc1 >= 0.0 && disc2 >= 0.0 {
+    if disc1 >= 0.0 && disc2 >= 0.0 && (af > 0.0 || a0 < 0.0) {
         let lo = (amax - disc1.sqrt())
             .max(-amin - disc2.sqrt())
             .max(1e-9 * (amax - amin));
@@ -304,7 +321,7 @@ fn three_arc_family(orig: &Dof, d: &Dof, prefix: &Profile, dir: f64, out: &mut T
             reach(d.v0, a0, &[(t1, j), (t2, -j), (t3, j)]) - dp
         };
         let mut roots = Roots::new();
-        scan(&mut f, lo, hi, ARC_SAMPLES, &mut roots);
+        scan(&mut f, lo, hi, arc_samples, &mut roots);
         for &s in roots.as_slice() {
             let (t1, t2, t3) = times(s);
             let mut sg = Segments::default();
@@ -315,7 +332,7 @@ fn three_arc_family(orig: &Dof, d: &Dof, prefix: &Profile, dir: f64, out: &mut T
     }
 
     // (2) phase 2 at a_max: +J (a0→amax), hold t2, −J (amax→a2), +J (a2→af).
-    if amax > 0.0 {
+    if amax > 0.0 && af > 0.0 {
         let times = |a2: f64| {
             let t2 =
                 (dv - (2.0 * amax * amax - a0 * a0 - 2.0 * a2 * a2 + af * af) / (2.0 * j)) / amax;
@@ -326,7 +343,7 @@ fn three_arc_family(orig: &Dof, d: &Dof, prefix: &Profile, dir: f64, out: &mut T
             reach(d.v0, a0, &[(t1, j), (t2, 0.0), (t3, -j), (t4, j)]) - dp
         };
         let mut roots = Roots::new();
-        scan(&mut f, amin, amax, ARC_SAMPLES, &mut roots);
+        scan(&mut f, -1e-12 * amax, af.min(amax), arc_samples, &mut roots);
         for &a2 in roots.as_slice() {
             let (t1, t2, t3, t4) = times(a2);
             let mut sg = Segments::default();
@@ -341,7 +358,7 @@ fn three_arc_family(orig: &Dof, d: &Dof, prefix: &Profile, dir: f64, out: &mut T
     }
 
     // (3) phase 6 at a_min: +J (a0→a1), −J (a1→amin), hold t6, +J (amin→af).
-    if amin < 0.0 {
+    if amin < 0.0 && a0 < 0.0 {
         let times = |a1: f64| {
             let t6 =
                 (dv - (2.0 * a1 * a1 - a0 * a0 - 2.0 * amin * amin + af * af) / (2.0 * j)) / amin;
@@ -352,7 +369,7 @@ fn three_arc_family(orig: &Dof, d: &Dof, prefix: &Profile, dir: f64, out: &mut T
             reach(d.v0, a0, &[(t1, j), (t2, -j), (t3, 0.0), (t4, j)]) - dp
         };
         let mut roots = Roots::new();
-        scan(&mut f, amin, amax, ARC_SAMPLES, &mut roots);
+        scan(&mut f, a0.max(amin), -1e-12 * amin, arc_samples, &mut roots);
         for &a1 in roots.as_slice() {
             let (t1, t2, t3, t4) = times(a1);
             let mut sg = Segments::default();
@@ -369,7 +386,9 @@ fn three_arc_family(orig: &Dof, d: &Dof, prefix: &Profile, dir: f64, out: &mut T
 
 /// All valid extremal candidates of the position problem `d` (start state inside the limits),
 /// appended on top of the braking `prefix`.
-pub(crate) fn time_optimal(d: &Dof, prefix: &Profile) -> TimeOptimal {
+/// `density` multiplies the number of samples of every scan (1 normally; larger to recover an
+/// extremal profile missed between samples, see the calculator).
+pub(crate) fn time_optimal(d: &Dof, prefix: &Profile, density: usize) -> TimeOptimal {
     let mut out = TimeOptimal::new();
     if d.at_target() {
         out.offer(d, prefix, &Segments::default(), 1.0);
@@ -378,8 +397,8 @@ pub(crate) fn time_optimal(d: &Dof, prefix: &Profile) -> TimeOptimal {
     if d.j <= 0.0 {
         return out;
     }
-    peak_family(d, prefix, &mut out);
-    three_arc_family(d, d, prefix, 1.0, &mut out);
-    three_arc_family(d, &d.mirrored(), prefix, -1.0, &mut out);
+    peak_family(d, prefix, density, &mut out);
+    three_arc_family(d, d, prefix, 1.0, density, &mut out);
+    three_arc_family(d, &d.mirrored(), prefix, -1.0, density, &mut out);
     out
 }
