@@ -146,3 +146,51 @@ fn unavoidable_overshoot_brakes_and_reports_it() {
     // The overshoot is the unavoidable one, v0 + a0²/(2J) = 1.4, not more.
     assert!((t.extrema()[0].velocity.max - 1.4).abs() < 1e-12);
 }
+
+#[test]
+fn discrete_duration_is_a_whole_number_of_cycles() {
+    let mut input = TrajectoryInput::<2>::default();
+    input.duration_discretization =
+        shearcut_controllers::trajectory::DurationDiscretization::Discrete;
+    input.target_position = [1.0, -0.3];
+    input.current_velocity = [0.2, 0.0];
+    let settings = TrajectorySettings::default().with_cycle_time(0.01);
+    let otg = TrajectoryGenerator::<2>::new(settings).unwrap();
+    let mut t = Trajectory::default();
+    otg.calculate(&input, &mut t).unwrap();
+    let cycles = t.duration() / 0.01;
+    assert!((cycles - cycles.round()).abs() < 1e-9, "{}", t.duration());
+    assert!(t.duration() >= t.independent_min_durations()[0]);
+    assert!(t.duration() < t.independent_min_durations()[0] + 0.01 + 1e-12);
+    for i in 0..2 {
+        let e = t.profile(i).end();
+        assert!((e.position - input.target_position[i]).abs() < 1e-9);
+        assert!(e.velocity.abs() < 1e-9 && e.acceleration.abs() < 1e-11);
+        assert!((t.profile(i).duration() - t.duration()).abs() < 1e-12);
+    }
+}
+
+#[test]
+fn asymmetric_limits_are_respected() {
+    // Moving down is allowed only at 0.25 m/s and 0.5 m/s² of deceleration-side acceleration.
+    let mut input = TrajectoryInput::<1>::default();
+    input.target_position = [-2.0];
+    input.max_velocity = [1.0];
+    input.min_velocity = Some([-0.25]);
+    input.max_acceleration = [2.0];
+    input.min_acceleration = Some([-0.5]);
+    input.max_jerk = [3.0];
+    let mut t = Trajectory::default();
+    otg().calculate(&input, &mut t).unwrap();
+    let x = t.extrema()[0];
+    assert!(
+        (x.velocity.min + 0.25).abs() < 1e-12,
+        "cruises at v_min: {}",
+        x.velocity.min
+    );
+    assert!(x.velocity.max <= 1e-12);
+    assert!(x.acceleration.min >= -0.5 - 1e-12 && x.acceleration.max <= 2.0 + 1e-12);
+    // Lower bound on the duration: the cruise alone needs 2 m / 0.25 m/s = 8 s.
+    assert!(t.duration() > 8.0);
+    assert!((t.profile(0).end().position + 2.0).abs() < 1e-9);
+}

@@ -207,3 +207,32 @@ proptest! {
         prop_assert!(xb.velocity.max.abs().max(xb.velocity.min.abs()) <= peak + 1e-12 * peak.max(1.0));
     }
 }
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 300, ..ProptestConfig::default() })]
+
+    #[test]
+    fn asymmetric_limits_respected(d in dof_strategy(), lo_v in 0.1..12.0f64, lo_a in 0.1..12.0f64) {
+        let mut inp = make_input(&[d], Synchronization::Time);
+        inp.min_velocity = Some([-(lo_v + d[4].abs())]);
+        inp.min_acceleration = Some([-(lo_a + d[5].abs())]);
+        prop_assume!(inp.validate().is_ok());
+        let (vmin, amin) = (inp.min_velocity.unwrap()[0], inp.min_acceleration.unwrap()[0]);
+        let (v, a, j) = (inp.current_velocity[0], inp.current_acceleration[0], inp.max_jerk[0]);
+        let safe = a <= inp.max_acceleration[0] && a >= amin && v <= inp.max_velocity[0] && v >= vmin
+            && (a <= 0.0 || v + a * a / (2.0 * j) <= inp.max_velocity[0])
+            && (a >= 0.0 || v - a * a / (2.0 * j) >= vmin);
+        prop_assume!(safe);
+        let otg = TrajectoryGenerator::<1>::new(TrajectorySettings::default()).unwrap();
+        let mut t = Trajectory::default();
+        let status = otg.calculate(&inp, &mut t);
+        prop_assert!(status.is_ok(), "{status:?}");
+        let x = t.extrema()[0];
+        prop_assert!(within_upper(x.velocity.max, inp.max_velocity[0]) && within_upper(-x.velocity.min, -vmin));
+        prop_assert!(within_upper(x.acceleration.max, inp.max_acceleration[0]) && within_upper(-x.acceleration.min, -amin));
+        let e = t.profile(0).end();
+        prop_assert!((e.position - inp.target_position[0]).abs() <= 1e-8);
+        prop_assert!((e.velocity - inp.target_velocity[0]).abs() <= 1e-8);
+        prop_assert!((e.acceleration - inp.target_acceleration[0]).abs() <= 1e-10);
+    }
+}
