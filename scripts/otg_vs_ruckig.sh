@@ -15,4 +15,4 @@ fi
 cargo build --release --bin shearcut
 BIN="${CARGO_TARGET_DIR:-target}/release/shearcut"
 exec "$VENV/bin/python" scripts/otg_vs_ruckig.py --cases "$CASES" --seed "$SEED" \
-    --workdir "${CARGO_TARGET_DIR:-target}/otg_vs_ruckig" "$BIN"
+    --workdir "${CARGO_TARGET_DIR:-target}/otg_vs_ruckig" ${OTG_ORACLE_ARGS:-} "$BIN"

@@ -194,3 +194,31 @@ fn asymmetric_limits_are_respected() {
     assert!(t.duration() > 8.0);
     assert!((t.profile(0).end().position + 2.0).abs() < 1e-9);
 }
+
+#[test]
+fn velocity_interface_blocked_interval_matches_ruckig() {
+    // Oracle case 312 (seed 3): DoF 1 can reach its target in 0.086 s ("up") or in 1.517 s
+    // ("down": −J to −1.014 m/s², +J back), but not in between; DoF 0 needs 0.671 s, so the
+    // common duration is DoF 1's second extremal profile. ruckig 0.19.4: 1.5168686866190169 s.
+    let mut input = TrajectoryInput::<2>::default();
+    input.interface = ControlInterface::Velocity;
+    input.current_velocity = [-0.28049312714127833, 0.34634481810376955];
+    input.current_acceleration = [0.0, 1.194149996660181];
+    input.target_velocity = [0.7677036493255224, 0.4501061761428517];
+    input.target_acceleration = [0.0, 1.1064701812307287];
+    input.max_velocity = [11.948785441635051, 4.720801545013104];
+    input.max_acceleration = [3.545789987234801, 11.13078189794124];
+    input.max_jerk = [9.318078157272755, 2.8541667586408033];
+    let mut t = Trajectory::default();
+    otg().calculate(&input, &mut t).unwrap();
+    assert!(
+        (t.duration() - 1.516_868_686_619_016_9).abs() < 1e-9,
+        "{}",
+        t.duration()
+    );
+    let d = t.independent_min_durations();
+    assert!(
+        (d[0] - 0.670_792_550_851_244_7).abs() < 1e-9
+            && (d[1] - 0.086_181_213_708_092_12).abs() < 1e-9
+    );
+}

@@ -224,16 +224,22 @@ fn solve_dof<const N: usize>(
         time_optimal(&dof, prefix, 1)
     } else {
         let mut c = TimeOptimal::new();
-        if let Some(p) = velocity::time_optimal(prefix, dof.vf, dof.af, l) {
-            // The velocity profile's segments after the prefix are the only candidate.
+        let mut found = velocity::candidates(prefix, dof.vf, dof.af, l);
+        if let [Some(a), Some(b)] = &found
+            && b.duration() < a.duration()
+        {
+            found.swap(0, 1);
+        }
+        for p in found.iter().flatten() {
+            // The velocity profile's segments after the prefix form one candidate.
             let mut sg = Segments::default();
             for k in p.brake_segments()..p.len() {
                 let (t, j) = p.segment(k);
                 sg.push(t, j, 0.0);
             }
-            c.n = 1;
-            c.duration[0] = sg.duration();
-            c.segs[0] = sg;
+            c.duration[c.n] = sg.duration();
+            c.segs[c.n] = sg;
+            c.n += 1;
         }
         c
     };

@@ -137,6 +137,32 @@ pub(crate) fn vel_change(
     }
 }
 
+/// Both shapes ("up" then "down"), each if valid. When both are valid the slower one is the end
+/// of a blocked interval for synchronisation (durations between the two are impossible).
+pub(crate) fn vel_change_both(
+    vs: f64,
+    a_s: f64,
+    ve: f64,
+    ae: f64,
+    a_max: f64,
+    a_min: f64,
+    j: f64,
+) -> [Option<VelChange>; 2] {
+    if j <= 0.0 {
+        return [vel_change(vs, a_s, ve, ae, a_max, a_min, j), None];
+    }
+    let u = up(vs, a_s, ve, ae, a_max, j);
+    let d = up(-vs, -a_s, -ve, -ae, -a_min, j).map(|c| VelChange {
+        t1: c.t1,
+        j1: -c.j1,
+        t2: c.t2,
+        peak: -c.peak,
+        t3: c.t3,
+        j3: -c.j3,
+    });
+    [u, d]
+}
+
 /// Velocity changes of exactly duration `t_total` (for synchronisation of the velocity interface):
 /// ramp with jerk `s1·J` to an acceleration `a_p`, hold it for `t_h`, ramp with `s2·J` to `ae`.
 /// With `t_h = T − (s1 (a_p − a_s) + s2 (ae − a_p)) / J` the velocity equation becomes a
