@@ -42,6 +42,16 @@ pub enum Command {
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
     },
+    /// Run time-optimal jerk-limited trajectory cases (one JSON object per
+    /// line, ruckig's field names) and write one JSON result per line.
+    Trajectory {
+        /// The cases, JSONL.
+        #[arg(long, value_name = "FILE.jsonl")]
+        cases: PathBuf,
+        /// Where to write the results (default: stdout).
+        #[arg(long, value_name = "FILE")]
+        out: Option<PathBuf>,
+    },
     /// Validate a scenario and print its resolved values.
     Check {
         /// Scenario TOML file, or the name of a built-in scenario (fig7-potato, fig7-eggplant).

@@ -10,3 +10,4 @@ pub mod logging;
 pub mod plot;
 pub mod run_dir;
 pub mod scenario;
+pub mod trajectory_cases;

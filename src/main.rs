@@ -18,6 +18,9 @@ fn main() -> ExitCode {
         Some(Command::Simulate { scenario, out }) => {
             commands::simulate::run(&scenario, out.as_deref())
         }
+        Some(Command::Trajectory { cases, out }) => {
+            commands::trajectory::run(&cases, out.as_deref())
+        }
         Some(Command::Check { scenario }) => commands::check::run(&scenario),
     };
     match result {

@@ -116,3 +116,39 @@ fn unknown_subcommand_is_exit_2() {
     let o = shearcut(&["frobnicate"]);
     assert_eq!(o.status.code(), Some(2));
 }
+
+#[test]
+fn trajectory_cases_from_jsonl() {
+    let dir = std::env::temp_dir().join(format!("shearcut-cli-otg-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let cases = dir.join("cases.jsonl");
+    std::fs::write(
+        &cases,
+        concat!(
+            r#"{"current_position":[0.0],"target_position":[1.0],"max_velocity":[1.0],"max_acceleration":[1.0],"max_jerk":[1.0]}"#,
+            "\n{not json\n"
+        ),
+    )
+    .unwrap();
+    let out = dir.join("out.jsonl");
+    let o = shearcut(&[
+        "trajectory",
+        "--cases",
+        cases.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let text = std::fs::read_to_string(&out).unwrap();
+    let lines: Vec<serde_json::Value> = text
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert_eq!(lines.len(), 2, "one result per case line, errors included");
+    // 0 → 1 with v = a = j = 1 takes 2·∛4 s.
+    assert!((lines[0]["duration"].as_f64().unwrap() - 3.174_802_103_9).abs() < 1e-9);
+    assert!(lines[1].get("error").is_some(), "{}", lines[1]);
+    let missing = shearcut(&["trajectory", "--cases", "/nonexistent.jsonl"]);
+    assert_eq!(missing.status.code(), Some(2));
+    std::fs::remove_dir_all(dir).ok();
+}

@@ -1,1 +1,3 @@
 //! shearcut-controllers.
+
+pub mod trajectory;

@@ -4,3 +4,4 @@ pub mod check;
 pub mod default_job;
 pub mod simulate;
 pub mod toughness;
+pub mod trajectory;

@@ -1,0 +1,216 @@
+//! Trajectory generator benchmark (`cargo bench -p shearcut-controllers --bench trajectory`).
+//!
+//! Prints, for 1, 3, 6 and 7 DoFs on random cases drawn from ruckig's test distributions, the
+//! median, p99 and worst calculation time, the per-tick cost of `update()` on an already
+//! calculated trajectory, and a randomised stress run (default 10⁶ cases, every result checked).
+//! Environment: `OTG_BENCH_CASES` (per DoF count, default 100000), `OTG_STRESS_CASES` (default
+//! 1000000), `OTG_SEED` (default 42). Inputs are generated before timing; timing uses
+//! `std::time::Instant` around each call.
+
+// A benchmark measures wall time by design.
+#![allow(clippy::disallowed_methods)]
+
+use std::hint::black_box;
+use std::time::Instant;
+
+use rand::{Rng, SeedableRng};
+use rand_chacha::ChaCha8Rng;
+use shearcut_controllers::trajectory::{
+    Trajectory, TrajectoryGenerator, TrajectoryInput, TrajectoryOutput, TrajectorySettings,
+    TrajectoryStatus,
+};
+
+fn normal<R: Rng>(rng: &mut R, sd: f64) -> f64 {
+    let u1: f64 = rng.random_range(f64::EPSILON..1.0);
+    let u2: f64 = rng.random();
+    sd * (-2.0 * u1.ln()).sqrt() * (std::f64::consts::TAU * u2).cos()
+}
+
+fn random_input<const N: usize, R: Rng>(rng: &mut R) -> TrajectoryInput<N> {
+    let mut inp = TrajectoryInput::<N>::default();
+    for i in 0..N {
+        let mut maybe = |p: f64, sd: f64| {
+            if rng.random::<f64>() < p {
+                normal(rng, sd)
+            } else {
+                0.0
+            }
+        };
+        inp.current_position[i] = maybe(1.0, 4.0);
+        inp.current_velocity[i] = maybe(0.9, 0.8);
+        inp.current_acceleration[i] = maybe(0.8, 0.8);
+        inp.target_position[i] = maybe(1.0, 4.0);
+        inp.target_velocity[i] = maybe(0.7, 0.8);
+        inp.target_acceleration[i] = maybe(0.6, 0.8);
+        inp.max_velocity[i] = rng.random_range(0.1..12.0) + inp.target_velocity[i].abs();
+        inp.max_acceleration[i] = rng.random_range(0.1..12.0) + inp.target_acceleration[i].abs();
+        inp.max_jerk[i] = rng.random_range(0.1..12.0);
+    }
+    inp
+}
+
+fn env(name: &str, default: u64) -> u64 {
+    std::env::var(name)
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(default)
+}
+
+fn percentile(sorted: &[f64], q: f64) -> f64 {
+    sorted[((sorted.len() - 1) as f64 * q).round() as usize]
+}
+
+fn bench_dofs<const N: usize>(cases: usize, seed: u64) {
+    let mut rng = ChaCha8Rng::seed_from_u64(seed + N as u64);
+    let inputs: Vec<TrajectoryInput<N>> = (0..cases)
+        .map(|_| random_input::<N, _>(&mut rng))
+        .filter(|i| i.validate().is_ok())
+        .collect();
+    let otg = TrajectoryGenerator::<N>::new(TrajectorySettings::default()).unwrap();
+    let mut traj = Trajectory::<N>::default();
+    let mut times = Vec::with_capacity(inputs.len());
+    let mut errors = 0usize;
+    for inp in &inputs {
+        let t0 = Instant::now();
+        let r = otg.calculate(black_box(inp), &mut traj);
+        let dt = t0.elapsed().as_secs_f64();
+        black_box(&traj);
+        errors += usize::from(r.is_err());
+        times.push(dt);
+    }
+    times.sort_by(f64::total_cmp);
+    let mean = times.iter().sum::<f64>() / times.len() as f64;
+    println!(
+        "calculate {N} DoF: median {:.2} us, mean {:.2} us, p99 {:.2} us, max {:.2} us ({} cases, {errors} errors)",
+        percentile(&times, 0.5) * 1e6,
+        mean * 1e6,
+        percentile(&times, 0.99) * 1e6,
+        times[times.len() - 1] * 1e6,
+        times.len(),
+    );
+
+    // update(): per-tick cost with the trajectory already calculated.
+    let mut otg = TrajectoryGenerator::<N>::new(TrajectorySettings::default()).unwrap();
+    let mut out = TrajectoryOutput::<N>::default();
+    let mut ticks = 0u64;
+    let mut tick_time = 0.0;
+    let mut worst_tick = 0.0_f64;
+    for inp in inputs.iter().take(2000) {
+        let mut inp = *inp;
+        if otg.update(&inp, &mut out).is_err() {
+            continue;
+        }
+        out.pass_to_input(&mut inp);
+        for _ in 0..2000 {
+            let t0 = Instant::now();
+            let s = otg.update(black_box(&inp), &mut out);
+            let dt = t0.elapsed().as_secs_f64();
+            tick_time += dt;
+            worst_tick = worst_tick.max(dt);
+            ticks += 1;
+            out.pass_to_input(&mut inp);
+            if s == Ok(TrajectoryStatus::Finished) {
+                break;
+            }
+        }
+    }
+    println!(
+        "update    {N} DoF: mean {:.1} ns per tick ({:.1} ns per DoF), worst {:.2} us ({ticks} ticks)",
+        tick_time / ticks as f64 * 1e9,
+        tick_time / ticks as f64 * 1e9 / N as f64,
+        worst_tick * 1e6
+    );
+}
+
+#[derive(Default)]
+struct Tally {
+    ok: u64,
+    braking: u64,
+    braking_errors: u64,
+    errors: u64,
+    invalid: u64,
+}
+
+fn stress_one<const N: usize>(rng: &mut ChaCha8Rng, tally: &mut Tally) {
+    let inp = random_input::<N, _>(rng);
+    if inp.validate().is_err() {
+        tally.invalid += 1;
+        return;
+    }
+    let otg = TrajectoryGenerator::<N>::new(TrajectorySettings::default()).unwrap();
+    let mut t = Trajectory::<N>::default();
+    match otg.calculate(&inp, &mut t) {
+        Ok(TrajectoryStatus::BrakingThenTarget) => tally.braking += 1,
+        Ok(_) => {
+            tally.ok += 1;
+            for i in 0..N {
+                let e = t.profile(i).end();
+                let x = t.profile(i).extrema();
+                let tol = |l: f64| l + 1e-12 * l.max(1.0);
+                let good = (e.position - inp.target_position[i]).abs() <= 1e-8
+                    && (e.velocity - inp.target_velocity[i]).abs() <= 1e-8
+                    && (e.acceleration - inp.target_acceleration[i]).abs() <= 1e-10
+                    && x.velocity.max <= tol(inp.max_velocity[i])
+                    && -x.velocity.min <= tol(inp.max_velocity[i])
+                    && x.acceleration.max <= tol(inp.max_acceleration[i])
+                    && -x.acceleration.min <= tol(inp.max_acceleration[i]);
+                assert!(good, "verification failed for {inp:?}");
+            }
+        }
+        Err(_) => {
+            let braking = (0..N).any(|i| {
+                let (v, a) = (inp.current_velocity[i], inp.current_acceleration[i]);
+                let (vm, am, j) = (
+                    inp.max_velocity[i],
+                    inp.max_acceleration[i],
+                    inp.max_jerk[i],
+                );
+                a.abs() > am || v.abs() > vm || v.abs() + a * a / (2.0 * j) > vm
+            });
+            if braking {
+                tally.braking_errors += 1;
+            } else {
+                tally.errors += 1;
+                if tally.errors <= 3 {
+                    eprintln!("error on a start inside the limits: {inp:?}");
+                }
+            }
+        }
+    }
+}
+
+fn main() {
+    // `cargo bench` passes `--bench`; ignore arguments.
+    let cases = env("OTG_BENCH_CASES", 100_000) as usize;
+    let stress = env("OTG_STRESS_CASES", 1_000_000);
+    let seed = env("OTG_SEED", 42);
+    bench_dofs::<1>(cases, seed);
+    bench_dofs::<3>(cases, seed);
+    bench_dofs::<6>(cases, seed);
+    bench_dofs::<7>(cases, seed);
+
+    let mut rng = ChaCha8Rng::seed_from_u64(seed);
+    let mut tally = Tally::default();
+    let t0 = Instant::now();
+    for _ in 0..stress {
+        match rng.random_range(1..=7) {
+            1 => stress_one::<1>(&mut rng, &mut tally),
+            2 => stress_one::<2>(&mut rng, &mut tally),
+            3 => stress_one::<3>(&mut rng, &mut tally),
+            4 => stress_one::<4>(&mut rng, &mut tally),
+            5 => stress_one::<5>(&mut rng, &mut tally),
+            6 => stress_one::<6>(&mut rng, &mut tally),
+            _ => stress_one::<7>(&mut rng, &mut tally),
+        }
+    }
+    println!(
+        "stress: {stress} cases (seed {seed}) in {:.1} s: {} verified, {} braking-then-target, \
+         {} braking errors, {} errors on starts inside the limits, {} invalid inputs",
+        t0.elapsed().as_secs_f64(),
+        tally.ok,
+        tally.braking,
+        tally.braking_errors,
+        tally.errors,
+        tally.invalid
+    );
+}

@@ -1,0 +1,400 @@
+//! Multi-DoF calculation: braking, per-DoF time-optimal profiles, and synchronisation.
+//!
+//! ## Time synchronisation and blocked intervals
+//! A DoF can reach its target in its minimal time `T_i`, but not necessarily in every longer
+//! time: the set of feasible durations is `[T_i, ∞)` minus *blocked intervals* (for instance a
+//! DoF that must reverse can finish fast by turning early or slowly by overshooting, but not in
+//! between). Every blocked interval ends at another extremal profile, i.e. at one of the valid
+//! step-1 candidates of that DoF. The minimal common duration is therefore the smallest
+//! candidate `T ≥ max_i T_i`, taken from the union of all DoFs' candidate durations, for which
+//! every DoF has a profile of duration exactly `T` (its own candidate, or a fixed-duration
+//! profile from [`super::position_fixed_duration`]). With duration discretization each
+//! candidate is first rounded up to a whole number of cycles.
+//!
+//! ## Phase synchronisation
+//! If the displacement, start velocity/acceleration and target velocity/acceleration are all
+//! parallel to one unit vector `u`, the motion is solved once as a scalar problem along `u` with
+//! the tightest scaled limits (`v_max = min_i v_max,i/|u_i|`, respecting signs for asymmetric
+//! limits) and mapped to each DoF as `p_i(t) = p_i(0) + u_i s(t)`: a straight line. Otherwise
+//! (or if any DoF brakes) it falls back to time synchronisation.
+
+use super::brake::{Limits, brake, brake_to_limit};
+use super::dof::{Dof, Segments};
+use super::input::{
+    ControlInterface, DurationDiscretization, Synchronization, TrajectoryError, TrajectoryInput,
+    TrajectorySettings, TrajectoryStatus,
+};
+use super::position_fixed_duration::fixed_duration;
+use super::position_time_optimal::{TimeOptimal, time_optimal};
+use super::profile::Profile;
+use super::trajectory::Trajectory;
+use super::velocity;
+
+/// Per-DoF intermediate results (kept on the stack).
+#[derive(Clone, Copy)]
+struct DofWork {
+    dof: Dof,
+    limits: Limits,
+    prefix: Profile,
+    brake_t: f64,
+    cands: TimeOptimal,
+}
+
+fn round_up(t: f64, dt: f64) -> f64 {
+    let k = (t / dt - 1e-9).ceil().max(0.0);
+    k * dt
+}
+
+/// Computes the trajectory for `input` into `traj`.
+pub(crate) fn calculate<const N: usize>(
+    input: &TrajectoryInput<N>,
+    settings: &TrajectorySettings,
+    traj: &mut Trajectory<N>,
+) -> Result<TrajectoryStatus, TrajectoryError> {
+    input.validate()?;
+    let discrete = input.duration_discretization == DurationDiscretization::Discrete;
+    let dt = settings.cycle_time;
+    let position = input.interface == ControlInterface::Position;
+
+    // Braking and step 1 per DoF.
+    let mut braking = false;
+    let mut work: [Option<DofWork>; N] = [None; N];
+    let mut t_min = 0.0_f64;
+    #[allow(clippy::needless_range_loop)] // i indexes several input arrays
+    for i in 0..N {
+        let l = input.limits(i);
+        let b = brake(
+            input.current_position[i],
+            input.current_velocity[i],
+            input.current_acceleration[i],
+            &l,
+            position,
+        )
+        .ok_or(TrajectoryError::NoProfile { dof: i })?;
+        braking |= b.active;
+        let mut best: Option<DofWork> = None;
+        let alternative = if b.active && position {
+            brake_to_limit(
+                input.current_position[i],
+                input.current_velocity[i],
+                input.current_acceleration[i],
+                &l,
+            )
+        } else {
+            None
+        };
+        for prefix in core::iter::once(b.prefix).chain(alternative) {
+            if let Some(w) = solve_dof(input, i, &l, &prefix, position)
+                && best.as_ref().is_none_or(|bw| {
+                    w.brake_t + w.cands.duration[0] < bw.brake_t + bw.cands.duration[0]
+                })
+            {
+                best = Some(w);
+            }
+        }
+        let Some(best) = best else {
+            return Err(TrajectoryError::NoProfile { dof: i });
+        };
+        traj.independent_min_durations[i] = best.brake_t + best.cands.duration[0];
+        t_min = t_min.max(best.brake_t + best.cands.duration[0]);
+        work[i] = Some(best);
+    }
+    traj.braking = braking;
+    let status = if braking {
+        TrajectoryStatus::BrakingThenTarget
+    } else {
+        TrajectoryStatus::Working
+    };
+    let w = |i: usize| work[i].as_ref().expect("filled above");
+
+    // Independent motion.
+    if input.synchronization == Synchronization::None && !discrete {
+        for i in 0..N {
+            traj.profiles[i] = w(i).cands.profile(&w(i).prefix, 0);
+        }
+        traj.duration = t_min;
+        return Ok(finished_if_zero(traj, status));
+    }
+    if input.synchronization == Synchronization::None {
+        // Each DoF rounded up on its own.
+        for i in 0..N {
+            let wi = w(i);
+            let t = round_up(wi.brake_t + wi.cands.duration[0], dt);
+            traj.profiles[i] =
+                stretch(wi, t, position).ok_or(TrajectoryError::Synchronization { dof: i })?;
+        }
+        traj.duration = round_up(t_min, dt);
+        return Ok(finished_if_zero(traj, status));
+    }
+
+    if input.synchronization == Synchronization::Phase
+        && !braking
+        && position
+        && N > 1
+        && phase_synchronize(input, discrete, dt, traj)
+    {
+        return Ok(finished_if_zero(traj, status));
+    }
+
+    // Time synchronisation over the candidate durations.
+    let mut densified = [false; N];
+    let mut t_cand = t_min;
+    let mut failed_dof = 0;
+    loop {
+        let t = if discrete {
+            round_up(t_cand, dt)
+        } else {
+            t_cand
+        };
+        let mut ok = true;
+        for i in 0..N {
+            match stretch(wk(&work, i), t, position) {
+                Some(p) => traj.profiles[i] = p,
+                None => {
+                    ok = false;
+                    failed_dof = i;
+                    break;
+                }
+            }
+        }
+        if ok {
+            traj.duration = t;
+            return Ok(finished_if_zero(traj, status));
+        }
+        // Next candidate duration strictly after `t`.
+        let mut next = f64::INFINITY;
+        for i in 0..N {
+            let wi = wk(&work, i);
+            for k in 0..wi.cands.n {
+                let d = wi.brake_t + wi.cands.duration[k];
+                if d > t + 1e-12 * (1.0 + t) && d < next {
+                    next = d;
+                }
+            }
+        }
+        // The DoF that could not be stretched may have an extremal profile (the end of a
+        // blocked interval) that the normal sampling missed: search it once more with eight
+        // times the samples before moving on.
+        if !densified[failed_dof] && position {
+            densified[failed_dof] = true;
+            if let Some(wi) = work[failed_dof].as_mut() {
+                let dense = time_optimal(&wi.dof, &wi.prefix, 8);
+                if dense.n > 0 {
+                    wi.cands = dense;
+                }
+            }
+            continue;
+        }
+        if !next.is_finite() {
+            return Err(TrajectoryError::Synchronization { dof: failed_dof });
+        }
+        t_cand = next;
+    }
+}
+
+fn wk<const N: usize>(work: &[Option<DofWork>; N], i: usize) -> &DofWork {
+    work[i]
+        .as_ref()
+        .expect("every DoF is solved before synchronisation")
+}
+
+/// Step 1 of DoF `i` after the braking `prefix`; `None` if no profile exists.
+fn solve_dof<const N: usize>(
+    input: &TrajectoryInput<N>,
+    i: usize,
+    l: &Limits,
+    prefix: &Profile,
+    position: bool,
+) -> Option<DofWork> {
+    let s = prefix.end();
+    let dof = Dof {
+        p0: s.position,
+        v0: s.velocity,
+        a0: s.acceleration,
+        pf: input.target_position[i],
+        vf: input.target_velocity[i],
+        af: input.target_acceleration[i],
+        v_max: l.v_max,
+        v_min: l.v_min,
+        a_max: l.a_max,
+        a_min: l.a_min,
+        j: l.j,
+    };
+    let cands = if position {
+        time_optimal(&dof, prefix, 1)
+    } else {
+        let mut c = TimeOptimal::new();
+        let mut found = velocity::candidates(prefix, dof.vf, dof.af, l);
+        if let [Some(a), Some(b)] = &found
+            && b.duration() < a.duration()
+        {
+            found.swap(0, 1);
+        }
+        for p in found.iter().flatten() {
+            // The velocity profile's segments after the prefix form one candidate.
+            let mut sg = Segments::default();
+            for k in p.brake_segments()..p.len() {
+                let (t, j) = p.segment(k);
+                sg.push(t, j, 0.0);
+            }
+            c.duration[c.n] = sg.duration();
+            c.segs[c.n] = sg;
+            c.n += 1;
+        }
+        c
+    };
+    (cands.n > 0).then_some(DofWork {
+        dof,
+        limits: *l,
+        prefix: *prefix,
+        brake_t: prefix.duration(),
+        cands,
+    })
+}
+
+fn finished_if_zero<const N: usize>(
+    traj: &Trajectory<N>,
+    status: TrajectoryStatus,
+) -> TrajectoryStatus {
+    if traj.duration == 0.0 {
+        TrajectoryStatus::Finished
+    } else {
+        status
+    }
+}
+
+/// Profile of one DoF lasting exactly `t` (braking included): its own candidate if one has that
+/// duration, otherwise a fixed-duration profile.
+fn stretch(w: &DofWork, t: f64, position: bool) -> Option<Profile> {
+    let tm = t - w.brake_t;
+    if tm < -1e-12 * (1.0 + t) {
+        return None;
+    }
+    let tm = tm.max(0.0);
+    for k in 0..w.cands.n {
+        if (w.cands.duration[k] - tm).abs() <= 1e-12 * (1.0 + tm) {
+            return Some(w.cands.profile(&w.prefix, k));
+        }
+    }
+    if position {
+        fixed_duration(&w.dof, &w.prefix, tm)
+    } else {
+        velocity::fixed_duration(&w.prefix, w.dof.vf, w.dof.af, &w.limits, tm)
+    }
+}
+
+/// Straight-line synchronisation; returns false if the input is not collinear or a DoF fails.
+fn phase_synchronize<const N: usize>(
+    input: &TrajectoryInput<N>,
+    discrete: bool,
+    dt: f64,
+    traj: &mut Trajectory<N>,
+) -> bool {
+    let dp: [f64; N] =
+        core::array::from_fn(|i| input.target_position[i] - input.current_position[i]);
+    let vecs = [
+        &dp,
+        &input.current_velocity,
+        &input.current_acceleration,
+        &input.target_velocity,
+        &input.target_acceleration,
+    ];
+    let norm = |x: &[f64; N]| x.iter().map(|a| a * a).sum::<f64>().sqrt();
+    let Some(base) = vecs.iter().find(|x| norm(x) > 1e-12) else {
+        return false;
+    };
+    let nb = norm(base);
+    let u: [f64; N] = core::array::from_fn(|i| base[i] / nb);
+    // Scalar coordinates along u, and a collinearity check of every vector.
+    let mut s = [0.0; 5];
+    for (k, x) in vecs.iter().enumerate() {
+        let c: f64 = x.iter().zip(&u).map(|(a, b)| a * b).sum();
+        let resid = x
+            .iter()
+            .zip(&u)
+            .map(|(a, b)| (a - c * b).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        if resid > 1e-12 * (1.0 + norm(x)) {
+            return false;
+        }
+        s[k] = c;
+    }
+    let mut l = Limits {
+        v_max: f64::INFINITY,
+        v_min: f64::NEG_INFINITY,
+        a_max: f64::INFINITY,
+        a_min: f64::NEG_INFINITY,
+        j: f64::INFINITY,
+    };
+    for (i, &ui) in u.iter().enumerate() {
+        if ui.abs() < 1e-300 {
+            continue;
+        }
+        let li = input.limits(i);
+        let (vhi, vlo, ahi, alo) = if ui > 0.0 {
+            (li.v_max / ui, li.v_min / ui, li.a_max / ui, li.a_min / ui)
+        } else {
+            (li.v_min / ui, li.v_max / ui, li.a_min / ui, li.a_max / ui)
+        };
+        l.v_max = l.v_max.min(vhi);
+        l.v_min = l.v_min.max(vlo);
+        l.a_max = l.a_max.min(ahi);
+        l.a_min = l.a_min.max(alo);
+        l.j = l.j.min(li.j / ui.abs());
+    }
+    let line = Dof {
+        p0: 0.0,
+        v0: s[1],
+        a0: s[2],
+        pf: s[0],
+        vf: s[3],
+        af: s[4],
+        v_max: l.v_max,
+        v_min: l.v_min,
+        a_max: l.a_max,
+        a_min: l.a_min,
+        j: l.j,
+    };
+    let prefix = Profile::new(0.0, line.v0, line.a0);
+    let cands = time_optimal(&line, &prefix, 1);
+    if cands.n == 0 {
+        return false;
+    }
+    let mut scalar = cands.profile(&prefix, 0);
+    if discrete {
+        let t = round_up(scalar.duration(), dt);
+        match fixed_duration(&line, &prefix, t) {
+            Some(p) => scalar = p,
+            None => return false,
+        }
+    }
+    #[allow(clippy::needless_range_loop)] // i indexes several input arrays
+    for i in 0..N {
+        let li = input.limits(i);
+        let dof = Dof {
+            p0: input.current_position[i],
+            v0: input.current_velocity[i],
+            a0: input.current_acceleration[i],
+            pf: input.target_position[i],
+            vf: input.target_velocity[i],
+            af: input.target_acceleration[i],
+            v_max: li.v_max,
+            v_min: li.v_min,
+            a_max: li.a_max,
+            a_min: li.a_min,
+            j: li.j,
+        };
+        let mut p = Profile::new(dof.p0, dof.v0, dof.a0);
+        for k in 0..scalar.len() {
+            let (t, j) = scalar.segment(k);
+            p.push(t, u[i] * j);
+        }
+        if !dof.verify(&p) {
+            return false;
+        }
+        traj.profiles[i] = p;
+    }
+    traj.duration = scalar.duration();
+    true
+}

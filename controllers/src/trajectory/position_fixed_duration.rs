@@ -1,0 +1,256 @@
+//! Position profiles of one DoF with a prescribed duration (the "step 2" problem used to
+//! synchronise DoFs that are not limiting).
+//!
+//! Three families, tried in order, each reduced to one scalar equation in one parameter:
+//!
+//! * **Peak + cruise**: `(v0, a0) → (v_p, 0)`, cruise at `v_p` for `t_c`, `(v_p, 0) → (vf, af)`,
+//!   with both velocity changes time-optimal. The duration fixes `t_c = T − T₁(v_p) − T₂(v_p)`,
+//!   which must be ≥ 0: the admissible `v_p` form at most a few intervals whose ends are roots of
+//!   `T₁ + T₂ = T`. On each interval we solve the position equation
+//!   `D₁(v_p) + D₂(v_p) + v_p t_c(v_p) = Δp`.
+//! * **Held first peak**: `+J (a0→a1)`, hold `a1` for `t_h`, `−J (a1→a2)`, `+J (a2→af)`. The
+//!   duration fixes `t_h`; the velocity equation then reads `a2² − 2 a1 a2 − C(a1) = 0`, so
+//!   `a2 = a1 − √(a1² + C)`, and the position equation is solved for `a1`.
+//! * **Held second trough**: `+J (a0→a1)`, `−J (a1→a2)`, hold `a2` for `t_h`, `+J (a2→af)`;
+//!   symmetric, `a1 = a2 + √(a2² − D(a2))`, solved for `a2`.
+//!
+//! * **Four free arcs** (UDUD without cruise, acceleration not zero between the halves):
+//!   `+J (a0→a1)`, `−J (a1→a_m)`, `+J (a_m→a2)`, `−J (a2→af)`. The duration gives
+//!   `a1 + a2 = S(a_m)`, the velocity equation `a1² + a2² = Q(a_m)`, hence
+//!   `a1,2 = (S ± √(2Q − S²))/2`; solved for `a_m` on both branches.
+//!
+//! The last three are evaluated in the problem's frame and its mirror image. As everywhere, each
+//! candidate is integrated and verified before use.
+
+use super::dof::{Dof, Segments};
+use super::position_time_optimal::{
+    peak_breaks, peak_distance, peak_parts, peak_segments, scan_peak_window,
+};
+use super::profile::{Profile, integrate};
+use super::roots::{Roots, scan};
+
+const SAMPLES: usize = 6;
+const ARC_SAMPLES: usize = 12;
+
+/// A profile of one DoF lasting exactly `t` seconds after the braking `prefix`, if one is found.
+pub(crate) fn fixed_duration(d: &Dof, prefix: &Profile, t: f64) -> Option<Profile> {
+    if t.is_nan() || t < 0.0 {
+        return None;
+    }
+    if t == 0.0 {
+        return d.at_target().then_some(*prefix);
+    }
+    if d.at_target() && d.v0 == 0.0 && d.a0 == 0.0 {
+        // Resting at the target: wait.
+        let mut p = *prefix;
+        p.push(t, 0.0);
+        return Some(p);
+    }
+    if d.j <= 0.0 {
+        // Without jerk the state can only be held, which reaches the target only if the DoF
+        // rests at it.
+        return None;
+    }
+    if let Some(p) = peak_cruise(d, prefix, t) {
+        return Some(p);
+    }
+    if let Some(p) = held(d, d, prefix, t, 1.0) {
+        return Some(p);
+    }
+    held(d, &d.mirrored(), prefix, t, -1.0)
+}
+
+fn peak_cruise(d: &Dof, prefix: &Profile, t: f64) -> Option<Profile> {
+    let dp = d.pf - d.p0;
+    let mut h = |vp: f64| peak_distance(d, vp).1 - t;
+    let mut br = [0.0; 8];
+    let nb = peak_breaks(d, &mut br);
+    let mut ends = Roots::new();
+    for w in br[..nb].windows(2) {
+        scan(&mut h, w[0], w[1], SAMPLES, &mut ends);
+    }
+    // Interval end points: domain ends and roots of T₁ + T₂ = T, sorted.
+    let mut pts = [0.0; 32];
+    let mut n = 0;
+    pts[n] = d.v_min;
+    n += 1;
+    // Break points too, so that every window is smooth.
+    for &r in ends.as_slice().iter().chain(&br[1..nb - 1]) {
+        if n < 31 {
+            pts[n] = r;
+            n += 1;
+        }
+    }
+    pts[n] = d.v_max;
+    n += 1;
+    let pts = &mut pts[..n];
+    pts.sort_unstable_by(f64::total_cmp);
+
+    let mut g = |vp: f64| {
+        let (dist, tt) = peak_distance(d, vp);
+        dist + vp * (t - tt) - dp
+    };
+    let try_vp = |vp: f64| -> Option<Profile> {
+        let (c1, c2) = peak_parts(d, vp)?;
+        let tc = t - c1.duration() - c2.duration();
+        let s = peak_segments(&c1, tc, &c2, t)?;
+        d.accept(prefix, &s, 1.0)
+    };
+    for w in pts.windows(2) {
+        let (l, r) = (w[0], w[1]);
+        let mid = 0.5 * (l + r);
+        if h(mid).is_nan() || h(mid) > 0.0 {
+            continue;
+        }
+        let mut roots = Roots::new();
+        scan_peak_window(d, &mut g, l, r, 1, &mut roots);
+        for &vp in roots.as_slice() {
+            if let Some(p) = try_vp(vp) {
+                return Some(p);
+            }
+        }
+    }
+    // Degenerate admissible sets (single points where T₁ + T₂ = T exactly).
+    for &vp in ends.as_slice() {
+        if let Some(p) = try_vp(vp) {
+            return Some(p);
+        }
+    }
+    None
+}
+
+/// A radicand that is negative only by rounding (relative to `scale`) is taken as zero, so
+/// that interval end points where two branches meet are evaluated.
+#[inline]
+fn radicand(r: f64, scale: f64) -> f64 {
+    if r < 0.0 && r > -1e-12 * scale {
+        0.0
+    } else {
+        r
+    }
+}
+
+#[inline]
+fn reach(v0: f64, a0: f64, segs: &[(f64, f64)]) -> f64 {
+    let (mut p, mut v, mut a) = (0.0, v0, a0);
+    for &(t, j) in segs {
+        (p, v, a) = integrate(p, v, a, j, t);
+    }
+    let _ = (v, a);
+    p
+}
+
+/// The two "held" families in the frame of `d` (`orig` is the problem to verify against).
+fn held(orig: &Dof, d: &Dof, prefix: &Profile, t: f64, dir: f64) -> Option<Profile> {
+    let j = d.j;
+    let dp = d.pf - d.p0;
+    let dv = d.vf - d.v0;
+    let (a0, af) = (d.a0, d.af);
+
+    // Held first peak, parameter a1.
+    let seg_a = |a1: f64| {
+        let c = 0.5 * (2.0 * a1 * a1 - a0 * a0 + af * af) + j * t * a1
+            - a1 * (2.0 * a1 - a0 + af)
+            - j * dv;
+        let r = radicand(a1 * a1 + c, a1 * a1 + c.abs());
+        if r < 0.0 {
+            return None;
+        }
+        let a2 = a1 - r.sqrt();
+        let th = t - (2.0 * a1 - a0 - 2.0 * a2 + af) / j;
+        Some([
+            ((a1 - a0) / j, j),
+            (th, 0.0),
+            ((a1 - a2) / j, -j),
+            ((af - a2) / j, j),
+        ])
+    };
+    // Held second trough, parameter a2.
+    let seg_b = |a2: f64| {
+        let c = 0.5 * (-a0 * a0 - 2.0 * a2 * a2 + af * af) + j * t * a2 + a2 * (a0 + 2.0 * a2 - af)
+            - j * dv;
+        let r = radicand(a2 * a2 - c, a2 * a2 + c.abs());
+        if r < 0.0 {
+            return None;
+        }
+        let a1 = a2 + r.sqrt();
+        let th = t - (2.0 * a1 - a0 - 2.0 * a2 + af) / j;
+        Some([
+            ((a1 - a0) / j, j),
+            ((a1 - a2) / j, -j),
+            (th, 0.0),
+            ((af - a2) / j, j),
+        ])
+    };
+    // Four free arcs +J (a0→a1), −J (a1→am), +J (am→a2), −J (a2→af), parameter am:
+    // the duration gives a1 + a2 = S, the velocity equation a1² + a2² = Q.
+    let seg_c = |am: f64, branch: f64| {
+        let s = 0.5 * (j * t + a0 + af + 2.0 * am);
+        let q = 0.5 * (2.0 * j * dv + a0 * a0 + af * af + 2.0 * am * am);
+        let r = radicand(2.0 * q - s * s, 2.0 * q.abs() + s * s);
+        if r < 0.0 {
+            return None;
+        }
+        let a1 = 0.5 * (s + branch * r.sqrt());
+        let a2 = s - a1;
+        Some([
+            ((a1 - a0) / j, j),
+            ((a1 - am) / j, -j),
+            ((a2 - am) / j, j),
+            ((a2 - af) / j, -j),
+        ])
+    };
+    for fam in 0..4 {
+        let segs = |x: f64| match fam {
+            0 => seg_a(x),
+            1 => seg_b(x),
+            2 => seg_c(x, 1.0),
+            _ => seg_c(x, -1.0),
+        };
+        let mut f = |x: f64| match segs(x) {
+            Some(s) => reach(d.v0, a0, &s) - dp,
+            None => f64::NAN,
+        };
+        // Split the parameter range where the radicand changes sign (analytic, see above).
+        let k = j * t + a0 - af;
+        let m = 0.5 * (af * af - a0 * a0) - j * dv;
+        let mut br = [f64::NAN; 2];
+        match fam {
+            // seg_a: radicand k a1 + m; seg_b: radicand −k a2 − m.
+            0 | 1 => br[0] = -m / k,
+            // seg_c: radicand am² − 2B am + 2A − B².
+            _ => {
+                let b = 0.5 * (j * t + a0 + af);
+                let a = 0.5 * (2.0 * j * dv + a0 * a0 + af * af);
+                let disc = 2.0 * b * b - 2.0 * a;
+                if disc >= 0.0 {
+                    br = [b - disc.sqrt(), b + disc.sqrt()];
+                }
+            }
+        }
+        let mut pts = [d.a_min, d.a_max, d.a_max, d.a_max];
+        let mut n = 1;
+        for x in br {
+            if x > d.a_min && x < d.a_max {
+                pts[n] = x;
+                n += 1;
+            }
+        }
+        pts[n] = d.a_max;
+        pts[..=n].sort_unstable_by(f64::total_cmp);
+        let mut roots = Roots::new();
+        for w in pts[..=n].windows(2) {
+            scan(&mut f, w[0], w[1], ARC_SAMPLES, &mut roots);
+        }
+        for &x in roots.as_slice() {
+            let Some(s) = segs(x) else { continue };
+            let mut sg = Segments::default();
+            if s.iter().all(|&(ti, ji)| sg.push(ti, ji, t))
+                && let Some(p) = orig.accept(prefix, &sg, dir)
+            {
+                return Some(p);
+            }
+        }
+    }
+    None
+}

@@ -1,0 +1,404 @@
+//! Time-optimal position profiles of one DoF (the "step 1" problem).
+//!
+//! By Pontryagin's principle the time-optimal jerk is bang-bang (±J) except on arcs where a
+//! constraint is active: a hold at an acceleration limit (jerk 0) or a cruise at a velocity limit
+//! (jerk 0, acceleration 0). That gives the classical 7-phase profile
+//!
+//! ```text
+//!   phase      1    2      3    4        5    6      7
+//!   UDDU      +J   0@a+   −J   0@v,a=0  −J   0@a−   +J
+//!   UDUD      +J   0@a+   −J   0@v,a=0  +J   0@a+   −J
+//! ```
+//!
+//! and their mirror images (DUUD, DUDU). Phases may have zero length. We cover the families
+//! with two parametrisations, each reduced to one scalar equation:
+//!
+//! * **Peak family** ([`peak_family`]): every profile whose acceleration passes through zero at
+//!   the phase-4 junction (all UDDU/UDUD/DUUD/DUDU profiles with or without cruise, with or
+//!   without either acceleration limit) is two time-optimal velocity changes
+//!   `(v0, a0) → (v_p, 0) → (vf, af)` ([`super::vel_change`]) joined at a peak velocity `v_p`.
+//!   The position equation `D(v_p) = Δp` is piecewise smooth in `v_p` with known break points
+//!   (where a part changes direction or starts to hold its acceleration limit); all its roots on
+//!   `[v_min, v_max]` are candidates. If `D(v_max) < Δp` a cruise at `v_max` of length
+//!   `(Δp − D(v_max))/v_max` closes the gap (likewise at `v_min`).
+//! * **Three-arc family** ([`three_arc_family`]): UDDU profiles with `t4 = 0` whose
+//!   acceleration does not change sign between phases 3 and 5 (`+J, [0@a+], −J, [0@a−], +J`),
+//!   parametrised by the ramp `s = a1 − a2` (no limit: the velocity equation gives
+//!   `a1² − a2² = K`, so `a1 = (s + K/s)/2`, `a2 = (K/s − s)/2`), by `a2` (phase 2 at `a+`, its
+//!   length linear in `a2²` from the velocity equation) or by `a1` (phase 6 at `a−`). The
+//!   residual is again the position equation, solved in the problem's frame and its mirror.
+//!
+//! Roots are found by [`super::roots::scan`]; each candidate is integrated and verified
+//! ([`Dof::accept`]). The shortest valid one is time-optimal; the other valid durations are
+//! kept, since they bound the blocked intervals used by synchronisation.
+
+use super::dof::{Dof, Segments};
+use super::profile::{Profile, integrate};
+use super::roots::{Roots, scan};
+use super::vel_change::{VelChange, vel_change};
+
+/// Maximum number of distinct valid candidates kept.
+pub(crate) const MAX_CANDIDATES: usize = 12;
+
+/// Samples per smooth sub-interval of the peak family.
+const PEAK_SAMPLES: usize = 6;
+/// Samples for the three-arc families.
+const ARC_SAMPLES: usize = 10;
+
+/// The valid candidates of one DoF, sorted by duration.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct TimeOptimal {
+    pub n: usize,
+    pub duration: [f64; MAX_CANDIDATES],
+    pub segs: [Segments; MAX_CANDIDATES],
+    pub dir: [f64; MAX_CANDIDATES],
+}
+
+impl TimeOptimal {
+    pub fn new() -> Self {
+        Self {
+            n: 0,
+            duration: [0.0; MAX_CANDIDATES],
+            segs: [Segments::default(); MAX_CANDIDATES],
+            dir: [1.0; MAX_CANDIDATES],
+        }
+    }
+
+    /// Verifies a candidate and inserts it sorted by duration (duplicates within 1e-12 dropped).
+    fn offer(&mut self, dof: &Dof, prefix: &Profile, segs: &Segments, dir: f64) {
+        let d = segs.duration();
+        for k in 0..self.n {
+            if (self.duration[k] - d).abs() <= 1e-12 * (1.0 + d) {
+                return;
+            }
+        }
+        if self.n == MAX_CANDIDATES && d >= self.duration[self.n - 1] {
+            return;
+        }
+        if dof.accept(prefix, segs, dir).is_none() {
+            return;
+        }
+        let mut k = self.n.min(MAX_CANDIDATES - 1);
+        if self.n < MAX_CANDIDATES {
+            self.n += 1;
+        }
+        while k > 0 && self.duration[k - 1] > d {
+            self.duration[k] = self.duration[k - 1];
+            self.segs[k] = self.segs[k - 1];
+            self.dir[k] = self.dir[k - 1];
+            k -= 1;
+        }
+        self.duration[k] = d;
+        self.segs[k] = *segs;
+        self.dir[k] = dir;
+    }
+
+    /// The candidate `k` as a full profile on top of `prefix`.
+    pub fn profile(&self, prefix: &Profile, k: usize) -> Profile {
+        let mut p = *prefix;
+        let s = &self.segs[k];
+        for i in 0..s.n {
+            p.push(s.t[i], self.dir[k] * s.j[i]);
+        }
+        p
+    }
+}
+
+/// Pushes a velocity change's three segments.
+fn push_change(s: &mut Segments, c: &VelChange, scale: f64) -> bool {
+    s.push(c.t1, c.j1, scale) && s.push(c.t2, 0.0, scale) && s.push(c.t3, c.j3, scale)
+}
+
+/// The two velocity changes of the peak family at peak velocity `vp`.
+#[inline]
+pub(crate) fn peak_parts(d: &Dof, vp: f64) -> Option<(VelChange, VelChange)> {
+    let c1 = vel_change(d.v0, d.a0, vp, 0.0, d.a_max, d.a_min, d.j)?;
+    let c2 = vel_change(vp, 0.0, d.vf, d.af, d.a_max, d.a_min, d.j)?;
+    Some((c1, c2))
+}
+
+/// Distance covered by the two parts at peak velocity `vp` (NaN if a part is impossible).
+#[inline]
+pub(crate) fn peak_distance(d: &Dof, vp: f64) -> (f64, f64) {
+    match peak_parts(d, vp) {
+        Some((c1, c2)) => (
+            c1.distance(d.v0, d.a0) + c2.distance(vp, 0.0),
+            c1.duration() + c2.duration(),
+        ),
+        None => (f64::NAN, f64::NAN),
+    }
+}
+
+/// Sorted break points of the peak family's residual inside `[v_min, v_max]` (both included).
+pub(crate) fn peak_breaks(d: &Dof, out: &mut [f64; 8]) -> usize {
+    let j = d.j;
+    let cands = [
+        d.v0 + d.a0 * d.a0.abs() / (2.0 * j),
+        d.v0 + (d.a_max * d.a_max - 0.5 * d.a0 * d.a0) / j,
+        d.v0 - (d.a_min * d.a_min - 0.5 * d.a0 * d.a0) / j,
+        d.vf - d.af * d.af.abs() / (2.0 * j),
+        d.vf - (d.a_max * d.a_max - 0.5 * d.af * d.af) / j,
+        d.vf + (d.a_min * d.a_min - 0.5 * d.af * d.af) / j,
+    ];
+    out[0] = d.v_min;
+    let mut n = 1;
+    for c in cands {
+        if c > d.v_min && c < d.v_max && c.is_finite() {
+            out[n] = c;
+            n += 1;
+        }
+    }
+    out[n] = d.v_max;
+    n += 1;
+    // insertion sort
+    for i in 1..n {
+        let mut k = i;
+        while k > 0 && out[k - 1] > out[k] {
+            out.swap(k - 1, k);
+            k -= 1;
+        }
+    }
+    n
+}
+
+/// True if both velocity changes hold an acceleration limit at peak velocity `vp`.
+fn both_hold(d: &Dof, vp: f64) -> bool {
+    peak_parts(d, vp).is_some_and(|(c1, c2)| c1.t2 > 0.0 && c2.t2 > 0.0)
+}
+
+/// Roots of a peak-family residual `f` on one smooth window `[l, r]` between break points.
+///
+/// Where both velocity changes hold an acceleration limit, their ramps have fixed durations and
+/// the holds grow linearly with `v_p`, so the residual is exactly quadratic: it is interpolated
+/// from three points and solved in closed form, then polished. Elsewhere the window is sampled,
+/// more densely when it is wide compared with the velocity `a²/J` gained by one ramp.
+pub(crate) fn scan_peak_window<F: FnMut(f64) -> f64>(
+    d: &Dof,
+    f: &mut F,
+    l: f64,
+    r: f64,
+    density: usize,
+    out: &mut Roots,
+) {
+    let w = r - l;
+    if w.is_nan() || w <= 0.0 {
+        scan(f, l, r, 1, out);
+        return;
+    }
+    let eps = 1e-9 * w;
+    if both_hold(d, l + eps) && both_hold(d, 0.5 * (l + r)) && both_hold(d, r - eps) {
+        let (f0, f1, f2) = (f(l), f(0.5 * (l + r)), f(r));
+        // f(x) = f0 + b x + c x² in x = vp − l, from three equally spaced points.
+        let h = 0.5 * w;
+        let c = (f2 - 2.0 * f1 + f0) / (2.0 * h * h);
+        let b = (f1 - f0) / h - c * h;
+        let mut xs = [f64::NAN; 2];
+        if c.abs() > 1e-300 {
+            let disc = b * b - 4.0 * c * f0;
+            if disc >= 0.0 {
+                let q = -0.5 * (b + b.signum() * disc.sqrt());
+                xs = [q / c, if q != 0.0 { f0 / q } else { f64::NAN }];
+            }
+        } else if b != 0.0 {
+            xs[0] = -f0 / b;
+        }
+        for x in xs {
+            if x.is_finite() && x >= -eps && x <= w + eps {
+                let x0 = (l + x).clamp(l, r);
+                let dx = 1e-6 * w.min(1.0);
+                scan(f, (x0 - dx).max(l), (x0 + dx).min(r), 2, out);
+            }
+        }
+        return;
+    }
+    let scale = d.a_max.max(-d.a_min).powi(2) / d.j;
+    let samples = if scale > 0.0 {
+        ((w / scale) * 2.0 * density as f64)
+            .ceil()
+            .clamp((PEAK_SAMPLES * density) as f64, (48 * density) as f64) as usize
+    } else {
+        PEAK_SAMPLES * density
+    };
+    scan(f, l, r, samples, out);
+}
+
+/// Segments of a peak-family profile with an optional cruise.
+pub(crate) fn peak_segments(
+    c1: &VelChange,
+    cruise: f64,
+    c2: &VelChange,
+    scale: f64,
+) -> Option<Segments> {
+    let mut s = Segments::default();
+    (push_change(&mut s, c1, scale) && s.push(cruise, 0.0, scale) && push_change(&mut s, c2, scale))
+        .then_some(s)
+}
+
+/// Peak family (see the module documentation).
+fn peak_family(d: &Dof, prefix: &Profile, density: usize, out: &mut TimeOptimal) {
+    let dp = d.pf - d.p0;
+    let scale = 1.0;
+    let mut f = |vp: f64| peak_distance(d, vp).0 - dp;
+    let mut br = [0.0; 8];
+    let nb = peak_breaks(d, &mut br);
+    let mut roots = Roots::new();
+    for w in br[..nb].windows(2) {
+        scan_peak_window(d, &mut f, w[0], w[1], density, &mut roots);
+    }
+    for &vp in roots.as_slice() {
+        if let Some((c1, c2)) = peak_parts(d, vp)
+            && let Some(s) = peak_segments(&c1, 0.0, &c2, scale)
+        {
+            out.offer(d, prefix, &s, 1.0);
+        }
+    }
+    // Cruise at a velocity limit.
+    for vc in [d.v_max, d.v_min] {
+        if vc == 0.0 {
+            continue;
+        }
+        if let Some((c1, c2)) = peak_parts(d, vc) {
+            let dist = c1.distance(d.v0, d.a0) + c2.distance(vc, 0.0);
+            let tc = (dp - dist) / vc;
+            if tc > 0.0
+                && let Some(s) = peak_segments(&c1, tc, &c2, scale)
+            {
+                out.offer(d, prefix, &s, 1.0);
+            }
+        }
+    }
+}
+
+/// Integrates signed-duration segments from `(0, v0, a0)`; returns the position reached.
+#[inline]
+fn reach(v0: f64, a0: f64, segs: &[(f64, f64)]) -> f64 {
+    let (mut p, mut v, mut a) = (0.0, v0, a0);
+    for &(t, j) in segs {
+        (p, v, a) = integrate(p, v, a, j, t);
+    }
+    let _ = (v, a);
+    p
+}
+
+/// Three-arc family in the frame of `d` (call with the mirror image for DUUD shapes).
+///
+/// Only the profiles whose acceleration keeps its sign between phases 1 and 7 are new here (the
+/// others pass through a = 0 and belong to the peak family), so: the unlimited variant needs
+/// `a2 > 0` (hence `af > 0`) or `a1 < 0` (hence `a0 < 0`); the `a+`-hold variant needs
+/// `0 ≤ a2 ≤ af`; the `a−`-hold variant needs `a0 ≤ a1 ≤ 0`. The scans are restricted
+/// accordingly.
+fn three_arc_family(
+    orig: &Dof,
+    d: &Dof,
+    prefix: &Profile,
+    dir: f64,
+    density: usize,
+    out: &mut TimeOptimal,
+) {
+    let arc_samples = ARC_SAMPLES * density;
+    let j = d.j;
+    let dp = d.pf - d.p0;
+    let dv = d.vf - d.v0;
+    let (a0, af, amax, amin) = (d.a0, d.af, d.a_max, d.a_min);
+    let scale = 1.0;
+
+    // (1) no acceleration limit: +J (a0→a1), −J (a1→a2), +J (a2→af), a1² − a2² = K.
+    let k = j * dv + 0.5 * (a0 * a0 - af * af);
+    let disc1 = amax * amax - k;
+    let disc2 = amin * amin + k;
+    if disc1 >= 0.0 && disc2 >= 0.0 && (af > 0.0 || a0 < 0.0) {
+        let lo = (amax - disc1.sqrt())
+            .max(-amin - disc2.sqrt())
+            .max(1e-9 * (amax - amin));
+        let hi = (amax + disc1.sqrt()).min(-amin + disc2.sqrt());
+        let times = |s: f64| {
+            let a1 = 0.5 * (s + k / s);
+            let a2 = 0.5 * (k / s - s);
+            ((a1 - a0) / j, s / j, (af - a2) / j)
+        };
+        let mut f = |s: f64| {
+            let (t1, t2, t3) = times(s);
+            reach(d.v0, a0, &[(t1, j), (t2, -j), (t3, j)]) - dp
+        };
+        let mut roots = Roots::new();
+        scan(&mut f, lo, hi, arc_samples, &mut roots);
+        for &s in roots.as_slice() {
+            let (t1, t2, t3) = times(s);
+            let mut sg = Segments::default();
+            if sg.push(t1, j, scale) && sg.push(t2, -j, scale) && sg.push(t3, j, scale) {
+                out.offer(orig, prefix, &sg, dir);
+            }
+        }
+    }
+
+    // (2) phase 2 at a_max: +J (a0→amax), hold t2, −J (amax→a2), +J (a2→af).
+    if amax > 0.0 && af > 0.0 {
+        let times = |a2: f64| {
+            let t2 =
+                (dv - (2.0 * amax * amax - a0 * a0 - 2.0 * a2 * a2 + af * af) / (2.0 * j)) / amax;
+            ((amax - a0) / j, t2, (amax - a2) / j, (af - a2) / j)
+        };
+        let mut f = |a2: f64| {
+            let (t1, t2, t3, t4) = times(a2);
+            reach(d.v0, a0, &[(t1, j), (t2, 0.0), (t3, -j), (t4, j)]) - dp
+        };
+        let mut roots = Roots::new();
+        scan(&mut f, -1e-12 * amax, af.min(amax), arc_samples, &mut roots);
+        for &a2 in roots.as_slice() {
+            let (t1, t2, t3, t4) = times(a2);
+            let mut sg = Segments::default();
+            if sg.push(t1, j, scale)
+                && sg.push(t2, 0.0, scale)
+                && sg.push(t3, -j, scale)
+                && sg.push(t4, j, scale)
+            {
+                out.offer(orig, prefix, &sg, dir);
+            }
+        }
+    }
+
+    // (3) phase 6 at a_min: +J (a0→a1), −J (a1→amin), hold t6, +J (amin→af).
+    if amin < 0.0 && a0 < 0.0 {
+        let times = |a1: f64| {
+            let t6 =
+                (dv - (2.0 * a1 * a1 - a0 * a0 - 2.0 * amin * amin + af * af) / (2.0 * j)) / amin;
+            ((a1 - a0) / j, (a1 - amin) / j, t6, (af - amin) / j)
+        };
+        let mut f = |a1: f64| {
+            let (t1, t2, t3, t4) = times(a1);
+            reach(d.v0, a0, &[(t1, j), (t2, -j), (t3, 0.0), (t4, j)]) - dp
+        };
+        let mut roots = Roots::new();
+        scan(&mut f, a0.max(amin), -1e-12 * amin, arc_samples, &mut roots);
+        for &a1 in roots.as_slice() {
+            let (t1, t2, t3, t4) = times(a1);
+            let mut sg = Segments::default();
+            if sg.push(t1, j, scale)
+                && sg.push(t2, -j, scale)
+                && sg.push(t3, 0.0, scale)
+                && sg.push(t4, j, scale)
+            {
+                out.offer(orig, prefix, &sg, dir);
+            }
+        }
+    }
+}
+
+/// All valid extremal candidates of the position problem `d` (start state inside the limits),
+/// appended on top of the braking `prefix`.
+/// `density` multiplies the number of samples of every scan (1 normally; larger to recover an
+/// extremal profile missed between samples, see the calculator).
+pub(crate) fn time_optimal(d: &Dof, prefix: &Profile, density: usize) -> TimeOptimal {
+    let mut out = TimeOptimal::new();
+    if d.at_target() {
+        out.offer(d, prefix, &Segments::default(), 1.0);
+        return out;
+    }
+    if d.j <= 0.0 {
+        return out;
+    }
+    peak_family(d, prefix, density, &mut out);
+    three_arc_family(d, d, prefix, 1.0, density, &mut out);
+    three_arc_family(d, &d.mirrored(), prefix, -1.0, density, &mut out);
+    out
+}

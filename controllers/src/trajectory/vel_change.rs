@@ -1,0 +1,273 @@
+//! Time-optimal change of (velocity, acceleration) under acceleration and jerk limits.
+//!
+//! This is the second-order sub-problem that appears twice in every position profile (from the
+//! start state to the peak/cruise velocity, and from there to the target) and is the whole of the
+//! velocity interface. With jerk ±J, going *up* from `(v_s, a_s)` to `(v_e, a_e)` uses
+//!
+//! ```text
+//!   +J for (a_p − a_s)/J,   hold a_p for t_h,   −J for (a_p − a_e)/J
+//!   Δv = (2 a_p² − a_s² − a_e²) / (2J) + a_p t_h
+//! ```
+//!
+//! With `t_h = 0` the peak is `a_p = √(J Δv + (a_s² + a_e²)/2)`; if that exceeds `a_max` the peak
+//! is clamped to `a_max` and `t_h` follows linearly from Δv. The shape is valid when
+//! `a_p ≥ max(a_s, a_e)`. *Down* is the mirror image; the faster valid one is time-optimal.
+
+/// A velocity change as three segments: ramp, hold at the peak acceleration, ramp.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct VelChange {
+    /// Duration of the first ramp (s).
+    pub t1: f64,
+    /// Jerk of the first ramp.
+    pub j1: f64,
+    /// Duration of the hold at the peak acceleration (s).
+    pub t2: f64,
+    /// Peak acceleration (held during `t2`).
+    pub peak: f64,
+    /// Duration of the second ramp (s).
+    pub t3: f64,
+    /// Jerk of the second ramp.
+    pub j3: f64,
+}
+
+impl VelChange {
+    /// Total duration (s).
+    #[inline]
+    pub fn duration(&self) -> f64 {
+        self.t1 + self.t2 + self.t3
+    }
+
+    /// Distance travelled starting from `(v, a)`.
+    #[inline]
+    pub fn distance(&self, v: f64, a: f64) -> f64 {
+        let (p1, v1, a1) = super::profile::integrate(0.0, v, a, self.j1, self.t1);
+        let (p2, v2, a2) = super::profile::integrate(p1, v1, a1, 0.0, self.t2);
+        super::profile::integrate(p2, v2, a2, self.j3, self.t3).0
+    }
+}
+
+/// Relative slack accepted when a shape sits exactly on its validity boundary.
+const SHAPE_EPS: f64 = 1e-12;
+
+/// The "up" shape (+J, hold, −J). `None` if it cannot realise the change.
+#[inline]
+fn up(vs: f64, a_s: f64, ve: f64, ae: f64, a_max: f64, j: f64) -> Option<VelChange> {
+    let dv = ve - vs;
+    let m = a_s.max(ae);
+    if m > a_max * (1.0 + SHAPE_EPS) + SHAPE_EPS {
+        return None;
+    }
+    let r = j * dv + 0.5 * (a_s * a_s + ae * ae);
+    let scale = 1.0 + m * m;
+    let mut ap;
+    if r < 0.0 {
+        if r < -SHAPE_EPS * scale || m > 1e-6 {
+            return None;
+        }
+        ap = 0.0;
+    } else {
+        ap = r.sqrt();
+    }
+    if ap < m {
+        if m * m - r > SHAPE_EPS * scale {
+            return None;
+        }
+        ap = m;
+    }
+    let mut th = 0.0;
+    if ap > a_max {
+        if a_max <= 0.0 {
+            return None;
+        }
+        ap = a_max;
+        th = (dv - (2.0 * a_max * a_max - a_s * a_s - ae * ae) / (2.0 * j)) / a_max;
+        if th < 0.0 {
+            th = 0.0;
+        }
+    }
+    Some(VelChange {
+        t1: ((ap - a_s) / j).max(0.0),
+        j1: j,
+        t2: th,
+        peak: ap,
+        t3: ((ap - ae) / j).max(0.0),
+        j3: -j,
+    })
+}
+
+/// Time-optimal velocity change from `(vs, a_s)` to `(ve, ae)` with accelerations in
+/// `[a_min, a_max]` (`a_min ≤ 0 ≤ a_max`) and jerk magnitude `j > 0`.
+#[inline]
+pub(crate) fn vel_change(
+    vs: f64,
+    a_s: f64,
+    ve: f64,
+    ae: f64,
+    a_max: f64,
+    a_min: f64,
+    j: f64,
+) -> Option<VelChange> {
+    if j <= 0.0 {
+        return if vs == ve && a_s == ae && a_s == 0.0 {
+            Some(VelChange {
+                t1: 0.0,
+                j1: 0.0,
+                t2: 0.0,
+                peak: 0.0,
+                t3: 0.0,
+                j3: 0.0,
+            })
+        } else {
+            None
+        };
+    }
+    let u = up(vs, a_s, ve, ae, a_max, j);
+    let d = up(-vs, -a_s, -ve, -ae, -a_min, j).map(|c| VelChange {
+        t1: c.t1,
+        j1: -c.j1,
+        t2: c.t2,
+        peak: -c.peak,
+        t3: c.t3,
+        j3: -c.j3,
+    });
+    match (u, d) {
+        (Some(u), Some(d)) => Some(if d.duration() < u.duration() { d } else { u }),
+        (u, None) => u,
+        (None, d) => d,
+    }
+}
+
+/// Both shapes ("up" then "down"), each if valid. When both are valid the slower one is the end
+/// of a blocked interval for synchronisation (durations between the two are impossible).
+pub(crate) fn vel_change_both(
+    vs: f64,
+    a_s: f64,
+    ve: f64,
+    ae: f64,
+    a_max: f64,
+    a_min: f64,
+    j: f64,
+) -> [Option<VelChange>; 2] {
+    if j <= 0.0 {
+        return [vel_change(vs, a_s, ve, ae, a_max, a_min, j), None];
+    }
+    let u = up(vs, a_s, ve, ae, a_max, j);
+    let d = up(-vs, -a_s, -ve, -ae, -a_min, j).map(|c| VelChange {
+        t1: c.t1,
+        j1: -c.j1,
+        t2: c.t2,
+        peak: -c.peak,
+        t3: c.t3,
+        j3: -c.j3,
+    });
+    [u, d]
+}
+
+/// Velocity changes of exactly duration `t_total` (for synchronisation of the velocity interface):
+/// ramp with jerk `s1·J` to an acceleration `a_p`, hold it for `t_h`, ramp with `s2·J` to `ae`.
+/// With `t_h = T − (s1 (a_p − a_s) + s2 (ae − a_p)) / J` the velocity equation becomes a
+/// quadratic in `a_p`, solved in closed form for the four sign choices.
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn vel_change_timed(
+    vs: f64,
+    a_s: f64,
+    ve: f64,
+    ae: f64,
+    a_max: f64,
+    a_min: f64,
+    j: f64,
+    t_total: f64,
+) -> Option<VelChange> {
+    if j <= 0.0 {
+        return None;
+    }
+    let dv = ve - vs;
+    let mut best: Option<VelChange> = None;
+    let mut best_err = f64::INFINITY;
+    for (s1, s2) in [(1.0, -1.0), (-1.0, 1.0), (1.0, 1.0), (-1.0, -1.0)] {
+        // Δv = s1 (a_p² − a_s²)/(2J) + a_p t_h + s2 (ae² − a_p²)/(2J)
+        // t_h = T − (s1 (a_p − a_s) + s2 (ae − a_p))/J
+        // ⇒ c2 a_p² + c1 a_p + c0 = 0
+        let c2 = (s1 - s2) / (2.0 * j) - (s1 - s2) / j;
+        let c1 = t_total + (s1 * a_s - s2 * ae) / j;
+        let c0 = (-s1 * a_s * a_s + s2 * ae * ae) / (2.0 * j) - dv;
+        let mut roots = [f64::NAN; 2];
+        if c2.abs() < 1e-300 {
+            if c1 != 0.0 {
+                roots[0] = -c0 / c1;
+            }
+        } else {
+            let disc = c1 * c1 - 4.0 * c2 * c0;
+            if disc >= 0.0 {
+                let sq = disc.sqrt();
+                let q = -0.5 * (c1 + c1.signum() * sq);
+                roots[0] = q / c2;
+                if q != 0.0 {
+                    roots[1] = c0 / q;
+                }
+            }
+        }
+        for ap in roots {
+            if !ap.is_finite() || ap > a_max || ap < a_min {
+                continue;
+            }
+            let t1 = s1 * (ap - a_s) / j;
+            let t3 = s2 * (ae - ap) / j;
+            let th = t_total - t1 - t3;
+            let tol = 1e-12 * (1.0 + t_total);
+            if t1 < -tol || t3 < -tol || th < -tol {
+                continue;
+            }
+            let c = VelChange {
+                t1: t1.max(0.0),
+                j1: s1 * j,
+                t2: th.max(0.0),
+                peak: ap,
+                t3: t3.max(0.0),
+                j3: s2 * j,
+            };
+            let v_end = vs
+                + c.t1 * (a_s + 0.5 * c.j1 * c.t1)
+                + c.peak * c.t2
+                + c.t3 * (c.peak + 0.5 * c.j3 * c.t3);
+            let err = (v_end - ve).abs() + (c.duration() - t_total).abs();
+            if err < best_err {
+                best_err = err;
+                best = Some(c);
+            }
+        }
+    }
+    best
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rest_to_rest_without_limit() {
+        let c = vel_change(0.0, 0.0, 1.0, 0.0, 10.0, -10.0, 1.0).unwrap();
+        assert!((c.t1 - 1.0).abs() < 1e-15 && (c.t3 - 1.0).abs() < 1e-15 && c.t2 == 0.0);
+        assert!((c.distance(0.0, 0.0) - 1.0).abs() < 1e-14);
+    }
+
+    #[test]
+    fn clamped_peak_holds() {
+        let c = vel_change(0.0, 0.0, 4.0, 0.0, 1.0, -1.0, 1.0).unwrap();
+        assert_eq!(c.peak, 1.0);
+        assert!((c.t2 - 3.0).abs() < 1e-14);
+    }
+
+    #[test]
+    fn down_when_overshooting() {
+        // a_s = 1 carries the velocity up by 0.5 even with immediate −J: must go negative.
+        let c = vel_change(0.0, 1.0, 0.1, 0.0, 10.0, -10.0, 1.0).unwrap();
+        assert!(c.peak < 0.0);
+    }
+
+    #[test]
+    fn timed_matches_duration() {
+        let c = vel_change_timed(0.0, 0.0, 1.0, 0.0, 10.0, -10.0, 1.0, 5.0).unwrap();
+        assert!((c.duration() - 5.0).abs() < 1e-12);
+    }
+}

@@ -1,0 +1,119 @@
+//! Proves that `update()` and `calculate()` allocate nothing after construction, with a counting
+//! global allocator (this file is its own test binary, so the allocator sees only this test).
+#![allow(unsafe_code)] // GlobalAlloc is an unsafe trait; the impl only forwards to System.
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use shearcut_controllers::trajectory::{
+    ControlInterface, Synchronization, Trajectory, TrajectoryGenerator, TrajectoryInput,
+    TrajectoryOutput, TrajectorySettings, TrajectoryStatus,
+};
+
+struct Counting;
+
+static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+
+thread_local! {
+    /// Only allocations of the measuring thread count (the test harness allocates concurrently
+    /// on its own threads).
+    static TRACK: Cell<bool> = const { Cell::new(false) };
+}
+
+fn count() {
+    if TRACK.try_with(Cell::get).unwrap_or(false) {
+        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
+    }
+}
+
+// SAFETY: every call is forwarded unchanged to the system allocator.
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        count();
+        // SAFETY: same contract as the caller's.
+        unsafe { System.alloc(layout) }
+    }
+
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        // SAFETY: same contract as the caller's.
+        unsafe { System.dealloc(ptr, layout) }
+    }
+
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        count();
+        // SAFETY: same contract as the caller's.
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+fn input(k: usize) -> TrajectoryInput<6> {
+    let mut inp = TrajectoryInput::<6>::default();
+    for i in 0..6 {
+        let x = (k * 7 + i * 3) as f64;
+        inp.current_position[i] = (x * 0.37).sin() * 3.0;
+        inp.current_velocity[i] = (x * 0.11).cos() * 0.4;
+        inp.current_acceleration[i] = (x * 0.23).sin() * 0.3;
+        inp.target_position[i] = (x * 0.53).cos() * 4.0;
+        inp.target_velocity[i] = (x * 0.71).sin() * 0.2;
+        inp.max_velocity[i] = 1.0 + i as f64 * 0.5;
+        inp.max_acceleration[i] = 2.0 + (x * 0.3).sin();
+        inp.max_jerk[i] = 5.0 + i as f64;
+    }
+    inp.synchronization = [
+        Synchronization::Time,
+        Synchronization::Phase,
+        Synchronization::None,
+    ][k % 3];
+    if k % 4 == 3 {
+        inp.interface = ControlInterface::Velocity;
+    }
+    inp
+}
+
+#[test]
+fn update_and_calculate_do_not_allocate() {
+    let mut otg = TrajectoryGenerator::<6>::new(TrajectorySettings::default()).unwrap();
+    let mut out = TrajectoryOutput::default();
+    let mut traj = Trajectory::default();
+    let inputs: Vec<TrajectoryInput<6>> = (0..40)
+        .collect::<Vec<_>>()
+        .iter()
+        .map(|&k| input(k))
+        .collect();
+
+    // Sanity check that the counter works on this thread.
+    TRACK.with(|t| t.set(true));
+    let probe = ALLOCATIONS.load(Ordering::SeqCst);
+    drop(std::hint::black_box(vec![1u8; 16]));
+    assert!(
+        ALLOCATIONS.load(Ordering::SeqCst) > probe,
+        "counting allocator inactive"
+    );
+
+    let before = ALLOCATIONS.load(Ordering::SeqCst);
+    let mut finished = 0;
+    for inp0 in &inputs {
+        otg.calculate(inp0, &mut traj).unwrap();
+        let mut inp = *inp0;
+        for _ in 0..2000 {
+            if otg.update(&inp, &mut out).unwrap() == TrajectoryStatus::Finished {
+                finished += 1;
+                break;
+            }
+            out.pass_to_input(&mut inp);
+        }
+    }
+    let after = ALLOCATIONS.load(Ordering::SeqCst);
+    TRACK.with(|t| t.set(false));
+    assert_eq!(
+        after - before,
+        0,
+        "update()/calculate() allocated {} times",
+        after - before
+    );
+    assert!(finished > 0);
+}

@@ -1,0 +1,224 @@
+//! Known values of the trajectory generator: analytic durations, zero motion, zero limits.
+
+#![allow(clippy::field_reassign_with_default)] // inputs are built field by field for readability
+
+use shearcut_controllers::trajectory::{
+    ControlInterface, Synchronization, Trajectory, TrajectoryError, TrajectoryGenerator,
+    TrajectoryInput, TrajectorySettings, TrajectoryStatus,
+};
+
+fn otg<const N: usize>() -> TrajectoryGenerator<N> {
+    TrajectoryGenerator::new(TrajectorySettings::default()).unwrap()
+}
+
+#[test]
+fn one_dof_rest_to_rest_unit_limits_takes_two_cbrt_four() {
+    let mut input = TrajectoryInput::<1>::default();
+    input.target_position = [1.0];
+    let mut t = Trajectory::default();
+    let status = otg().calculate(&input, &mut t).unwrap();
+    assert_eq!(status, TrajectoryStatus::Working);
+    assert!(
+        (t.duration() - 3.174_802_103_936_399).abs() < 1e-9,
+        "{}",
+        t.duration()
+    );
+    let end = t.state_at(0, t.duration());
+    assert!(
+        (end.position - 1.0).abs() < 1e-12
+            && end.velocity.abs() < 1e-12
+            && end.acceleration.abs() < 1e-12
+    );
+}
+
+#[test]
+fn long_move_cruises_at_velocity_limit() {
+    // 0 → 10 with v = a = j = 1: ramp a for 1 s, hold 0 s (v reaches 1 exactly at a = 1 … 0),
+    // i.e. accelerate to v_max in 2 s covering 1 m, cruise 8 m, decelerate 2 s: T = 12 s.
+    let mut input = TrajectoryInput::<1>::default();
+    input.target_position = [10.0];
+    let mut t = Trajectory::default();
+    otg().calculate(&input, &mut t).unwrap();
+    assert!((t.duration() - 12.0).abs() < 1e-12, "{}", t.duration());
+    let x = t.extrema()[0];
+    assert!(x.velocity.max <= 1.0 + 1e-12 && x.velocity.max > 1.0 - 1e-12);
+}
+
+#[test]
+fn already_at_target_is_finished_with_zero_duration() {
+    let mut input = TrajectoryInput::<3>::default();
+    input.current_position = [1.0, -2.0, 0.5];
+    input.target_position = input.current_position;
+    let mut t = Trajectory::default();
+    assert_eq!(
+        otg().calculate(&input, &mut t).unwrap(),
+        TrajectoryStatus::Finished
+    );
+    assert_eq!(t.duration(), 0.0);
+}
+
+#[test]
+fn zero_limits_without_motion_are_fine_and_with_motion_are_an_error() {
+    let mut input = TrajectoryInput::<2>::default();
+    input.max_velocity = [0.0, 1.0];
+    input.max_acceleration = [0.0, 1.0];
+    input.max_jerk = [0.0, 1.0];
+    input.target_position = [0.0, 1.0];
+    let mut t = Trajectory::default();
+    assert_eq!(
+        otg().calculate(&input, &mut t).unwrap(),
+        TrajectoryStatus::Working
+    );
+    assert!((t.duration() - 3.174_802_103_936_399).abs() < 1e-9);
+    assert_eq!(t.state_at(0, 1.0).position, 0.0);
+    input.target_position = [0.5, 1.0];
+    assert_eq!(
+        otg().calculate(&input, &mut t),
+        Err(TrajectoryError::NoProfile { dof: 0 })
+    );
+}
+
+#[test]
+fn time_synchronisation_stretches_the_faster_dof() {
+    let mut input = TrajectoryInput::<2>::default();
+    input.target_position = [1.0, 0.1];
+    let mut t = Trajectory::default();
+    otg().calculate(&input, &mut t).unwrap();
+    let d = t.independent_min_durations();
+    assert!(d[1] < d[0]);
+    assert!((t.duration() - d[0]).abs() < 1e-12);
+    for i in 0..2 {
+        assert!((t.profile(i).duration() - t.duration()).abs() < 1e-12);
+        let e = t.state_at(i, t.duration());
+        assert!((e.position - input.target_position[i]).abs() < 1e-9);
+    }
+    input.synchronization = Synchronization::None;
+    otg().calculate(&input, &mut t).unwrap();
+    assert!((t.profile(1).duration() - d[1]).abs() < 1e-12);
+}
+
+#[test]
+fn phase_synchronisation_moves_on_a_straight_line() {
+    let mut input = TrajectoryInput::<3>::default();
+    input.synchronization = Synchronization::Phase;
+    input.target_position = [1.0, 2.0, -0.5];
+    input.max_velocity = [1.0, 0.5, 2.0];
+    let mut t = Trajectory::default();
+    otg().calculate(&input, &mut t).unwrap();
+    for k in 1..50 {
+        let time = t.duration() * k as f64 / 50.0;
+        let p = [0, 1, 2].map(|i| t.state_at(i, time).position);
+        let s = p[0];
+        assert!((p[1] - 2.0 * s).abs() < 1e-12 && (p[2] + 0.5 * s).abs() < 1e-12);
+    }
+}
+
+#[test]
+fn velocity_interface_reaches_target_velocity() {
+    let mut input = TrajectoryInput::<2>::default();
+    input.interface = ControlInterface::Velocity;
+    input.target_velocity = [0.5, -1.0];
+    input.current_acceleration = [0.3, 0.0];
+    let mut t = Trajectory::default();
+    otg().calculate(&input, &mut t).unwrap();
+    for i in 0..2 {
+        let e = t.state_at(i, t.duration());
+        assert!(
+            (e.velocity - input.target_velocity[i]).abs() < 1e-9 && e.acceleration.abs() < 1e-11
+        );
+    }
+}
+
+#[test]
+fn unavoidable_overshoot_brakes_and_reports_it() {
+    let mut input = TrajectoryInput::<1>::default();
+    input.current_velocity = [0.9];
+    input.current_acceleration = [1.0];
+    input.target_position = [3.0];
+    let mut t = Trajectory::default();
+    assert_eq!(
+        otg().calculate(&input, &mut t).unwrap(),
+        TrajectoryStatus::BrakingThenTarget
+    );
+    assert!(t.is_braking());
+    let x = t.profile(0).extrema_from(t.profile(0).brake_segments());
+    assert!(x.velocity.max <= 1.0 + 1e-12);
+    // The overshoot is the unavoidable one, v0 + a0²/(2J) = 1.4, not more.
+    assert!((t.extrema()[0].velocity.max - 1.4).abs() < 1e-12);
+}
+
+#[test]
+fn discrete_duration_is_a_whole_number_of_cycles() {
+    let mut input = TrajectoryInput::<2>::default();
+    input.duration_discretization =
+        shearcut_controllers::trajectory::DurationDiscretization::Discrete;
+    input.target_position = [1.0, -0.3];
+    input.current_velocity = [0.2, 0.0];
+    let settings = TrajectorySettings::default().with_cycle_time(0.01);
+    let otg = TrajectoryGenerator::<2>::new(settings).unwrap();
+    let mut t = Trajectory::default();
+    otg.calculate(&input, &mut t).unwrap();
+    let cycles = t.duration() / 0.01;
+    assert!((cycles - cycles.round()).abs() < 1e-9, "{}", t.duration());
+    assert!(t.duration() >= t.independent_min_durations()[0]);
+    assert!(t.duration() < t.independent_min_durations()[0] + 0.01 + 1e-12);
+    for i in 0..2 {
+        let e = t.profile(i).end();
+        assert!((e.position - input.target_position[i]).abs() < 1e-9);
+        assert!(e.velocity.abs() < 1e-9 && e.acceleration.abs() < 1e-11);
+        assert!((t.profile(i).duration() - t.duration()).abs() < 1e-12);
+    }
+}
+
+#[test]
+fn asymmetric_limits_are_respected() {
+    // Moving down is allowed only at 0.25 m/s and 0.5 m/s² of deceleration-side acceleration.
+    let mut input = TrajectoryInput::<1>::default();
+    input.target_position = [-2.0];
+    input.max_velocity = [1.0];
+    input.min_velocity = Some([-0.25]);
+    input.max_acceleration = [2.0];
+    input.min_acceleration = Some([-0.5]);
+    input.max_jerk = [3.0];
+    let mut t = Trajectory::default();
+    otg().calculate(&input, &mut t).unwrap();
+    let x = t.extrema()[0];
+    assert!(
+        (x.velocity.min + 0.25).abs() < 1e-12,
+        "cruises at v_min: {}",
+        x.velocity.min
+    );
+    assert!(x.velocity.max <= 1e-12);
+    assert!(x.acceleration.min >= -0.5 - 1e-12 && x.acceleration.max <= 2.0 + 1e-12);
+    // Lower bound on the duration: the cruise alone needs 2 m / 0.25 m/s = 8 s.
+    assert!(t.duration() > 8.0);
+    assert!((t.profile(0).end().position + 2.0).abs() < 1e-9);
+}
+
+#[test]
+fn velocity_interface_blocked_interval_matches_ruckig() {
+    // Oracle case 312 (seed 3): DoF 1 can reach its target in 0.086 s ("up") or in 1.517 s
+    // ("down": −J to −1.014 m/s², +J back), but not in between; DoF 0 needs 0.671 s, so the
+    // common duration is DoF 1's second extremal profile. ruckig 0.19.4: 1.5168686866190169 s.
+    let mut input = TrajectoryInput::<2>::default();
+    input.interface = ControlInterface::Velocity;
+    input.current_velocity = [-0.28049312714127833, 0.34634481810376955];
+    input.current_acceleration = [0.0, 1.194149996660181];
+    input.target_velocity = [0.7677036493255224, 0.4501061761428517];
+    input.target_acceleration = [0.0, 1.1064701812307287];
+    input.max_velocity = [11.948785441635051, 4.720801545013104];
+    input.max_acceleration = [3.545789987234801, 11.13078189794124];
+    input.max_jerk = [9.318078157272755, 2.8541667586408033];
+    let mut t = Trajectory::default();
+    otg().calculate(&input, &mut t).unwrap();
+    assert!(
+        (t.duration() - 1.516_868_686_619_016_9).abs() < 1e-9,
+        "{}",
+        t.duration()
+    );
+    let d = t.independent_min_durations();
+    assert!(
+        (d[0] - 0.670_792_550_851_244_7).abs() < 1e-9
+            && (d[1] - 0.086_181_213_708_092_12).abs() < 1e-9
+    );
+}
