@@ -279,23 +279,18 @@ impl ScenarioFile {
 impl MaterialSpec {
     /// The material: the preset with overrides, or the inline fields.
     pub fn resolve(&self) -> Result<Material, InvalidSetting> {
-        let base = match &self.preset {
-            Some(name) => Some(
-                MaterialPreset::from_name(name)
-                    .ok_or_else(|| {
-                        InvalidSetting::new(
-                            "preset",
-                            format!("{name:?}"),
-                            format!(
-                                "must be one of {}",
-                                preset_list(MaterialPreset::ALL.map(|p| p.name()))
-                            ),
-                        )
-                    })?
-                    .material(),
-            ),
-            None => None,
-        };
+        let base = self
+            .preset
+            .as_deref()
+            .map(|name| {
+                find_preset(
+                    name,
+                    MaterialPreset::from_name,
+                    MaterialPreset::ALL.map(|p| p.name()),
+                )
+            })
+            .transpose()?
+            .map(MaterialPreset::material);
         let field = |key: &'static str, given: Option<f64>, from_preset: Option<f64>| {
             given.or(from_preset).ok_or_else(|| {
                 InvalidSetting::new(
@@ -340,23 +335,18 @@ impl MaterialSpec {
 impl KnifeSpec {
     /// The knife: the preset with overrides, or the inline tables.
     pub fn resolve(&self) -> Result<KnifeSettings, InvalidSetting> {
-        let base = match &self.preset {
-            Some(name) => Some(
-                KnifePreset::from_name(name)
-                    .ok_or_else(|| {
-                        InvalidSetting::new(
-                            "preset",
-                            format!("{name:?}"),
-                            format!(
-                                "must be one of {}",
-                                preset_list(KnifePreset::ALL.map(|p| p.name()))
-                            ),
-                        )
-                    })?
-                    .settings(),
-            ),
-            None => None,
-        };
+        let base = self
+            .preset
+            .as_deref()
+            .map(|name| {
+                find_preset(
+                    name,
+                    KnifePreset::from_name,
+                    KnifePreset::ALL.map(|p| p.name()),
+                )
+            })
+            .transpose()?
+            .map(KnifePreset::settings);
         let edge = match (&self.edge, &base) {
             (Some(e), _) => e.clone(),
             (None, Some(b)) => b.edge.clone(),
@@ -500,8 +490,19 @@ impl LoopSettings {
     }
 }
 
-fn preset_list<const N: usize>(names: [&str; N]) -> String {
-    names.join(", ")
+/// Looks up a preset by `name`; the error lists the allowed `names`.
+fn find_preset<P, const N: usize>(
+    name: &str,
+    lookup: impl Fn(&str) -> Option<P>,
+    names: [&str; N],
+) -> Result<P, InvalidSetting> {
+    lookup(name).ok_or_else(|| {
+        InvalidSetting::new(
+            "preset",
+            format!("{name:?}"),
+            format!("must be one of {}", names.join(", ")),
+        )
+    })
 }
 
 #[cfg(test)]

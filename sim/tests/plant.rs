@@ -25,16 +25,12 @@ fn settings(segments: usize) -> PlantSettings {
 
 /// A coarser section mesh than the default keeps these tests fast; the
 /// comparisons are between models built with the same settings.
-const SECTION: SectionSettings = SectionSettings {
-    row_spacing: 5e-4,
-    strip_elements: 1,
-    grading_ratio: 1.3,
-    max_element_width: 2.0e-3,
-    initial_crack_extension: 1.0e-6,
-    bisection_tolerance: 1.0e-7,
-    max_bracket_doublings: 60,
-    max_bisection_iterations: 200,
-};
+fn coarse_section() -> SectionSettings {
+    SectionSettings {
+        row_spacing: 5e-4,
+        ..SectionSettings::default()
+    }
+}
 
 /// Tests command step velocities; the limit test uses the real limits.
 const LOOSE: ArmLimits = ArmLimits {
@@ -55,7 +51,15 @@ fn plant(
     seed: u64,
 ) -> Plant {
     Plant::new(
-        material, knife, object, z0, direction, s, &SECTION, limits, seed,
+        material,
+        knife,
+        object,
+        z0,
+        direction,
+        s,
+        &coarse_section(),
+        limits,
+        seed,
     )
     .unwrap()
 }
@@ -87,7 +91,8 @@ fn straight_edge_plant_is_one_section_times_the_length() {
         0,
     );
     let geometry = SectionGeometry::rectangle(w, h).unwrap();
-    let mut single = CrossSection::new(&geometry, &material, knife.blade(), &SECTION).unwrap();
+    let mut single =
+        CrossSection::new(&geometry, &material, knife.blade(), &coarse_section()).unwrap();
     // The edge starts start_gap = 1 mm above the top.
     let cmd = KnifeCommand {
         velocity: Vector3::new(0.0, -SPEED, 0.0),
