@@ -1,0 +1,80 @@
+//! Cost of one `Plant::step` at 1 kHz ticks: the whole-potato, curved-knife
+//! scenario of seed 000 Fig. 10(a) (chef's knife, half potato with skin,
+//! α = 0, z₀ = 0.046 m, m = 10 sections), from the approach through the first
+//! fractures to steady cutting. Prints median, p99 and worst µs per tick and
+//! the real-time factor (1 ms of simulated time per wall-clock tick time).
+//!
+//! Run: `cargo bench -p shearcut-sim --bench plant`.
+
+// A benchmark measures wall time by design.
+#![allow(clippy::disallowed_methods)]
+
+use std::hint::black_box;
+use std::time::Instant;
+
+use nalgebra::{Vector2, Vector3};
+use shearcut_sim::plant::{ArmLimits, KnifeCommand, Plant, PlantSettings};
+use shearcut_sim::{Knife, KnifePreset, MaterialPreset, ObjectShape, SectionSettings};
+
+fn main() {
+    let material = MaterialPreset::PotatoWhole.material();
+    let knife = Knife::new(&KnifePreset::Chef.settings()).unwrap();
+    let object = ObjectShape::HalfPotato {
+        length: 0.09,
+        width: 0.06,
+        height: 0.035,
+    }
+    .mesh()
+    .unwrap();
+    let settings = PlantSettings::default();
+    let t0 = Instant::now();
+    let mut plant = Plant::new(
+        &material,
+        &knife,
+        &object,
+        0.046,
+        Vector2::new(0.0, -1.0),
+        &settings,
+        &SectionSettings::default(),
+        &ArmLimits::default(),
+        0,
+    )
+    .unwrap();
+    let build = t0.elapsed();
+    let dt = 1e-3;
+    let speed = 0.00625;
+    // 4 s: a 50 ms ramp to 6.25 mm/s, then 25 mm of descent.
+    let ticks = 4000;
+    let mut times = Vec::with_capacity(ticks);
+    let mut last = None;
+    for k in 1..=ticks {
+        let v = speed * (k as f64 * dt / 0.05).min(1.0);
+        let cmd = KnifeCommand {
+            velocity: Vector3::new(0.0, -v, 0.0),
+        };
+        let t = Instant::now();
+        let m = black_box(plant.step(&cmd, dt).unwrap());
+        times.push(t.elapsed().as_secs_f64() * 1e6);
+        last = Some(m);
+    }
+    let m = last.unwrap();
+    let total: f64 = times.iter().sum();
+    times.sort_by(f64::total_cmp);
+    let pct = |p: f64| times[((times.len() - 1) as f64 * p).round() as usize];
+    println!(
+        "plant build (10 sections): {:.0} ms; {} ticks of 1 ms: median {:.1} µs, p99 {:.1} µs, max {:.1} µs per tick; real-time factor {:.1}x (mean tick {:.1} µs)",
+        build.as_secs_f64() * 1e3,
+        ticks,
+        pct(0.5),
+        pct(0.99),
+        times[times.len() - 1],
+        1e3 * ticks as f64 / total,
+        total / ticks as f64
+    );
+    println!(
+        "end state: crack depth {:.1} mm (mean of sections), {} sections fractured, F_y {:.1} N",
+        m.crack_depth * 1e3,
+        m.fractured_sections,
+        m.true_wrench.force.y
+    );
+}
