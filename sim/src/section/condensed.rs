@@ -86,7 +86,7 @@ pub(crate) struct InPlane {
     pub strip_force: f64,
 }
 
-fn sparse_llt(
+pub(crate) fn sparse_llt(
     n: usize,
     triplets: &[Triplet<usize, usize, f64>],
 ) -> Result<Llt<usize, f64>, SectionError> {
