@@ -106,7 +106,7 @@ fn flamant_line_load_on_a_large_block() {
     f[2 * mesh.node(0, mesh.rows) + 1] = -0.5 * p;
     let u = solve_dirichlet(
         2 * nn,
-        |add| plane_strain::assemble(&mesh, E, NU, |i, j, v| add(i, j, v)),
+        |add| plane_strain::assemble(&mesh, E, NU, &mut *add),
         &fixed,
         &vec![0.0; 2 * nn],
         &f,
@@ -171,9 +171,7 @@ fn antiplane_matches_laplace_solutions() {
     let g_mod = E / (2.0 * (1.0 + NU));
     let nn = mesh.node_count();
     let cols = mesh.columns();
-    let asm = |add: &mut dyn FnMut(usize, usize, f64)| {
-        antiplane::assemble(&mesh, g_mod, |i, j, v| add(i, j, v))
-    };
+    let asm = |add: &mut dyn FnMut(usize, usize, f64)| antiplane::assemble(&mesh, g_mod, &mut *add);
     // (a) Uniform drag.
     let mut fixed = vec![false; nn];
     let mut val = vec![0.0; nn];
