@@ -372,6 +372,9 @@ impl CondensedLine {
 #[derive(Debug, Clone)]
 pub(crate) struct ReleasedWorkspace {
     idx: Vec<usize>,
+    /// The released rows whose A_FF is factorised in `l` (the factor is
+    /// reused while the active set does not change, which is most calls).
+    factored: Vec<usize>,
     l: Vec<f64>,
     z: Vec<f64>,
 }
@@ -381,6 +384,7 @@ impl ReleasedWorkspace {
     pub fn new(n: usize) -> Self {
         Self {
             idx: Vec::with_capacity(n),
+            factored: Vec::with_capacity(n),
             l: vec![0.0; n * n],
             z: vec![0.0; n * (MAX_STRIP + 1)],
         }
@@ -430,26 +434,31 @@ impl CondensedLine {
             let f = f_ext.map_or(0.0, |f| f[i]);
             rf[a] = f - dot(&self.A.col_as_slice(i)[first..], &g[first..]);
         }
-        // Dense Cholesky of A_FF (lower, row-major m×m in ws.l).
+        // Dense Cholesky of A_FF (lower, row-major m×m in ws.l), unless the
+        // factor of this released set is already there.
         let l = &mut ws.l[..m * m];
-        for (a, &i) in ws.idx.iter().enumerate() {
-            let col = self.A.col_as_slice(i);
-            for (b, &j) in ws.idx.iter().enumerate().take(a + 1) {
-                l[a * m + b] = col[j];
-            }
-        }
-        for a in 0..m {
-            for b in 0..=a {
-                let mut s = l[a * m + b];
-                for c in 0..b {
-                    s -= l[a * m + c] * l[b * m + c];
-                }
-                if a == b {
-                    l[a * m + a] = s.max(f64::MIN_POSITIVE).sqrt();
-                } else {
-                    l[a * m + b] = s / l[b * m + b];
+        if ws.factored != ws.idx {
+            for (a, &i) in ws.idx.iter().enumerate() {
+                let col = self.A.col_as_slice(i);
+                for (b, &j) in ws.idx.iter().enumerate().take(a + 1) {
+                    l[a * m + b] = col[j];
                 }
             }
+            for a in 0..m {
+                for b in 0..=a {
+                    let mut s = l[a * m + b];
+                    for c in 0..b {
+                        s -= l[a * m + c] * l[b * m + c];
+                    }
+                    if a == b {
+                        l[a * m + a] = s.max(f64::MIN_POSITIVE).sqrt();
+                    } else {
+                        l[a * m + b] = s / l[b * m + b];
+                    }
+                }
+            }
+            ws.factored.clear();
+            ws.factored.extend_from_slice(&ws.idx);
         }
         let chol_solve = |l: &[f64], x: &mut [f64]| {
             for a in 0..m {
