@@ -444,36 +444,30 @@ impl CondensedLine {
                     l[a * m + b] = col[j];
                 }
             }
+            // Row-oriented (Cholesky–Crout): contiguous dot products.
             for a in 0..m {
-                for b in 0..=a {
-                    let mut s = l[a * m + b];
-                    for c in 0..b {
-                        s -= l[a * m + c] * l[b * m + c];
-                    }
-                    if a == b {
-                        l[a * m + a] = s.max(f64::MIN_POSITIVE).sqrt();
-                    } else {
-                        l[a * m + b] = s / l[b * m + b];
-                    }
+                let (before, rest) = l.split_at_mut(a * m);
+                let ra = &mut rest[..m];
+                for b in 0..a {
+                    let rb = &before[b * m..b * m + b + 1];
+                    ra[b] = (ra[b] - dot(&ra[..b], &rb[..b])) / rb[b];
                 }
+                let d = ra[a] - dot(&ra[..a], &ra[..a]);
+                ra[a] = d.max(f64::MIN_POSITIVE).sqrt();
             }
             ws.factored.clear();
             ws.factored.extend_from_slice(&ws.idx);
         }
         let chol_solve = |l: &[f64], x: &mut [f64]| {
+            // L y = x (rows of L contiguous), then Lᵀ z = y (column sweep
+            // along the rows of L).
             for a in 0..m {
-                let mut s = x[a];
-                for c in 0..a {
-                    s -= l[a * m + c] * x[c];
-                }
-                x[a] = s / l[a * m + a];
+                x[a] = (x[a] - dot(&l[a * m..a * m + a], &x[..a])) / l[a * m + a];
             }
             for a in (0..m).rev() {
-                let mut s = x[a];
-                for c in a + 1..m {
-                    s -= l[c * m + a] * x[c];
-                }
-                x[a] = s / l[a * m + a];
+                x[a] /= l[a * m + a];
+                let xa = x[a];
+                axpy(-xa, &l[a * m..a * m + a], &mut x[..a]);
             }
         };
         chol_solve(l, &mut rf[..m]);
@@ -534,9 +528,21 @@ impl CondensedLine {
     }
 }
 
+/// Dot product with four partial sums (lets the compiler vectorise).
 #[inline]
 fn dot(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| x * y).sum()
+    let n = a.len().min(b.len());
+    let (a, b) = (&a[..n], &b[..n]);
+    let mut acc = [0.0; 4];
+    let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
+    let (ra, rb) = (ca.remainder(), cb.remainder());
+    for (x, y) in ca.zip(cb) {
+        for k in 0..4 {
+            acc[k] += x[k] * y[k];
+        }
+    }
+    let tail: f64 = ra.iter().zip(rb).map(|(x, y)| x * y).sum();
+    (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
 }
 
 #[inline]

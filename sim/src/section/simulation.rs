@@ -476,13 +476,17 @@ impl CrossSection {
             status = StepStatus::NoContact;
         }
         if s == 0.0 && dn > 0.0 {
+            // segment_work evaluates inside the segment only if the contact
+            // sets differ at its ends; then restore the end state's buffers
+            // (the surface deflection below reads them).
+            let evaluated_inside = prev.contacts != e1.contacts;
             let (we, wf) = segment_work(ws, &eval_mid, t_prev, &prev, dn, &e1, xi_f, 8);
             w_el += we;
             w_fric += wf;
-            // segment_work may have evaluated inside the step: restore the
-            // end state's buffers (surface deflection below reads them).
-            let again = evaluate(model, ws, y_tip1, y_edge1, drag1, dn, dt_abs);
-            debug_assert_eq!(again.energy.to_bits(), e1.energy.to_bits());
+            if evaluated_inside {
+                let again = evaluate(model, ws, y_tip1, y_edge1, drag1, dn, dt_abs);
+                debug_assert_eq!(again.energy.to_bits(), e1.energy.to_bits());
+            }
         } else {
             w_el =
                 0.5 * (e0.f_elastic_n() + e1.f_elastic_n()) * dn + 0.5 * (e0.f_t + e1.f_t) * dt_abs;
