@@ -4,7 +4,25 @@
 //! that for every trial extension of the bisection, so the ratio printed is a
 //! lower bound).
 //!
-//! Run: `cargo bench -p shearcut-sim --bench section`.
+//! Run: `cargo bench -p shearcut-sim --bench section` (add
+//! `-- --warm-up-time 1 --measurement-time 3` for a short run).
+//!
+//! Figures (30 × 30 mm potato section, default mesh and blade, 6.25 µm knife
+//! steps, 2 shared cores, load ≈ 3; short run above), after the unilateral
+//! face/edge contact (active set on the condensed line) and the kink-aware
+//! work integration:
+//!
+//! | benchmark                               | median   |
+//! |-----------------------------------------|----------|
+//! | one knife step, steady cutting, ξ = 0.75 | 90 µs    |
+//! | naive step lower bound (one rebuild)    | 119 ms   |
+//! | whole cut, 20 mm at ξ = 0.75 (3200 steps) | 474 ms |
+//! | same-run ratio naive/condensed (printed) | ≥ 1018×  |
+//!
+//! Before the contact fix (bilateral faces) the same run gave ≈ 94 µs per
+//! step and ≈ 0.31 s per cut: the active set costs little per step in steady
+//! cutting, more (≈ 1.5×) over a whole cut, where the released set changes
+//! and its dense Cholesky factor (reused while the set holds) is redone.
 
 // A benchmark measures wall time by design.
 #![allow(clippy::disallowed_methods)]

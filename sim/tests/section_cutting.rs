@@ -89,3 +89,51 @@ fn seed_000_fig7_trends_for_potato() {
     // √(cos²θ + ξ²) per unit depth keeps growing (seed 000 §V.A).
     assert!(works[3] > works[2], "{works:?}");
 }
+
+/// Regression: the wedge-face contact used to be bilateral, holding 40+ crack
+/// face nodes onto the blade by tension late in a cut. It is unilateral now
+/// (active set on the condensed line): no face reaction is ever tensile, for
+/// a stiff (potato) and a soft, high-friction (eggplant) cuboid, pressing and
+/// slicing, while the energy balance stays closed.
+#[test]
+fn face_contact_is_unilateral_across_a_cut() {
+    let g = SectionGeometry::rectangle(0.03, 0.03).unwrap();
+    for preset in [MaterialPreset::PotatoCuboid, MaterialPreset::EggplantCuboid] {
+        let m = preset.material();
+        let mut cs = CrossSection::new(
+            &g,
+            &m,
+            &BladeSection::default(),
+            &SectionSettings::default(),
+        )
+        .unwrap();
+        let xis: &[f64] = match preset {
+            MaterialPreset::PotatoCuboid => &[0.0, 0.75],
+            _ => &[0.75],
+        };
+        for &xi in xis {
+            cs.reset();
+            let (mut faces_seen, mut worst) = (0usize, 0.0f64);
+            while cs.state().knife_displacement < 0.02 && !cs.is_cut_through() {
+                let s = cs.advance(DN, xi * DN).unwrap();
+                assert_eq!(
+                    s.tensile_contacts, 0,
+                    "{preset:?} xi {xi}: tensile face contact at {} m",
+                    s.knife_displacement
+                );
+                faces_seen = faces_seen.max((s.crack_depth / cs.row_spacing()) as usize);
+                let w = s.work;
+                worst = worst.max(
+                    (w.knife - (w.fracture + w.strain_energy + w.friction + w.unstable)).abs(),
+                );
+            }
+            // The cut went deep enough to have had many face nodes.
+            assert!(faces_seen >= 50, "{preset:?} xi {xi}: {faces_seen}");
+            // Round-off, as in the balance test above.
+            assert!(
+                worst <= 1e-9 * cs.state().work.knife,
+                "{preset:?} xi {xi}: balance error {worst}"
+            );
+        }
+    }
+}

@@ -72,6 +72,9 @@ pub(crate) struct StripConstraint {
     pub phi: f64,
     /// Prescribed value (u_y of the strip, m; or u_t for antiplane).
     pub value: f64,
+    /// Which strip columns touch the edge (unilateral contact per column;
+    /// the others carry no force).
+    pub active: [bool; MAX_STRIP],
 }
 
 /// Result of an in-plane solve.
@@ -83,7 +86,7 @@ pub(crate) struct InPlane {
     pub strip_force: f64,
 }
 
-fn sparse_llt(
+pub(crate) fn sparse_llt(
     n: usize,
     triplets: &[Triplet<usize, usize, f64>],
 ) -> Result<Llt<usize, f64>, SectionError> {
@@ -274,6 +277,7 @@ impl CondensedLine {
                     }
                 }
             }
+            mask_inactive(&mut M, &mut rhs, s, self.k);
             small_solve(&mut M, &mut rhs, self.k);
             lambda[..self.k].copy_from_slice(&rhs[..self.k]);
             energy_strip = s.value * rhs[..self.k].iter().sum::<f64>();
@@ -299,21 +303,34 @@ impl CondensedLine {
         }
     }
 
-    /// Mean over the strip columns of the interpolated u_y at the strip
-    /// position when only the gaps `g` act (no strip force), m.
-    pub fn strip_free_uy(&self, g: &[f64], first_nonzero: usize, s: &StripConstraint) -> f64 {
+    /// u_y (m) of the material at the strip position of column `a` after
+    /// [`Self::solve`] (interpolated between the rows around the tip).
+    pub fn strip_uy(
+        &self,
+        a: usize,
+        g: &[f64],
+        first_nonzero: usize,
+        s: &StripConstraint,
+        lambda: &[f64; MAX_STRIP],
+    ) -> f64 {
         let mut u = 0.0;
-        for a in 0..self.k {
-            for (q, w) in self.taps(a, s) {
-                if w != 0.0 {
-                    u -= w * dot(
-                        &self.Et.col_as_slice(q)[first_nonzero..],
-                        &g[first_nonzero..],
-                    );
+        for (q, w) in self.taps(a, s) {
+            if w == 0.0 {
+                continue;
+            }
+            u -= w * dot(
+                &self.Et.col_as_slice(q)[first_nonzero..],
+                &g[first_nonzero..],
+            );
+            for (b, &lb) in lambda.iter().enumerate().take(self.k) {
+                if lb != 0.0 {
+                    for (qb, wb) in self.taps(b, s) {
+                        u += w * wb * lb * self.C[(q, qb)];
+                    }
                 }
             }
         }
-        u / self.k as f64
+        u
     }
 
     /// u_y at strip column 0 (the cut line), row r, after [`Self::solve`].
@@ -343,21 +360,215 @@ impl CondensedLine {
         let mut M = self.strip_matrix(&self.Cz, strip);
         let mut rhs = [0.0; MAX_STRIP];
         rhs[..self.k].fill(strip.value);
+        mask_inactive(&mut M, &mut rhs, strip, self.k);
         small_solve(&mut M, &mut rhs, self.k);
         let f: f64 = rhs[..self.k].iter().sum();
         (0.5 * strip.value * f, f)
     }
 }
 
+/// Preallocated memory of [`CondensedLine::solve_released`]: the released
+/// rows, a dense Cholesky factor of A_FF and its right-hand sides.
+#[derive(Debug, Clone)]
+pub(crate) struct ReleasedWorkspace {
+    idx: Vec<usize>,
+    /// The released rows whose A_FF is factorised in `l` (the factor is
+    /// reused while the active set does not change, which is most calls).
+    factored: Vec<usize>,
+    l: Vec<f64>,
+    z: Vec<f64>,
+}
+
+impl ReleasedWorkspace {
+    /// Memory for a line of `n` rows (n² + n·(MAX_STRIP + 2) doubles).
+    pub fn new(n: usize) -> Self {
+        Self {
+            idx: Vec::with_capacity(n),
+            factored: Vec::with_capacity(n),
+            l: vec![0.0; n * n],
+            z: vec![0.0; n * (MAX_STRIP + 1)],
+        }
+    }
+}
+
+impl CondensedLine {
+    /// In-plane solve with the X DOFs of the rows flagged in `released` free
+    /// (loaded by `f_ext`, N/m, +x on the material; zero if `None`) and all
+    /// others prescribed to `g`. On return `g` holds the solved displacements
+    /// of the released rows, `p` the reactions (p = f_ext on released rows)
+    /// and `lambda` the strip forces, as in [`Self::solve`]. Released rows
+    /// must lie at or above `first_nonzero`. Allocation-free.
+    ///
+    /// With F the released rows, C the prescribed ones, B = EᵀPᵀ the strip's
+    /// coupling (P the strip taps) and M = P C Pᵀ:
+    /// A_FF g_F + B_F λ = f_F − A_FC g_C and M λ − B_Fᵀ g_F = value + B_Cᵀ g_C;
+    /// A_FF is SPD (a principal block of the condensed stiffness), so g_F is
+    /// eliminated by a dense Cholesky factorisation and λ solves the k×k
+    /// Schur system (M + B_Fᵀ A_FF⁻¹ B_F) λ = value + B_Cᵀ g_C + B_Fᵀ A_FF⁻¹ r_F.
+    #[allow(clippy::too_many_arguments)]
+    pub fn solve_released(
+        &self,
+        g: &mut [f64],
+        first_nonzero: usize,
+        released: &[bool],
+        f_ext: Option<&[f64]>,
+        strip: Option<&StripConstraint>,
+        p: &mut [f64],
+        lambda: &mut [f64; MAX_STRIP],
+        ws: &mut ReleasedWorkspace,
+    ) -> InPlane {
+        let n = self.n;
+        ws.idx.clear();
+        ws.idx.extend((0..n).filter(|&i| released[i]));
+        let m = ws.idx.len();
+        if m == 0 {
+            return self.solve(g, first_nonzero, strip, p, lambda);
+        }
+        let first = first_nonzero.min(ws.idx[0]);
+        for &i in &ws.idx {
+            g[i] = 0.0;
+        }
+        // r_F = f_F − A_FC g_C (A symmetric: row i is column i).
+        let (rf, zb) = ws.z.split_at_mut(n);
+        for (a, &i) in ws.idx.iter().enumerate() {
+            let f = f_ext.map_or(0.0, |f| f[i]);
+            rf[a] = f - dot(&self.A.col_as_slice(i)[first..], &g[first..]);
+        }
+        // Dense Cholesky of A_FF (lower, row-major m×m in ws.l), unless the
+        // factor of this released set is already there.
+        let l = &mut ws.l[..m * m];
+        if ws.factored != ws.idx {
+            for (a, &i) in ws.idx.iter().enumerate() {
+                let col = self.A.col_as_slice(i);
+                for (b, &j) in ws.idx.iter().enumerate().take(a + 1) {
+                    l[a * m + b] = col[j];
+                }
+            }
+            // Row-oriented (Cholesky–Crout): contiguous dot products.
+            for a in 0..m {
+                let (before, rest) = l.split_at_mut(a * m);
+                let ra = &mut rest[..m];
+                for b in 0..a {
+                    let rb = &before[b * m..b * m + b + 1];
+                    ra[b] = (ra[b] - dot(&ra[..b], &rb[..b])) / rb[b];
+                }
+                let d = ra[a] - dot(&ra[..a], &ra[..a]);
+                ra[a] = d.max(f64::MIN_POSITIVE).sqrt();
+            }
+            ws.factored.clear();
+            ws.factored.extend_from_slice(&ws.idx);
+        }
+        let chol_solve = |l: &[f64], x: &mut [f64]| {
+            // L y = x (rows of L contiguous), then Lᵀ z = y (column sweep
+            // along the rows of L).
+            for a in 0..m {
+                x[a] = (x[a] - dot(&l[a * m..a * m + a], &x[..a])) / l[a * m + a];
+            }
+            for a in (0..m).rev() {
+                x[a] /= l[a * m + a];
+                let xa = x[a];
+                axpy(-xa, &l[a * m..a * m + a], &mut x[..a]);
+            }
+        };
+        chol_solve(l, &mut rf[..m]);
+        if let Some(s) = strip {
+            // Z_B = A_FF⁻¹ B_F, column a in zb[a·n..].
+            for a in 0..self.k {
+                let zc = &mut zb[a * n..a * n + m];
+                zc.fill(0.0);
+                for (q, w) in self.taps(a, s) {
+                    if w != 0.0 {
+                        let et = self.Et.col_as_slice(q);
+                        for (z, &i) in zc.iter_mut().zip(&ws.idx) {
+                            *z += w * et[i];
+                        }
+                    }
+                }
+                chol_solve(l, zc);
+            }
+            let mut S = self.strip_matrix(&self.C, s);
+            let mut rhs = [0.0; MAX_STRIP];
+            for a in 0..self.k {
+                rhs[a] = s.value;
+                for (q, w) in self.taps(a, s) {
+                    if w != 0.0 {
+                        let et = self.Et.col_as_slice(q);
+                        // B_Cᵀ g_C (g_F is zero here) and B_Fᵀ A_FF⁻¹ r_F.
+                        rhs[a] += w * dot(&et[first..], &g[first..]);
+                        for (c, &i) in ws.idx.iter().enumerate() {
+                            rhs[a] += w * et[i] * rf[c];
+                        }
+                        for b in 0..self.k {
+                            let zc = &zb[b * n..b * n + m];
+                            for (c, &i) in ws.idx.iter().enumerate() {
+                                S[a][b] += w * et[i] * zc[c];
+                            }
+                        }
+                    }
+                }
+            }
+            mask_inactive(&mut S, &mut rhs, s, self.k);
+            small_solve(&mut S, &mut rhs, self.k);
+            for (c, &i) in ws.idx.iter().enumerate() {
+                let mut v = rf[c];
+                for (b, &lb) in rhs.iter().enumerate().take(self.k) {
+                    v -= zb[b * n + c] * lb;
+                }
+                g[i] = v;
+            }
+        } else {
+            for (c, &i) in ws.idx.iter().enumerate() {
+                g[i] = rf[c];
+            }
+        }
+        // The full displacement vector satisfies the strip equations, so the
+        // plain solve recovers the same λ, the reactions and the energy; the
+        // external forces' work is part of ½ g·p (p_F = f_F).
+        self.solve(g, first, strip, p, lambda)
+    }
+}
+
+/// Dot product with four partial sums (lets the compiler vectorise).
 #[inline]
 fn dot(a: &[f64], b: &[f64]) -> f64 {
-    a.iter().zip(b).map(|(x, y)| x * y).sum()
+    let n = a.len().min(b.len());
+    let (a, b) = (&a[..n], &b[..n]);
+    let mut acc = [0.0; 4];
+    let (ca, cb) = (a.chunks_exact(4), b.chunks_exact(4));
+    let (ra, rb) = (ca.remainder(), cb.remainder());
+    for (x, y) in ca.zip(cb) {
+        for k in 0..4 {
+            acc[k] += x[k] * y[k];
+        }
+    }
+    let tail: f64 = ra.iter().zip(rb).map(|(x, y)| x * y).sum();
+    (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
 }
 
 #[inline]
 fn axpy(alpha: f64, x: &[f64], y: &mut [f64]) {
     for (yi, xi) in y.iter_mut().zip(x) {
         *yi += alpha * xi;
+    }
+}
+
+/// Decouples the inactive strip columns: their rows and columns of M become
+/// the identity and their right-hand side 0, so their force is 0.
+fn mask_inactive(
+    M: &mut [[f64; MAX_STRIP]; MAX_STRIP],
+    b: &mut [f64; MAX_STRIP],
+    s: &StripConstraint,
+    k: usize,
+) {
+    for a in 0..k {
+        if !s.active[a] {
+            for c in 0..k {
+                M[a][c] = 0.0;
+                M[c][a] = 0.0;
+            }
+            M[a][a] = 1.0;
+            b[a] = 0.0;
+        }
     }
 }
 

@@ -69,6 +69,12 @@ impl WedgeProfile {
         }
     }
 
+    /// Heights above the reference point where ŵ has a kink (end of the
+    /// corner, end of the bevel), m; the third kink is s = 0.
+    pub fn kinks(&self) -> [f64; 2] {
+        [self.corner, self.bevel_height]
+    }
+
     /// Slope ŵ'(s) of the face (the corner's, the bevel's, or 0).
     #[inline]
     pub fn slope(&self, s: f64) -> f64 {

@@ -19,6 +19,8 @@ mod mesh;
 mod plane_strain;
 mod settings;
 mod simulation;
+#[cfg(test)]
+mod verification;
 
 pub use error::SectionError;
 pub use geometry::SectionGeometry;

@@ -4,7 +4,7 @@
 use crate::blade::BladeSection;
 use crate::material::Material;
 
-use super::condensed::{CondensedLine, MAX_STRIP, StripConstraint};
+use super::condensed::{CondensedLine, MAX_STRIP, ReleasedWorkspace, StripConstraint};
 use super::contact::{WedgeProfile, friction};
 use super::error::SectionError;
 use super::fracture::{Extension, solve_extension, toughness_ratio};
@@ -90,8 +90,9 @@ pub struct SectionStep {
     pub status: StepStatus,
     /// Cumulative energies.
     pub work: WorkSplit,
-    /// Face nodes whose contact reaction is tensile (bilateral contact holds
-    /// them on the blade), a quality indicator; 0 in normal cutting.
+    /// Face nodes whose contact reaction is tensile, a quality indicator: the
+    /// face contact is unilateral (faces that would be pulled onto the blade
+    /// are released), so this is 0 unless the active-set iteration failed.
     pub tensile_contacts: usize,
 }
 
@@ -123,6 +124,8 @@ struct Eval {
     energy: f64,
     energy_anti: f64,
     tensile: usize,
+    /// Fingerprint of the contact active sets (edge columns, released faces).
+    contacts: u64,
 }
 
 impl Eval {
@@ -137,7 +140,16 @@ struct Workspace {
     g: Vec<f64>,
     p: Vec<f64>,
     lambda: [f64; MAX_STRIP],
+    /// Face rows released from the wedge (unilateral contact); kept between
+    /// evaluations as the active set's warm start.
+    released: Vec<bool>,
+    /// Strip columns in contact with the edge (warm start, as `released`).
+    strip_active: [bool; MAX_STRIP],
+    mixed: ReleasedWorkspace,
 }
+
+/// Most active-set iterations of the face contact per evaluation.
+const MAX_ACTIVE_SET_ITERATIONS: usize = 64;
 
 /// Mutable state between steps.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -255,6 +267,9 @@ impl CrossSection {
                 g: vec![0.0; n],
                 p: vec![0.0; n],
                 lambda: [0.0; MAX_STRIP],
+                released: vec![false; n],
+                strip_active: [true; MAX_STRIP],
+                mixed: ReleasedWorkspace::new(n),
             },
             model,
             state,
@@ -265,6 +280,9 @@ impl CrossSection {
     /// Back to the state right after construction (keeps the factorisation).
     pub fn reset(&mut self) {
         self.state = self.initial;
+        // Active-set warm starts: reset too, so a rerun is bit-identical.
+        self.ws.released.fill(false);
+        self.ws.strip_active = [true; MAX_STRIP];
     }
 
     /// The state after the last step (or the initial state).
@@ -345,6 +363,17 @@ impl CrossSection {
                 st.drag + dt_abs - xi.min(f64::MAX) * s
             }
         };
+        // Drag at a knife advance t ∈ [0, dn] of a step without crack growth.
+        let drag_mid = |t: f64| -> f64 {
+            let d = st.y_tip - (st.y_edge - t);
+            if d <= 0.0 {
+                0.0
+            } else if d0 <= 0.0 {
+                xi.min(f64::MAX) * d
+            } else {
+                st.drag + xi.min(f64::MAX) * t
+            }
+        };
         let mut release = |s: f64| -> f64 {
             let e = evaluate(model, ws, st.y_tip - s, y_edge1, drag_at(s), dn, dt_abs);
             let w =
@@ -388,6 +417,56 @@ impl CrossSection {
             Extension::RunsThrough { s, r } => (s, r, StepStatus::CutThrough),
             Extension::Unbracketed { s, r } => (s, r, StepStatus::Unbracketed),
         };
+        // Knife work of a step without crack growth: trapezoids between the
+        // positions where the force may jump, i.e. where a face node passes a
+        // kink of the wedge profile (s = 0, the corner, the end of the bevel)
+        // while the faces are measured from the edge, and where the edge
+        // passes the tip. Between them the force is linear in the knife
+        // position up to active-set changes (kinks of U, whose trapezoid
+        // error is second order), so the work matches ΔU + friction.
+        // (With crack growth the step's work is the same trapezoid as R(s)'s,
+        // which the fracture term balances.)
+        let (mut w_el, mut w_fric) = (0.0, 0.0);
+        let mut prev = e0;
+        let mut t_prev = 0.0;
+        let xi_f = xi.min(f64::MAX);
+        let eval_mid = |ws: &mut Workspace, t: f64| {
+            evaluate(model, ws, st.y_tip, st.y_edge - t, drag_mid(t), dn, dt_abs)
+        };
+        if s == 0.0 && dn > 0.0 {
+            let [corner, bevel] = model.profile.kinks();
+            let h = model.h;
+            loop {
+                let y = st.y_edge - t_prev;
+                // The next break below y: the grid y_i − c for c ∈ {0, corner,
+                // bevel} with y_i = (i+1)·h (rows above the tip), and the tip.
+                let mut next = y_edge1;
+                for c in [0.0, corner, bevel] {
+                    let k = ((y + c) / h - 1e-9).ceil() - 1.0;
+                    let yb = k * h - c;
+                    if yb > next && yb < y && yb > st.y_tip {
+                        next = yb;
+                    }
+                }
+                if st.y_tip < y && st.y_tip > next {
+                    next = st.y_tip;
+                }
+                if next <= y_edge1 + 1e-12 * h {
+                    break;
+                }
+                // The force jumps at the break: close the segment with its
+                // left limit and open the next with the right limit.
+                let t = st.y_edge - next;
+                let eps = 1e-9 * h;
+                let before = eval_mid(ws, t - eps);
+                let after = eval_mid(ws, t + eps);
+                let (we, wf) = segment_work(ws, &eval_mid, t_prev, &prev, t, &before, xi_f, 8);
+                w_el += we;
+                w_fric += wf;
+                prev = after;
+                t_prev = t;
+            }
+        }
         // Commit the end state.
         let y_tip1 = st.y_tip - s;
         let drag1 = drag_at(s);
@@ -396,10 +475,24 @@ impl CrossSection {
         if d1 <= 0.0 && s == 0.0 {
             status = StepStatus::NoContact;
         }
-        let w_el =
-            0.5 * (e0.f_elastic_n() + e1.f_elastic_n()) * dn + 0.5 * (e0.f_t + e1.f_t) * dt_abs;
-        let w_fric =
-            0.5 * (e0.f_fric_n + e1.f_fric_n) * dn + 0.5 * (e0.f_fric_t + e1.f_fric_t) * dt_abs;
+        if s == 0.0 && dn > 0.0 {
+            // segment_work evaluates inside the segment only if the contact
+            // sets differ at its ends; then restore the end state's buffers
+            // (the surface deflection below reads them).
+            let evaluated_inside = prev.contacts != e1.contacts;
+            let (we, wf) = segment_work(ws, &eval_mid, t_prev, &prev, dn, &e1, xi_f, 8);
+            w_el += we;
+            w_fric += wf;
+            if evaluated_inside {
+                let again = evaluate(model, ws, y_tip1, y_edge1, drag1, dn, dt_abs);
+                debug_assert_eq!(again.energy.to_bits(), e1.energy.to_bits());
+            }
+        } else {
+            w_el =
+                0.5 * (e0.f_elastic_n() + e1.f_elastic_n()) * dn + 0.5 * (e0.f_t + e1.f_t) * dt_abs;
+            w_fric =
+                0.5 * (e0.f_fric_n + e1.f_fric_n) * dn + 0.5 * (e0.f_fric_t + e1.f_fric_t) * dt_abs;
+        }
         let mut work = st.step.work;
         work.knife += w_el + w_fric;
         work.friction += w_fric;
@@ -419,9 +512,7 @@ impl CrossSection {
         }
         let completed = matches!(status, StepStatus::CutThrough);
         let strip = strip_of(model, y_tip1, y_edge1);
-        let surface = -model
-            .line
-            .line_uy(model.n, &ws.g, strip.as_ref(), &ws.lambda);
+        let surface = -model.line.line_uy(model.n, &ws.g, Some(&strip), &ws.lambda);
         let step = SectionStep {
             knife_displacement: st.step.knife_displacement + dn,
             edge_height: y_edge1,
@@ -475,17 +566,77 @@ impl CrossSection {
     }
 }
 
+/// Knife work (elastic, friction) over knife advances t_a → t_b of a step
+/// without crack growth (tangential advance ξ per unit vertical), from the
+/// end states `ea`, `eb`. The forces are linear in t while the contact active
+/// sets stay the same; where they change the force has a kink (continuous,
+/// the energy being C¹). A segment whose ends differ in active sets is split
+/// at the kink found from the two one-sided slopes (two extra evaluations);
+/// if the sets on either side of it still differ from the ends' (several
+/// changes), or the lines do not cross inside, the halves are split again,
+/// up to `depth` times, then integrated by the trapezoid.
+#[allow(clippy::too_many_arguments)]
+fn segment_work(
+    ws: &mut Workspace,
+    eval_at: &impl Fn(&mut Workspace, f64) -> Eval,
+    t_a: f64,
+    ea: &Eval,
+    t_b: f64,
+    eb: &Eval,
+    xi: f64,
+    depth: u32,
+) -> (f64, f64) {
+    let power = |e: &Eval| e.f_elastic_n() + xi * e.f_t;
+    let friction = |e: &Eval| e.f_fric_n + xi * e.f_fric_t;
+    let len = t_b - t_a;
+    let trapezoid = (
+        0.5 * (power(ea) + power(eb)) * len,
+        0.5 * (friction(ea) + friction(eb)) * len,
+    );
+    if ea.contacts == eb.contacts || len <= 0.0 || depth == 0 {
+        return trapezoid;
+    }
+    let eps = 1e-4 * len;
+    let (ea2, eb2) = (eval_at(ws, t_a + eps), eval_at(ws, t_b - eps));
+    let ka = (power(&ea2) - power(ea)) / eps;
+    let kb = (power(eb) - power(&eb2)) / eps;
+    // Intersection of the two lines: power(ea) + ka (t − t_a) = power(eb) + kb (t − t_b).
+    let ts = (power(eb) - power(ea) - kb * t_b + ka * t_a) / (ka - kb);
+    let single = ts > t_a + eps && ts < t_b - eps && {
+        let (l, r) = (eval_at(ws, ts - eps), eval_at(ws, ts + eps));
+        l.contacts == ea.contacts && r.contacts == eb.contacts
+    };
+    if single {
+        let part = |q: &dyn Fn(&Eval) -> f64| {
+            let left = q(ea) + (q(&ea2) - q(ea)) / eps * (ts - t_a);
+            let right = q(eb) + (q(eb) - q(&eb2)) / eps * (ts - t_b);
+            0.5 * (q(ea) + left) * (ts - t_a) + 0.5 * (right + q(eb)) * (t_b - ts)
+        };
+        return (part(&power), part(&friction));
+    }
+    let tm = if ts > t_a + eps && ts < t_b - eps {
+        ts
+    } else {
+        0.5 * (t_a + t_b)
+    };
+    let em = eval_at(ws, tm);
+    let (w1, f1) = segment_work(ws, eval_at, t_a, ea, tm, &em, xi, depth - 1);
+    let (w2, f2) = segment_work(ws, eval_at, tm, &em, t_b, eb, xi, depth - 1);
+    (w1 + w2, f1 + f2)
+}
+
 /// The strip constraint of the edge at (y_tip, y_edge): the material at the
 /// tip moved to the edge, u_y = y_edge − y_tip. It acts only where the edge
-/// penetrates the deformed material (checked by the caller).
-fn strip_of(model: &Model, y_tip: f64, y_edge: f64) -> Option<StripConstraint> {
+/// presses on the material (decided by `evaluate`).
+fn strip_of(model: &Model, y_tip: f64, y_edge: f64) -> StripConstraint {
     let d = y_tip - y_edge;
     let (row, phi) = tip_row(model, y_tip);
-    Some(StripConstraint {
+    StripConstraint {
         row,
         phi,
         value: -d,
-    })
+        active: [true; MAX_STRIP],
+    }
 }
 
 /// Row j and weight φ of the tip: y_tip = (j + φ)·h, 1 ≤ j ≤ R.
@@ -532,18 +683,100 @@ fn evaluate(
             model.profile.width(y - y_ref)
         };
     }
-    // Unilateral edge contact: the edge presses only if it is below where the
-    // material at the tip would be without it (the wedge alone moves it).
-    let strip = strip_of(model, y_tip, y_edge)
-        .filter(|s| s.value < model.line.strip_free_uy(&ws.g, first, s));
     let edge_contact = y_tip > y_edge;
-    let ip = model
-        .line
-        .solve(&ws.g, first, strip.as_ref(), &mut ws.p, &mut ws.lambda);
+    // Unilateral contacts, solved together by a primal-dual active set on the
+    // condensed line:
+    // - the wedge faces: a face row is released when its reaction would pull
+    //   the face onto the blade (p < 0), and put back in contact when,
+    //   released, it would penetrate the blade (g < ŵ);
+    // - the edge flat, column by column: a strip column presses while its
+    //   force on the material is compressive (λ_a ≤ 0) and is released when
+    //   it would pull; a released column comes back when the material there
+    //   would rise above the edge (u_a > value).
+    // This is a convex obstacle problem (a strictly convex energy under
+    // per-DOF inequality constraints), so the active sets are unique and the
+    // stored energy is C¹ in the knife position across their changes: the
+    // energy balance stays closed. (A strip switched on and off as a whole
+    // is not of this kind: its two tests disagree in a band of positions and
+    // the active set cycles there.) Warm-started from the last evaluation the
+    // loop typically settles in one or two passes.
+    let mut strip_c = strip_of(model, y_tip, y_edge);
+    let k = model.line.k;
+    strip_c.active = ws.strip_active;
+    let tol = 1e-9 * model.material.fracture_toughness;
+    let gap_tol = 1e-9 * h;
+    for (i, r) in ws.released.iter_mut().enumerate() {
+        let y = (i + 1) as f64 * h;
+        if i < first || y <= y_tip {
+            *r = false;
+        }
+    }
+    let mut ip = Default::default();
+    for _ in 0..MAX_ACTIVE_SET_ITERATIONS {
+        let any = strip_c.active[..k].iter().any(|&a| a);
+        ip = model.line.solve_released(
+            &mut ws.g,
+            first,
+            &ws.released,
+            None,
+            any.then_some(&strip_c),
+            &mut ws.p,
+            &mut ws.lambda,
+            &mut ws.mixed,
+        );
+        let mut changed = false;
+        for i in first..model.n {
+            let y = (i + 1) as f64 * h;
+            if y <= y_tip {
+                continue;
+            }
+            let w = model.profile.width(y - y_ref);
+            if !ws.released[i] && ws.p[i] < -tol {
+                ws.released[i] = true;
+                changed = true;
+            } else if ws.released[i] && ws.g[i] < w - gap_tol {
+                ws.released[i] = false;
+                ws.g[i] = w;
+                changed = true;
+            }
+        }
+        for a in 0..k {
+            if strip_c.active[a] && ws.lambda[a] > tol {
+                strip_c.active[a] = false;
+                changed = true;
+            } else if !strip_c.active[a]
+                && model.line.strip_uy(a, &ws.g, first, &strip_c, &ws.lambda)
+                    > strip_c.value + gap_tol
+            {
+                strip_c.active[a] = true;
+                changed = true;
+            }
+        }
+        if !changed {
+            break;
+        }
+    }
+    ws.strip_active = strip_c.active;
+    let mut contacts = strip_c.active[..k]
+        .iter()
+        .fold(0u64, |m, &a| (m << 1) | u64::from(a));
+    for (i, &r) in ws.released.iter().enumerate() {
+        if r {
+            contacts = contacts.wrapping_mul(1_000_003) ^ (i as u64 + 1);
+        }
+    }
+    let strip = strip_c.active[..k].iter().any(|&a| a).then_some(strip_c);
+    // Antiplane drag: the whole flat holds the material along the edge while
+    // any of it presses (seed 000 §III.C: the nodes in contact are fixed on
+    // the edge). Switching columns one by one would drop their stored
+    // antiplane energy without work, while the whole flat lets go only when
+    // the indentation, and with it the drag τ = ξ·d, goes to 0.
     let (u_anti, f_anti) = match &strip {
-        Some(s) if drag != 0.0 => model
-            .line
-            .solve_antiplane(&StripConstraint { value: drag, ..*s }),
+        Some(s) if drag != 0.0 => model.line.solve_antiplane(&StripConstraint {
+            value: drag,
+            active: [true; MAX_STRIP],
+            ..*s
+        }),
         _ => (0.0, 0.0),
     };
     let mu = model.material.friction_coefficient;
@@ -552,6 +785,7 @@ fn evaluate(
         f_t: 2.0 * f_anti,
         energy: 2.0 * (ip.energy + u_anti),
         energy_anti: 2.0 * u_anti,
+        contacts,
         ..Default::default()
     };
     for i in first..model.n {
