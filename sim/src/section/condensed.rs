@@ -25,7 +25,10 @@
 //!
 //! # Memory allocation
 //! Construction allocates the matrices (|Y|² + |Y|·R + R² + |Z|² doubles, a few
-//! MB for the default mesh). [`CondensedLine::solve`] allocates nothing.
+//! MB for the default mesh). [`CondensedLine::solve`] allocates nothing, nor
+//! does [`CondensedLine::solve_released`] (crack faces released from the
+//! blade: a dense Cholesky of the released rows' block of A in a
+//! [`ReleasedWorkspace`]).
 
 #![allow(non_snake_case, clippy::needless_range_loop)]
 

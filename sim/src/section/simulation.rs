@@ -172,7 +172,9 @@ struct State {
 /// board, meshed with graded Q4 elements and condensed once onto the cut line
 /// ([`condensed`](super) module docs). On the cut line below the crack tip the
 /// symmetry condition u_x = 0 holds; above it the crack faces are pushed out to
-/// the blade's half-thickness (wedge contact, `contact` module).
+/// at least the blade's half-thickness (unilateral wedge contact, `contact`
+/// module), and the edge flat presses column by column where it touches
+/// (unilateral too); both by a primal-dual active set on the condensed line.
 ///
 /// The edge flat (width b = `edge_width`) is a rigid strip: the material
 /// at the crack tip's reference height (interpolated between the two rows
@@ -198,9 +200,15 @@ struct State {
 /// friction (+ unstable release), with fracture = Σ R(s)·s and |R − r·R_c| ≤
 /// tol·r·R_c.
 ///
+/// In a step without crack growth the knife work is integrated piecewise
+/// between the positions where the force has a kink or a jump (a face node
+/// passing a kink of the blade profile, a contact set changing), so the
+/// balance closes to round-off there too (`segment_work`).
+///
 /// # Memory allocation
 /// [`CrossSection::new`] allocates the mesh, the condensed matrices and a
-/// workspace; [`CrossSection::advance`] allocates nothing.
+/// workspace (including R² doubles for the released faces' dense factor);
+/// [`CrossSection::advance`] allocates nothing.
 #[derive(Debug, Clone)]
 pub struct CrossSection {
     model: Model,
