@@ -11,7 +11,7 @@ use std::f64::consts::PI;
 use nalgebra::Matrix3;
 
 /// Stress at p due to a normal strip load `f_n` (seed 000 eq. 2, Boussinesq
-/// integrated over the strip [28]); σ_x'x' = ν(σ_y'y' + σ_z'z') (plane strain).
+/// integrated over the strip (its ref. 28)); σ_x'x' = ν(σ_y'y' + σ_z'z') (plane strain).
 pub fn normal_strip_stress(theta1: f64, theta2: f64, f_n: f64, nu: f64) -> Matrix3<f64> {
     let dt = theta2 - theta1;
     let ds = 0.5 * ((2.0 * theta2).sin() - (2.0 * theta1).sin());
