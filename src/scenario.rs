@@ -204,7 +204,15 @@ impl Scenario {
             .file_stem()
             .and_then(|s| s.to_str())
             .unwrap_or("scenario");
-        Self::parse(&text, &path.display().to_string(), stem)
+        let mut scenario = Self::parse(&text, &path.display().to_string(), stem)?;
+        // A mesh path is relative to the scenario file, not to the working directory.
+        if let ObjectShape::Mesh { path: mesh } = &mut scenario.object
+            && mesh.is_relative()
+            && let Some(dir) = path.parent()
+        {
+            *mesh = dir.join(&*mesh);
+        }
+        Ok(scenario)
     }
 
     /// Parses, resolves and validates scenario TOML. `origin` names the text in

@@ -135,3 +135,30 @@ fn blade_too_short_for_the_travel_is_refused() {
     );
     std::fs::remove_dir_all(dir).ok();
 }
+
+#[test]
+fn mesh_object_is_read_relative_to_the_scenario_and_bad_meshes_exit_2() {
+    let dir = std::env::temp_dir().join(format!("shearcut-sim-mesh-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    // An open mesh (a tetrahedron missing a face) next to the scenario.
+    std::fs::write(
+        dir.join("open.obj"),
+        "v 0 0 0\nv 0.03 0 0\nv 0 0.03 0\nv 0 0 0.03\nf 1 3 2\nf 1 2 4\nf 2 3 4\n",
+    )
+    .unwrap();
+    let text = include_str!("../config/scenarios/fig8-potato.toml").replace(
+        "kind = \"cuboid\"\nwidth = 0.03\nheight = 0.025\nlength = 0.03",
+        "kind = \"mesh\"\npath = \"open.obj\"",
+    );
+    assert!(text.contains("open.obj"));
+    let path = dir.join("mesh.toml");
+    std::fs::write(&path, text).unwrap();
+    let o = shearcut(&["simulate", path.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        err.contains("not closed") && err.lines().count() == 1,
+        "{err}"
+    );
+    std::fs::remove_dir_all(dir).ok();
+}
