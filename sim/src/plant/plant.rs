@@ -164,6 +164,13 @@ struct SegmentSection {
     active: bool,
     /// Knife work per unit length done on the section's predecessors, J/m.
     work_offset: f64,
+    /// Signed distance of the segment's midpoint from the plane when the
+    /// plane was chosen, m: q lies on the midpoint's path, not at the
+    /// midpoint (the edge indents below the crack tip), so a slicing segment
+    /// starts off its new plane by λ·(d·t); the slide is counted from there.
+    /// 0 at construction: the midpoint reaches its first contact when the
+    /// section starts.
+    slide_reference: f64,
     /// Normal distance the edge still has to travel to reach the section's top, m.
     gap: f64,
     /// Normal distance the edge has been pulled back out, m.
@@ -183,7 +190,7 @@ struct SegmentSection {
 /// # Moving cross sections (seed 000 §IV, Fig. 4(b))
 /// After each tick the plant measures, for every section that has started
 /// cutting, how far its segment's midpoint has slid off the section's plane
-/// (along the plane's normal). Past [`PlantSettings::update_distance`] the
+/// (along the plane's normal) since the plane was chosen. Past [`PlantSettings::update_distance`] the
 /// section is re-chosen: a [`CrackFront`] is fitted over the crack tips of the
 /// started sections, intersected with the midpoint's path (the line through
 /// the midpoint along the planned direction) at q, and the new plane is
@@ -317,6 +324,7 @@ impl Plant {
                 geometry,
                 active: true,
                 work_offset: 0.0,
+                slide_reference: 0.0,
                 gap: lambda * d.dot(&segment.normal),
                 lift: 0.0,
                 tangential_sign: 0.0,
@@ -517,7 +525,10 @@ impl Plant {
         let threshold = self.update_distance;
         let slid = |s: &SegmentSection| {
             s.section.state().knife_displacement > 0.0
-                && slide_off(&s.plane, &midpoint_world(&position, &s.segment)) > threshold
+                && (signed_offset(&s.plane, &midpoint_world(&position, &s.segment))
+                    - s.slide_reference)
+                    .abs()
+                    > threshold
         };
         if !self.sections.iter().any(slid) {
             return Ok(());
@@ -535,7 +546,8 @@ impl Plant {
         let d = self.direction;
         for s in &mut self.sections {
             let m = midpoint_world(&position, &s.segment);
-            if !(s.section.state().knife_displacement > 0.0 && slide_off(&s.plane, &m) > threshold)
+            if !(s.section.state().knife_displacement > 0.0
+                && (signed_offset(&s.plane, &m) - s.slide_reference).abs() > threshold)
             {
                 continue;
             }
@@ -551,6 +563,7 @@ impl Plant {
             let up = -Vector3::new(0.0, s.segment.normal.y, s.segment.normal.x);
             let plane = SectionPlane::normal_to_segment(q, up);
             s.plane = plane;
+            s.slide_reference = signed_offset(&plane, &m);
             let Some(polygon) = plane.section(&self.object) else {
                 s.active = false;
                 continue;
@@ -588,9 +601,9 @@ fn midpoint_world(position: &Vector3<f64>, segment: &EdgeSegment) -> Vector3<f64
     position + Vector3::new(0.0, segment.midpoint.y, segment.midpoint.x)
 }
 
-/// Distance of `p` from `plane` along its normal, m.
-fn slide_off(plane: &SectionPlane, p: &Vector3<f64>) -> f64 {
-    (p - plane.origin).dot(&plane.normal()).abs()
+/// Signed distance of `p` from `plane` along its normal, m.
+fn signed_offset(plane: &SectionPlane, p: &Vector3<f64>) -> f64 {
+    (p - plane.origin).dot(&plane.normal())
 }
 
 /// A section's crack tip in the knife plane (world z, y).
