@@ -466,3 +466,17 @@ fn half_potato_sections_are_rebuilt_work_never_drops_deterministic() {
     };
     assert!(a.iter().zip(&b).all(|(x, y)| bits(x) == bits(y)));
 }
+
+#[test]
+fn update_distance_must_be_positive() {
+    assert_eq!(PlantSettings::default().update_distance, 1e-3);
+    assert!(PlantSettings::default().validate().is_ok());
+    for bad in [0.0, -1e-3, f64::NAN, f64::INFINITY] {
+        let s = PlantSettings {
+            update_distance: bad,
+            ..PlantSettings::default()
+        };
+        let e = s.validate().unwrap_err().to_string();
+        assert!(e.contains("update_distance"), "{e}");
+    }
+}

@@ -192,6 +192,12 @@ mod tests {
         let l = f.intersect(o, d).unwrap();
         let p = o + d * l;
         assert!((p.y - f.height_at(p.x)).abs() < 1e-14);
+        // The whole line: the root nearest the origin, behind it (λ < 0)
+        // for a point below the front, where `intersect` finds none.
+        let below = Vector2::new(0.1, 0.015);
+        let l = f.intersect_nearest(below, Vector2::new(0.0, -1.0)).unwrap();
+        assert!((l + 0.005).abs() < 1e-15, "{l}");
+        assert!(f.intersect(below, Vector2::new(0.0, -1.0)).is_none());
         // Moving up, away from the front below: no intersection.
         assert!(
             f.intersect(Vector2::new(0.1, 0.05), Vector2::new(0.0, 1.0))
