@@ -409,7 +409,12 @@ impl Plant {
 
     /// Executes `command` for `dt` seconds and returns the measurement.
     /// A command that breaks an arm limit is refused: the knife holds still
-    /// and the status says why. Allocates nothing.
+    /// and the status says why. After the sections advance, those that slid
+    /// `update_distance` off their planes are re-chosen (see the type's docs).
+    /// Allocates nothing unless a section is re-chosen.
+    ///
+    /// # Errors
+    /// A section's step fails, or a re-chosen section cannot be built.
     pub fn step(&mut self, command: &KnifeCommand, dt: f64) -> Result<Measurement, SectionError> {
         let mut v = command.velocity;
         let status = match self.monitor.check(v, dt) {
@@ -554,9 +559,12 @@ impl Plant {
             self.rechoices += 1;
             let m2 = Vector2::new(m.z, m.y);
             // q: the front on the midpoint's path; if the path misses the
-            // fitted front, the height of the section's own tip on that path.
+            // fitted front (or meets its extrapolation farther than the
+            // object's size away), the height of the section's own tip on
+            // that path.
             let lambda = front
                 .intersect_nearest(m2, d)
+                .filter(|l| l.abs() <= self.object.size())
                 .unwrap_or_else(|| (tip_of(s).y - m2.y) / d.y);
             let q2 = m2 + d * lambda;
             let q = Vector3::new(0.0, q2.y, q2.x);
