@@ -435,6 +435,7 @@ fn half_potato_sections_are_rebuilt_work_never_drops_deterministic() {
             velocity: Vector3::new(0.0, -SPEED, -0.5 * SPEED),
         };
         let mut prev = 0.0;
+        let mut rechoices = 0;
         let out: Vec<_> = (0..1500)
             .map(|k| {
                 let m = plant.step(&cmd, DT).unwrap();
@@ -442,6 +443,20 @@ fn half_potato_sections_are_rebuilt_work_never_drops_deterministic() {
                 assert!(m.work >= prev, "tick {k}: work {} < {prev}", m.work);
                 prev = m.work;
                 assert!(worst_normal_misalignment(&plant) < 1e-12, "tick {k}");
+                // Right after a re-choice every tip is on the fitted front:
+                // kept sections' tips are fitted exactly (at most three, a
+                // quadratic), rebuilt ones restart at q, on the front. 1e-9 m
+                // allows the round-off of the plane transforms.
+                if plant.rechoices() > rechoices {
+                    rechoices = plant.rechoices();
+                    let front = plant.crack_front().unwrap();
+                    let tips: Vec<_> = plant.crack_tips().collect();
+                    assert!(tips.len() <= 3);
+                    for t in tips {
+                        let miss = (front.height_at(t.x) - t.y).abs();
+                        assert!(miss < 1e-9, "tick {k}: tip off the front by {miss}");
+                    }
+                }
                 m
             })
             .collect();

@@ -136,7 +136,8 @@ pub struct Measurement {
     pub wrench: [f64; 6],
     /// The noise-free wrench at the sensor.
     pub true_wrench: Wrench,
-    /// Mean crack depth over the sections in the object, m.
+    /// Mean crack depth over the active sections (those whose plane cuts the
+    /// object; 0 when none is), m.
     pub crack_depth: f64,
     /// Length of edge in contact with material, m.
     pub contact_length: f64,
