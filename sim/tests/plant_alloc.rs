@@ -1,11 +1,16 @@
-//! `Plant::step` allocates nothing after construction (counting allocator).
+//! `Plant::step` allocates nothing after construction in a run without
+//! section re-choices (counting allocator): a straight edge pressing a
+//! cuboid, whose segments move within their section planes. (A re-choice
+//! cuts the object mesh with the new plane and may rebuild a section: those
+//! ticks allocate, as `Plant`'s docs say.)
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use nalgebra::{Vector2, Vector3};
+use shearcut_sim::geometry::TriangleMesh;
 use shearcut_sim::plant::{ArmLimits, KnifeCommand, Plant, PlantSettings};
-use shearcut_sim::{Knife, KnifePreset, MaterialPreset, ObjectShape, SectionSettings};
+use shearcut_sim::{Knife, KnifePreset, MaterialPreset, SectionSettings};
 
 struct Counting;
 
@@ -35,15 +40,12 @@ static GLOBAL: Counting = Counting;
 
 #[test]
 fn plant_step_allocates_nothing() {
-    let material = MaterialPreset::PotatoWhole.material();
-    let knife = Knife::new(&KnifePreset::Chef.settings()).unwrap();
-    let object = ObjectShape::HalfPotato {
-        length: 0.08,
-        width: 0.05,
-        height: 0.03,
-    }
-    .mesh()
-    .unwrap();
+    let material = MaterialPreset::PotatoCuboid.material();
+    let knife = Knife::new(&KnifePreset::Straight.settings()).unwrap();
+    let object = TriangleMesh::cuboid(
+        Vector3::new(-0.015, 0.0, 0.0),
+        Vector3::new(0.015, 0.02, 0.03),
+    );
     let section = SectionSettings {
         row_spacing: 5e-4,
         ..SectionSettings::default()
@@ -61,8 +63,8 @@ fn plant_step_allocates_nothing() {
         &material,
         &knife,
         &object,
-        0.05,
-        Vector2::new(-0.4, -1.0),
+        0.02,
+        Vector2::new(0.0, -1.0),
         &settings,
         &section,
         &limits,
@@ -70,7 +72,7 @@ fn plant_step_allocates_nothing() {
     )
     .unwrap();
     let cmd = KnifeCommand {
-        velocity: Vector3::new(0.0, -0.00625, -0.0025),
+        velocity: Vector3::new(0.0, -0.00625, 0.0),
     };
     // Through contact, first fracture and steady cutting.
     let before = ALLOCATIONS.load(Ordering::SeqCst);
@@ -81,4 +83,9 @@ fn plant_step_allocates_nothing() {
     let after = ALLOCATIONS.load(Ordering::SeqCst);
     assert!(fractured > 0, "the run reached cutting");
     assert_eq!(after - before, 0, "Plant::step allocated");
+    assert_eq!(
+        plant.rechoices(),
+        0,
+        "a pressing straight edge re-chooses nothing"
+    );
 }

@@ -72,6 +72,26 @@ impl CrackFront {
     /// Where the line `origin + λ·direction` (knife plane, (z, y)) meets the
     /// front: the smallest λ ≥ 0, or None if it never does.
     pub fn intersect(&self, origin: Vector2<f64>, direction: Vector2<f64>) -> Option<f64> {
+        self.roots(origin, direction, |l| l >= 0.0, |l| l)
+    }
+
+    /// Where the whole line `origin + λ·direction` (λ of either sign) meets
+    /// the front nearest to `origin`: the root with the smallest |λ|, or None.
+    /// The plant uses it for a midpoint that may be below the front (the
+    /// edge indents below the crack tip) or above it.
+    pub fn intersect_nearest(&self, origin: Vector2<f64>, direction: Vector2<f64>) -> Option<f64> {
+        self.roots(origin, direction, |_| true, f64::abs)
+    }
+
+    /// The root of the line–front intersection accepted by `accept` with the
+    /// smallest `key`.
+    fn roots(
+        &self,
+        origin: Vector2<f64>,
+        direction: Vector2<f64>,
+        accept: impl Fn(f64) -> bool,
+        key: impl Fn(f64) -> f64,
+    ) -> Option<f64> {
         // g(λ) = y(λ) − front(z(λ)) = α λ² + β λ + γ.
         let [_, c1, c2] = self.coefficients;
         let s0 = origin.x - self.z_mean;
@@ -81,7 +101,7 @@ impl CrackFront {
         let gamma = origin.y - self.height_at(origin.x);
         let mut best: Option<f64> = None;
         let mut consider = |l: f64| {
-            if l.is_finite() && l >= 0.0 && best.is_none_or(|b| l < b) {
+            if l.is_finite() && accept(l) && best.is_none_or(|b| key(l) < key(b)) {
                 best = Some(l);
             }
         };
@@ -172,6 +192,12 @@ mod tests {
         let l = f.intersect(o, d).unwrap();
         let p = o + d * l;
         assert!((p.y - f.height_at(p.x)).abs() < 1e-14);
+        // The whole line: the root nearest the origin, behind it (λ < 0)
+        // for a point below the front, where `intersect` finds none.
+        let below = Vector2::new(0.1, 0.015);
+        let l = f.intersect_nearest(below, Vector2::new(0.0, -1.0)).unwrap();
+        assert!((l + 0.005).abs() < 1e-15, "{l}");
+        assert!(f.intersect(below, Vector2::new(0.0, -1.0)).is_none());
         // Moving up, away from the front below: no intersection.
         assert!(
             f.intersect(Vector2::new(0.1, 0.05), Vector2::new(0.0, 1.0))

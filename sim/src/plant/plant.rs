@@ -3,14 +3,16 @@
 use nalgebra::{Vector2, Vector3};
 use serde::{Deserialize, Serialize};
 
+use crate::blade::BladeSection;
 use crate::geometry::{SectionPlane, TriangleMesh};
 use crate::invalid_setting::InvalidSetting;
 use crate::knife::Knife;
 use crate::material::Material;
-use crate::section::{CrossSection, SectionError, SectionSettings};
+use crate::section::{CrossSection, SectionError, SectionGeometry, SectionSettings};
 
 use super::arm_limits::{ArmLimitMonitor, ArmLimits, LimitViolation};
 use super::contact_arc::{EdgeSegment, contact_arc, knife_plane_silhouette, ray_hit, segments};
+use super::crack_front::CrackFront;
 use super::ft_sensor::{FtSensor, FtSensorSettings};
 use super::section_shape::section_geometry;
 use super::wrench::{SegmentLoad, Wrench, wrench_at};
@@ -26,6 +28,10 @@ pub struct PlantSettings {
     /// Rim height below which a dome-shaped section is clipped, as a fraction
     /// of the section's height (default 0.05).
     pub rim_fraction: f64,
+    /// How far a segment's midpoint may slide off its cross section's plane
+    /// before the section is re-chosen through the crack front, m (default
+    /// 0.001: seed 000 §IV updates the sections in 1 mm steps).
+    pub update_distance: f64,
     /// The F/T sensor.
     pub sensor: FtSensorSettings,
 }
@@ -36,6 +42,7 @@ impl Default for PlantSettings {
             segments: 10,
             start_gap: 1e-3,
             rim_fraction: 0.05,
+            update_distance: 1e-3,
             sensor: FtSensorSettings::default(),
         }
     }
@@ -63,6 +70,13 @@ impl PlantSettings {
                 "rim_fraction",
                 self.rim_fraction,
                 "must be in (0, 0.5)",
+            ));
+        }
+        if !(self.update_distance.is_finite() && self.update_distance > 0.0) {
+            return Err(InvalidSetting::new(
+                "update_distance",
+                self.update_distance,
+                "must be a finite number > 0 m",
             ));
         }
         self.sensor.validate().map_err(|e| e.prefixed("sensor"))
@@ -122,7 +136,8 @@ pub struct Measurement {
     pub wrench: [f64; 6],
     /// The noise-free wrench at the sensor.
     pub true_wrench: Wrench,
-    /// Mean crack depth over the sections in the object, m.
+    /// Mean crack depth over the active sections (those whose plane cuts the
+    /// object; 0 when none is), m.
     pub crack_depth: f64,
     /// Length of edge in contact with material, m.
     pub contact_length: f64,
@@ -141,6 +156,22 @@ pub struct Measurement {
 struct SegmentSection {
     segment: EdgeSegment,
     section: CrossSection,
+    /// The section's plane in the world.
+    plane: SectionPlane,
+    /// The section's shape, to tell whether a re-chosen plane cuts the same one.
+    geometry: SectionGeometry,
+    /// Whether the plane cuts the object (a segment that slid off the piece
+    /// has no material: no force, not advanced).
+    active: bool,
+    /// Knife work per unit length done on the section's predecessors, J/m.
+    work_offset: f64,
+    /// Signed distance of the segment's midpoint from the plane when the
+    /// plane was chosen, m: q lies on the midpoint's path, not at the
+    /// midpoint (the edge indents below the crack tip), so a slicing segment
+    /// starts off its new plane by λ·(d·t); the slide is counted from there.
+    /// 0 at construction: the midpoint reaches its first contact when the
+    /// section starts.
+    slide_reference: f64,
     /// Normal distance the edge still has to travel to reach the section's top, m.
     gap: f64,
     /// Normal distance the edge has been pulled back out, m.
@@ -155,16 +186,53 @@ struct SegmentSection {
 /// Segments and sections are chosen at construction from the knife's planned
 /// direction of motion (assumption A2): each segment's section is normal to
 /// it through the first contact of its midpoint's path with the object
-/// (seed 000 §IV). Sections are not re-chosen as the knife moves yet: for a
-/// knife that translates, each segment keeps its orientation, so this is exact
-/// for uniform objects (cuboids) and an approximation where the object's
-/// section changes along the path of a slicing segment.
+/// (seed 000 §IV).
+///
+/// # Moving cross sections (seed 000 §IV, Fig. 4(b))
+/// After each tick the plant measures, for every section that has started
+/// cutting, how far its segment's midpoint has slid off the section's plane
+/// (along the plane's normal) since the plane was chosen. Past [`PlantSettings::update_distance`] the
+/// section is re-chosen: a [`CrackFront`] is fitted over the crack tips of the
+/// started sections, intersected with the midpoint's path (the line through
+/// the midpoint along the planned direction) at q, and the new plane is
+/// normal to the segment through q. Then
+/// - if the plane misses the object (the segment slid off the piece), the
+///   section becomes inactive (no force, not advanced) until a later
+///   re-choice finds material again;
+/// - if it cuts the same shape (a cuboid's interior), only the plane moves
+///   and the section keeps its state;
+/// - otherwise a new [`CrossSection`] is built for the new shape and
+///   restarted with the crack depth at q and the predecessor's fracture flag
+///   ([`CrossSection::restart_with_crack`]); the predecessor's knife work is
+///   kept, so the plant's cumulative work never drops. Only the crack is
+///   carried over, not the predecessor's elastic state.
+///
+/// Without a started section there is nothing to fit and no re-choice.
 ///
 /// # Memory allocation
-/// [`Plant::new`] allocates everything; [`Plant::step`] allocates nothing.
+/// [`Plant::new`] allocates everything a tick without a re-choice needs;
+/// such a [`Plant::step`] allocates nothing (a pressing straight edge: its
+/// segments move within their planes). A re-choice cuts the object mesh with
+/// the new plane, which allocates the section polygon, and a rebuild
+/// allocates a new [`CrossSection`] (mesh, factorisation, workspace).
 #[derive(Debug, Clone)]
 pub struct Plant {
     sections: Vec<SegmentSection>,
+    /// The object, cut again by re-chosen planes.
+    object: TriangleMesh,
+    material: Material,
+    blade: BladeSection,
+    section_settings: SectionSettings,
+    rim_fraction: f64,
+    update_distance: f64,
+    /// Planned direction of motion in the knife plane (z, y), unit.
+    direction: Vector2<f64>,
+    /// Crack tips of the started sections (knife plane (z, y)), preallocated.
+    tips: Vec<Vector2<f64>>,
+    /// The last crack front fitted for a re-choice.
+    front: Option<CrackFront>,
+    rechoices: usize,
+    rebuilds: usize,
     loads: Vec<SegmentLoad>,
     monitor: ArmLimitMonitor,
     sensor: FtSensor,
@@ -253,6 +321,11 @@ impl Plant {
             sections.push(SegmentSection {
                 segment,
                 section,
+                plane,
+                geometry,
+                active: true,
+                work_offset: 0.0,
+                slide_reference: 0.0,
                 gap: lambda * d.dot(&segment.normal),
                 lift: 0.0,
                 tangential_sign: 0.0,
@@ -262,9 +335,21 @@ impl Plant {
             return Err(PlantError::NoContact);
         }
         let loads = Vec::with_capacity(sections.len());
+        let tips = Vec::with_capacity(sections.len());
         Ok(Self {
             loads,
             sections,
+            object: object.clone(),
+            material: *material,
+            blade: *knife.blade(),
+            section_settings: *section,
+            rim_fraction: settings.rim_fraction,
+            update_distance: settings.update_distance,
+            direction: d,
+            tips,
+            front: None,
+            rechoices: 0,
+            rebuilds: 0,
             monitor: ArmLimitMonitor::new(*arm_limits),
             sensor: FtSensor::new(settings.sensor, seed).map_err(|e| e.prefixed("sensor"))?,
             sensor_offset: knife.sensor_position(),
@@ -284,6 +369,40 @@ impl Plant {
         self.sections.iter().map(|s| &s.segment)
     }
 
+    /// For each section, heel to tip: its segment, its plane, and whether the
+    /// plane cuts the object (inactive sections carry no force).
+    pub fn section_planes(&self) -> impl Iterator<Item = (&EdgeSegment, &SectionPlane, bool)> {
+        self.sections
+            .iter()
+            .map(|s| (&s.segment, &s.plane, s.active))
+    }
+
+    /// Crack tips of the active sections that have started cutting, in the
+    /// knife plane (world z, y), heel to tip: the points the crack front is
+    /// fitted over.
+    pub fn crack_tips(&self) -> impl Iterator<Item = Vector2<f64>> + '_ {
+        self.sections
+            .iter()
+            .filter(|s| s.active && s.section.state().knife_displacement > 0.0)
+            .map(tip_of)
+    }
+
+    /// The crack front fitted at the last re-choice (None before the first).
+    pub fn crack_front(&self) -> Option<&CrackFront> {
+        self.front.as_ref()
+    }
+
+    /// Number of section re-choices so far (a plane moved, a section became
+    /// inactive, or a section was rebuilt).
+    pub fn rechoices(&self) -> usize {
+        self.rechoices
+    }
+
+    /// Number of re-choices that built a new [`CrossSection`] for a new shape.
+    pub fn rebuilds(&self) -> usize {
+        self.rebuilds
+    }
+
     /// The sections' current states, heel to tip.
     pub fn section_states(&self) -> impl Iterator<Item = &crate::section::SectionStep> {
         self.sections.iter().map(|s| s.section.state())
@@ -291,7 +410,12 @@ impl Plant {
 
     /// Executes `command` for `dt` seconds and returns the measurement.
     /// A command that breaks an arm limit is refused: the knife holds still
-    /// and the status says why. Allocates nothing.
+    /// and the status says why. After the sections advance, those that slid
+    /// `update_distance` off their planes are re-chosen (see the type's docs).
+    /// Allocates nothing unless a section is re-chosen.
+    ///
+    /// # Errors
+    /// A section's step fails, or a re-chosen section cannot be built.
     pub fn step(&mut self, command: &KnifeCommand, dt: f64) -> Result<Measurement, SectionError> {
         let mut v = command.velocity;
         let status = match self.monitor.check(v, dt) {
@@ -313,7 +437,18 @@ impl Plant {
         let mut depth_sum = 0.0;
         let mut deformation: f64 = 0.0;
         let mut work = 0.0;
+        let mut active = 0usize;
         for s in &mut self.sections {
+            if !s.active {
+                // No material under the segment: no force, not advanced.
+                let state = s.section.state();
+                work += (s.work_offset + state.work.knife) * s.segment.length;
+                if state.fractured {
+                    fractured += 1;
+                }
+                continue;
+            }
+            active += 1;
             let dn = dp2.dot(&s.segment.normal);
             let dt_seg = dp2.dot(&s.segment.tangent);
             if dt_seg != 0.0 {
@@ -343,7 +478,7 @@ impl Plant {
                 *s.section.state()
             };
             let touching = s.gap <= 0.0 && s.lift <= 0.0 && state.knife_displacement > 0.0;
-            work += state.work.knife * s.segment.length;
+            work += (s.work_offset + state.work.knife) * s.segment.length;
             depth_sum += state.crack_depth;
             deformation = deformation.max(state.surface_deflection);
             if state.fractured {
@@ -365,6 +500,7 @@ impl Plant {
             }
         }
         self.work = work;
+        self.rechoose()?;
         let sensor_origin = self.position + self.sensor_offset;
         let true_wrench = wrench_at(&sensor_origin, &self.loads);
         let wrench = self.sensor.read(self.time, &true_wrench.to_array());
@@ -374,7 +510,11 @@ impl Plant {
             velocity: v,
             wrench,
             true_wrench,
-            crack_depth: depth_sum / self.sections.len() as f64,
+            crack_depth: if active > 0 {
+                depth_sum / active as f64
+            } else {
+                0.0
+            },
             contact_length,
             fractured_sections: fractured,
             work: self.work,
@@ -382,4 +522,119 @@ impl Plant {
             status,
         })
     }
+
+    /// Re-chooses the sections whose segments slid more than
+    /// `update_distance` off their planes (seed 000 §IV, Fig. 4(b); see the
+    /// type's docs).
+    fn rechoose(&mut self) -> Result<(), SectionError> {
+        let position = self.position;
+        let threshold = self.update_distance;
+        let slid = |s: &SegmentSection| {
+            s.section.state().knife_displacement > 0.0
+                && (signed_offset(&s.plane, &midpoint_world(&position, &s.segment))
+                    - s.slide_reference)
+                    .abs()
+                    > threshold
+        };
+        if !self.sections.iter().any(slid) {
+            return Ok(());
+        }
+        self.tips.clear();
+        for s in &self.sections {
+            if s.active && s.section.state().knife_displacement > 0.0 {
+                self.tips.push(tip_of(s));
+            }
+        }
+        let Some(front) = CrackFront::fit(&self.tips) else {
+            return Ok(());
+        };
+        self.front = Some(front);
+        let d = self.direction;
+        for s in &mut self.sections {
+            let m = midpoint_world(&position, &s.segment);
+            if !(s.section.state().knife_displacement > 0.0
+                && (signed_offset(&s.plane, &m) - s.slide_reference).abs() > threshold)
+            {
+                continue;
+            }
+            self.rechoices += 1;
+            let m2 = Vector2::new(m.z, m.y);
+            // q: the front on the midpoint's path; if the path misses the
+            // fitted front (or meets its extrapolation farther than the
+            // object's size away), the height of the section's own tip on
+            // that path.
+            let lambda = front
+                .intersect_nearest(m2, d)
+                .filter(|l| l.abs() <= self.object.size())
+                .unwrap_or_else(|| (tip_of(s).y - m2.y) / d.y);
+            let q2 = m2 + d * lambda;
+            let q = Vector3::new(0.0, q2.y, q2.x);
+            let up = -Vector3::new(0.0, s.segment.normal.y, s.segment.normal.x);
+            let plane = SectionPlane::normal_to_segment(q, up);
+            s.plane = plane;
+            s.slide_reference = signed_offset(&plane, &m);
+            let Some(polygon) = plane.section(&self.object) else {
+                s.active = false;
+                continue;
+            };
+            let height = polygon.bounds().1.y;
+            let Ok(geometry) = section_geometry(&polygon, self.rim_fraction * height) else {
+                // Lower than the rim everywhere: no material worth a section.
+                s.active = false;
+                continue;
+            };
+            if s.active && same_geometry(&geometry, &s.geometry) {
+                continue;
+            }
+            let mut section = CrossSection::new(
+                &geometry,
+                &self.material,
+                &self.blade,
+                &self.section_settings,
+            )?;
+            let depth = (geometry.height_at_cut() - plane.to_plane(&q).y).max(0.0);
+            let old = s.section.state();
+            section.restart_with_crack(depth, old.fractured);
+            s.work_offset += old.work.knife;
+            s.section = section;
+            s.geometry = geometry;
+            s.active = true;
+            self.rebuilds += 1;
+        }
+        Ok(())
+    }
+}
+
+/// A segment's midpoint in the world (x = 0) for the knife at `position`.
+fn midpoint_world(position: &Vector3<f64>, segment: &EdgeSegment) -> Vector3<f64> {
+    position + Vector3::new(0.0, segment.midpoint.y, segment.midpoint.x)
+}
+
+/// Signed distance of `p` from `plane` along its normal, m.
+fn signed_offset(plane: &SectionPlane, p: &Vector3<f64>) -> f64 {
+    (p - plane.origin).dot(&plane.normal())
+}
+
+/// A section's crack tip in the knife plane (world z, y).
+fn tip_of(s: &SegmentSection) -> Vector2<f64> {
+    let w = s
+        .plane
+        .to_world(&Vector2::new(0.0, s.section.state().crack_tip_height));
+    Vector2::new(w.z, w.y)
+}
+
+/// Whether two section shapes agree to a relative 1e-9 of their size (the
+/// plane cuts of a prism's interior differ by rounding only).
+fn same_geometry(a: &SectionGeometry, b: &SectionGeometry) -> bool {
+    let scale = a.height_at_cut().max(a.half_width());
+    let tol = 1e-9 * scale;
+    let close = |x: f64, y: f64| (x - y).abs() <= tol;
+    if !(close(a.height_at_cut(), b.height_at_cut()) && close(a.half_width(), b.half_width())) {
+        return false;
+    }
+    const SAMPLES: usize = 64;
+    (0..=SAMPLES).all(|k| {
+        let x = a.half_width() * k as f64 / SAMPLES as f64;
+        close(a.top_at(x), b.top_at(x))
+    })
 }

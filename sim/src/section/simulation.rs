@@ -293,6 +293,45 @@ impl CrossSection {
         self.ws.strip_active = [true; MAX_STRIP];
     }
 
+    /// Restarts the section with a crack already cut `crack_depth` (m) below
+    /// its top, the edge at the crack tip with no indentation, and the first
+    /// fracture done if `fractured` (so the toughness is R_c, not R'_c).
+    ///
+    /// This is how the plant hands a cut over to the successor of a moving
+    /// cross section (seed 000 §IV, Fig. 4(b)): [`Self::reset`], then the tip
+    /// at `height − crack_depth`, clamped to leave at least one row of the
+    /// cut line (`crack_depth` ∈ [0, height − row_spacing]). The state then
+    /// reads knife_displacement = crack_depth (the edge is at the tip),
+    /// crack_depth, crack_tip_height = edge_height = height − crack_depth,
+    /// and the `fractured` flag.
+    ///
+    /// Only the crack is carried: the predecessor's elastic state (the
+    /// indentation, the drag of the edge along the cut, the stored strain
+    /// energy) is not, and the energies restart at zero, so the caller keeps
+    /// the predecessor's totals. Allocates nothing.
+    pub fn restart_with_crack(&mut self, crack_depth: f64, fractured: bool) {
+        self.reset();
+        let model = &self.model;
+        let max_depth = (model.height - model.h).max(0.0);
+        let depth = if crack_depth.is_finite() {
+            crack_depth.clamp(0.0, max_depth)
+        } else {
+            0.0
+        };
+        let y = model.height - depth;
+        let st = &mut self.state;
+        st.y_edge = y;
+        st.y_tip = y;
+        st.drag = 0.0;
+        st.fractured = fractured;
+        st.completed = false;
+        st.step.knife_displacement = depth;
+        st.step.edge_height = y;
+        st.step.crack_tip_height = y;
+        st.step.crack_depth = depth;
+        st.step.fractured = fractured;
+    }
+
     /// The state after the last step (or the initial state).
     pub fn state(&self) -> &SectionStep {
         &self.state.step
@@ -818,4 +857,83 @@ fn evaluate(
         e.f_fric_t += 2.0 * ft;
     }
     e
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::material::MaterialPreset;
+
+    /// Knife travel until the crack first grows, and the state then.
+    fn travel_to_first_growth(s: &mut CrossSection, step: f64) -> (f64, SectionStep) {
+        let start = s.state().knife_displacement;
+        for _ in 0..4000 {
+            let st = s.advance(step, 0.0).unwrap();
+            if st.crack_extension > 0.0 {
+                return (st.knife_displacement - start, st);
+            }
+        }
+        panic!("the crack never grew");
+    }
+
+    #[test]
+    fn restart_with_crack_cuts_on_from_the_carried_depth() {
+        // Eggplant cuboid: R'_c = 275 N/m > R_c = 140 N/m, so whether the
+        // first fracture is carried over is visible in the knife travel to
+        // the first crack growth.
+        let material = MaterialPreset::EggplantCuboid.material();
+        let geometry = SectionGeometry::rectangle(0.03, 0.02).unwrap();
+        let settings = SectionSettings {
+            row_spacing: 5e-4,
+            ..SectionSettings::default()
+        };
+        let mut s =
+            CrossSection::new(&geometry, &material, &BladeSection::default(), &settings).unwrap();
+        let step = 6.25e-6;
+        // A cut to a few millimetres, so the section has a history to discard.
+        for _ in 0..800 {
+            s.advance(step, 0.0).unwrap();
+        }
+        assert!(s.state().fractured && s.state().crack_depth > 1e-3);
+
+        let depth = 0.006;
+        s.restart_with_crack(depth, true);
+        let st = *s.state();
+        let y = 0.02 - depth;
+        assert_eq!(st.knife_displacement, depth);
+        assert_eq!(st.crack_depth, depth);
+        assert!((st.crack_tip_height - y).abs() < 1e-15);
+        assert_eq!(st.edge_height, st.crack_tip_height);
+        assert_eq!(st.indentation, 0.0);
+        assert!(st.fractured);
+        assert_eq!(st.work, WorkSplit::default(), "energies restart at zero");
+        // Cutting goes on from the carried depth, never above it.
+        let (travel_fractured, first) = travel_to_first_growth(&mut s, step);
+        // The edge starts at the tip of an open crack: it cuts on at once.
+        assert!(travel_fractured <= 2.0 * step, "{travel_fractured}");
+        assert!(first.fractured);
+        assert!(first.crack_depth > depth);
+        assert!(matches!(first.status, StepStatus::Cutting));
+        for _ in 0..400 {
+            let st = s.advance(step, 0.0).unwrap();
+            assert!(st.crack_depth >= depth);
+        }
+        assert!(s.state().crack_depth > depth + 1e-3, "the cut went on");
+
+        // The flag is what the caller says, not re-derived from the depth.
+        s.restart_with_crack(depth, false);
+        assert!(!s.state().fractured);
+        assert_eq!(s.state().crack_depth, depth);
+
+        // Clamped to leave one row; a negative depth is the intact section.
+        s.restart_with_crack(1.0, true);
+        assert!((s.state().crack_tip_height - s.row_spacing()).abs() < 1e-15);
+        s.restart_with_crack(-1.0, false);
+        assert_eq!(
+            *s.state(),
+            *CrossSection::new(&geometry, &material, &BladeSection::default(), &settings)
+                .unwrap()
+                .state()
+        );
+    }
 }
