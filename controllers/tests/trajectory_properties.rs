@@ -199,11 +199,16 @@ proptest! {
         prop_assert!(within_upper(x.acceleration.max, inp.max_acceleration[0]) && within_upper(-x.acceleration.min, inp.max_acceleration[0]));
         let e = prof.end();
         prop_assert!((e.position - inp.target_position[0]).abs() <= 1e-8);
-        // During braking the speed never exceeds the unavoidable peak |v0| + a0²/(2J) (reached
-        // when the start acceleration pushes the speed further up and −J brakes it at once).
+        // During braking the speed never exceeds the unavoidable peak: full jerk against a0
+        // brings the acceleration to zero after |a0|/J, the velocity having moved by
+        // a0·|a0|/(2J) monotonically; no profile can end that phase earlier, and braking the
+        // velocity afterwards only lowers the speed. So the peak is
+        // max(|v0|, |v0 + a0·|a0|/(2J)|): |v0| + a0²/(2J) when a0 pushes the speed up, and, when
+        // a0 opposes v0 but is large, the swing through zero to the other side (regression
+        // case v0 = 0.105, a0 = −1.33, J = 0.1: the speed unavoidably reaches 8.77).
         let xb = prof.extrema();
         let (v0, a0, j) = (inp.current_velocity[0], inp.current_acceleration[0], inp.max_jerk[0]);
-        let peak = v0.abs() + if a0 * v0 > 0.0 { a0 * a0 / (2.0 * j) } else { 0.0 };
+        let peak = v0.abs().max((v0 + a0 * a0.abs() / (2.0 * j)).abs());
         prop_assert!(xb.velocity.max.abs().max(xb.velocity.min.abs()) <= peak + 1e-12 * peak.max(1.0));
     }
 }
