@@ -20,34 +20,11 @@ use shearcut_controllers::trajectory::{
     TrajectoryStatus,
 };
 
-fn normal<R: Rng>(rng: &mut R, sd: f64) -> f64 {
-    let u1: f64 = rng.random_range(f64::EPSILON..1.0);
-    let u2: f64 = rng.random();
-    sd * (-2.0 * u1.ln()).sqrt() * (std::f64::consts::TAU * u2).cos()
-}
+#[path = "../tests/support/random_cases.rs"]
+#[allow(dead_code)]
+mod random_cases;
 
-fn random_input<const N: usize, R: Rng>(rng: &mut R) -> TrajectoryInput<N> {
-    let mut inp = TrajectoryInput::<N>::default();
-    for i in 0..N {
-        let mut maybe = |p: f64, sd: f64| {
-            if rng.random::<f64>() < p {
-                normal(rng, sd)
-            } else {
-                0.0
-            }
-        };
-        inp.current_position[i] = maybe(1.0, 4.0);
-        inp.current_velocity[i] = maybe(0.9, 0.8);
-        inp.current_acceleration[i] = maybe(0.8, 0.8);
-        inp.target_position[i] = maybe(1.0, 4.0);
-        inp.target_velocity[i] = maybe(0.7, 0.8);
-        inp.target_acceleration[i] = maybe(0.6, 0.8);
-        inp.max_velocity[i] = rng.random_range(0.1..12.0) + inp.target_velocity[i].abs();
-        inp.max_acceleration[i] = rng.random_range(0.1..12.0) + inp.target_acceleration[i].abs();
-        inp.max_jerk[i] = rng.random_range(0.1..12.0);
-    }
-    inp
-}
+use random_cases::random_input;
 
 fn env(name: &str, default: u64) -> u64 {
     std::env::var(name)

@@ -16,18 +16,11 @@ fn within_upper(x: f64, lim: f64) -> bool {
     x <= lim + REL * lim.abs().max(1.0)
 }
 
-/// Start states from which no violation is unavoidable (the braking case has its own test).
-fn start_is_safe<const N: usize>(inp: &TrajectoryInput<N>) -> bool {
-    (0..N).all(|i| {
-        let (v, a) = (inp.current_velocity[i], inp.current_acceleration[i]);
-        let (vm, am, j) = (
-            inp.max_velocity[i],
-            inp.max_acceleration[i],
-            inp.max_jerk[i],
-        );
-        a.abs() <= am && v.abs() <= vm && v.abs() + a * a / (2.0 * j) <= vm
-    })
-}
+#[path = "support/random_cases.rs"]
+#[allow(dead_code)]
+mod random_cases;
+
+use random_cases::start_is_safe;
 
 fn dof_strategy() -> impl Strategy<Value = [f64; 9]> {
     (
