@@ -42,6 +42,23 @@ pub enum Command {
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
     },
+    /// Close the loop: a controller drives the plant tick by tick (lockstep)
+    /// until the target depth, and the run's time series, controller trace,
+    /// summary and plots are written.
+    Run {
+        /// Scenario TOML file, or the name of a built-in scenario.
+        scenario: String,
+        /// The controller: mpc, press, slice:XI or force:N (default: the
+        /// scenario's `[controller] kind`).
+        #[arg(long, value_name = "NAME")]
+        controller: Option<String>,
+        /// How controller and plant talk.
+        #[arg(long, value_enum, default_value = "inproc")]
+        transport: crate::commands::run::Transport,
+        /// Result directory (default: runs/<scenario>-<UTC time>).
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+    },
     /// Run time-optimal jerk-limited trajectory cases (one JSON object per
     /// line, ruckig's field names) and write one JSON result per line.
     Trajectory {

@@ -6,7 +6,9 @@
 
 use std::path::Path;
 
+use nalgebra::Vector3;
 use serde::Serialize;
+use shearcut_sim::plant::Measurement;
 
 use crate::error::RunError;
 
@@ -56,6 +58,69 @@ pub struct CutSample {
     pub deformation_m: f64,
     /// True once the material under the edge has fractured.
     pub fractured: bool,
+}
+
+impl CutSample {
+    /// The sample of a plant tick: `start` is the knife's position before the
+    /// cut and `gap` the normal distance to the object's top it first had to
+    /// close (so the displacement counts from first contact); `xi` and `z0`
+    /// label the cut. `None` before the edge reaches the top.
+    ///
+    /// Forces are the true (noise-free) wrench's, resistance positive: the
+    /// object pushes the knife up (+y) and against its tangential motion.
+    /// Torques are the F/T sensor's reading. The work split is not tracked
+    /// per plant (0).
+    pub fn from_plant(
+        m: &Measurement,
+        xi: f64,
+        z0: f64,
+        start: &Vector3<f64>,
+        gap: f64,
+    ) -> Option<Self> {
+        let displacement = start.y - m.position.y - gap;
+        if displacement < 0.0 {
+            return None;
+        }
+        let per_length = |f: f64| {
+            if m.contact_length > 0.0 {
+                f / m.contact_length
+            } else {
+                0.0
+            }
+        };
+        let w = &m.true_wrench;
+        let fv = w.force.y;
+        let fh = if m.velocity.z > 0.0 {
+            -w.force.z
+        } else if m.velocity.z < 0.0 {
+            w.force.z
+        } else {
+            w.force.z.abs()
+        };
+        Some(Self {
+            xi,
+            z0_m: z0,
+            time_s: m.time,
+            displacement_m: displacement,
+            tangential_displacement_m: m.position.z - start.z,
+            force_vertical_n_per_m: per_length(fv),
+            force_horizontal_n_per_m: per_length(fh),
+            force_vertical_n: fv,
+            force_horizontal_n: fh,
+            torque_x_nm: m.wrench[3],
+            torque_y_nm: m.wrench[4],
+            torque_z_nm: m.wrench[5],
+            contact_length_m: m.contact_length,
+            work_j_per_m: per_length(m.work),
+            work_j: m.work,
+            fracture_energy_j_per_m: 0.0,
+            strain_energy_j_per_m: 0.0,
+            friction_work_j_per_m: 0.0,
+            crack_depth_m: m.crack_depth,
+            deformation_m: m.deformation,
+            fractured: m.fractured_sections > 0,
+        })
+    }
 }
 
 /// The outcome of one cut.

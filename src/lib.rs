@@ -3,7 +3,10 @@
 //! run orchestration.
 
 pub mod cli;
+pub mod closed_loop;
 pub mod commands;
+pub mod controller_choice;
+pub mod controller_settings;
 pub mod cut_record;
 pub mod error;
 pub mod logging;

@@ -18,6 +18,12 @@ fn main() -> ExitCode {
         Some(Command::Simulate { scenario, out }) => {
             commands::simulate::run(&scenario, out.as_deref())
         }
+        Some(Command::Run {
+            scenario,
+            controller,
+            transport,
+            out,
+        }) => commands::run::run(&scenario, controller.as_deref(), transport, out.as_deref()),
         Some(Command::Trajectory { cases, out }) => {
             commands::trajectory::run(&cases, out.as_deref())
         }

@@ -14,6 +14,7 @@ use shearcut_sim::{
     ObjectShape, SectionSettings, SensorMount,
 };
 
+use crate::controller_settings::ControllerSettings;
 use crate::error::ConfigError;
 
 /// A scenario as written in a file, before presets are resolved.
@@ -45,6 +46,9 @@ pub struct ScenarioFile {
     /// Settings of the control loop.
     #[serde(default, rename = "loop")]
     pub control_loop: LoopSettings,
+    /// The closed loop's controller (`shearcut run`).
+    #[serde(default)]
+    pub controller: ControllerSettings,
 }
 
 /// `[material]`: `preset = "…"` and/or the five fields of [`Material`].
@@ -170,6 +174,8 @@ pub struct Scenario {
     /// The loop.
     #[serde(rename = "loop")]
     pub control_loop: LoopSettings,
+    /// The closed loop's controller.
+    pub controller: ControllerSettings,
 }
 
 /// The scenario that `shearcut` runs when given none.
@@ -261,6 +267,9 @@ impl ScenarioFile {
         self.control_loop
             .validate()
             .map_err(|e| e.prefixed("loop"))?;
+        self.controller
+            .validate()
+            .map_err(|e| e.prefixed("controller"))?;
         let name = self.name.unwrap_or_else(|| default_name.to_string());
         if name.is_empty() || name.contains(['/', '\\']) {
             return Err(InvalidSetting::new(
@@ -280,6 +289,7 @@ impl ScenarioFile {
             section: self.section,
             plant: self.plant,
             control_loop: self.control_loop,
+            controller: self.controller,
         })
     }
 }

@@ -1,3 +1,5 @@
-//! shearcut-controllers.
+//! shearcut-controllers: the [`controller::Controller`] trait and its
+//! controllers (baselines, MPC), and our jerk-limited trajectory generator.
 
+pub mod controller;
 pub mod trajectory;

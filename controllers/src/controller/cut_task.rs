@@ -1,0 +1,98 @@
+//! What every controller is told about the cut it must make.
+
+use shearcut_sim::InvalidSetting;
+
+/// Speed, acceleration and jerk limits a controller plans within, per axis
+/// of the knife plane (normal and tangential).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct MotionLimits {
+    /// Largest normal speed (down into the object), m/s.
+    pub normal_speed: f64,
+    /// Largest tangential speed along the edge, m/s.
+    pub tangential_speed: f64,
+    /// Largest acceleration per axis, m/s².
+    pub acceleration: f64,
+    /// Largest jerk per axis, m/s³.
+    pub jerk: f64,
+}
+
+impl MotionLimits {
+    /// Per-axis limits that keep the twist's norm within an arm's Cartesian
+    /// `acceleration` and `jerk` limits (their finite-difference checks act
+    /// on the vector norm: two axes each at `x/√2` stay below `x`), with a
+    /// safety `margin` in (0, 1] against the finite-difference rounding, and
+    /// the given speed caps.
+    pub fn within_arm(
+        normal_speed: f64,
+        tangential_speed: f64,
+        acceleration: f64,
+        jerk: f64,
+        margin: f64,
+    ) -> Self {
+        let per_axis = margin / std::f64::consts::SQRT_2;
+        Self {
+            normal_speed,
+            tangential_speed,
+            acceleration: acceleration * per_axis,
+            jerk: jerk * per_axis,
+        }
+    }
+
+    /// Checks every limit is finite and positive.
+    pub fn validate(&self) -> Result<(), InvalidSetting> {
+        for (key, value) in [
+            ("normal_speed", self.normal_speed),
+            ("tangential_speed", self.tangential_speed),
+            ("acceleration", self.acceleration),
+            ("jerk", self.jerk),
+        ] {
+            if !(value.is_finite() && value > 0.0) {
+                return Err(InvalidSetting::new(key, value, "a finite number > 0"));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// The cut a controller must make.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct CutTask {
+    /// Crack depth at which the cut is complete, m (the plant's mean crack
+    /// depth over the sections in the object).
+    pub target_depth: f64,
+    /// Servo period, s (1 ms for a 1 kHz arm).
+    pub period: f64,
+    /// Tangential blade travel available, m: how far the knife may move
+    /// along its edge before the contact arc would leave the blade.
+    pub blade_budget: f64,
+    /// Motion limits.
+    pub limits: MotionLimits,
+}
+
+impl CutTask {
+    /// Checks the task, naming the offending key.
+    pub fn validate(&self) -> Result<(), InvalidSetting> {
+        if !(self.target_depth.is_finite() && self.target_depth > 0.0) {
+            return Err(InvalidSetting::new(
+                "target_depth",
+                self.target_depth,
+                "a finite depth > 0 m",
+            ));
+        }
+        if !(self.period.is_finite() && self.period > 0.0) {
+            return Err(InvalidSetting::new(
+                "period",
+                self.period,
+                "a finite period > 0 s",
+            ));
+        }
+        if !(self.blade_budget.is_finite() && self.blade_budget >= 0.0) {
+            return Err(InvalidSetting::new(
+                "blade_budget",
+                self.blade_budget,
+                "a finite length >= 0 m",
+            ));
+        }
+        self.limits.validate().map_err(|e| e.prefixed("limits"))
+    }
+}

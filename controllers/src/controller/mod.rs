@@ -1,0 +1,78 @@
+//! Controllers of the knife: the [`Controller`] trait and the baselines.
+//!
+//! A controller sees what an arm and its force/torque sensor report each
+//! servo tick (a [`Measurement`]) and answers with the knife twist for the
+//! next tick (a [`KnifeCommand`]), as a controller embedded in an arm's
+//! 1 kHz loop does. Every controller here plans a knife velocity
+//! (normal speed v_n down into the object and tangential speed v_t along
+//! the edge, towards the tip) and hands it to a [`VelocityShaper`], our
+//! jerk-limited trajectory generator's velocity interface, which turns it
+//! into commands the arm accepts (its limits checked by finite differences).
+//!
+//! ## Conventions
+//! World frame as in the plant: y up, the knife moves in its plane (y, z),
+//! +z along the edge towards the tip. A plan (v_n, v_t) is the twist
+//! (0, −v_n, v_t); its slice-push ratio is ξ = v_t / v_n (seed 000 §III,
+//! ξ = tan α for a straight edge).
+//!
+//! ## Baselines
+//! - [`ConstantSlice`]: constant ξ at a constant speed (ξ = 0 is pressing),
+//!   within a blade-travel budget.
+//! - [`ForceFeedback`]: a PI loop on the measured vertical force.
+
+mod blade_budget;
+mod constant_slice;
+mod cut_task;
+mod force_feedback;
+mod velocity_shaper;
+
+pub use blade_budget::{BladeBudget, stopping_distance};
+pub use constant_slice::ConstantSlice;
+pub use cut_task::{CutTask, MotionLimits};
+pub use force_feedback::{ForceFeedback, ForceFeedbackGains};
+pub use velocity_shaper::VelocityShaper;
+
+use shearcut_sim::plant::{KnifeCommand, Measurement};
+
+/// Where a controller is in the cut.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CutPhase {
+    /// Moving towards the target depth.
+    #[default]
+    Cutting,
+    /// The target depth is reached: the knife is brought to rest.
+    Done,
+}
+
+/// What a controller planned in its last tick (for logs and plots).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ControllerTelemetry {
+    /// Planned slice-push ratio ξ = v_t / v_n.
+    pub slice_push_ratio: f64,
+    /// Planned normal speed v_n (down into the object), m/s.
+    pub normal_speed: f64,
+    /// Planned tangential speed v_t (towards the tip), m/s.
+    pub tangential_speed: f64,
+    /// Tangential blade travel used so far, m.
+    pub blade_travel: f64,
+    /// The phase.
+    pub phase: CutPhase,
+}
+
+/// A knife controller in an arm's servo loop.
+///
+/// Construction may allocate; [`Controller::tick`] allocates nothing and
+/// never panics: a controller that cannot plan falls back to a safe command
+/// and says so in its telemetry.
+pub trait Controller {
+    /// A short name for tables and logs (e.g. `slice:0.75`).
+    fn name(&self) -> &str;
+
+    /// One servo tick: the latest measurement in, the command for the next
+    /// tick out.
+    fn tick(&mut self, measurement: &Measurement) -> KnifeCommand;
+
+    /// What the last tick planned.
+    fn telemetry(&self) -> ControllerTelemetry;
+}

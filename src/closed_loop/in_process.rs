@@ -1,0 +1,36 @@
+//! The plant in the controller's process, stepped in lockstep.
+
+use shearcut_sim::plant::{KnifeCommand, Measurement, Plant};
+
+use super::plant_link::{LinkError, PlantLink};
+
+/// A [`Plant`] stepped directly: each command advances it one period.
+#[derive(Debug, Clone)]
+pub struct InProcessPlant {
+    plant: Plant,
+    period: f64,
+}
+
+impl InProcessPlant {
+    /// Wraps `plant`, stepped every `period` seconds.
+    pub fn new(plant: Plant, period: f64) -> Self {
+        Self { plant, period }
+    }
+
+    /// The plant.
+    pub fn plant(&self) -> &Plant {
+        &self.plant
+    }
+}
+
+impl PlantLink for InProcessPlant {
+    fn period(&self) -> f64 {
+        self.period
+    }
+
+    fn exchange(&mut self, command: &KnifeCommand) -> Result<Measurement, LinkError> {
+        self.plant
+            .step(command, self.period)
+            .map_err(|e| LinkError::Model(e.to_string()))
+    }
+}

@@ -1,0 +1,13 @@
+//! The closed loop: a controller driving a plant tick by tick, through a
+//! [`PlantLink`] that hides where the plant runs (in this process now; in
+//! another process over iceoryx2 shared memory next).
+
+mod control_record;
+mod in_process;
+mod plant_link;
+mod runner;
+
+pub use control_record::{ControlSample, TickTimes};
+pub use in_process::InProcessPlant;
+pub use plant_link::{LinkError, PlantLink};
+pub use runner::{LoopCut, LoopEnd, LoopOutput, run_loop};

@@ -1,0 +1,128 @@
+//! The lockstep loop: measurement → controller tick → command → plant.
+
+use nalgebra::Vector3;
+use serde::Serialize;
+use shearcut_controllers::controller::Controller;
+use shearcut_sim::plant::{KnifeCommand, PlantStatus};
+
+use super::control_record::{ControlSample, TickTimes};
+use super::plant_link::{LinkError, PlantLink};
+use crate::cut_record::CutSample;
+
+/// Why a loop stopped.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum LoopEnd {
+    /// The crack reached the target depth.
+    Completed,
+    /// The simulated time ran out first.
+    TimedOut,
+    /// The plant link failed (the message says why).
+    Failed(String),
+}
+
+/// What a loop produced.
+#[derive(Debug, Clone)]
+pub struct LoopOutput {
+    /// One sample per tick from the edge's first contact on.
+    pub samples: Vec<CutSample>,
+    /// One record per controller tick.
+    pub control: Vec<ControlSample>,
+    /// Why it stopped.
+    pub end: LoopEnd,
+    /// Commands the arm refused for breaking a limit.
+    pub limit_faults: usize,
+    /// Controller ticks run.
+    pub ticks: usize,
+    /// Wall-clock duration of the controller's ticks.
+    pub tick_times: TickTimes,
+}
+
+/// The cut a loop makes and how its samples are labelled.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LoopCut {
+    /// Slice-push ratio written in the samples' `xi` column (the
+    /// controller's nominal one).
+    pub xi_label: f64,
+    /// Heel-to-object distance along the edge, m.
+    pub z0: f64,
+    /// Knife position before the cut, m.
+    pub start: Vector3<f64>,
+    /// Normal distance from the edge to the object's top at the start, m.
+    pub gap: f64,
+    /// Crack depth that completes the cut, m.
+    pub target_depth: f64,
+    /// Longest simulated time, s.
+    pub max_duration: f64,
+}
+
+/// Runs `controller` against `link` in lockstep until the cut completes,
+/// the time runs out or the link fails. The first command is the arm at
+/// rest (its state before the controller has seen a measurement).
+#[allow(clippy::disallowed_methods)] // Tick durations are statistics, not model inputs.
+pub fn run_loop(
+    link: &mut dyn PlantLink,
+    controller: &mut dyn Controller,
+    cut: &LoopCut,
+) -> LoopOutput {
+    let max_ticks = (cut.max_duration / link.period()).ceil() as usize;
+    let mut samples = Vec::new();
+    let mut control = Vec::with_capacity(max_ticks.min(1 << 20));
+    let mut durations = Vec::with_capacity(max_ticks.min(1 << 20));
+    let mut limit_faults = 0;
+    let mut end = LoopEnd::TimedOut;
+    let mut measurement = match link.exchange(&KnifeCommand::default()) {
+        Ok(m) => m,
+        Err(e) => return failed(e),
+    };
+    let mut ticks = 0;
+    while ticks < max_ticks {
+        let started = std::time::Instant::now();
+        let command = controller.tick(&measurement);
+        durations.push(started.elapsed().as_secs_f64() * 1e6);
+        ticks += 1;
+        control.push(ControlSample::new(
+            measurement.time,
+            &controller.telemetry(),
+            &command,
+        ));
+        measurement = match link.exchange(&command) {
+            Ok(m) => m,
+            Err(e) => {
+                end = LoopEnd::Failed(e.to_string());
+                break;
+            }
+        };
+        if matches!(measurement.status, PlantStatus::LimitViolation(_)) {
+            limit_faults += 1;
+        }
+        if let Some(s) =
+            CutSample::from_plant(&measurement, cut.xi_label, cut.z0, &cut.start, cut.gap)
+        {
+            samples.push(s);
+        }
+        if measurement.crack_depth >= cut.target_depth {
+            end = LoopEnd::Completed;
+            break;
+        }
+    }
+    LoopOutput {
+        samples,
+        control,
+        end,
+        limit_faults,
+        ticks,
+        tick_times: TickTimes::from_durations(&mut durations),
+    }
+}
+
+fn failed(e: LinkError) -> LoopOutput {
+    LoopOutput {
+        samples: Vec::new(),
+        control: Vec::new(),
+        end: LoopEnd::Failed(e.to_string()),
+        limit_faults: 0,
+        ticks: 0,
+        tick_times: TickTimes::from_durations(&mut []),
+    }
+}

@@ -1,0 +1,306 @@
+//! `shearcut run`: the closed loop — a controller driving the plant tick by
+//! tick, in lockstep, through a plant link.
+
+use std::path::Path;
+
+use nalgebra::Vector2;
+use serde::Serialize;
+use shearcut_controllers::controller::{
+    ConstantSlice, Controller, CutTask, ForceFeedback, ForceFeedbackGains, MotionLimits,
+};
+use shearcut_sim::geometry::TriangleMesh;
+use shearcut_sim::plant::Plant;
+use shearcut_sim::{InvalidSetting, Knife};
+
+use crate::closed_loop::{
+    ControlSample, InProcessPlant, LoopCut, LoopEnd, LoopOutput, TickTimes, run_loop,
+};
+use crate::controller_choice::ControllerChoice;
+use crate::cut_record::{CutSample, CutSummary, write_json, write_timeseries};
+use crate::error::{ConfigError, RunError};
+use crate::plot::control_trace::draw_control_trace;
+use crate::plot::cut_curves::draw_cut_curves;
+use crate::render_plot;
+use crate::run_dir;
+use crate::scenario::Scenario;
+
+/// How controller and plant talk.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Transport {
+    /// Plant and controller in one process, stepped in lockstep.
+    Inproc,
+}
+
+/// Margin on the arm's acceleration and jerk limits for the controllers'
+/// plans (their finite-difference checks see rounding).
+const ARM_MARGIN: f64 = 0.9;
+
+/// Everything a closed-loop run produced.
+#[derive(Debug, Clone)]
+pub struct RunOutput {
+    /// The controller's name.
+    pub controller: String,
+    /// The loop's records.
+    pub output: LoopOutput,
+    /// Summary of the cut.
+    pub summary: CutSummary,
+    /// Target crack depth, m.
+    pub target_depth_m: f64,
+}
+
+/// The summary file's content.
+#[derive(Debug, Serialize)]
+struct SummaryFile<'a> {
+    scenario: &'a str,
+    controller: &'a str,
+    transport: Transport,
+    end: &'a LoopEnd,
+    target_depth_m: f64,
+    cut: &'a CutSummary,
+    ticks: usize,
+    limit_faults: usize,
+    controller_tick: TickTimes,
+}
+
+fn invalid(scenario: &Scenario, setting: InvalidSetting) -> RunError {
+    RunError::Config(ConfigError::Invalid {
+        path: scenario.name.clone(),
+        setting,
+    })
+}
+
+/// The cut task of a scenario for its first z₀: target depth (motion.depth
+/// or 0.8 × the object's height), servo period, blade budget and limits.
+pub fn cut_task(s: &Scenario, knife: &Knife, mesh: &TriangleMesh) -> CutTask {
+    let (lo, hi) = mesh.bounds();
+    let z0 = s.motion.z0.first().copied().unwrap_or(0.0);
+    let edge = knife.edge().vertices();
+    let (z_min, z_max) = edge
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+            (a.min(p.x), b.max(p.x))
+        });
+    let budget = s
+        .controller
+        .blade_budget
+        .unwrap_or(((z_max - z_min) - z0 - (hi.z - lo.z)).max(0.0));
+    let arm = &s.control_loop.arm_limits;
+    CutTask {
+        target_depth: s.motion.depth.unwrap_or(0.8 * (hi.y - lo.y)),
+        period: 1.0 / s.control_loop.rate_hz,
+        blade_budget: budget,
+        limits: MotionLimits::within_arm(
+            s.controller.max_normal_speed.min(arm.velocity),
+            s.controller.max_tangential_speed.min(arm.velocity),
+            arm.acceleration,
+            arm.jerk,
+            ARM_MARGIN,
+        ),
+    }
+}
+
+/// The controller a choice names, for a scenario's task.
+pub fn make_controller(
+    s: &Scenario,
+    choice: ControllerChoice,
+    task: &CutTask,
+) -> Result<Box<dyn Controller>, RunError> {
+    let c = &s.controller;
+    let made: Result<Box<dyn Controller>, InvalidSetting> = match choice {
+        ControllerChoice::Press => {
+            ConstantSlice::press(task, c.speed).map(|x| Box::new(x) as Box<dyn Controller>)
+        }
+        ControllerChoice::Slice(xi) => {
+            ConstantSlice::new(task, xi, c.speed).map(|x| Box::new(x) as Box<dyn Controller>)
+        }
+        ControllerChoice::Force(n) => {
+            let gains = c
+                .force_gains
+                .unwrap_or_else(|| ForceFeedbackGains::for_setpoint(n, c.speed));
+            ForceFeedback::new(task, n, gains, 0.0, c.speed)
+                .map(|x| Box::new(x) as Box<dyn Controller>)
+        }
+        ControllerChoice::Mpc => {
+            return Err(RunError::Config(ConfigError::Argument(
+                InvalidSetting::new(
+                    "--controller",
+                    "mpc",
+                    "the MPC has not landed yet; use press, slice:XI or force:N",
+                ),
+            )));
+        }
+    };
+    made.map_err(|e| invalid(s, e.prefixed("controller")))
+}
+
+/// Builds the plant for a cut at slice-push ratio `xi` (the direction its
+/// contact arc is planned for) and the scenario's first z₀.
+pub fn make_plant(
+    s: &Scenario,
+    knife: &Knife,
+    mesh: &TriangleMesh,
+    xi: f64,
+) -> Result<Plant, RunError> {
+    let alpha = xi.atan();
+    let z0 = s.motion.z0.first().copied().unwrap_or(0.0);
+    Plant::new(
+        &s.material,
+        knife,
+        mesh,
+        z0,
+        Vector2::new(alpha.sin(), -alpha.cos()),
+        &s.plant,
+        &s.section,
+        &s.control_loop.arm_limits,
+        s.seed,
+    )
+    .map_err(|e| {
+        invalid(
+            s,
+            InvalidSetting::new("motion", format!("xi = {xi}, z0 = {z0}"), e.to_string()),
+        )
+    })
+}
+
+/// Runs the closed loop for a loaded scenario (no files written).
+pub fn run_closed_loop(s: &Scenario, choice: ControllerChoice) -> Result<RunOutput, RunError> {
+    let knife = Knife::new(&s.knife).map_err(|e| invalid(s, e.prefixed("knife")))?;
+    let mesh = s
+        .object
+        .mesh()
+        .map_err(|e| invalid(s, InvalidSetting::new("object", "mesh", e.to_string())))?;
+    let task = cut_task(s, &knife, &mesh);
+    let mut controller = make_controller(s, choice, &task)?;
+    let xi = choice.nominal_slice_push_ratio(0.0);
+    let plant = make_plant(s, &knife, &mesh, xi)?;
+    let cut = LoopCut {
+        xi_label: xi,
+        z0: s.motion.z0.first().copied().unwrap_or(0.0),
+        start: plant.position(),
+        gap: s.plant.start_gap,
+        target_depth: task.target_depth,
+        max_duration: s.controller.max_duration,
+    };
+    let mut link = InProcessPlant::new(plant, task.period);
+    let output = run_loop(&mut link, controller.as_mut(), &cut);
+    let summary = CutSummary::from_samples(&output.samples, task.target_depth);
+    Ok(RunOutput {
+        controller: controller.name().to_string(),
+        output,
+        summary,
+        target_depth_m: task.target_depth,
+    })
+}
+
+/// Runs the subcommand: load, run, write the results and print a summary.
+pub fn run(
+    scenario: &str,
+    controller: Option<&str>,
+    transport: Transport,
+    out: Option<&Path>,
+) -> Result<(), RunError> {
+    let s = Scenario::load(scenario)?;
+    let choice = match controller {
+        Some(text) => text
+            .parse::<ControllerChoice>()
+            .map_err(|e| RunError::Config(ConfigError::Argument(e.prefixed("-"))))?,
+        None => s.controller.kind,
+    };
+    let run = run_closed_loop(&s, choice)?;
+    let dir = run_dir::create(&s.name, out)?;
+    write_results(&s, &run, transport, &dir)?;
+    print_summary(&s, &run);
+    println!(
+        "results: {}/ (timeseries.csv, controller.csv, summary.json, scenario.toml, forces_work.svg/.png, controller.svg/.png)",
+        dir.display()
+    );
+    if let LoopEnd::Failed(why) = &run.output.end {
+        return Err(RunError::write(&dir, format!("the loop failed: {why}")));
+    }
+    Ok(())
+}
+
+fn write_results(
+    s: &Scenario,
+    run: &RunOutput,
+    transport: Transport,
+    dir: &Path,
+) -> Result<(), RunError> {
+    let o = &run.output;
+    write_timeseries(&dir.join("timeseries.csv"), &o.samples)?;
+    write_control(&dir.join("controller.csv"), &o.control)?;
+    write_json(
+        &dir.join("summary.json"),
+        &SummaryFile {
+            scenario: &s.name,
+            controller: &run.controller,
+            transport,
+            end: &o.end,
+            target_depth_m: run.target_depth_m,
+            cut: &run.summary,
+            ticks: o.ticks,
+            limit_faults: o.limit_faults,
+            controller_tick: o.tick_times,
+        },
+    )?;
+    let resolved = crate::commands::check::resolved_toml(s);
+    std::fs::write(dir.join("scenario.toml"), resolved)
+        .map_err(|e| RunError::write(dir.join("scenario.toml"), e))?;
+    let cuts: [&[CutSample]; 1] = [&o.samples];
+    let title = format!(
+        "{} under {}: force and work on the knife",
+        s.name, run.controller
+    );
+    for name in ["forces_work.svg", "forces_work.png"] {
+        render_plot!(&dir.join(name), (1500, 500), |root| draw_cut_curves(
+            root, &title, &cuts, false
+        ))?;
+    }
+    let title = format!(
+        "{} under {}: what the controller commanded",
+        s.name, run.controller
+    );
+    for name in ["controller.svg", "controller.png"] {
+        render_plot!(&dir.join(name), (1200, 500), |root| draw_control_trace(
+            root, &title, &o.control
+        ))?;
+    }
+    Ok(())
+}
+
+/// Writes the controller's records as CSV.
+fn write_control(path: &Path, samples: &[ControlSample]) -> Result<(), RunError> {
+    let mut w = csv::Writer::from_path(path).map_err(|e| RunError::write(path, e))?;
+    for s in samples {
+        w.serialize(s).map_err(|e| RunError::write(path, e))?;
+    }
+    w.flush().map_err(|e| RunError::write(path, e))
+}
+
+fn print_summary(s: &Scenario, run: &RunOutput) {
+    let c = &run.summary;
+    let o = &run.output;
+    println!(
+        "{}: {} [closed loop, {}]",
+        s.name, s.description, run.controller
+    );
+    println!(
+        "end: {:?} after {} ticks ({:.3} s simulated); limit faults: {}",
+        o.end, o.ticks, c.duration_s, o.limit_faults
+    );
+    println!(
+        "work {:.4} J, peak Fv {:.3} N, peak Fh {:.3} N, max deformation {:.3} mm, depth {:.2} mm of {:.2} mm, blade travel {:.1} mm",
+        c.work_j,
+        c.peak_force_vertical_n,
+        c.peak_force_horizontal_n,
+        c.max_deformation_m * 1e3,
+        c.cut_depth_m * 1e3,
+        run.target_depth_m * 1e3,
+        c.blade_travel_m * 1e3
+    );
+    println!(
+        "controller tick: median {:.2} us, p99 {:.2} us, max {:.2} us (wall clock)",
+        o.tick_times.median_us, o.tick_times.p99_us, o.tick_times.max_us
+    );
+}

@@ -1,0 +1,111 @@
+//! `[controller]`: how `shearcut run` controls the knife.
+
+use serde::{Deserialize, Serialize};
+use shearcut_controllers::controller::ForceFeedbackGains;
+use shearcut_sim::InvalidSetting;
+
+use crate::controller_choice::ControllerChoice;
+
+/// `[controller]`: the closed loop's controller and its limits.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct ControllerSettings {
+    /// The controller `shearcut run` uses unless `--controller` says
+    /// otherwise: `mpc`, `press`, `slice:XI` or `force:N` (default
+    /// `slice:0.75`).
+    #[serde(with = "choice_as_string")]
+    pub kind: ControllerChoice,
+    /// Knife speed along its velocity for the baselines, and the force
+    /// loop's top speed, m/s (default 0.02).
+    pub speed: f64,
+    /// Largest normal (downward) knife speed any controller may plan, m/s
+    /// (default 0.05).
+    pub max_normal_speed: f64,
+    /// Largest tangential knife speed any controller may plan, m/s
+    /// (default 0.1).
+    pub max_tangential_speed: f64,
+    /// Tangential blade travel available, m (default: the edge's length
+    /// along z minus z₀ minus the object's length along the edge, i.e. what
+    /// keeps the whole contact on the blade).
+    pub blade_budget: Option<f64>,
+    /// Longest simulated run, s (default 30): a cut that has not reached its
+    /// target depth by then stops as timed out.
+    pub max_duration: f64,
+    /// Gains of `force:N` (default: full speed at zero force, integral
+    /// time 0.2 s; see `ForceFeedbackGains::for_setpoint`).
+    pub force_gains: Option<ForceFeedbackGains>,
+}
+
+impl Default for ControllerSettings {
+    fn default() -> Self {
+        Self {
+            kind: ControllerChoice::Slice(0.75),
+            speed: 0.02,
+            max_normal_speed: 0.05,
+            max_tangential_speed: 0.1,
+            blade_budget: None,
+            max_duration: 30.0,
+            force_gains: None,
+        }
+    }
+}
+
+impl ControllerSettings {
+    /// Checks every value, naming the key.
+    pub fn validate(&self) -> Result<(), InvalidSetting> {
+        for (key, value) in [
+            ("speed", self.speed),
+            ("max_normal_speed", self.max_normal_speed),
+            ("max_tangential_speed", self.max_tangential_speed),
+            ("max_duration", self.max_duration),
+        ] {
+            if !(value.is_finite() && value > 0.0) {
+                return Err(InvalidSetting::new(key, value, "a finite number > 0"));
+            }
+        }
+        if let Some(b) = self.blade_budget
+            && !(b.is_finite() && b >= 0.0)
+        {
+            return Err(InvalidSetting::new(
+                "blade_budget",
+                b,
+                "a finite length >= 0 m",
+            ));
+        }
+        if let Some(g) = self.force_gains {
+            if !(g.proportional.is_finite() && g.proportional > 0.0) {
+                return Err(InvalidSetting::new(
+                    "force_gains.proportional",
+                    g.proportional,
+                    "a finite gain > 0 (m/s)/N",
+                ));
+            }
+            if !(g.integral.is_finite() && g.integral >= 0.0) {
+                return Err(InvalidSetting::new(
+                    "force_gains.integral",
+                    g.integral,
+                    "a finite gain >= 0 (m/s)/(N s)",
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
+/// `kind` is written as its string form.
+mod choice_as_string {
+    use serde::{Deserialize, Deserializer, Serializer};
+
+    use crate::controller_choice::ControllerChoice;
+
+    pub fn serialize<S: Serializer>(c: &ControllerChoice, s: S) -> Result<S::Ok, S::Error> {
+        s.serialize_str(&c.to_string())
+    }
+
+    pub fn deserialize<'de, D: Deserializer<'de>>(d: D) -> Result<ControllerChoice, D::Error> {
+        let text = String::deserialize(d)?;
+        text.parse().map_err(|e: shearcut_sim::InvalidSetting| {
+            serde::de::Error::custom(format!("`{}`: {}", e.value, e.allowed))
+        })
+    }
+}
