@@ -5,6 +5,9 @@ use plotters::prelude::*;
 
 use crate::closed_loop::ControlSample;
 
+/// A speed curve: label, colour, value in mm/s.
+type SpeedCurve = (&'static str, RGBColor, fn(&ControlSample) -> f64);
+
 /// Draws two panels against time: the planned ξ, and the planned normal and
 /// tangential speeds with the commanded (jerk-limited) ones.
 pub fn draw_control_trace<DB: DrawingBackend>(
@@ -32,7 +35,7 @@ pub fn draw_control_trace<DB: DrawingBackend>(
         trace.iter().map(|s| (s.time_s, s.xi_plan)),
         BLUE.stroke_width(2),
     ))?;
-    let speeds: [(&str, RGBColor, fn(&ControlSample) -> f64); 4] = [
+    let speeds: [SpeedCurve; 4] = [
         ("v_n planned", BLUE, |s| s.normal_speed_plan_m_s * 1e3),
         ("v_t planned", RED, |s| s.tangential_speed_plan_m_s * 1e3),
         ("v_n commanded", CYAN, |s| -s.command_vy_m_s * 1e3),

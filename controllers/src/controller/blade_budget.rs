@@ -79,8 +79,8 @@ mod tests {
     #[test]
     fn stopping_distance_matches_the_profiles() {
         // Jerk-limited only (v < a²/j): v = j·(T/2)², distance v·T/2.
-        let (a, j) = (10.0, 100.0);
-        let v = 0.25; // a²/j = 1
+        let (a, j): (f64, f64) = (10.0, 100.0);
+        let v: f64 = 0.25; // a²/j = 1
         let t = 2.0 * (v / j).sqrt();
         assert!((stopping_distance(v, a, j) - 0.5 * v * t).abs() < 1e-15);
         // With a constant-deceleration phase: T = v/a + a/j.
