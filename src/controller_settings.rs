@@ -32,7 +32,7 @@ pub struct ControllerSettings {
     /// target depth by then stops as timed out.
     pub max_duration: f64,
     /// Gains of `force:N` (default: full speed at zero force, integral
-    /// time 0.2 s; see `ForceFeedbackGains::for_setpoint`).
+    /// time 2 s; see `ForceFeedbackGains::for_setpoint`).
     pub force_gains: Option<ForceFeedbackGains>,
 }
 

@@ -22,25 +22,36 @@ pub struct ForceFeedbackGains {
 
 impl ForceFeedbackGains {
     /// Gains scaled to a setpoint: full `speed` at zero force from the
-    /// proportional term (k_p = speed / setpoint), and an integral time of
-    /// 0.2 s (k_i = k_p / 0.2 s).
+    /// proportional term (k_p = speed / setpoint) and an integral time of
+    /// 2 s (k_i = k_p / 2 s). Before it fractures the material is close to a
+    /// spring in depth (F = k·d), an integrating plant for a speed command:
+    /// the loop s² + k·k_p·s + k·k_i is critically damped or better when
+    /// k·k_p·T_i ≥ 4, i.e. for any stiffness above 2·setpoint/speed.
     pub fn for_setpoint(setpoint: f64, speed: f64) -> Self {
         let proportional = speed / setpoint;
         Self {
             proportional,
-            integral: proportional / 0.2,
+            integral: proportional / 2.0,
         }
     }
 }
+
+/// Relative distance from the setpoint within which the integral runs.
+pub const INTEGRAL_BAND: f64 = 0.1;
 
 /// Holds the measured vertical force (the F/T sensor's f_y, object on knife)
 /// at a setpoint by commanding the normal speed, at a constant slice-push
 /// ratio ξ (default 0: pressing), until the target depth:
 ///
-/// v_n = clamp(k_p·e + k_i·∫e dt, 0, v_max),   e = F* − F_y,   v_t = ξ·v_n.
+/// v_n = clamp(k_p·e + k_i·∫e dt, −v_max, v_max),   e = F* − F_y,
+/// v_t = ξ·max(v_n, 0).
 ///
-/// The integral stops while the output is saturated and the error would push
-/// it further (conditional integration, no wind-up). The material is rate
+/// Above the setpoint the knife backs off (v_n < 0, no tangential motion),
+/// as an arm's force loop does. The integral runs only within
+/// [`INTEGRAL_BAND`] of the setpoint (integral separation: far from it the
+/// proportional term moves the knife, and an integral charged during the
+/// approach would only overshoot), and stops while the output is saturated
+/// and the error would push it further (no wind-up). The material is rate
 /// independent in the model, so once the knife cuts steadily the force is
 /// set by the material, not the speed: the loop then only limits force peaks
 /// and otherwise runs at v_max. The blade budget is kept as
@@ -143,10 +154,11 @@ impl Controller for ForceFeedback {
             };
             let error = self.setpoint - force;
             let unclamped = self.gains.proportional * error + self.gains.integral * self.integral;
-            let v_n = unclamped.clamp(0.0, self.max_normal_speed);
-            let saturated_high = unclamped >= self.max_normal_speed && error > 0.0;
-            let saturated_low = unclamped <= 0.0 && error < 0.0;
-            if !(saturated_high || saturated_low) {
+            let v_max = self.max_normal_speed;
+            let v_n = unclamped.clamp(-v_max, v_max);
+            let saturated_high = unclamped >= v_max && error > 0.0;
+            let saturated_low = unclamped <= -v_max && error < 0.0;
+            if !(saturated_high || saturated_low) && error.abs() <= INTEGRAL_BAND * self.setpoint {
                 self.integral += error * self.task.period;
             }
             let v_t =

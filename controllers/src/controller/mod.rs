@@ -29,7 +29,7 @@ mod velocity_shaper;
 pub use blade_budget::{BladeBudget, stopping_distance};
 pub use constant_slice::ConstantSlice;
 pub use cut_task::{CutTask, MotionLimits};
-pub use force_feedback::{ForceFeedback, ForceFeedbackGains};
+pub use force_feedback::{ForceFeedback, ForceFeedbackGains, INTEGRAL_BAND};
 pub use velocity_shaper::VelocityShaper;
 
 use shearcut_sim::plant::{KnifeCommand, Measurement};

@@ -1,0 +1,80 @@
+//! Proves that the baselines' `tick()` allocates nothing after construction,
+//! with a counting global allocator (its own test binary).
+#![allow(unsafe_code)] // GlobalAlloc is an unsafe trait; the impl only forwards to System.
+
+mod synthetic_arm;
+
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
+use std::sync::atomic::{AtomicUsize, Ordering};
+
+use shearcut_controllers::controller::{
+    ConstantSlice, Controller, ForceFeedback, ForceFeedbackGains,
+};
+use shearcut_sim::plant::PlantStatus;
+use synthetic_arm::{SyntheticArm, task};
+
+struct Counting;
+
+static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+
+thread_local! {
+    /// Only the measuring thread's allocations count.
+    static TRACK: Cell<bool> = const { Cell::new(false) };
+}
+
+fn count() {
+    if TRACK.try_with(Cell::get).unwrap_or(false) {
+        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
+    }
+}
+
+// SAFETY: every call is forwarded unchanged to the system allocator.
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        count();
+        // SAFETY: same contract as the caller's.
+        unsafe { System.alloc(layout) }
+    }
+
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        // SAFETY: same contract as the caller's.
+        unsafe { System.dealloc(ptr, layout) }
+    }
+
+    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+        count();
+        // SAFETY: same contract as the caller's.
+        unsafe { System.realloc(ptr, layout, new_size) }
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+/// Allocations made by `ticks` ticks of `c` against a spring arm, through
+/// approach, contact, the blade budget running out and the target depth.
+fn allocations(c: &mut dyn Controller, ticks: usize) -> usize {
+    let mut arm = SyntheticArm::new(2000.0);
+    let mut m = arm.measure(PlantStatus::Moving);
+    ALLOCATIONS.store(0, Ordering::SeqCst);
+    TRACK.with(|t| t.set(true));
+    for _ in 0..ticks {
+        let command = c.tick(&m);
+        m = arm.step(&command);
+    }
+    TRACK.with(|t| t.set(false));
+    ALLOCATIONS.load(Ordering::SeqCst)
+}
+
+#[test]
+fn baseline_ticks_allocate_nothing() {
+    let t = task(0.01, 0.002);
+    let mut slice = ConstantSlice::new(&t, 1.0, 0.02).unwrap();
+    assert_eq!(allocations(&mut slice, 2000), 0);
+    let mut press = ConstantSlice::press(&t, 0.02).unwrap();
+    assert_eq!(allocations(&mut press, 2000), 0);
+    let g = ForceFeedbackGains::for_setpoint(10.0, 0.02);
+    let mut force = ForceFeedback::new(&t, 10.0, g, 0.5, 0.02).unwrap();
+    assert_eq!(allocations(&mut force, 2000), 0);
+}

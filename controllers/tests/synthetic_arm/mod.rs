@@ -1,0 +1,95 @@
+//! A stand-in for the plant in controller tests: an arm that executes every
+//! command its limit monitor accepts, and a material that pushes back like
+//! a linear spring (F_y = k·depth), with the crack as deep as the knife.
+
+use nalgebra::Vector3;
+use shearcut_controllers::controller::{CutTask, MotionLimits};
+use shearcut_sim::plant::{
+    ArmLimitMonitor, ArmLimits, KnifeCommand, Measurement, PlantStatus, Wrench,
+};
+
+/// Servo period, s.
+pub const PERIOD: f64 = 1e-3;
+
+/// A task at 1 kHz within FR3 limits (90 % margin).
+pub fn task(target_depth: f64, blade_budget: f64) -> CutTask {
+    let arm = ArmLimits::default();
+    CutTask {
+        target_depth,
+        period: PERIOD,
+        blade_budget,
+        limits: MotionLimits::within_arm(0.05, 0.1, arm.acceleration, arm.jerk, 0.9),
+    }
+}
+
+/// The arm, its limit reflexes and a spring material.
+pub struct SyntheticArm {
+    /// Limit reflexes (FR3).
+    pub monitor: ArmLimitMonitor,
+    /// Knife position, m.
+    pub position: Vector3<f64>,
+    /// Executed velocity, m/s.
+    pub velocity: Vector3<f64>,
+    /// Spring stiffness, N/m of depth.
+    pub stiffness: f64,
+    /// Simulated time, s.
+    pub time: f64,
+    /// Commands refused.
+    pub refused: usize,
+}
+
+impl SyntheticArm {
+    /// At rest at the origin (the object's top at y = 0).
+    pub fn new(stiffness: f64) -> Self {
+        Self {
+            monitor: ArmLimitMonitor::new(ArmLimits::default()),
+            position: Vector3::zeros(),
+            velocity: Vector3::zeros(),
+            stiffness,
+            time: 0.0,
+            refused: 0,
+        }
+    }
+
+    /// The measurement now.
+    pub fn measure(&self, status: PlantStatus) -> Measurement {
+        let depth = (-self.position.y).max(0.0);
+        let force = self.stiffness * depth;
+        let true_wrench = Wrench {
+            force: Vector3::new(0.0, force, 0.0),
+            torque: Vector3::zeros(),
+        };
+        Measurement {
+            time: self.time,
+            position: self.position,
+            velocity: self.velocity,
+            wrench: true_wrench.to_array(),
+            true_wrench,
+            crack_depth: depth,
+            contact_length: if depth > 0.0 { 0.05 } else { 0.0 },
+            fractured_sections: 0,
+            work: 0.0,
+            deformation: 0.0,
+            status,
+        }
+    }
+
+    /// Executes one command (or refuses it) and measures.
+    pub fn step(&mut self, command: &KnifeCommand) -> Measurement {
+        let status = match self.monitor.check(command.velocity, PERIOD) {
+            Ok(()) => {
+                self.velocity = command.velocity;
+                PlantStatus::Moving
+            }
+            Err(why) => {
+                self.refused += 1;
+                self.monitor.reset();
+                self.velocity = Vector3::zeros();
+                PlantStatus::LimitViolation(why)
+            }
+        };
+        self.position += self.velocity * PERIOD;
+        self.time += PERIOD;
+        self.measure(status)
+    }
+}

@@ -1,0 +1,133 @@
+//! The in-process closed loop: determinism, limits, the seed's trend, and
+//! agreement with the open-loop model; `shearcut run` end to end.
+
+use std::process::Command;
+
+use shearcut::commands::run::run_closed_loop;
+use shearcut::commands::simulate::simulate;
+use shearcut::controller_choice::ControllerChoice;
+use shearcut::cut_record::CutSample;
+use shearcut::scenario::Scenario;
+
+/// Fig. 7's potato cuboid, 6 mm deep, at one ξ, with a coarse section.
+fn small_potato(xi: f64) -> Scenario {
+    let text = include_str!("../config/scenarios/fig7-potato.toml").to_string()
+        + "\n[plant]\nsegments = 2\n\n[section]\nrow_spacing = 0.0005\n";
+    let text = text
+        .replace(
+            "slice_push_ratios = [0.0, 0.33, 0.75, 1.8]",
+            &format!("slice_push_ratios = [{xi}]"),
+        )
+        .replace("depth = 0.02", "depth = 0.006");
+    Scenario::parse(&text, "small-potato", "small-potato").unwrap()
+}
+
+#[test]
+fn lockstep_runs_are_bit_identical_and_respect_the_arm() {
+    let s = small_potato(0.75);
+    let a = run_closed_loop(&s, ControllerChoice::Slice(0.75)).unwrap();
+    let b = run_closed_loop(&s, ControllerChoice::Slice(0.75)).unwrap();
+    assert_eq!(a.output.end, shearcut::closed_loop::LoopEnd::Completed);
+    assert_eq!(a.output.limit_faults, 0);
+    assert!(a.summary.completed);
+    assert_eq!(a.output.samples.len(), b.output.samples.len());
+    // Debug prints every f64 in its shortest round-trip form: equal text is
+    // equal bits.
+    assert_eq!(
+        format!("{:?}", a.output.samples),
+        format!("{:?}", b.output.samples)
+    );
+    assert_eq!(
+        format!("{:?}", a.output.control),
+        format!("{:?}", b.output.control)
+    );
+}
+
+#[test]
+fn closed_loop_slicing_agrees_with_the_open_loop_model_and_beats_pressing() {
+    // The open loop's speed, so that the plant's 1 ms ticks move the knife
+    // about as far as the open loop's model steps (the crack advances in
+    // row-sized jumps whose timing depends on the step).
+    let mut s = small_potato(0.75);
+    s.controller.speed = s.motion.speed;
+    let open = simulate(&s).unwrap();
+    let slice = run_closed_loop(&s, ControllerChoice::Slice(0.75)).unwrap();
+    // Work per unit length of edge in contact when the crack first reaches
+    // 5 mm: the same cross-section physics whichever loop drives it.
+    let at = |v: &[CutSample]| {
+        *v.iter()
+            .find(|x| x.crack_depth_m >= 0.005)
+            .expect("the cut reaches 5 mm")
+    };
+    let (o, c) = (at(&open.samples), at(&slice.output.samples));
+    assert!(
+        (c.crack_depth_m - o.crack_depth_m).abs() < 1e-5,
+        "{} {}",
+        c.crack_depth_m,
+        o.crack_depth_m
+    );
+    assert!(
+        (c.work_j_per_m - o.work_j_per_m).abs() < 5e-3 * o.work_j_per_m,
+        "closed loop {} J/m vs open loop {} J/m",
+        c.work_j_per_m,
+        o.work_j_per_m
+    );
+    // Seed 000 §V.A: slicing at ξ = 0.75 takes less work per unit length
+    // than pressing.
+    let press = run_closed_loop(&s, ControllerChoice::Press).unwrap();
+    let p = at(&press.output.samples);
+    assert!(
+        p.work_j_per_m > c.work_j_per_m,
+        "press {} slice {}",
+        p.work_j_per_m,
+        c.work_j_per_m
+    );
+    assert_eq!(press.summary.peak_force_horizontal_n, 0.0);
+}
+
+fn shearcut(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_shearcut"))
+        .args(args)
+        .env("RUST_LOG", "error")
+        .output()
+        .expect("the shearcut binary runs")
+}
+
+#[test]
+fn run_writes_the_results_and_bad_controllers_exit_2() {
+    let dir = std::env::temp_dir().join(format!("shearcut-run-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("small.toml");
+    let text = include_str!("../config/scenarios/fig7-potato.toml").to_string()
+        + "\n[plant]\nsegments = 2\n\n[section]\nrow_spacing = 0.0005\n\n[controller]\nkind = \"force:5\"\n";
+    std::fs::write(&path, text.replace("depth = 0.02", "depth = 0.003")).unwrap();
+    let out = dir.join("out");
+    let p = path.to_str().unwrap();
+    let o = shearcut(&["run", p, "--out", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    for f in [
+        "timeseries.csv",
+        "controller.csv",
+        "summary.json",
+        "scenario.toml",
+        "forces_work.svg",
+        "forces_work.png",
+        "controller.svg",
+        "controller.png",
+    ] {
+        assert!(out.join(f).is_file(), "{f} missing");
+    }
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["controller"], "force:5");
+    assert_eq!(summary["end"], "completed");
+    assert_eq!(summary["limit_faults"], 0);
+    for bad in ["pid", "slice:-1", "force:0"] {
+        let o = shearcut(&["run", p, "--controller", bad]);
+        assert_eq!(o.status.code(), Some(2), "{bad}");
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.contains(bad), "{err}");
+    }
+    std::fs::remove_dir_all(dir).ok();
+}
