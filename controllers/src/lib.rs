@@ -2,4 +2,5 @@
 //! controllers (baselines, MPC), and our jerk-limited trajectory generator.
 
 pub mod controller;
+pub mod mpc;
 pub mod trajectory;

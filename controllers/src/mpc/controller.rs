@@ -1,0 +1,252 @@
+//! The model-predictive controller: plans ξ and speed over the rest of the
+//! cut at its own rate, and commands jerk-limited velocities every tick.
+
+use shearcut_sim::InvalidSetting;
+use shearcut_sim::plant::{KnifeCommand, Measurement, PlantStatus};
+
+use super::depth_profile::DepthProfile;
+use super::depth_qp::{DepthQp, QpLimits, QpStatus, StageData};
+use super::settings::MpcSettings;
+use super::slice_model::{SliceModel, StageState};
+use crate::controller::{
+    BladeBudget, Controller, ControllerTelemetry, CutPhase, CutTask, VelocityShaper,
+    stopping_distance,
+};
+
+/// Counters of the MPC's plans.
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
+pub struct MpcStats {
+    /// Plans attempted.
+    pub plans: u64,
+    /// Plans that fell back to the previous plan (not solved in budget).
+    pub fallbacks: u64,
+    /// Status of the last plan.
+    pub last_status: Option<QpStatus>,
+    /// Interior-point iterations of the last plan.
+    pub last_iterations: u32,
+    /// Most iterations of any plan.
+    pub max_iterations: u32,
+}
+
+/// Model-predictive control of the slice (DESIGN §4).
+///
+/// Every `1/rate_hz` the remaining depth to the target is split into N
+/// stages (a shrinking horizon that always ends at the target, so the blade
+/// budget is planned over the whole rest of the cut), the [`SliceModel`] is
+/// evaluated at the previous plan, and the convex subproblem of
+/// [`DepthQp`] chooses each stage's ξ and time per unit depth. One
+/// convexification per plan: successive plans re-linearise around the last
+/// one (a real-time iteration scheme), with a trust region keeping each step
+/// where the quadratic model holds. The first stage's plan becomes the
+/// velocity target (v_n = 1/τ₀, v_t = ξ₀·v_n) that the jerk-limited
+/// [`VelocityShaper`] follows on every servo tick in between.
+///
+/// A plan that is not solved within the iteration budget falls back to the
+/// previous plan (the knife keeps its velocity target) and is counted.
+///
+/// Tangential strokes back (sawing) are not planned: ξ ≥ 0 within the blade
+/// budget.
+pub struct Mpc<M: SliceModel> {
+    task: CutTask,
+    settings: MpcSettings,
+    model: M,
+    profile: DepthProfile,
+    qp: DepthQp,
+    limits: QpLimits,
+    stages: Vec<StageData>,
+    plan_xi: Vec<f64>,
+    ticks_per_plan: u64,
+    ticks: u64,
+    normal_speed: f64,
+    tangential_speed: f64,
+    depth_at_fracture: Option<f64>,
+    budget: BladeBudget,
+    shaper: VelocityShaper,
+    stats: MpcStats,
+    replanned: bool,
+    telemetry: ControllerTelemetry,
+}
+
+impl<M: SliceModel> std::fmt::Debug for Mpc<M> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Mpc")
+            .field("settings", &self.settings)
+            .field("stats", &self.stats)
+            .finish_non_exhaustive()
+    }
+}
+
+impl<M: SliceModel> Mpc<M> {
+    /// An MPC for `task` with `model` of the material and `profile` of the
+    /// object, starting from the plan ξ = `initial_xi` at every stage.
+    ///
+    /// # Errors
+    /// Invalid settings or task.
+    pub fn new(
+        task: &CutTask,
+        settings: &MpcSettings,
+        model: M,
+        profile: DepthProfile,
+        initial_xi: f64,
+    ) -> Result<Self, InvalidSetting> {
+        task.validate()?;
+        settings.validate().map_err(|e| e.prefixed("mpc"))?;
+        let n = settings.stages;
+        let l = &task.limits;
+        let limits = QpLimits {
+            xi_max: settings.max_slice_push_ratio,
+            trust_region: settings.trust_region,
+            normal_speed: l.normal_speed,
+            tangential_speed: l.tangential_speed,
+            max_force: settings.max_force.unwrap_or(f64::INFINITY),
+            time_weight: settings.time_weight,
+            smoothness_weight: settings.smoothness_weight,
+            deformation_weight: settings.deformation_weight,
+            force_penalty: settings.force_penalty,
+        };
+        let shaper = VelocityShaper::new(task.period, l)
+            .map_err(|e| InvalidSetting::new("period", task.period, e.to_string()))?;
+        let ticks_per_plan = ((1.0 / settings.rate_hz) / task.period).round().max(1.0) as u64;
+        let xi0 = initial_xi.clamp(0.0, settings.max_slice_push_ratio);
+        Ok(Self {
+            task: *task,
+            settings: *settings,
+            model,
+            profile,
+            qp: DepthQp::new(n, settings.max_iterations),
+            limits,
+            stages: vec![StageData::default(); n],
+            plan_xi: vec![xi0; n],
+            ticks_per_plan,
+            ticks: 0,
+            normal_speed: 0.0,
+            tangential_speed: 0.0,
+            depth_at_fracture: None,
+            budget: BladeBudget::new(task.blade_budget),
+            shaper,
+            stats: MpcStats::default(),
+            replanned: false,
+            telemetry: ControllerTelemetry::default(),
+        })
+    }
+
+    /// Plan counters.
+    pub fn stats(&self) -> &MpcStats {
+        &self.stats
+    }
+
+    /// Whether the last tick planned (solved the subproblem).
+    pub fn replanned(&self) -> bool {
+        self.replanned
+    }
+
+    /// The current plan's ratios, stage by stage.
+    pub fn plan(&self) -> &[f64] {
+        &self.plan_xi
+    }
+
+    /// The model (e.g. to update its scale factors).
+    pub fn model_mut(&mut self) -> &mut M {
+        &mut self.model
+    }
+
+    fn replan(&mut self, m: &Measurement) {
+        let n = self.settings.stages;
+        let d0 = m.crack_depth.max(0.0);
+        let remaining = (self.task.target_depth - d0).max(1e-6);
+        let dd = remaining / n as f64;
+        let fractured = m.fractured_sections > 0;
+        if fractured && self.depth_at_fracture.is_none() {
+            self.depth_at_fracture = Some(d0);
+        }
+        let since = self.depth_at_fracture;
+        for k in 0..n {
+            let depth = d0 + (k as f64 + 0.5) * dd;
+            let state = StageState {
+                depth,
+                height: self.profile.height(),
+                half_width: self.profile.half_width(),
+                fractured: fractured || k > 0,
+                travel_since_fracture: (depth - since.unwrap_or(d0)).max(0.0),
+            };
+            let xi_bar = self.plan_xi[k];
+            self.stages[k] = StageData {
+                depth_step: dd,
+                contact_length: self.profile.contact_length(depth),
+                xi_bar,
+                cost: self.model.stage(xi_bar, &state),
+                before_fracture: !fractured && k == 0,
+            };
+        }
+        let l = &self.task.limits;
+        // Keep what stopping at the current tangential speed needs.
+        let reserve = stopping_distance(self.tangential_speed, l.acceleration, l.jerk);
+        let blade = (self.budget.remaining() - reserve).max(0.0);
+        let previous = self.plan_xi[0];
+        let status = self.qp.solve(&self.stages, &self.limits, previous, blade);
+        self.stats.plans += 1;
+        self.stats.last_status = Some(status);
+        self.stats.last_iterations = self.qp.iterations();
+        self.stats.max_iterations = self.stats.max_iterations.max(self.qp.iterations());
+        if status == QpStatus::Solved {
+            self.plan_xi.copy_from_slice(self.qp.xi());
+            let tau = self.qp.tau()[0];
+            self.normal_speed = (1.0 / tau).min(l.normal_speed);
+            self.tangential_speed = (self.plan_xi[0] * self.normal_speed).min(l.tangential_speed);
+        } else {
+            self.stats.fallbacks += 1;
+            if self.normal_speed == 0.0 {
+                // No plan yet: start at the initial plan's ratio, full speed.
+                self.normal_speed = l
+                    .normal_speed
+                    .min(l.tangential_speed / self.plan_xi[0].max(1e-12));
+                self.tangential_speed = self.plan_xi[0] * self.normal_speed;
+            }
+        }
+    }
+}
+
+impl<M: SliceModel> Controller for Mpc<M> {
+    fn name(&self) -> &str {
+        "mpc"
+    }
+
+    fn tick(&mut self, m: &Measurement) -> KnifeCommand {
+        if matches!(m.status, PlantStatus::LimitViolation(_)) {
+            self.shaper.resync(&m.velocity);
+        }
+        self.budget.observe(m);
+        let done = m.crack_depth >= self.task.target_depth;
+        self.replanned = false;
+        if !done && self.ticks % self.ticks_per_plan == 0 {
+            self.replan(m);
+            self.replanned = true;
+        }
+        self.ticks += 1;
+        let l = &self.task.limits;
+        let (v_n, v_t) = if done {
+            (0.0, 0.0)
+        } else {
+            let v_t = self
+                .budget
+                .allowed_speed(self.tangential_speed, l.acceleration, l.jerk);
+            (self.normal_speed, v_t)
+        };
+        self.telemetry = ControllerTelemetry {
+            slice_push_ratio: if v_n > 0.0 { v_t / v_n } else { 0.0 },
+            normal_speed: v_n,
+            tangential_speed: v_t,
+            blade_travel: self.budget.used(),
+            phase: if done {
+                CutPhase::Done
+            } else {
+                CutPhase::Cutting
+            },
+        };
+        self.shaper.command(v_n, v_t)
+    }
+
+    fn telemetry(&self) -> ControllerTelemetry {
+        self.telemetry
+    }
+}

@@ -1,0 +1,19 @@
+//! Model-predictive control of the slice on Clarabel (DESIGN §4).
+//!
+//! - [`SliceModel`]: what the MPC needs of the cutting model per stage
+//!   (work per unit depth with its ξ-derivatives, force, deflection);
+//! - [`DepthProfile`]: edge in contact and section size along the cut;
+//! - [`DepthQp`]: the convex subproblem over depth stages, persistent;
+//! - [`Mpc`]: the controller.
+
+mod controller;
+mod depth_profile;
+mod depth_qp;
+mod settings;
+mod slice_model;
+
+pub use controller::{Mpc, MpcStats};
+pub use depth_profile::DepthProfile;
+pub use depth_qp::{DepthQp, QpLimits, QpStatus, StageData};
+pub use settings::MpcSettings;
+pub use slice_model::{SliceModel, StageCost, StageState};

@@ -1,0 +1,93 @@
+//! `[controller.mpc]`: the MPC's horizon, weights and limits.
+
+use serde::{Deserialize, Serialize};
+use shearcut_sim::InvalidSetting;
+
+/// Settings of the [`super::Mpc`].
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct MpcSettings {
+    /// Planning rate, Hz (default 100); the trajectory generator fills the
+    /// servo ticks in between.
+    pub rate_hz: f64,
+    /// Stages of the depth horizon (default 10): the remaining depth is
+    /// split into this many equal stages, so the horizon always reaches the
+    /// target depth (a shrinking horizon) and the blade budget is planned
+    /// over the whole rest of the cut.
+    pub stages: usize,
+    /// Largest slice-push ratio planned (default 2.5).
+    pub max_slice_push_ratio: f64,
+    /// Trust region of the sequential convexification: |ξ − ξ̄| per stage
+    /// around the previous plan (default 0.5).
+    pub trust_region: f64,
+    /// Weight of completion time, J/s (default 0.01): a second of cutting
+    /// is worth this much work.
+    pub time_weight: f64,
+    /// Weight of stage-to-stage changes of ξ, J (default 1e-4 per unit ξ²).
+    pub smoothness_weight: f64,
+    /// Weight of surface deflection before fracture, J/m (default 1).
+    pub deformation_weight: f64,
+    /// Vertical force limit, N (default: none). Soft: a violation costs
+    /// `force_penalty` per newton.
+    pub max_force: Option<f64>,
+    /// Cost of a newton above `max_force`, J/N (default 10).
+    pub force_penalty: f64,
+    /// Iteration cap of the interior-point solver per plan (default 40):
+    /// the deterministic time budget; a plan that is not solved within it
+    /// falls back to the previous plan, shifted.
+    pub max_iterations: u32,
+}
+
+impl Default for MpcSettings {
+    fn default() -> Self {
+        Self {
+            rate_hz: 100.0,
+            stages: 10,
+            max_slice_push_ratio: 2.5,
+            trust_region: 0.5,
+            time_weight: 0.01,
+            smoothness_weight: 1e-4,
+            deformation_weight: 1.0,
+            max_force: None,
+            force_penalty: 10.0,
+            max_iterations: 40,
+        }
+    }
+}
+
+impl MpcSettings {
+    /// Checks every value, naming the key.
+    pub fn validate(&self) -> Result<(), InvalidSetting> {
+        for (key, v) in [
+            ("rate_hz", self.rate_hz),
+            ("max_slice_push_ratio", self.max_slice_push_ratio),
+            ("trust_region", self.trust_region),
+        ] {
+            if !(v.is_finite() && v > 0.0) {
+                return Err(InvalidSetting::new(key, v, "a finite number > 0"));
+            }
+        }
+        for (key, v) in [
+            ("time_weight", self.time_weight),
+            ("smoothness_weight", self.smoothness_weight),
+            ("deformation_weight", self.deformation_weight),
+            ("force_penalty", self.force_penalty),
+        ] {
+            if !(v.is_finite() && v >= 0.0) {
+                return Err(InvalidSetting::new(key, v, "a finite number >= 0"));
+            }
+        }
+        if !(1..=200).contains(&self.stages) {
+            return Err(InvalidSetting::new("stages", self.stages, "in 1..=200"));
+        }
+        if self.max_iterations == 0 {
+            return Err(InvalidSetting::new("max_iterations", 0, "at least 1"));
+        }
+        if let Some(f) = self.max_force
+            && !(f.is_finite() && f > 0.0)
+        {
+            return Err(InvalidSetting::new("max_force", f, "a finite force > 0 N"));
+        }
+        Ok(())
+    }
+}

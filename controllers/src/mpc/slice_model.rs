@@ -1,0 +1,44 @@
+//! What the MPC needs to know of the cutting model at one stage.
+
+/// The cut's state at a stage, as the model sees it.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StageState {
+    /// Crack depth below the object's top at the stage, m.
+    pub depth: f64,
+    /// Height of the object's section at the cut, m.
+    pub height: f64,
+    /// Half width of the object's section across the cut, m.
+    pub half_width: f64,
+    /// Whether the material has fractured (the crack runs) by the stage.
+    pub fractured: bool,
+    /// Normal knife travel since the first fracture, m (friction grows with it).
+    pub travel_since_fracture: f64,
+}
+
+/// The model's answer at one ξ, per unit length of edge in contact.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct StageCost {
+    /// Knife work per unit of normal travel, N/m (= J/m per m): F_n + ξ·F_t.
+    pub work_per_depth: f64,
+    /// Its derivative with respect to ξ.
+    pub work_per_depth_slope: f64,
+    /// Its second derivative with respect to ξ (may be negative where the
+    /// model is not convex; the MPC convexifies).
+    pub work_per_depth_curvature: f64,
+    /// Vertical force, N/m.
+    pub force_normal: f64,
+    /// Its derivative with respect to ξ.
+    pub force_normal_slope: f64,
+    /// Surface deflection before fracture, m (0 once fractured).
+    pub deformation: f64,
+    /// Its derivative with respect to ξ.
+    pub deformation_slope: f64,
+}
+
+/// A cutting model the MPC can plan with: cost and force per unit length
+/// of edge as functions of the slice-push ratio ξ at a stage. Evaluation
+/// must not allocate (it runs inside the controller's tick).
+pub trait SliceModel {
+    /// The model at `xi` in `state`.
+    fn stage(&self, xi: f64, state: &StageState) -> StageCost;
+}
