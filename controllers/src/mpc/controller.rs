@@ -218,7 +218,7 @@ impl<M: SliceModel> Controller for Mpc<M> {
         self.budget.observe(m);
         let done = m.crack_depth >= self.task.target_depth;
         self.replanned = false;
-        if !done && self.ticks % self.ticks_per_plan == 0 {
+        if !done && self.ticks.is_multiple_of(self.ticks_per_plan) {
             self.replan(m);
             self.replanned = true;
         }

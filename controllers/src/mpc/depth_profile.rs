@@ -33,7 +33,10 @@ impl DepthProfile {
                 "one contact length per depth, at least one",
             ));
         }
-        if depths.windows(2).any(|w| !(w[1] > w[0])) {
+        if depths
+            .windows(2)
+            .any(|w| w[1].partial_cmp(&w[0]) != Some(std::cmp::Ordering::Greater))
+        {
             return Err(InvalidSetting::new(
                 "depth_profile.depths",
                 format!("{depths:?}"),
