@@ -93,3 +93,26 @@ impl SyntheticArm {
         self.measure(status)
     }
 }
+
+/// A convex stand-in for the surrogate: work per unit depth and length
+/// w(ξ) = 150 − 120ξ + 45ξ² N/m (minimum at ξ = 4/3), force 140/(1+ξ) N/m.
+#[derive(Debug, Clone, Copy)]
+pub struct QuadraticModel;
+
+impl shearcut_controllers::mpc::SliceModel for QuadraticModel {
+    fn stage(
+        &self,
+        xi: f64,
+        _state: &shearcut_controllers::mpc::StageState,
+    ) -> shearcut_controllers::mpc::StageCost {
+        shearcut_controllers::mpc::StageCost {
+            work_per_depth: 150.0 - 120.0 * xi + 45.0 * xi * xi,
+            work_per_depth_slope: -120.0 + 90.0 * xi,
+            work_per_depth_curvature: 90.0,
+            force_normal: 140.0 / (1.0 + xi),
+            force_normal_slope: -140.0 / ((1.0 + xi) * (1.0 + xi)),
+            deformation: 0.0,
+            deformation_slope: 0.0,
+        }
+    }
+}
