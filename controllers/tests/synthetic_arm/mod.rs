@@ -2,6 +2,9 @@
 //! command its limit monitor accepts, and a material that pushes back like
 //! a linear spring (F_y = k·depth), with the crack as deep as the knife.
 
+// Each test binary uses a different part of this shared module.
+#![allow(dead_code)]
+
 use nalgebra::Vector3;
 use shearcut_controllers::controller::{CutTask, MotionLimits};
 use shearcut_sim::plant::{
