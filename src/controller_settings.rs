@@ -2,6 +2,7 @@
 
 use serde::{Deserialize, Serialize};
 use shearcut_controllers::controller::ForceFeedbackGains;
+use shearcut_controllers::mpc::MpcSettings;
 use shearcut_sim::InvalidSetting;
 
 use crate::controller_choice::ControllerChoice;
@@ -34,6 +35,8 @@ pub struct ControllerSettings {
     /// Gains of `force:N` (default: full speed at zero force, integral
     /// time 2 s; see `ForceFeedbackGains::for_setpoint`).
     pub force_gains: Option<ForceFeedbackGains>,
+    /// `[controller.mpc]`: the MPC's horizon, weights and limits.
+    pub mpc: MpcSettings,
 }
 
 impl Default for ControllerSettings {
@@ -46,6 +49,7 @@ impl Default for ControllerSettings {
             blade_budget: None,
             max_duration: 30.0,
             force_gains: None,
+            mpc: MpcSettings::default(),
         }
     }
 }
@@ -88,7 +92,7 @@ impl ControllerSettings {
                 ));
             }
         }
-        Ok(())
+        self.mpc.validate().map_err(|e| e.prefixed("mpc"))
     }
 }
 

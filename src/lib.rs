@@ -10,6 +10,7 @@ pub mod controller_settings;
 pub mod cut_record;
 pub mod error;
 pub mod logging;
+pub mod object_profile;
 pub mod plot;
 pub mod run_dir;
 pub mod scenario;

@@ -36,6 +36,10 @@ pub struct LoopOutput {
     pub ticks: usize,
     /// Wall-clock duration of the controller's ticks.
     pub tick_times: TickTimes,
+    /// Wall-clock duration of the ticks that planned (MPC solves).
+    pub plan_times: TickTimes,
+    /// Plans that fell back to the previous plan.
+    pub fallbacks: u64,
 }
 
 /// The cut a loop makes and how its samples are labelled.
@@ -69,6 +73,7 @@ pub fn run_loop(
     let mut samples = Vec::new();
     let mut control = Vec::with_capacity(max_ticks.min(1 << 20));
     let mut durations = Vec::with_capacity(max_ticks.min(1 << 20));
+    let mut plan_durations = Vec::new();
     let mut limit_faults = 0;
     let mut end = LoopEnd::TimedOut;
     let mut measurement = match link.exchange(&KnifeCommand::default()) {
@@ -79,13 +84,14 @@ pub fn run_loop(
     while ticks < max_ticks {
         let started = std::time::Instant::now();
         let command = controller.tick(&measurement);
-        durations.push(started.elapsed().as_secs_f64() * 1e6);
+        let us = started.elapsed().as_secs_f64() * 1e6;
+        durations.push(us);
         ticks += 1;
-        control.push(ControlSample::new(
-            measurement.time,
-            &controller.telemetry(),
-            &command,
-        ));
+        let telemetry = controller.telemetry();
+        if telemetry.planned {
+            plan_durations.push(us);
+        }
+        control.push(ControlSample::new(measurement.time, &telemetry, &command));
         measurement = match link.exchange(&command) {
             Ok(m) => m,
             Err(e) => {
@@ -113,6 +119,8 @@ pub fn run_loop(
         limit_faults,
         ticks,
         tick_times: TickTimes::from_durations(&mut durations),
+        plan_times: TickTimes::from_durations(&mut plan_durations),
+        fallbacks: controller.telemetry().fallbacks,
     }
 }
 
@@ -124,5 +132,7 @@ fn failed(e: LinkError) -> LoopOutput {
         limit_faults: 0,
         ticks: 0,
         tick_times: TickTimes::from_durations(&mut []),
+        plan_times: TickTimes::from_durations(&mut []),
+        fallbacks: 0,
     }
 }

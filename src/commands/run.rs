@@ -61,6 +61,8 @@ struct SummaryFile<'a> {
     ticks: usize,
     limit_faults: usize,
     controller_tick: TickTimes,
+    plan_tick: TickTimes,
+    plan_fallbacks: u64,
 }
 
 fn invalid(scenario: &Scenario, setting: InvalidSetting) -> RunError {
@@ -242,6 +244,8 @@ fn write_results(
             ticks: o.ticks,
             limit_faults: o.limit_faults,
             controller_tick: o.tick_times,
+            plan_tick: o.plan_times,
+            plan_fallbacks: o.fallbacks,
         },
     )?;
     let resolved = crate::commands::check::resolved_toml(s);
@@ -303,4 +307,10 @@ fn print_summary(s: &Scenario, run: &RunOutput) {
         "controller tick: median {:.2} us, p99 {:.2} us, max {:.2} us (wall clock)",
         o.tick_times.median_us, o.tick_times.p99_us, o.tick_times.max_us
     );
+    if o.plan_times.max_us > 0.0 {
+        println!(
+            "planning ticks: median {:.1} us, p99 {:.1} us, max {:.1} us; fallbacks {}",
+            o.plan_times.median_us, o.plan_times.p99_us, o.plan_times.max_us, o.fallbacks
+        );
+    }
 }

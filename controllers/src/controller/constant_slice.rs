@@ -111,6 +111,8 @@ impl Controller for ConstantSlice {
             } else {
                 CutPhase::Cutting
             },
+            planned: false,
+            fallbacks: 0,
         };
         self.shaper.command(v_n, v_t)
     }

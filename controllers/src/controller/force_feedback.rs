@@ -176,6 +176,8 @@ impl Controller for ForceFeedback {
             } else {
                 CutPhase::Cutting
             },
+            planned: false,
+            fallbacks: 0,
         };
         self.shaper.command(v_n, v_t)
     }

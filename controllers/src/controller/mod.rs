@@ -58,6 +58,10 @@ pub struct ControllerTelemetry {
     pub blade_travel: f64,
     /// The phase.
     pub phase: CutPhase,
+    /// Whether this tick planned (solved an optimisation); for statistics.
+    pub planned: bool,
+    /// Plans so far that fell back to the previous plan.
+    pub fallbacks: u64,
 }
 
 /// A knife controller in an arm's servo loop.

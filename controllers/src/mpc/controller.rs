@@ -242,6 +242,8 @@ impl<M: SliceModel> Controller for Mpc<M> {
             } else {
                 CutPhase::Cutting
             },
+            planned: self.replanned,
+            fallbacks: self.stats.fallbacks,
         };
         self.shaper.command(v_n, v_t)
     }

@@ -31,6 +31,21 @@ impl Polygon {
         ])
     }
 
+    /// Total length of the line v = `v` inside the polygon, m: the sum of
+    /// its inside intervals between even–odd crossings of the edges (each
+    /// edge half-open in v, so a vertex on the line counts once).
+    pub fn chord_length(&self, v: f64) -> f64 {
+        let n = self.points.len();
+        let mut crossings: Vec<f64> = (0..n)
+            .filter_map(|i| {
+                let (a, b) = (self.points[i], self.points[(i + 1) % n]);
+                ((a.y <= v) != (b.y <= v)).then(|| a.x + (v - a.y) / (b.y - a.y) * (b.x - a.x))
+            })
+            .collect();
+        crossings.sort_by(f64::total_cmp);
+        crossings.chunks_exact(2).map(|p| p[1] - p[0]).sum()
+    }
+
     /// Enclosed area, m².
     pub fn area(&self) -> f64 {
         signed_area(&self.points).abs()
@@ -116,5 +131,30 @@ mod tests {
             Vector2::new(1.0, 0.0),
         ]);
         assert!(signed_area(&p.points) > 0.0);
+    }
+
+    #[test]
+    fn chord_lengths_of_a_rectangle_and_a_notched_shape() {
+        let r = Polygon::rectangle(0.03, 0.02);
+        assert!((r.chord_length(0.01) - 0.03).abs() < 1e-15);
+        assert_eq!(r.chord_length(0.03), 0.0);
+        // A U shape: two prongs 1 wide with a gap of 1 above v = 1.
+        let u = Polygon::new(
+            [
+                (0.0, 0.0),
+                (3.0, 0.0),
+                (3.0, 2.0),
+                (2.0, 2.0),
+                (2.0, 1.0),
+                (1.0, 1.0),
+                (1.0, 2.0),
+                (0.0, 2.0),
+            ]
+            .iter()
+            .map(|&(x, y)| Vector2::new(x, y))
+            .collect(),
+        );
+        assert!((u.chord_length(0.5) - 3.0).abs() < 1e-15);
+        assert!((u.chord_length(1.5) - 2.0).abs() < 1e-15);
     }
 }

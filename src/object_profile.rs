@@ -1,0 +1,34 @@
+//! What a controller is told about the object: the edge in contact and the
+//! section's size as the cut deepens.
+
+use shearcut_controllers::mpc::DepthProfile;
+use shearcut_sim::InvalidSetting;
+use shearcut_sim::geometry::TriangleMesh;
+use shearcut_sim::plant::knife_plane_silhouette;
+
+/// Depth samples of a profile.
+const SAMPLES: usize = 41;
+
+/// The object's [`DepthProfile`] for a knife moving down in the plane x = 0:
+/// at crack depth d below the top, the length of edge in contact is the
+/// chord of the object's silhouette in the knife plane at height top − d (a
+/// straight, horizontal edge's view; a curved edge touches a little less).
+/// The section height is the object's height and the half width half its
+/// extent across the knife plane (x), as a vision system would report them.
+pub fn depth_profile(mesh: &TriangleMesh) -> Result<DepthProfile, InvalidSetting> {
+    let (lo, hi) = mesh.bounds();
+    let height = hi.y - lo.y;
+    let silhouette = knife_plane_silhouette(mesh).ok_or_else(|| {
+        InvalidSetting::new("object", "mesh", "does not cross the knife plane x = 0")
+    })?;
+    // Just below the top (the chord at the very top is a point) to just
+    // above the board.
+    let depths: Vec<f64> = (0..SAMPLES)
+        .map(|i| height * (0.005 + 0.99 * i as f64 / (SAMPLES - 1) as f64))
+        .collect();
+    let lengths = depths
+        .iter()
+        .map(|d| silhouette.chord_length(hi.y - d))
+        .collect();
+    DepthProfile::new(depths, lengths, height, 0.5 * (hi.x - lo.x))
+}
