@@ -59,6 +59,16 @@ pub enum Command {
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
     },
+    /// Compare the MPC with the baselines in closed loop on one scenario:
+    /// pressing, the best constant slice-push ratio under the same blade
+    /// budget (searched), and the force loop; write a table and a bar plot.
+    Compare {
+        /// Scenario TOML file, or the name of a built-in scenario.
+        scenario: String,
+        /// Result directory (default: runs/<scenario>-compare-<UTC time>).
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+    },
     /// Run time-optimal jerk-limited trajectory cases (one JSON object per
     /// line, ruckig's field names) and write one JSON result per line.
     Trajectory {

@@ -25,6 +25,8 @@ pub struct ControllerSettings {
     /// Largest tangential knife speed any controller may plan, m/s
     /// (default 0.1).
     pub max_tangential_speed: f64,
+    /// Setpoint of the force loop in `shearcut compare`, N (default 20).
+    pub force_setpoint: f64,
     /// Tangential blade travel available, m (default: the edge's length
     /// along z minus z₀ minus the object's length along the edge, i.e. what
     /// keeps the whole contact on the blade).
@@ -46,6 +48,7 @@ impl Default for ControllerSettings {
             speed: 0.02,
             max_normal_speed: 0.05,
             max_tangential_speed: 0.1,
+            force_setpoint: 20.0,
             blade_budget: None,
             max_duration: 30.0,
             force_gains: None,
@@ -62,6 +65,7 @@ impl ControllerSettings {
             ("max_normal_speed", self.max_normal_speed),
             ("max_tangential_speed", self.max_tangential_speed),
             ("max_duration", self.max_duration),
+            ("force_setpoint", self.force_setpoint),
         ] {
             if !(value.is_finite() && value > 0.0) {
                 return Err(InvalidSetting::new(key, value, "a finite number > 0"));

@@ -24,6 +24,9 @@ fn main() -> ExitCode {
             transport,
             out,
         }) => commands::run::run(&scenario, controller.as_deref(), transport, out.as_deref()),
+        Some(Command::Compare { scenario, out }) => {
+            commands::compare::run(&scenario, out.as_deref())
+        }
         Some(Command::Trajectory { cases, out }) => {
             commands::trajectory::run(&cases, out.as_deref())
         }

@@ -1,6 +1,7 @@
 //! One module per `shearcut` subcommand.
 
 pub mod check;
+pub mod compare;
 pub mod default_job;
 pub mod run;
 pub mod simulate;

@@ -1,5 +1,6 @@
 //! Plots of runs and of the model, as SVG or PNG chosen by the file extension.
 
+pub mod comparison;
 pub mod control_trace;
 pub mod cut_curves;
 pub mod toughness_ratio;
