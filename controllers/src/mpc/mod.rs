@@ -4,16 +4,19 @@
 //!   (work per unit depth with its ξ-derivatives, force, deflection);
 //! - [`DepthProfile`]: edge in contact and section size along the cut;
 //! - [`DepthQp`]: the convex subproblem over depth stages, persistent;
+//! - [`ScaleEstimator`]: online R_c, E, μ scale factors from the forces;
 //! - [`Mpc`]: the controller.
 
 mod controller;
 mod depth_profile;
 mod depth_qp;
+mod scale_estimator;
 mod settings;
 mod slice_model;
 
 pub use controller::{Mpc, MpcStats};
 pub use depth_profile::DepthProfile;
 pub use depth_qp::{DepthQp, QpLimits, QpStatus, StageData};
+pub use scale_estimator::ScaleEstimator;
 pub use settings::MpcSettings;
 pub use slice_model::{SliceModel, StageCost, StageState};
