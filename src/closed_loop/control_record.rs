@@ -23,6 +23,12 @@ pub struct ControlSample {
     pub blade_travel_m: f64,
     /// Whether the controller considers the cut done.
     pub phase: CutPhase,
+    /// Estimated toughness factor (R_c multiplier; 1 without an estimator).
+    pub scale_toughness: f64,
+    /// Estimated stiffness factor (E multiplier).
+    pub scale_stiffness: f64,
+    /// Estimated friction factor (μ multiplier).
+    pub scale_friction: f64,
 }
 
 impl ControlSample {
@@ -37,6 +43,9 @@ impl ControlSample {
             command_vz_m_s: c.velocity.z,
             blade_travel_m: t.blade_travel,
             phase: t.phase,
+            scale_toughness: t.scale[0],
+            scale_stiffness: t.scale[1],
+            scale_friction: t.scale[2],
         }
     }
 }

@@ -113,6 +113,7 @@ impl Controller for ConstantSlice {
             },
             planned: false,
             fallbacks: 0,
+            scale: [1.0; 3],
         };
         self.shaper.command(v_n, v_t)
     }

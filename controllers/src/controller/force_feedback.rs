@@ -178,6 +178,7 @@ impl Controller for ForceFeedback {
             },
             planned: false,
             fallbacks: 0,
+            scale: [1.0; 3],
         };
         self.shaper.command(v_n, v_t)
     }

@@ -46,7 +46,7 @@ pub enum CutPhase {
 }
 
 /// What a controller planned in its last tick (for logs and plots).
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ControllerTelemetry {
     /// Planned slice-push ratio ξ = v_t / v_n.
     pub slice_push_ratio: f64,
@@ -62,6 +62,24 @@ pub struct ControllerTelemetry {
     pub planned: bool,
     /// Plans so far that fell back to the previous plan.
     pub fallbacks: u64,
+    /// The material scale factors the controller currently believes
+    /// (toughness, stiffness, friction; 1 for controllers without a model).
+    pub scale: [f64; 3],
+}
+
+impl Default for ControllerTelemetry {
+    fn default() -> Self {
+        Self {
+            slice_push_ratio: 0.0,
+            normal_speed: 0.0,
+            tangential_speed: 0.0,
+            blade_travel: 0.0,
+            phase: CutPhase::Cutting,
+            planned: false,
+            fallbacks: 0,
+            scale: [1.0; 3],
+        }
+    }
 }
 
 /// A knife controller in an arm's servo loop.

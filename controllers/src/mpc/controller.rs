@@ -6,6 +6,7 @@ use shearcut_sim::plant::{KnifeCommand, Measurement, PlantStatus};
 
 use super::depth_profile::DepthProfile;
 use super::depth_qp::{DepthQp, QpLimits, QpStatus, StageData};
+use super::scale_estimator::ScaleEstimator;
 use super::settings::MpcSettings;
 use super::slice_model::{SliceModel, StageState};
 use crate::controller::{
@@ -28,6 +29,12 @@ pub struct MpcStats {
     pub max_iterations: u32,
 }
 
+/// Prior variance of each scale factor (a ±100 % belief).
+const ESTIMATOR_PRIOR_VARIANCE: f64 = 1.0;
+/// Standard deviation of a force per unit length row, N/m (weights only:
+/// the same for both rows).
+const ESTIMATOR_FORCE_NOISE: f64 = 1.0;
+
 /// Model-predictive control of the slice (DESIGN §4).
 ///
 /// Every `1/rate_hz` the remaining depth to the target is split into N
@@ -43,6 +50,10 @@ pub struct MpcStats {
 ///
 /// A plan that is not solved within the iteration budget falls back to the
 /// previous plan (the knife keeps its velocity target) and is counted.
+///
+/// With `estimate` on, every tick in contact feeds the measured forces per
+/// unit length to a [`ScaleEstimator`] with the model's parts at the
+/// executed ξ, and each plan uses the latest scale factors.
 ///
 /// Tangential strokes back (sawing) are not planned: ξ ≥ 0 within the blade
 /// budget.
@@ -64,6 +75,7 @@ pub struct Mpc<M: SliceModel> {
     shaper: VelocityShaper,
     stats: MpcStats,
     replanned: bool,
+    estimator: Option<ScaleEstimator>,
     telemetry: ControllerTelemetry,
 }
 
@@ -126,6 +138,9 @@ impl<M: SliceModel> Mpc<M> {
             shaper,
             stats: MpcStats::default(),
             replanned: false,
+            estimator: settings
+                .estimate
+                .then(|| ScaleEstimator::new(ESTIMATOR_PRIOR_VARIANCE, settings.forgetting)),
             telemetry: ControllerTelemetry::default(),
         })
     }
@@ -150,16 +165,57 @@ impl<M: SliceModel> Mpc<M> {
         &mut self.model
     }
 
+    /// The scale factors (toughness, stiffness, friction) believed now.
+    pub fn scale(&self) -> [f64; 3] {
+        self.estimator
+            .as_ref()
+            .map_or([1.0; 3], |e| [e.toughness(), e.stiffness(), e.friction()])
+    }
+
+    /// Feeds the measured forces per unit length of edge in contact to the
+    /// estimator, with the model's parts at the executed ξ and the current
+    /// state.
+    fn estimate(&mut self, m: &Measurement) {
+        let Some(estimator) = self.estimator.as_mut() else {
+            return;
+        };
+        let v_n = -m.velocity.y;
+        let l = m.contact_length;
+        if !(v_n > 0.0 && l > 0.0) {
+            return;
+        }
+        let xi = m.velocity.z.abs() / v_n;
+        let depth = m.crack_depth.max(0.0);
+        let fractured = m.fractured_sections > 0;
+        let state = StageState {
+            depth,
+            height: self.profile.height(),
+            half_width: self.profile.half_width(),
+            fractured,
+            travel_since_fracture: self.depth_at_fracture.map_or(0.0, |d| (depth - d).max(0.0)),
+        };
+        let Some((normal, tangential)) = self.model.force_parts(xi, &state) else {
+            return;
+        };
+        // Measured resistance per unit length: up, and against the
+        // tangential motion.
+        let f_n = m.wrench[1] / l;
+        let f_t = -m.wrench[2] * m.velocity.z.signum() / l;
+        estimator.update(normal, f_n, ESTIMATOR_FORCE_NOISE);
+        if m.velocity.z != 0.0 {
+            estimator.update(tangential, f_t, ESTIMATOR_FORCE_NOISE);
+        }
+    }
+
     fn replan(&mut self, m: &Measurement) {
         let n = self.settings.stages;
         let d0 = m.crack_depth.max(0.0);
         let remaining = (self.task.target_depth - d0).max(1e-6);
         let dd = remaining / n as f64;
         let fractured = m.fractured_sections > 0;
-        if fractured && self.depth_at_fracture.is_none() {
-            self.depth_at_fracture = Some(d0);
-        }
         let since = self.depth_at_fracture;
+        let [t, st, f] = self.scale();
+        self.model.set_scale(t, st, f);
         for k in 0..n {
             let depth = d0 + (k as f64 + 0.5) * dd;
             let state = StageState {
@@ -216,6 +272,10 @@ impl<M: SliceModel> Controller for Mpc<M> {
             self.shaper.resync(&m.velocity);
         }
         self.budget.observe(m);
+        if m.fractured_sections > 0 && self.depth_at_fracture.is_none() {
+            self.depth_at_fracture = Some(m.crack_depth.max(0.0));
+        }
+        self.estimate(m);
         let done = m.crack_depth >= self.task.target_depth;
         self.replanned = false;
         if !done && self.ticks.is_multiple_of(self.ticks_per_plan) {
@@ -244,6 +304,7 @@ impl<M: SliceModel> Controller for Mpc<M> {
             },
             planned: self.replanned,
             fallbacks: self.stats.fallbacks,
+            scale: self.scale(),
         };
         self.shaper.command(v_n, v_t)
     }

@@ -36,6 +36,11 @@ pub struct MpcSettings {
     /// the deterministic time budget; a plan that is not solved within it
     /// falls back to the previous plan, shifted.
     pub max_iterations: u32,
+    /// Estimate the material's scale factors online (default true).
+    pub estimate: bool,
+    /// Forgetting factor of the estimator per row, in (0, 1] (default
+    /// 0.999: a memory of about 1000 rows, half a second at 1 kHz).
+    pub forgetting: f64,
 }
 
 impl Default for MpcSettings {
@@ -51,6 +56,8 @@ impl Default for MpcSettings {
             max_force: None,
             force_penalty: 10.0,
             max_iterations: 40,
+            estimate: true,
+            forgetting: 0.999,
         }
     }
 }
@@ -79,6 +86,13 @@ impl MpcSettings {
         }
         if !(1..=200).contains(&self.stages) {
             return Err(InvalidSetting::new("stages", self.stages, "in 1..=200"));
+        }
+        if !(self.forgetting > 0.0 && self.forgetting <= 1.0) {
+            return Err(InvalidSetting::new(
+                "forgetting",
+                self.forgetting,
+                "in (0, 1]",
+            ));
         }
         if self.max_iterations == 0 {
             return Err(InvalidSetting::new("max_iterations", 0, "at least 1"));

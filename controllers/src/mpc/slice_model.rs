@@ -41,4 +41,16 @@ pub struct StageCost {
 pub trait SliceModel {
     /// The model at `xi` in `state`.
     fn stage(&self, xi: f64, state: &StageState) -> StageCost;
+
+    /// The parts of the normal and tangential forces per unit length at
+    /// `xi` in `state` that multiply the toughness, stiffness and
+    /// friction × stiffness factors (for the [`super::ScaleEstimator`]);
+    /// `None` if the model cannot tell (no online estimation).
+    fn force_parts(&self, _xi: f64, _state: &StageState) -> Option<([f64; 3], [f64; 3])> {
+        None
+    }
+
+    /// Sets the scale factors (toughness, stiffness, friction) the model
+    /// predicts with; ignored by models without them.
+    fn set_scale(&mut self, _toughness: f64, _stiffness: f64, _friction: f64) {}
 }
