@@ -131,3 +131,32 @@ fn run_writes_the_results_and_bad_controllers_exit_2() {
     }
     std::fs::remove_dir_all(dir).ok();
 }
+
+#[test]
+fn the_depth_profile_follows_the_objects_silhouette() {
+    use shearcut::object_profile::depth_profile;
+    // A cuboid: the whole length at every depth.
+    let s = small_potato(0.0);
+    let p = depth_profile(&s.object.mesh().unwrap()).unwrap();
+    for d in [0.001, 0.01, 0.02] {
+        assert!(
+            (p.contact_length(d) - 0.03).abs() < 1e-9,
+            "{}",
+            p.contact_length(d)
+        );
+    }
+    assert!((p.height() - 0.025).abs() < 1e-12 && (p.half_width() - 0.015).abs() < 1e-12);
+    // A half ellipsoid (length 90 mm, height 35 mm, flat base): the chord at
+    // depth d is 90·√(1 − (1 − d/35)²) mm (within the mesh's facets).
+    let s = Scenario::load("config/scenarios/fig10-potato-whole.toml").unwrap();
+    let p = depth_profile(&s.object.mesh().unwrap()).unwrap();
+    for d in [0.002, 0.01, 0.02, 0.03] {
+        let z: f64 = 1.0 - d / 0.035;
+        let exact = 0.09 * (1.0 - z * z).sqrt();
+        assert!(
+            (p.contact_length(d) - exact).abs() < 0.03 * exact,
+            "d = {d}: {} vs {exact}",
+            p.contact_length(d)
+        );
+    }
+}
