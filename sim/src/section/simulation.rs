@@ -146,6 +146,8 @@ struct Workspace {
     /// Strip columns in contact with the edge (warm start, as `released`).
     strip_active: [bool; MAX_STRIP],
     mixed: ReleasedWorkspace,
+    /// Linear solves of the condensed line so far (a cost counter).
+    solves: u64,
 }
 
 /// Most active-set iterations of the face contact per evaluation.
@@ -193,7 +195,7 @@ struct State {
 /// classical −∂U/∂a at a held knife is not used). The crack grows when
 /// R(δ₀) ≥ r(ξ,ν)·R'_c before the first fracture, r(ξ,ν)·R_c after it (r of
 /// seed 000 eq. 6); the extension solves R(s) = r·R_c by bracketing (δ doubled)
-/// and bisection. In steady cutting of a deep section ΔU → 0, so
+/// and a safeguarded regula falsi on the bracket. In steady cutting of a deep section ΔU → 0, so
 /// F_n + ξ·F_t → r·R_c: the knife work per unit cut area is r·R_c.
 ///
 /// The step is energy-consistent: knife work = fracture + strain energy +
@@ -278,6 +280,7 @@ impl CrossSection {
                 released: vec![false; n],
                 strip_active: [true; MAX_STRIP],
                 mixed: ReleasedWorkspace::new(n),
+                solves: 0,
             },
             model,
             state,
@@ -335,6 +338,13 @@ impl CrossSection {
     /// The state after the last step (or the initial state).
     pub fn state(&self) -> &SectionStep {
         &self.state.step
+    }
+
+    /// Number of linear solves of the condensed line since construction
+    /// (each configuration evaluated costs one per active-set pass): the
+    /// section's cost counter, for profiling without a clock.
+    pub fn solves(&self) -> u64 {
+        self.ws.solves
     }
 
     /// Height of the section at the cut line, m.
@@ -760,6 +770,7 @@ fn evaluate(
     }
     let mut ip = Default::default();
     for _ in 0..MAX_ACTIVE_SET_ITERATIONS {
+        ws.solves += 1;
         let any = strip_c.active[..k].iter().any(|&a| a);
         ip = model.line.solve_released(
             &mut ws.g,
