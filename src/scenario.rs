@@ -47,7 +47,7 @@ pub struct ScenarioFile {
     pub control_loop: LoopSettings,
 }
 
-/// `[material]`: `preset = "…"` and/or the five fields of [`Material`].
+/// `[material]`: `preset = "…"` and/or the fields of [`Material`].
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MaterialSpec {
@@ -63,6 +63,10 @@ pub struct MaterialSpec {
     pub fracture_toughness: Option<f64>,
     /// Initial fracture toughness R'_c, N/m (overrides the preset).
     pub initial_fracture_toughness: Option<f64>,
+    /// Skin thickness, m (overrides the preset; default none: R'_c until
+    /// each section's first fracture). Given, a surface layer this thick has
+    /// toughness R'_c and the interior R_c (see `Material::skin_thickness`).
+    pub skin_thickness: Option<f64>,
 }
 
 /// `[knife]`: `preset = "…"` and/or `edge`, `blade`, `sensor` tables.
@@ -334,6 +338,7 @@ impl MaterialSpec {
                 self.initial_fracture_toughness,
                 base.map(|b| b.initial_fracture_toughness),
             )?,
+            skin_thickness: self.skin_thickness.or(base.and_then(|b| b.skin_thickness)),
         };
         m.validate()?;
         Ok(m)
@@ -599,6 +604,26 @@ mod tests {
         let text = MINIMAL.replace("preset = \"potato-cuboid\"", "youngs_modulus = 1e6");
         let e = Scenario::parse(&text, "x", "t").unwrap_err().to_string();
         assert!(e.contains("`material.poisson_ratio` = missing"), "{e}");
+    }
+
+    #[test]
+    fn skin_thickness_is_read_and_validated() {
+        let base = Scenario::parse(MINIMAL, "t", "t").unwrap();
+        assert_eq!(base.material.skin_thickness, None, "default: no layer");
+        let text = MINIMAL.replace(
+            "preset = \"potato-cuboid\"",
+            "preset = \"potato-cuboid\"\nskin_thickness = 5e-4",
+        );
+        let s = Scenario::parse(&text, "t", "t").unwrap();
+        assert_eq!(s.material.skin_thickness, Some(5e-4));
+        let text = MINIMAL.replace(
+            "preset = \"potato-cuboid\"",
+            "preset = \"potato-cuboid\"\nskin_thickness = -1.0",
+        );
+        let e = Scenario::parse(&text, "bad.toml", "t")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("`material.skin_thickness` = -1"), "{e}");
     }
 
     #[test]

@@ -84,7 +84,9 @@ pub struct SectionStep {
     pub force_tangential_friction: f64,
     /// Crack extension in this step, m.
     pub crack_extension: f64,
-    /// Whether the first fracture has happened (the toughness is R_c, not R'_c).
+    /// Whether the first fracture has happened. Without a skin layer the
+    /// toughness is then R_c, not R'_c; with one
+    /// ([`Material::skin_thickness`]) the crack depth decides.
     pub fractured: bool,
     /// What the step did.
     pub status: StepStatus,
@@ -197,6 +199,12 @@ struct State {
 /// seed 000 eq. 6); the extension solves R(s) = r·R_c by bracketing (δ doubled)
 /// and a safeguarded regula falsi on the bracket. In steady cutting of a deep section ΔU → 0, so
 /// F_n + ξ·F_t → r·R_c: the knife work per unit cut area is r·R_c.
+///
+/// With a skin layer of thickness t ([`Material::skin_thickness`]) the
+/// toughness is R'_c for crack depths below t and R_c deeper, whatever the
+/// first-fracture flag says: an extension s from depth a₀ balances
+/// R(s) = r·Γ(s)/s, Γ the toughness integrated over [a₀, a₀ + s], so the
+/// fracture energy of a cut to depth a > t is r·(R'_c·t + R_c·(a − t)).
 ///
 /// The step is energy-consistent: knife work = fracture + strain energy +
 /// friction (+ unstable release), with fracture = Σ R(s)·s and |R − r·R_c| ≤
@@ -451,11 +459,40 @@ impl CrossSection {
                 r * mat.initial_fracture_toughness.min(mat.fracture_toughness),
             )
         };
+        // With a skin layer (`Material::skin_thickness`) the toughness
+        // depends on the depth: an extension s from the tip's depth a₀ pays
+        // Γ(s) = R'_c·|[a₀, a₀+s] ∩ [0, t]| + R_c·(the rest), and balances
+        // R(s) = r·Γ(s)/s. The root search then runs on R(s)/(r·Γ(s)/s)
+        // against 1 (same relative tolerance).
+        let skin = mat.skin_thickness.map(|t| (t, model.height - st.y_tip));
+        let layered = |s: f64| -> f64 {
+            match skin {
+                Some((t, a0)) => {
+                    let in_skin = (t - a0).clamp(0.0, s);
+                    r * (mat.initial_fracture_toughness * in_skin
+                        + mat.fracture_toughness * (s - in_skin))
+                        / s
+                }
+                None => target,
+            }
+        };
+        let (trigger, target) = if skin.is_some() {
+            (1.0, 1.0)
+        } else {
+            (trigger, target)
+        };
+        let mut balance = |s: f64| -> f64 {
+            if skin.is_some() {
+                release(s) / layered(s)
+            } else {
+                release(s)
+            }
+        };
         let s_max = st.y_tip - model.h;
         let set = &model.settings;
         let ext = if dn > 0.0 && trigger.is_finite() && s_max > 0.0 {
             solve_extension(
-                &mut release,
+                &mut balance,
                 set.initial_crack_extension,
                 (st.y_tip - y_edge1).max(0.0) + model.h,
                 s_max,
@@ -468,12 +505,15 @@ impl CrossSection {
         } else {
             Extension::None
         };
+        // Back from the balance ratio to R(s) and the toughness paid.
+        let to_rate = |s: f64, b: f64| if skin.is_some() { b * layered(s) } else { b };
         let (s, r_s, mut status) = match ext {
             Extension::None => (0.0, 0.0, StepStatus::Indenting),
-            Extension::Balanced { s, r } => (s, r, StepStatus::Cutting),
-            Extension::RunsThrough { s, r } => (s, r, StepStatus::CutThrough),
-            Extension::Unbracketed { s, r } => (s, r, StepStatus::Unbracketed),
+            Extension::Balanced { s, r } => (s, to_rate(s, r), StepStatus::Cutting),
+            Extension::RunsThrough { s, r } => (s, to_rate(s, r), StepStatus::CutThrough),
+            Extension::Unbracketed { s, r } => (s, to_rate(s, r), StepStatus::Unbracketed),
         };
+        let target_at = |s: f64| if skin.is_some() { layered(s) } else { target };
         // Knife work of a step without crack growth: trapezoids between the
         // positions where the force may jump, i.e. where a face node passes a
         // kink of the wedge profile (s = 0, the corner, the end of the bevel)
@@ -562,7 +602,7 @@ impl CrossSection {
             let fracture = if matches!(status, StepStatus::Cutting) {
                 r_s * s
             } else {
-                target * s
+                target_at(s) * s
             };
             work.fracture += fracture;
             work.unstable += (w_el - (e1.energy - u0)) - fracture;
