@@ -150,6 +150,11 @@ struct Workspace {
     mixed: ReleasedWorkspace,
     /// Linear solves of the condensed line so far (a cost counter).
     solves: u64,
+    /// The last step's end configuration (y_tip, y_edge, drag) and its
+    /// evaluation, whose face reactions are still in `p`: the next step
+    /// starts there, so its start evaluation needs only the friction for
+    /// the new increments (`face_terms`), not another active-set solve.
+    end: Option<(f64, f64, f64, Eval)>,
 }
 
 /// Most active-set iterations of the face contact per evaluation.
@@ -289,6 +294,7 @@ impl CrossSection {
                 strip_active: [true; MAX_STRIP],
                 mixed: ReleasedWorkspace::new(n),
                 solves: 0,
+                end: None,
             },
             model,
             state,
@@ -301,6 +307,7 @@ impl CrossSection {
         self.state = self.initial;
         // Active-set warm starts: reset too, so a rerun is bit-identical.
         self.ws.released.fill(false);
+        self.ws.end = None;
         self.ws.strip_active = [true; MAX_STRIP];
     }
 
@@ -415,7 +422,15 @@ impl CrossSection {
         let dt_abs = dt.abs();
         let xi = if dn > 0.0 { dt_abs / dn } else { f64::INFINITY };
         // Start of the step: elastic part from the state, friction for this direction.
-        let e0 = evaluate(model, ws, st.y_tip, st.y_edge, st.drag, dn, dt_abs);
+        let e0 = match ws.end.take() {
+            Some((y_tip, y_edge, drag, mut e))
+                if y_tip == st.y_tip && y_edge == st.y_edge && drag == st.drag =>
+            {
+                face_terms(model, ws, st.y_tip, st.y_edge, dn, dt_abs, &mut e);
+                e
+            }
+            _ => evaluate(model, ws, st.y_tip, st.y_edge, st.drag, dn, dt_abs),
+        };
         let u0 = e0.energy;
         let d0 = st.y_tip - st.y_edge;
         let drag_at = |s: f64| -> f64 {
@@ -628,6 +643,7 @@ impl CrossSection {
             work,
             tensile_contacts: e1.tensile,
         };
+        self.ws.end = Some((y_tip1, y_edge1, drag1, e1));
         self.state = State {
             y_edge: y_edge1,
             y_tip: y_tip1,
@@ -780,7 +796,6 @@ fn evaluate(
             model.profile.width(y - y_ref)
         };
     }
-    let edge_contact = y_tip > y_edge;
     // Unilateral contacts, solved together by a primal-dual active set on the
     // condensed line:
     // - the wedge faces: a face row is released when its reaction would pull
@@ -877,7 +892,6 @@ fn evaluate(
         }),
         _ => (0.0, 0.0),
     };
-    let mu = model.material.friction_coefficient;
     let mut e = Eval {
         f_edge: -2.0 * ip.strip_force,
         f_t: 2.0 * f_anti,
@@ -886,6 +900,31 @@ fn evaluate(
         contacts,
         ..Default::default()
     };
+    face_terms(model, ws, y_tip, y_edge, dn, dt, &mut e);
+    e
+}
+
+/// The terms of `e` read off the face reactions left in `ws.p` by the
+/// evaluation of (y_tip, y_edge): the wedge's vertical force, the tensile
+/// count, and the friction for knife increments (dn, dt ≥ 0). Allocation-free.
+fn face_terms(
+    model: &Model,
+    ws: &Workspace,
+    y_tip: f64,
+    y_edge: f64,
+    dn: f64,
+    dt: f64,
+    e: &mut Eval,
+) {
+    let h = model.h;
+    let (first, _) = tip_row(model, y_tip);
+    let y_ref = y_tip.max(y_edge);
+    let edge_contact = y_tip > y_edge;
+    let mu = model.material.friction_coefficient;
+    e.f_wedge = 0.0;
+    e.tensile = 0;
+    e.f_fric_n = 0.0;
+    e.f_fric_t = 0.0;
     for i in first..model.n {
         let y = (i + 1) as f64 * h;
         if y <= y_tip {
@@ -907,7 +946,6 @@ fn evaluate(
         e.f_fric_n += 2.0 * fn_;
         e.f_fric_t += 2.0 * ft;
     }
-    e
 }
 
 #[cfg(test)]
