@@ -51,7 +51,7 @@ pub struct ScenarioFile {
     pub controller: ControllerSettings,
 }
 
-/// `[material]`: `preset = "…"` and/or the five fields of [`Material`].
+/// `[material]`: `preset = "…"` and/or the fields of [`Material`].
 #[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MaterialSpec {
@@ -67,6 +67,10 @@ pub struct MaterialSpec {
     pub fracture_toughness: Option<f64>,
     /// Initial fracture toughness R'_c, N/m (overrides the preset).
     pub initial_fracture_toughness: Option<f64>,
+    /// Skin thickness, m (overrides the preset; default none: R'_c until
+    /// each section's first fracture). Given, a surface layer this thick has
+    /// toughness R'_c and the interior R_c (see `Material::skin_thickness`).
+    pub skin_thickness: Option<f64>,
 }
 
 /// `[knife]`: `preset = "…"` and/or `edge`, `blade`, `sensor` tables.
@@ -344,6 +348,7 @@ impl MaterialSpec {
                 self.initial_fracture_toughness,
                 base.map(|b| b.initial_fracture_toughness),
             )?,
+            skin_thickness: self.skin_thickness.or(base.and_then(|b| b.skin_thickness)),
         };
         m.validate()?;
         Ok(m)
@@ -609,6 +614,26 @@ mod tests {
         let text = MINIMAL.replace("preset = \"potato-cuboid\"", "youngs_modulus = 1e6");
         let e = Scenario::parse(&text, "x", "t").unwrap_err().to_string();
         assert!(e.contains("`material.poisson_ratio` = missing"), "{e}");
+    }
+
+    #[test]
+    fn skin_thickness_is_read_and_validated() {
+        let base = Scenario::parse(MINIMAL, "t", "t").unwrap();
+        assert_eq!(base.material.skin_thickness, None, "default: no layer");
+        let text = MINIMAL.replace(
+            "preset = \"potato-cuboid\"",
+            "preset = \"potato-cuboid\"\nskin_thickness = 5e-4",
+        );
+        let s = Scenario::parse(&text, "t", "t").unwrap();
+        assert_eq!(s.material.skin_thickness, Some(5e-4));
+        let text = MINIMAL.replace(
+            "preset = \"potato-cuboid\"",
+            "preset = \"potato-cuboid\"\nskin_thickness = -1.0",
+        );
+        let e = Scenario::parse(&text, "bad.toml", "t")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("`material.skin_thickness` = -1"), "{e}");
     }
 
     #[test]

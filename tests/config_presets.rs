@@ -25,6 +25,7 @@ fn material_files_match_presets() {
         ] {
             assert!((a - b).abs() <= 1e-15 * b.abs(), "{}: {a} vs {b}", p.name());
         }
+        assert_eq!(file.skin_thickness, code.skin_thickness, "{}", p.name());
     }
 }
 

@@ -2,7 +2,10 @@
 //! scenario of seed 000 Fig. 10(a) (chef's knife, half potato with skin,
 //! α = 0, z₀ = 0.046 m, m = 10 sections), from the approach through the first
 //! fractures to steady cutting. Prints median, p99 and worst µs per tick and
-//! the real-time factor (1 ms of simulated time per wall-clock tick time).
+//! the real-time factor (1 ms of simulated time per wall-clock tick time),
+//! the condensed-line solves per tick (the sections' cost counter: the
+//! compute a tick needs, free of the machine's load), and the re-choices,
+//! rebuilds (on the plant's worker thread) and ticks that waited for it.
 //!
 //! Run: `cargo bench -p shearcut-sim --bench plant`.
 
@@ -46,18 +49,37 @@ fn main() {
     // 4 s: a 50 ms ramp to 6.25 mm/s, then 25 mm of descent.
     let ticks = 4000;
     let mut times = Vec::with_capacity(ticks);
+    // Condensed-line solves per tick (the sections' cost counter; a
+    // rebuilt section restarts its count, so a rebuild tick may read low).
+    let mut solves = Vec::with_capacity(ticks);
     let mut last = None;
     for k in 1..=ticks {
         let v = speed * (k as f64 * dt / 0.05).min(1.0);
         let cmd = KnifeCommand {
             velocity: Vector3::new(0.0, -v, 0.0),
         };
+        let before = plant.section_solves();
         let t = Instant::now();
         let m = black_box(plant.step(&cmd, dt).unwrap());
         times.push(t.elapsed().as_secs_f64() * 1e6);
+        solves.push(plant.section_solves().saturating_sub(before));
         last = Some(m);
     }
     let m = last.unwrap();
+    let worst_tick = (0..ticks)
+        .max_by(|&a, &b| times[a].total_cmp(&times[b]))
+        .unwrap();
+    let worst_solves = solves[worst_tick];
+    let mut by_solves = solves.clone();
+    by_solves.sort_unstable();
+    println!(
+        "condensed-line solves per tick: median {}, p99 {}, max {}; in the slowest tick {} (tick {})",
+        by_solves[ticks / 2],
+        by_solves[(ticks - 1) * 99 / 100],
+        by_solves[ticks - 1],
+        worst_solves,
+        worst_tick + 1
+    );
     let total: f64 = times.iter().sum();
     times.sort_by(f64::total_cmp);
     let pct = |p: f64| times[((times.len() - 1) as f64 * p).round() as usize];
@@ -76,5 +98,12 @@ fn main() {
         m.crack_depth * 1e3,
         m.fractured_sections,
         m.true_wrench.force.y
+    );
+    println!(
+        "re-choices {}, rebuilds {} (built on the worker thread), unforeseen {}, ticks that waited for the worker {}",
+        plant.rechoices(),
+        plant.rebuilds(),
+        plant.unforeseen_rechoices(),
+        plant.successor_waits()
     );
 }

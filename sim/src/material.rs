@@ -26,6 +26,21 @@ pub struct Material {
     /// fracture (a skin, or the stress concentration that a soft material lacks
     /// before a crack exists). Seed 000 §V.
     pub initial_fracture_toughness: f64,
+    /// Thickness of the skin, m (optional, ≥ 0; default: none).
+    ///
+    /// Given, the skin is a surface layer of toughness R'_c: a crack tip
+    /// within `skin_thickness` of the section's top (the object's outer
+    /// surface in that plane) grows against R'_c, deeper against R_c, and a
+    /// step's extension pays the depth-weighted toughness of the layers it
+    /// crosses. It depends on the depth only, so a section that starts below
+    /// the skin (a moving section's successor deep in the cut) gets R_c at
+    /// once, and 0 means R_c throughout.
+    ///
+    /// Not given (the presets; Table I gives R'_c but no thickness), R'_c
+    /// holds until the section's first fracture, however deep that is: seed
+    /// 000 §V's initial toughness, the behaviour before this key existed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub skin_thickness: Option<f64>,
 }
 
 /// The named material presets.
@@ -79,6 +94,7 @@ impl MaterialPreset {
                 friction_coefficient: 0.1,
                 fracture_toughness: 150.0,
                 initial_fracture_toughness: 150.0,
+                skin_thickness: None,
             },
             MaterialPreset::EggplantCuboid => Material {
                 youngs_modulus: 0.4e6,
@@ -86,6 +102,7 @@ impl MaterialPreset {
                 friction_coefficient: 1.0,
                 fracture_toughness: 140.0,
                 initial_fracture_toughness: 275.0,
+                skin_thickness: None,
             },
             MaterialPreset::PotatoWhole => Material {
                 youngs_modulus: 2.0e6,
@@ -93,6 +110,7 @@ impl MaterialPreset {
                 friction_coefficient: 0.1,
                 fracture_toughness: 230.0,
                 initial_fracture_toughness: 230.0,
+                skin_thickness: None,
             },
             MaterialPreset::EggplantWhole => Material {
                 youngs_modulus: 0.55e6,
@@ -100,6 +118,7 @@ impl MaterialPreset {
                 friction_coefficient: 1.0,
                 fracture_toughness: 260.0,
                 initial_fracture_toughness: 650.0,
+                skin_thickness: None,
             },
             MaterialPreset::Agar => Material::from_shear_and_bulk(
                 AGAR_SHEAR_MODULUS,
@@ -139,6 +158,7 @@ impl Material {
             friction_coefficient,
             fracture_toughness,
             initial_fracture_toughness,
+            skin_thickness: None,
         }
     }
 
@@ -169,6 +189,15 @@ impl Material {
             "initial_fracture_toughness",
             self.initial_fracture_toughness,
         )?;
+        if let Some(t) = self.skin_thickness
+            && !(t.is_finite() && t >= 0.0)
+        {
+            return Err(InvalidSetting::new(
+                "skin_thickness",
+                t,
+                "must be a finite number >= 0 m (or left out: R'_c until the first fracture)",
+            ));
+        }
         Ok(())
     }
 }
@@ -191,6 +220,36 @@ mod tests {
         assert_eq!(m.youngs_modulus, 0.55e6);
         assert_eq!(m.fracture_toughness, 260.0);
         assert_eq!(m.initial_fracture_toughness, 650.0);
+    }
+
+    #[test]
+    fn skin_thickness_is_optional_and_validated() {
+        let m = MaterialPreset::EggplantWhole.material();
+        assert_eq!(m.skin_thickness, None);
+        for ok in [0.0, 5e-4] {
+            Material {
+                skin_thickness: Some(ok),
+                ..m
+            }
+            .validate()
+            .unwrap();
+        }
+        for bad in [-1e-3, f64::NAN, f64::INFINITY] {
+            let e = Material {
+                skin_thickness: Some(bad),
+                ..m
+            }
+            .validate()
+            .unwrap_err();
+            assert_eq!(e.key, "skin_thickness");
+        }
+        let parsed: Material = serde_json::from_str(
+            r#"{"youngs_modulus": 1e6, "poisson_ratio": 0.3, "friction_coefficient": 0.1,
+                "fracture_toughness": 100.0, "initial_fracture_toughness": 200.0,
+                "skin_thickness": 1e-3}"#,
+        )
+        .unwrap();
+        assert_eq!(parsed.skin_thickness, Some(1e-3));
     }
 
     #[test]

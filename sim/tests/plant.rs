@@ -334,7 +334,10 @@ fn slicing_straight_edge_moves_sections_along_the_cuboid() {
         &material,
         &knife,
         &cuboid(w, h, l),
-        0.03,
+        // The heel over the piece's near end: every midpoint's path enters
+        // through the flat top (a path entering through the near face gives
+        // its segment a section only later, see the near-face test).
+        0.0,
         Vector2::new(1.0, -1.0),
         &s,
         &LOOSE,
@@ -414,6 +417,7 @@ fn slicing_straight_edge_moves_sections_along_the_cuboid() {
     assert!(front_checks >= 5, "re-choices every 1 mm: {front_checks}");
     assert!(went_inactive, "the tip-side sections slid off the piece");
     assert_eq!(plant.rebuilds(), 0, "a cuboid's sections are never rebuilt");
+    assert_eq!(plant.woken_segments() + plant.dormant_segments(), 0);
 }
 
 #[test]
@@ -494,4 +498,115 @@ fn update_distance_must_be_positive() {
         let e = s.validate().unwrap_err().to_string();
         assert!(e.contains("update_distance"), "{e}");
     }
+}
+
+#[test]
+fn steep_slice_gives_near_face_segments_their_sections() {
+    // α = 45° into a cuboid with the heel 2 cm before its near face: the
+    // heel-side midpoints' paths enter through the near face (min z), below
+    // the top, so they get no section at construction; they get one through
+    // the crack front when they reach the material, and the contact then
+    // spans the whole piece.
+    let material = MaterialPreset::PotatoCuboid.material();
+    let knife = Knife::new(&KnifePreset::Straight.settings()).unwrap();
+    let (w, h, l) = (0.03, 0.03, 0.03);
+    let alpha: f64 = 45f64.to_radians();
+    let d = Vector2::new(alpha.sin(), -alpha.cos());
+    let mut plant = plant(
+        &material,
+        &knife,
+        &cuboid(w, h, l),
+        0.02,
+        d,
+        &settings(10),
+        &LOOSE,
+        0,
+    );
+    let dormant = plant.dormant_segments();
+    assert!(dormant >= 2, "near-face segments: {dormant}");
+    let cmd = KnifeCommand {
+        velocity: Vector3::new(0.0, d.y, d.x) * SPEED,
+    };
+    let seg_len = plant.segments().map(|s| s.length).fold(0.0, f64::max);
+    let mut prev_work = 0.0;
+    let mut m = plant.step(&cmd, DT).unwrap();
+    // 4.2 s: the edge about 19 mm deep, every midpoint past the near face.
+    for k in 0..4200 {
+        m = plant.step(&cmd, DT).unwrap();
+        assert!(m.work >= prev_work, "tick {k}");
+        prev_work = m.work;
+        assert!(worst_normal_misalignment(&plant) < 1e-12, "tick {k}");
+    }
+    assert!(m.crack_depth > 0.005 && m.crack_depth < h - 1e-3);
+    assert_eq!(plant.dormant_segments(), 0);
+    assert_eq!(
+        plant.woken_segments(),
+        dormant,
+        "every near-face segment woke"
+    );
+    assert!(
+        (m.contact_length - l).abs() <= seg_len,
+        "contact {} vs piece length {l} (segment {seg_len})",
+        m.contact_length
+    );
+}
+
+#[test]
+fn slice_angle_changing_mid_cut_moves_sections_along_the_executed_path() {
+    // A closed loop turns the knife: pressing (α = 0) into a half potato,
+    // then slicing towards the heel at α = 30°. Re-choices follow the
+    // executed direction, the sections stay normal to their segments, and
+    // the work never drops.
+    let material = MaterialPreset::PotatoWhole.material();
+    let knife = Knife::new(&KnifePreset::Chef.settings()).unwrap();
+    let object = shearcut_sim::ObjectShape::HalfPotato {
+        length: 0.08,
+        width: 0.05,
+        height: 0.03,
+    }
+    .mesh()
+    .unwrap();
+    let mut plant = plant(
+        &material,
+        &knife,
+        &object,
+        0.05,
+        Vector2::new(0.0, -1.0),
+        &settings(4),
+        &LOOSE,
+        3,
+    );
+    let alpha: f64 = 30f64.to_radians();
+    let turned = Vector2::new(-alpha.sin(), -alpha.cos());
+    let mut prev_work = 0.0;
+    let mut rechoices_after_turn = 0;
+    for k in 0..2400 {
+        let u = if k < 1200 {
+            Vector2::new(0.0, -1.0)
+        } else {
+            turned
+        };
+        let cmd = KnifeCommand {
+            velocity: Vector3::new(0.0, u.y, u.x) * SPEED,
+        };
+        let before = plant.rechoices();
+        let m = plant.step(&cmd, DT).unwrap();
+        assert_eq!(m.status, PlantStatus::Moving);
+        assert!(
+            m.work >= prev_work,
+            "tick {k}: work {} < {prev_work}",
+            m.work
+        );
+        prev_work = m.work;
+        assert!(worst_normal_misalignment(&plant) < 1e-12, "tick {k}");
+        assert!((plant.direction_of_motion() - u).norm() < 1e-12, "tick {k}");
+        if k >= 1200 {
+            rechoices_after_turn += plant.rechoices() - before;
+        }
+    }
+    assert!(
+        rechoices_after_turn > 0,
+        "the turned knife slides its segments off their planes"
+    );
+    assert!(prev_work > 0.0);
 }

@@ -1,11 +1,11 @@
-//! `Plant::step` allocates nothing after construction in a run without
-//! section re-choices (counting allocator): a straight edge pressing a
-//! cuboid, whose segments move within their section planes. (A re-choice
-//! cuts the object mesh with the new plane and may rebuild a section: those
-//! ticks allocate, as `Plant`'s docs say.)
+//! `Plant::step` allocates nothing after construction on the caller's
+//! thread (counting allocator, per thread): a straight edge pressing a cuboid
+//! (no re-choice), and a chef's knife slicing a half potato, whose sections
+//! are re-chosen and rebuilt (the successors are built on the plant's worker
+//! thread, whose allocations are not the tick's).
 
 use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::cell::Cell;
 
 use nalgebra::{Vector2, Vector3};
 use shearcut_sim::geometry::TriangleMesh;
@@ -14,13 +14,26 @@ use shearcut_sim::{Knife, KnifePreset, MaterialPreset, SectionSettings};
 
 struct Counting;
 
-static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
+thread_local! {
+    /// Allocations made by this thread.
+    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
+}
 
-// Forwards to the system allocator and counts allocations.
+fn count() {
+    // A const-initialised thread local without destructor: safe to touch in
+    // the allocator (`try_with` covers thread teardown).
+    let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
+}
+
+fn allocations() -> usize {
+    ALLOCATIONS.with(Cell::get)
+}
+
+// Forwards to the system allocator and counts allocations per thread.
 #[allow(unsafe_code)]
 unsafe impl GlobalAlloc for Counting {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
+        count();
         // SAFETY: same contract as the caller's.
         unsafe { System.alloc(layout) }
     }
@@ -29,7 +42,7 @@ unsafe impl GlobalAlloc for Counting {
         unsafe { System.dealloc(ptr, layout) }
     }
     unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
+        count();
         // SAFETY: same contract as the caller's.
         unsafe { System.realloc(ptr, layout, new_size) }
     }
@@ -75,12 +88,12 @@ fn plant_step_allocates_nothing() {
         velocity: Vector3::new(0.0, -0.00625, 0.0),
     };
     // Through contact, first fracture and steady cutting.
-    let before = ALLOCATIONS.load(Ordering::SeqCst);
+    let before = allocations();
     let mut fractured = 0;
     for _ in 0..1500 {
         fractured = plant.step(&cmd, 1e-3).unwrap().fractured_sections;
     }
-    let after = ALLOCATIONS.load(Ordering::SeqCst);
+    let after = allocations();
     assert!(fractured > 0, "the run reached cutting");
     assert_eq!(after - before, 0, "Plant::step allocated");
     assert_eq!(
@@ -88,4 +101,52 @@ fn plant_step_allocates_nothing() {
         0,
         "a pressing straight edge re-chooses nothing"
     );
+}
+
+#[test]
+fn plant_step_allocates_nothing_through_rechoices_and_rebuilds() {
+    let material = MaterialPreset::PotatoWhole.material();
+    let knife = Knife::new(&KnifePreset::Chef.settings()).unwrap();
+    let object = shearcut_sim::ObjectShape::HalfPotato {
+        length: 0.08,
+        width: 0.05,
+        height: 0.03,
+    }
+    .mesh()
+    .unwrap();
+    let section = SectionSettings {
+        row_spacing: 5e-4,
+        ..SectionSettings::default()
+    };
+    let limits = ArmLimits {
+        velocity: 1.0,
+        jerk: 1e15,
+        acceleration: 1e9,
+    };
+    let settings = PlantSettings {
+        segments: 4,
+        ..PlantSettings::default()
+    };
+    let mut plant = Plant::new(
+        &material,
+        &knife,
+        &object,
+        0.05,
+        Vector2::new(-0.5, -1.0),
+        &settings,
+        &section,
+        &limits,
+        7,
+    )
+    .unwrap();
+    let cmd = KnifeCommand {
+        velocity: Vector3::new(0.0, -0.00625, -0.003125),
+    };
+    let before = allocations();
+    for _ in 0..1500 {
+        plant.step(&cmd, 1e-3).unwrap();
+    }
+    let after = allocations();
+    assert!(plant.rebuilds() > 0, "the run rebuilt sections");
+    assert_eq!(after - before, 0, "Plant::step allocated");
 }

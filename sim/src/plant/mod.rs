@@ -4,7 +4,8 @@
 //! Files: `crack_front` (the quadratic crack front fitted over the sections'
 //! crack tips), `wrench` (section forces summed into force and torque at the
 //! sensor), `arm_limits` (an arm's finite-difference reflexes), `ft_sensor`
-//! (noise, bias and sample rate of the F/T signal).
+//! (noise, bias and sample rate of the F/T signal), `successor` (successor
+//! sections built ahead of their re-choices on a worker thread).
 
 pub mod arm_limits;
 pub mod contact_arc;
@@ -13,6 +14,7 @@ pub mod ft_sensor;
 #[allow(clippy::module_inception)]
 pub mod plant;
 pub mod section_shape;
+mod successor;
 pub mod wrench;
 
 pub use arm_limits::{ArmLimitMonitor, ArmLimits, LimitViolation};

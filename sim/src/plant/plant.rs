@@ -1,10 +1,11 @@
 //! The whole-knife, whole-object plant, stepped like a robot arm's servo loop.
 
+use std::sync::Arc;
+
 use nalgebra::{Vector2, Vector3};
 use serde::{Deserialize, Serialize};
 
-use crate::blade::BladeSection;
-use crate::geometry::{SectionPlane, TriangleMesh};
+use crate::geometry::{Polygon, SectionPlane, TriangleMesh};
 use crate::invalid_setting::InvalidSetting;
 use crate::knife::Knife;
 use crate::material::Material;
@@ -15,6 +16,7 @@ use super::contact_arc::{EdgeSegment, contact_arc, knife_plane_silhouette, ray_h
 use super::crack_front::CrackFront;
 use super::ft_sensor::{FtSensor, FtSensorSettings};
 use super::section_shape::section_geometry;
+use super::successor::{Preparation, SectionFactory, SuccessorJob, SuccessorWorker};
 use super::wrench::{SegmentLoad, Wrench, wrench_at};
 
 /// Settings of the plant.
@@ -154,12 +156,15 @@ pub struct Measurement {
 /// One segment's section and its bookkeeping.
 #[derive(Debug, Clone)]
 struct SegmentSection {
+    /// Index of the segment on the contact arc (heel 0); the worker's slot.
+    slot: usize,
     segment: EdgeSegment,
-    section: CrossSection,
+    section: Box<CrossSection>,
     /// The section's plane in the world.
     plane: SectionPlane,
-    /// The section's shape, to tell whether a re-chosen plane cuts the same one.
-    geometry: SectionGeometry,
+    /// The section's shape, to tell whether a re-chosen plane cuts the same
+    /// one (shared with the worker's jobs).
+    geometry: Arc<SectionGeometry>,
     /// Whether the plane cuts the object (a segment that slid off the piece
     /// has no material: no force, not advanced).
     active: bool,
@@ -178,6 +183,9 @@ struct SegmentSection {
     lift: f64,
     /// Sign of the last tangential motion (+1 towards the tip).
     tangential_sign: f64,
+    /// Side (±1) of the plane towards which the pending successor was
+    /// foreseen; 0 when none is pending.
+    predicted_sign: f64,
 }
 
 /// The plant: a knife (any edge) cutting an object (any closed mesh) through m
@@ -191,48 +199,78 @@ struct SegmentSection {
 /// # Moving cross sections (seed 000 §IV, Fig. 4(b))
 /// After each tick the plant measures, for every section that has started
 /// cutting, how far its segment's midpoint has slid off the section's plane
-/// (along the plane's normal) since the plane was chosen. Past [`PlantSettings::update_distance`] the
-/// section is re-chosen: a [`CrackFront`] is fitted over the crack tips of the
-/// started sections, intersected with the midpoint's path (the line through
-/// the midpoint along the planned direction) at q, and the new plane is
-/// normal to the segment through q. Then
+/// (along the plane's normal) since the plane was chosen. Past
+/// [`PlantSettings::update_distance`] the section is re-chosen: a
+/// [`CrackFront`] is fitted over the crack tips of the started sections, and
+/// the new plane is normal to the segment through q, the front's crossing of
+/// the midpoint's path. The path is the line through the midpoint along the
+/// *direction of motion*: that of the last nonzero executed velocity (the
+/// planned direction before the knife first moves), so a controller that
+/// turns the knife mid-cut moves the sections along where the edge really
+/// goes. Then
 /// - if the plane misses the object (the segment slid off the piece), the
 ///   section becomes inactive (no force, not advanced) until a later
 ///   re-choice finds material again;
 /// - if it cuts the same shape (a cuboid's interior), only the plane moves
 ///   and the section keeps its state;
-/// - otherwise a new [`CrossSection`] is built for the new shape and
-///   restarted with the crack depth at q and the predecessor's fracture flag
+/// - otherwise a new [`CrossSection`] for the new shape takes over,
+///   restarted with the crack depth where the front crosses the new plane
+///   and the predecessor's fracture flag
 ///   ([`CrossSection::restart_with_crack`]); the predecessor's knife work is
 ///   kept, so the plant's cumulative work never drops. Only the crack is
 ///   carried over, not the predecessor's elastic state.
 ///
 /// Without a started section there is nothing to fit and no re-choice.
 ///
+/// # Successors prepared ahead (no section built inside a tick)
+/// Building a section (cutting the mesh, meshing, factorising, condensing)
+/// takes 0.1–0.2 s, two hundred 1 kHz ticks. So the plant foresees each
+/// successor: as soon as a section has started cutting or been re-chosen
+/// (the tick after), q is taken where the midpoint will be when its slide
+/// reaches the threshold on the side it is moving to (moving on along the
+/// direction of motion), with the front fitted then, and a worker thread
+/// cuts and builds the successor for that plane: the worker has a whole
+/// update distance of travel to finish it. At the
+/// re-choice the plant takes it (waiting only if the worker is late); the
+/// adopted plane is the foreseen one, the carried crack depth is read off
+/// the front fitted at the re-choice. What the worker returns is a function
+/// of the job alone, and the job is fixed at a deterministic tick, so the
+/// results are bit-identical for a seed whatever the thread timing. A
+/// re-choice that was not foreseen on its side (the motion reversed) orders
+/// its successor from the current front and waits for it
+/// ([`Plant::unforeseen_rechoices`]).
+///
 /// # Memory allocation
-/// [`Plant::new`] allocates everything a tick without a re-choice needs;
-/// such a [`Plant::step`] allocates nothing (a pressing straight edge: its
-/// segments move within their planes). A re-choice cuts the object mesh with
-/// the new plane, which allocates the section polygon, and a rebuild
-/// allocates a new [`CrossSection`] (mesh, factorisation, workspace).
+/// [`Plant::new`] allocates everything a tick needs and starts the worker;
+/// [`Plant::step`] allocates nothing on the caller's thread, re-choices
+/// included: the worker allocates the successors, the tick only moves them
+/// in (and frees superseded ones).
 #[derive(Debug, Clone)]
 pub struct Plant {
     sections: Vec<SegmentSection>,
-    /// The object, cut again by re-chosen planes.
-    object: TriangleMesh,
-    material: Material,
-    blade: BladeSection,
-    section_settings: SectionSettings,
-    rim_fraction: f64,
+    /// The object, material, blade and section settings, shared with the
+    /// worker that builds successor sections.
+    factory: Arc<SectionFactory>,
+    /// Prepares successor sections ahead of their re-choices.
+    worker: SuccessorWorker,
     update_distance: f64,
-    /// Planned direction of motion in the knife plane (z, y), unit.
-    direction: Vector2<f64>,
+    /// Direction of motion in the knife plane (z, y), unit: the planned one
+    /// until the knife moves, then that of the last nonzero executed velocity.
+    motion: Vector2<f64>,
+    /// The object's silhouette in the knife plane (z, y).
+    silhouette: Polygon,
+    /// Segments (arc index, segment) whose paths enter the object through a
+    /// side face: no section until their midpoints reach the material.
+    /// Preallocated; shrinks as they wake.
+    dormant: Vec<(usize, EdgeSegment)>,
     /// Crack tips of the started sections (knife plane (z, y)), preallocated.
     tips: Vec<Vector2<f64>>,
     /// The last crack front fitted for a re-choice.
     front: Option<CrackFront>,
     rechoices: usize,
     rebuilds: usize,
+    unforeseen: usize,
+    wakes: usize,
     loads: Vec<SegmentLoad>,
     monitor: ArmLimitMonitor,
     sensor: FtSensor,
@@ -298,6 +336,8 @@ impl Plant {
         let origin = Vector2::new(origin_z, hi.y + settings.start_gap - lowest_over);
         let arc = contact_arc(edge, origin, d, &silhouette).ok_or(PlantError::NoContact)?;
         let mut sections = Vec::with_capacity(settings.segments);
+        let mut dormant = Vec::with_capacity(settings.segments);
+        let side_tolerance = 1e-9 * object.size();
         for (index, segment) in segments(edge, arc, settings.segments)
             .into_iter()
             .enumerate()
@@ -308,6 +348,17 @@ impl Plant {
                 continue;
             };
             let q = start + d * lambda;
+            if silhouette
+                .top_at(q.x)
+                .is_none_or(|top| q.y < top - side_tolerance)
+            {
+                // The path enters through a side face below the top (a
+                // cuboid's near face when slicing steeply): no section yet;
+                // it is chosen through the crack front when the midpoint
+                // reaches the material (see the type's docs).
+                dormant.push((index, segment));
+                continue;
+            }
             let up = -Vector3::new(0.0, segment.normal.y, segment.normal.x);
             let plane = SectionPlane::normal_to_segment(Vector3::new(0.0, q.y, q.x), up);
             let Some(polygon) = plane.section(object) else {
@@ -318,7 +369,10 @@ impl Plant {
                 .map_err(|source| PlantError::Section { index, source })?;
             let section = CrossSection::new(&geometry, material, knife.blade(), section)
                 .map_err(|source| PlantError::Section { index, source })?;
+            let section = Box::new(section);
+            let geometry = Arc::new(geometry);
             sections.push(SegmentSection {
+                slot: index,
                 segment,
                 section,
                 plane,
@@ -329,27 +383,37 @@ impl Plant {
                 gap: lambda * d.dot(&segment.normal),
                 lift: 0.0,
                 tangential_sign: 0.0,
+                predicted_sign: 0.0,
             });
         }
-        if sections.is_empty() {
+        if sections.is_empty() && dormant.is_empty() {
             return Err(PlantError::NoContact);
         }
         let loads = Vec::with_capacity(sections.len());
         let tips = Vec::with_capacity(sections.len());
-        Ok(Self {
-            loads,
-            sections,
+        let factory = Arc::new(SectionFactory {
             object: object.clone(),
             material: *material,
             blade: *knife.blade(),
-            section_settings: *section,
+            settings: *section,
             rim_fraction: settings.rim_fraction,
+        });
+        let worker = SuccessorWorker::new(Arc::clone(&factory), settings.segments);
+        Ok(Self {
+            loads,
+            sections,
+            factory,
+            worker,
             update_distance: settings.update_distance,
-            direction: d,
+            motion: d,
+            silhouette,
+            dormant,
             tips,
             front: None,
             rechoices: 0,
             rebuilds: 0,
+            unforeseen: 0,
+            wakes: 0,
             monitor: ArmLimitMonitor::new(*arm_limits),
             sensor: FtSensor::new(settings.sensor, seed).map_err(|e| e.prefixed("sensor"))?,
             sensor_offset: knife.sensor_position(),
@@ -403,6 +467,46 @@ impl Plant {
         self.rebuilds
     }
 
+    /// Number of segments whose path entered the object through a side face
+    /// and that have since been given their first section.
+    pub fn woken_segments(&self) -> usize {
+        self.wakes
+    }
+
+    /// Number of segments still without a section: their paths enter the
+    /// object through a side face and their midpoints have not reached it.
+    pub fn dormant_segments(&self) -> usize {
+        self.dormant.len()
+    }
+
+    /// Number of re-choices whose successor had not been foreseen on the side
+    /// the segment slid to (the motion reversed), so that the tick waited for
+    /// the worker to build it. 0 for a motion that keeps its side.
+    pub fn unforeseen_rechoices(&self) -> usize {
+        self.unforeseen
+    }
+
+    /// Number of successors that were not ready when their re-choice took
+    /// them, so that the tick waited for the worker. A diagnostic of the
+    /// machine's load: it depends on thread timing (the plant's results do
+    /// not).
+    pub fn successor_waits(&self) -> usize {
+        self.worker.waits()
+    }
+
+    /// Direction of motion the re-choices follow, in the knife plane (world
+    /// z, y), unit: that of the last nonzero executed velocity, or the
+    /// planned direction before the knife first moves.
+    pub fn direction_of_motion(&self) -> Vector2<f64> {
+        self.motion
+    }
+
+    /// Linear solves of the condensed line done by the current sections so
+    /// far (their cost counter, see [`CrossSection::solves`]).
+    pub fn section_solves(&self) -> u64 {
+        self.sections.iter().map(|s| s.section.solves()).sum()
+    }
+
     /// The sections' current states, heel to tip.
     pub fn section_states(&self) -> impl Iterator<Item = &crate::section::SectionStep> {
         self.sections.iter().map(|s| s.section.state())
@@ -411,8 +515,9 @@ impl Plant {
     /// Executes `command` for `dt` seconds and returns the measurement.
     /// A command that breaks an arm limit is refused: the knife holds still
     /// and the status says why. After the sections advance, those that slid
-    /// `update_distance` off their planes are re-chosen (see the type's docs).
-    /// Allocates nothing unless a section is re-chosen.
+    /// `update_distance` off their planes are re-chosen, and the next
+    /// successors are ordered from the worker (see the type's docs).
+    /// Allocates nothing.
     ///
     /// # Errors
     /// A section's step fails, or a re-chosen section cannot be built.
@@ -431,6 +536,9 @@ impl Plant {
         self.position += Vector3::new(0.0, dp.y, dp.z);
         self.time += dt;
         let dp2 = Vector2::new(dp.z, dp.y);
+        if let Some(u) = dp2.try_normalize(0.0) {
+            self.motion = u;
+        }
         self.loads.clear();
         let mut contact_length = 0.0;
         let mut fractured = 0;
@@ -501,6 +609,7 @@ impl Plant {
         }
         self.work = work;
         self.rechoose()?;
+        self.wake()?;
         let sensor_origin = self.position + self.sensor_offset;
         let true_wrench = wrench_at(&sensor_origin, &self.loads);
         let wrench = self.sensor.read(self.time, &true_wrench.to_array());
@@ -524,85 +633,297 @@ impl Plant {
     }
 
     /// Re-chooses the sections whose segments slid more than
-    /// `update_distance` off their planes (seed 000 §IV, Fig. 4(b); see the
-    /// type's docs).
+    /// `update_distance` off their planes, and orders the successors of the
+    /// started sections without one from the worker (seed 000 §IV, Fig. 4(b); see the
+    /// type's docs). Allocates nothing.
     fn rechoose(&mut self) -> Result<(), SectionError> {
         let position = self.position;
         let threshold = self.update_distance;
-        let slid = |s: &SegmentSection| {
-            s.section.state().knife_displacement > 0.0
-                && (signed_offset(&s.plane, &midpoint_world(&position, &s.segment))
-                    - s.slide_reference)
-                    .abs()
-                    > threshold
-        };
-        if !self.sections.iter().any(slid) {
+        let worker = &self.worker;
+        let motion = self.motion;
+        let due = self.sections.iter().any(|s| {
+            started(s)
+                && (slide_of(s, &position).abs() > threshold
+                    || (!worker.is_pending(s.slot) && approach_rate(s, &motion) != 0.0))
+        });
+        if !due {
             return Ok(());
         }
-        self.tips.clear();
-        for s in &self.sections {
-            if s.active && s.section.state().knife_displacement > 0.0 {
-                self.tips.push(tip_of(s));
-            }
-        }
-        let Some(front) = CrackFront::fit(&self.tips) else {
+        let Some(front) = fit_front(&self.sections, &mut self.tips) else {
             return Ok(());
         };
         self.front = Some(front);
-        let d = self.direction;
-        for s in &mut self.sections {
+        let u = self.motion;
+        let size = self.factory.object.size();
+        for s in self.sections.iter_mut() {
+            if !started(s) {
+                continue;
+            }
             let m = midpoint_world(&position, &s.segment);
-            if !(s.section.state().knife_displacement > 0.0
-                && (signed_offset(&s.plane, &m) - s.slide_reference).abs() > threshold)
-            {
-                continue;
-            }
-            self.rechoices += 1;
             let m2 = Vector2::new(m.z, m.y);
-            // q: the front on the midpoint's path; if the path misses the
-            // fitted front (or meets its extrapolation farther than the
-            // object's size away), the height of the section's own tip on
-            // that path.
-            let lambda = front
-                .intersect_nearest(m2, d)
-                .filter(|l| l.abs() <= self.object.size())
-                .unwrap_or_else(|| (tip_of(s).y - m2.y) / d.y);
-            let q2 = m2 + d * lambda;
-            let q = Vector3::new(0.0, q2.y, q2.x);
-            let up = -Vector3::new(0.0, s.segment.normal.y, s.segment.normal.x);
-            let plane = SectionPlane::normal_to_segment(q, up);
-            s.plane = plane;
-            s.slide_reference = signed_offset(&plane, &m);
-            let Some(polygon) = plane.section(&self.object) else {
-                s.active = false;
-                continue;
-            };
-            let height = polygon.bounds().1.y;
-            let Ok(geometry) = section_geometry(&polygon, self.rim_fraction * height) else {
-                // Lower than the rim everywhere: no material worth a section.
-                s.active = false;
-                continue;
-            };
-            if s.active && same_geometry(&geometry, &s.geometry) {
-                continue;
+            let slide = signed_offset(&s.plane, &m) - s.slide_reference;
+            if slide.abs() > threshold {
+                self.rechoices += 1;
+                let sign = slide.signum();
+                if !(self.worker.is_pending(s.slot) && s.predicted_sign == sign) {
+                    // Not foreseen (the motion reversed, or one tick crossed
+                    // the whole half distance): prepare it now and wait.
+                    self.worker.cancel(s.slot);
+                    let plane = plane_on_path(&front, m2, u, tip_of(s), &s.segment, size);
+                    self.worker.submit(s.slot, job(s, plane));
+                    self.unforeseen += 1;
+                }
+                s.predicted_sign = 0.0;
+                let Some((plane, prepared)) = self.worker.take(s.slot) else {
+                    continue;
+                };
+                let tip = tip_of(s);
+                s.plane = plane;
+                s.slide_reference = signed_offset(&plane, &m);
+                match prepared {
+                    Preparation::NoMaterial => s.active = false,
+                    Preparation::SameShape => {}
+                    Preparation::Failed(e) => return Err(e),
+                    Preparation::New { geometry, section } => {
+                        // The crack carried over: the front where it crosses
+                        // the new plane (its trace in the knife plane is the
+                        // line from the board point along the segment's up),
+                        // or, if it misses within the object's size, the
+                        // height of the predecessor's tip.
+                        let o = Vector2::new(plane.origin.z, plane.origin.y);
+                        let up = Vector2::new(plane.v_axis.z, plane.v_axis.y);
+                        let along = front
+                            .intersect_nearest(o, up)
+                            .filter(|l| *l >= 0.0 && *l <= size)
+                            .unwrap_or(tip.y / up.y);
+                        let depth = (geometry.height_at_cut() - along).max(0.0);
+                        let old = *s.section.state();
+                        s.section = section;
+                        s.section.restart_with_crack(depth, old.fractured);
+                        s.work_offset += old.work.knife;
+                        s.geometry = geometry;
+                        s.active = true;
+                        self.rebuilds += 1;
+                    }
+                }
+            } else if !self.worker.is_pending(s.slot) {
+                // Foresee the successor: where the midpoint will be when the
+                // slide reaches the threshold on the side it is moving to,
+                // moving on along the direction of motion u, and the front's
+                // crossing of u's line through that point.
+                let rate = approach_rate(s, &u);
+                if rate == 0.0 {
+                    // Moving within the plane: nothing to foresee.
+                    continue;
+                }
+                let sign = rate.signum();
+                let travel = (sign * threshold - slide) / rate;
+                let ahead = m2 + u * travel;
+                let plane = plane_on_path(&front, ahead, u, tip_of(s), &s.segment, size);
+                self.worker.submit(s.slot, job(s, plane));
+                s.predicted_sign = sign;
             }
-            let mut section = CrossSection::new(
-                &geometry,
-                &self.material,
-                &self.blade,
-                &self.section_settings,
-            )?;
-            let depth = (geometry.height_at_cut() - plane.to_plane(&q).y).max(0.0);
-            let old = s.section.state();
-            section.restart_with_crack(depth, old.fractured);
-            s.work_offset += old.work.knife;
-            s.section = section;
-            s.geometry = geometry;
-            s.active = true;
-            self.rebuilds += 1;
         }
         Ok(())
     }
+}
+
+impl Plant {
+    /// Gives the dormant segments (paths entering through a side face) their
+    /// first sections: a segment whose midpoint is within
+    /// `WAKE_LEAD × update_distance` of the material along the direction of
+    /// motion orders its section from the worker, for the plane normal to it
+    /// through q, the crack front's crossing of its path at the entry point;
+    /// when the midpoint is under the silhouette's top, the section is taken
+    /// (waiting if the worker is late) and restarted with the crack depth
+    /// where the front crosses its plane, like a re-choice. Without a front
+    /// (no section has started) nothing wakes. Allocates nothing.
+    fn wake(&mut self) -> Result<(), SectionError> {
+        if self.dormant.is_empty() {
+            return Ok(());
+        }
+        let position = self.position;
+        let u = self.motion;
+        let lead = WAKE_LEAD * self.update_distance;
+        let size = self.factory.object.size();
+        // The front over the started sections' tips, fitted when first needed.
+        let mut fitted: Option<Option<CrackFront>> = None;
+        let mut k = 0;
+        while k < self.dormant.len() {
+            let (slot, segment) = self.dormant[k];
+            let m = midpoint_world(&position, &segment);
+            let m2 = Vector2::new(m.z, m.y);
+            let inside = self
+                .silhouette
+                .top_at(m2.x)
+                .is_some_and(|top| m2.y >= 0.0 && m2.y < top);
+            if !self.worker.is_pending(slot) {
+                let entry = if inside {
+                    Some(0.0)
+                } else {
+                    ray_hit(&self.silhouette, m2, u).filter(|l| *l <= lead)
+                };
+                let front = match (entry, fitted) {
+                    (None, _) => None,
+                    (Some(_), Some(f)) => f,
+                    (Some(_), None) => {
+                        let f = fit_front(&self.sections, &mut self.tips);
+                        fitted = Some(f);
+                        f
+                    }
+                };
+                if let (Some(entry), Some(front)) = (entry, front) {
+                    let ahead = m2 + u * entry;
+                    // q: the front's crossing of the path if it lies in the
+                    // material (the front is extrapolated beyond the tips
+                    // here), else the entry point itself.
+                    let up = -Vector3::new(0.0, segment.normal.y, segment.normal.x);
+                    let q = front
+                        .intersect_nearest(ahead, u)
+                        .map(|l| ahead + u * l)
+                        .filter(|q| {
+                            self.silhouette
+                                .top_at(q.x)
+                                .is_some_and(|top| q.y >= 0.0 && q.y <= top)
+                        })
+                        .unwrap_or(ahead);
+                    let plane = SectionPlane::normal_to_segment(Vector3::new(0.0, q.y, q.x), up);
+                    self.worker.submit(
+                        slot,
+                        SuccessorJob {
+                            plane,
+                            current: None,
+                        },
+                    );
+                }
+            }
+            if !(inside && self.worker.is_pending(slot)) {
+                k += 1;
+                continue;
+            }
+            let Some((plane, prepared)) = self.worker.take(slot) else {
+                k += 1;
+                continue;
+            };
+            let (geometry, mut section) = match prepared {
+                Preparation::New { geometry, section } => (geometry, section),
+                Preparation::Failed(e) => return Err(e),
+                // No material on that plane yet: try again next tick.
+                Preparation::NoMaterial | Preparation::SameShape => {
+                    k += 1;
+                    continue;
+                }
+            };
+            let o = Vector2::new(plane.origin.z, plane.origin.y);
+            let up = Vector2::new(plane.v_axis.z, plane.v_axis.y);
+            let front = *fitted.get_or_insert_with(|| fit_front(&self.sections, &mut self.tips));
+            let along = front
+                .and_then(|f| f.intersect_nearest(o, up))
+                .filter(|l| *l >= 0.0 && *l <= size)
+                .unwrap_or(m2.y / up.y);
+            let depth = (geometry.height_at_cut() - along).max(0.0);
+            // A crack already below the top of this plane went through its
+            // skin: the first fracture is done.
+            section.restart_with_crack(depth, depth > 0.0);
+            let at = self
+                .sections
+                .iter()
+                .position(|s| s.slot > slot)
+                .unwrap_or(self.sections.len());
+            self.sections.insert(
+                at,
+                SegmentSection {
+                    slot,
+                    segment,
+                    section,
+                    plane,
+                    geometry,
+                    active: true,
+                    work_offset: 0.0,
+                    slide_reference: signed_offset(&plane, &m),
+                    gap: 0.0,
+                    lift: 0.0,
+                    tangential_sign: 0.0,
+                    predicted_sign: 0.0,
+                },
+            );
+            self.dormant.remove(k);
+            self.wakes += 1;
+        }
+        Ok(())
+    }
+}
+
+/// The crack front over the tips of the active started sections (`tips` is
+/// the preallocated buffer). Allocates nothing.
+fn fit_front(sections: &[SegmentSection], tips: &mut Vec<Vector2<f64>>) -> Option<CrackFront> {
+    tips.clear();
+    for s in sections {
+        if s.active && started(s) {
+            tips.push(tip_of(s));
+        }
+    }
+    CrackFront::fit(tips)
+}
+
+/// How far ahead of the material (in update distances, along the direction
+/// of motion) a dormant segment orders its first section from the worker.
+const WAKE_LEAD: f64 = 2.0;
+
+/// Whether a section has started cutting (its edge reached the material).
+fn started(s: &SegmentSection) -> bool {
+    s.section.state().knife_displacement > 0.0
+}
+
+/// How far the segment's midpoint slid off the section's plane since it was
+/// chosen (signed, along the plane's normal), m.
+fn slide_of(s: &SegmentSection, position: &Vector3<f64>) -> f64 {
+    signed_offset(&s.plane, &midpoint_world(position, &s.segment)) - s.slide_reference
+}
+
+/// Rate at which the segment's midpoint leaves its section's plane per unit
+/// travel along the direction of motion `u` (signed along the plane's
+/// normal); 0 below 1e-9 (moving within the plane).
+fn approach_rate(s: &SegmentSection, u: &Vector2<f64>) -> f64 {
+    let n = s.plane.normal();
+    let rate = u.dot(&Vector2::new(n.z, n.y));
+    if rate.abs() < 1e-9 { 0.0 } else { rate }
+}
+
+/// The worker's job for a successor of `s` on `plane`.
+fn job(s: &SegmentSection, plane: SectionPlane) -> SuccessorJob {
+    SuccessorJob {
+        plane,
+        current: s.active.then(|| Arc::clone(&s.geometry)),
+    }
+}
+
+/// The plane normal to `segment` through q, where the line through `m`
+/// (knife plane) along the direction of motion `u` meets the crack front
+/// nearest to `m`; if it misses (or meets the front's extrapolation farther
+/// than `size` away), q is at the height of the section's own `tip` on that
+/// line (at `m` for a motion without vertical component).
+fn plane_on_path(
+    front: &CrackFront,
+    m: Vector2<f64>,
+    u: Vector2<f64>,
+    tip: Vector2<f64>,
+    segment: &EdgeSegment,
+    size: f64,
+) -> SectionPlane {
+    let lambda = front
+        .intersect_nearest(m, u)
+        .filter(|l| l.abs() <= size)
+        .unwrap_or_else(|| {
+            if u.y.abs() > 1e-12 {
+                (tip.y - m.y) / u.y
+            } else {
+                0.0
+            }
+        });
+    let q = m + u * lambda;
+    let up = -Vector3::new(0.0, segment.normal.y, segment.normal.x);
+    SectionPlane::normal_to_segment(Vector3::new(0.0, q.y, q.x), up)
 }
 
 /// A segment's midpoint in the world (x = 0) for the knife at `position`.
@@ -621,20 +942,4 @@ fn tip_of(s: &SegmentSection) -> Vector2<f64> {
         .plane
         .to_world(&Vector2::new(0.0, s.section.state().crack_tip_height));
     Vector2::new(w.z, w.y)
-}
-
-/// Whether two section shapes agree to a relative 1e-9 of their size (the
-/// plane cuts of a prism's interior differ by rounding only).
-fn same_geometry(a: &SectionGeometry, b: &SectionGeometry) -> bool {
-    let scale = a.height_at_cut().max(a.half_width());
-    let tol = 1e-9 * scale;
-    let close = |x: f64, y: f64| (x - y).abs() <= tol;
-    if !(close(a.height_at_cut(), b.height_at_cut()) && close(a.half_width(), b.half_width())) {
-        return false;
-    }
-    const SAMPLES: usize = 64;
-    (0..=SAMPLES).all(|k| {
-        let x = a.half_width() * k as f64 / SAMPLES as f64;
-        close(a.top_at(x), b.top_at(x))
-    })
 }

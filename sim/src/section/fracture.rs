@@ -1,6 +1,7 @@
 //! Fracture of a section by the energy balance of seed 000 eq. (1),
 //! dW = R_c^s ds + dU, with the slicing toughness R_c^s = r(ξ,ν)·R_c of eq. (6)
-//! and the crack extension found by bracketing and bisection (§III.C).
+//! and the crack extension found by bracketing (§III.C) and a safeguarded
+//! regula falsi (Illinois) on the bracket.
 
 pub(crate) use crate::mechanics::toughness_ratio;
 
@@ -33,7 +34,7 @@ pub(crate) enum Extension {
     },
 }
 
-/// Bracketing and bisection of seed 000 §III.C.
+/// Bracketing of seed 000 §III.C, then Illinois regula falsi on the bracket.
 ///
 /// `release(s)` is the energy release rate R(s) = (dW − dU)/s for a trial
 /// extension s. Growth starts when R(δ₀) ≥ `trigger`, or when R(2ᵏδ₀) ≥
@@ -44,7 +45,8 @@ pub(crate) enum Extension {
 /// stored energy). The extension then
 /// solves R(s) = `target` (≤ trigger): δ is grown in integer multiples
 /// (doubling) until R(kδ₀) < target brackets the root, or s reaches `s_max`,
-/// then bisected until |R − target| ≤ tol·target.
+/// then narrowed (Illinois regula falsi, midpoint fallback; at most
+/// `max_bisections` trials) until |R − target| ≤ tol·target.
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn solve_extension(
     mut release: impl FnMut(f64) -> f64,
@@ -96,17 +98,38 @@ pub(crate) fn solve_extension(
     if (r_lo - target).abs() <= tol * target {
         return Extension::Balanced { s: lo, r: r_lo };
     }
+    // Illinois regula falsi on the bracket [lo, hi] (R(lo) ≥ T > R(hi)): the
+    // secant of the bracket's ends, with the retained end's value halved
+    // when the same end is kept twice, converges superlinearly where R is
+    // smooth (a few evaluations instead of bisection's ~25 for 1e-7); a
+    // trial outside the bracket's interior falls back to its midpoint.
+    let (mut f_lo, mut f_hi) = (r_lo - target, r_hi - target);
+    let mut kept: i8 = 0;
     let (mut s, mut r) = (lo, r_lo);
     for _ in 0..max_bisections {
-        s = 0.5 * (lo + hi);
+        s = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+        if !(s > lo && s < hi) {
+            s = 0.5 * (lo + hi);
+        }
         r = release(s);
         if (r - target).abs() <= tol * target || hi - lo <= 4.0 * f64::EPSILON * hi {
             break;
         }
-        if r >= target {
+        let f = r - target;
+        if f >= 0.0 {
             lo = s;
+            f_lo = f;
+            if kept == 1 {
+                f_hi *= 0.5;
+            }
+            kept = 1;
         } else {
             hi = s;
+            f_hi = f;
+            if kept == -1 {
+                f_lo *= 0.5;
+            }
+            kept = -1;
         }
     }
     Extension::Balanced { s, r }

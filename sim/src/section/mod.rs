@@ -7,7 +7,7 @@
 //! section), `plane_strain` and `antiplane` (element stiffnesses), `condensed`
 //! (factorisation and Schur complement onto the cut line), `contact` (wedge
 //! profile and friction), `fracture` (toughness ratio, bracketing and
-//! bisection), `simulation` ([`CrossSection`]), `settings`, `error`.
+//! regula falsi), `simulation` ([`CrossSection`]), `settings`, `error`.
 
 mod antiplane;
 mod condensed;

@@ -29,13 +29,14 @@ pub struct SectionSettings {
     /// seed 000 §III.C. The crack starts to grow in a step when the energy
     /// release rate for an extension δ₀ reaches the toughness.
     pub initial_crack_extension: f64,
-    /// Relative tolerance on the energy release rate in the bisection,
+    /// Relative tolerance on the energy release rate in the root search on
+    /// the bracket (Illinois regula falsi; the key keeps its historic name),
     /// |R − R_c^s| ≤ tol·R_c^s (default 1e-7).
     pub bisection_tolerance: f64,
     /// Most doublings of the trial extension while bracketing R = R_c^s
     /// (default 60). Beyond it the step reports an unbracketed status.
     pub max_bracket_doublings: u32,
-    /// Most bisection iterations per step (default 200).
+    /// Most root-search iterations on the bracket per step (default 200).
     pub max_bisection_iterations: u32,
 }
 

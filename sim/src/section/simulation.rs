@@ -84,7 +84,9 @@ pub struct SectionStep {
     pub force_tangential_friction: f64,
     /// Crack extension in this step, m.
     pub crack_extension: f64,
-    /// Whether the first fracture has happened (the toughness is R_c, not R'_c).
+    /// Whether the first fracture has happened. Without a skin layer the
+    /// toughness is then R_c, not R'_c; with one
+    /// ([`Material::skin_thickness`]) the crack depth decides.
     pub fractured: bool,
     /// What the step did.
     pub status: StepStatus,
@@ -146,6 +148,13 @@ struct Workspace {
     /// Strip columns in contact with the edge (warm start, as `released`).
     strip_active: [bool; MAX_STRIP],
     mixed: ReleasedWorkspace,
+    /// Linear solves of the condensed line so far (a cost counter).
+    solves: u64,
+    /// The last step's end configuration (y_tip, y_edge, drag) and its
+    /// evaluation, whose face reactions are still in `p`: the next step
+    /// starts there, so its start evaluation needs only the friction for
+    /// the new increments (`face_terms`), not another active-set solve.
+    end: Option<(f64, f64, f64, Eval)>,
 }
 
 /// Most active-set iterations of the face contact per evaluation.
@@ -193,8 +202,14 @@ struct State {
 /// classical −∂U/∂a at a held knife is not used). The crack grows when
 /// R(δ₀) ≥ r(ξ,ν)·R'_c before the first fracture, r(ξ,ν)·R_c after it (r of
 /// seed 000 eq. 6); the extension solves R(s) = r·R_c by bracketing (δ doubled)
-/// and bisection. In steady cutting of a deep section ΔU → 0, so
+/// and a safeguarded regula falsi on the bracket. In steady cutting of a deep section ΔU → 0, so
 /// F_n + ξ·F_t → r·R_c: the knife work per unit cut area is r·R_c.
+///
+/// With a skin layer of thickness t ([`Material::skin_thickness`]) the
+/// toughness is R'_c for crack depths below t and R_c deeper, whatever the
+/// first-fracture flag says: an extension s from depth a₀ balances
+/// R(s) = r·Γ(s)/s, Γ the toughness integrated over [a₀, a₀ + s], so the
+/// fracture energy of a cut to depth a > t is r·(R'_c·t + R_c·(a − t)).
 ///
 /// The step is energy-consistent: knife work = fracture + strain energy +
 /// friction (+ unstable release), with fracture = Σ R(s)·s and |R − r·R_c| ≤
@@ -278,6 +293,8 @@ impl CrossSection {
                 released: vec![false; n],
                 strip_active: [true; MAX_STRIP],
                 mixed: ReleasedWorkspace::new(n),
+                solves: 0,
+                end: None,
             },
             model,
             state,
@@ -290,6 +307,7 @@ impl CrossSection {
         self.state = self.initial;
         // Active-set warm starts: reset too, so a rerun is bit-identical.
         self.ws.released.fill(false);
+        self.ws.end = None;
         self.ws.strip_active = [true; MAX_STRIP];
     }
 
@@ -335,6 +353,13 @@ impl CrossSection {
     /// The state after the last step (or the initial state).
     pub fn state(&self) -> &SectionStep {
         &self.state.step
+    }
+
+    /// Number of linear solves of the condensed line since construction
+    /// (each configuration evaluated costs one per active-set pass): the
+    /// section's cost counter, for profiling without a clock.
+    pub fn solves(&self) -> u64 {
+        self.ws.solves
     }
 
     /// Height of the section at the cut line, m.
@@ -397,7 +422,15 @@ impl CrossSection {
         let dt_abs = dt.abs();
         let xi = if dn > 0.0 { dt_abs / dn } else { f64::INFINITY };
         // Start of the step: elastic part from the state, friction for this direction.
-        let e0 = evaluate(model, ws, st.y_tip, st.y_edge, st.drag, dn, dt_abs);
+        let e0 = match ws.end.take() {
+            Some((y_tip, y_edge, drag, mut e))
+                if y_tip == st.y_tip && y_edge == st.y_edge && drag == st.drag =>
+            {
+                face_terms(model, ws, st.y_tip, st.y_edge, dn, dt_abs, &mut e);
+                e
+            }
+            _ => evaluate(model, ws, st.y_tip, st.y_edge, st.drag, dn, dt_abs),
+        };
         let u0 = e0.energy;
         let d0 = st.y_tip - st.y_edge;
         let drag_at = |s: f64| -> f64 {
@@ -441,11 +474,40 @@ impl CrossSection {
                 r * mat.initial_fracture_toughness.min(mat.fracture_toughness),
             )
         };
+        // With a skin layer (`Material::skin_thickness`) the toughness
+        // depends on the depth: an extension s from the tip's depth a₀ pays
+        // Γ(s) = R'_c·|[a₀, a₀+s] ∩ [0, t]| + R_c·(the rest), and balances
+        // R(s) = r·Γ(s)/s. The root search then runs on R(s)/(r·Γ(s)/s)
+        // against 1 (same relative tolerance).
+        let skin = mat.skin_thickness.map(|t| (t, model.height - st.y_tip));
+        let layered = |s: f64| -> f64 {
+            match skin {
+                Some((t, a0)) => {
+                    let in_skin = (t - a0).clamp(0.0, s);
+                    r * (mat.initial_fracture_toughness * in_skin
+                        + mat.fracture_toughness * (s - in_skin))
+                        / s
+                }
+                None => target,
+            }
+        };
+        let (trigger, target) = if skin.is_some() {
+            (1.0, 1.0)
+        } else {
+            (trigger, target)
+        };
+        let mut balance = |s: f64| -> f64 {
+            if skin.is_some() {
+                release(s) / layered(s)
+            } else {
+                release(s)
+            }
+        };
         let s_max = st.y_tip - model.h;
         let set = &model.settings;
         let ext = if dn > 0.0 && trigger.is_finite() && s_max > 0.0 {
             solve_extension(
-                &mut release,
+                &mut balance,
                 set.initial_crack_extension,
                 (st.y_tip - y_edge1).max(0.0) + model.h,
                 s_max,
@@ -458,12 +520,15 @@ impl CrossSection {
         } else {
             Extension::None
         };
+        // Back from the balance ratio to R(s) and the toughness paid.
+        let to_rate = |s: f64, b: f64| if skin.is_some() { b * layered(s) } else { b };
         let (s, r_s, mut status) = match ext {
             Extension::None => (0.0, 0.0, StepStatus::Indenting),
-            Extension::Balanced { s, r } => (s, r, StepStatus::Cutting),
-            Extension::RunsThrough { s, r } => (s, r, StepStatus::CutThrough),
-            Extension::Unbracketed { s, r } => (s, r, StepStatus::Unbracketed),
+            Extension::Balanced { s, r } => (s, to_rate(s, r), StepStatus::Cutting),
+            Extension::RunsThrough { s, r } => (s, to_rate(s, r), StepStatus::CutThrough),
+            Extension::Unbracketed { s, r } => (s, to_rate(s, r), StepStatus::Unbracketed),
         };
+        let target_at = |s: f64| if skin.is_some() { layered(s) } else { target };
         // Knife work of a step without crack growth: trapezoids between the
         // positions where the force may jump, i.e. where a face node passes a
         // kink of the wedge profile (s = 0, the corner, the end of the bevel)
@@ -552,7 +617,7 @@ impl CrossSection {
             let fracture = if matches!(status, StepStatus::Cutting) {
                 r_s * s
             } else {
-                target * s
+                target_at(s) * s
             };
             work.fracture += fracture;
             work.unstable += (w_el - (e1.energy - u0)) - fracture;
@@ -578,6 +643,7 @@ impl CrossSection {
             work,
             tensile_contacts: e1.tensile,
         };
+        self.ws.end = Some((y_tip1, y_edge1, drag1, e1));
         self.state = State {
             y_edge: y_edge1,
             y_tip: y_tip1,
@@ -730,7 +796,6 @@ fn evaluate(
             model.profile.width(y - y_ref)
         };
     }
-    let edge_contact = y_tip > y_edge;
     // Unilateral contacts, solved together by a primal-dual active set on the
     // condensed line:
     // - the wedge faces: a face row is released when its reaction would pull
@@ -760,6 +825,7 @@ fn evaluate(
     }
     let mut ip = Default::default();
     for _ in 0..MAX_ACTIVE_SET_ITERATIONS {
+        ws.solves += 1;
         let any = strip_c.active[..k].iter().any(|&a| a);
         ip = model.line.solve_released(
             &mut ws.g,
@@ -826,7 +892,6 @@ fn evaluate(
         }),
         _ => (0.0, 0.0),
     };
-    let mu = model.material.friction_coefficient;
     let mut e = Eval {
         f_edge: -2.0 * ip.strip_force,
         f_t: 2.0 * f_anti,
@@ -835,6 +900,31 @@ fn evaluate(
         contacts,
         ..Default::default()
     };
+    face_terms(model, ws, y_tip, y_edge, dn, dt, &mut e);
+    e
+}
+
+/// The terms of `e` read off the face reactions left in `ws.p` by the
+/// evaluation of (y_tip, y_edge): the wedge's vertical force, the tensile
+/// count, and the friction for knife increments (dn, dt ≥ 0). Allocation-free.
+fn face_terms(
+    model: &Model,
+    ws: &Workspace,
+    y_tip: f64,
+    y_edge: f64,
+    dn: f64,
+    dt: f64,
+    e: &mut Eval,
+) {
+    let h = model.h;
+    let (first, _) = tip_row(model, y_tip);
+    let y_ref = y_tip.max(y_edge);
+    let edge_contact = y_tip > y_edge;
+    let mu = model.material.friction_coefficient;
+    e.f_wedge = 0.0;
+    e.tensile = 0;
+    e.f_fric_n = 0.0;
+    e.f_fric_t = 0.0;
     for i in first..model.n {
         let y = (i + 1) as f64 * h;
         if y <= y_tip {
@@ -856,7 +946,6 @@ fn evaluate(
         e.f_fric_n += 2.0 * fn_;
         e.f_fric_t += 2.0 * ft;
     }
-    e
 }
 
 #[cfg(test)]

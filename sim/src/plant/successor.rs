@@ -1,0 +1,332 @@
+//! Successor cross sections prepared ahead of time on a worker thread, so that
+//! a re-choice (seed 000 §IV, Fig. 4(b)) never meshes, factorises or condenses
+//! a section inside [`Plant::step`](super::Plant::step).
+//!
+//! The plant submits a [`SuccessorJob`] (a segment's predicted plane) as soon
+//! as the segment's section has started cutting or been re-chosen, and takes
+//! the result at the re-choice, blocking only if the worker has not
+//! finished it yet. A result is a pure function of its job (the plane, the
+//! current shape and the plant's fixed object, material, blade and settings),
+//! so what the plant does is independent of thread timing: two runs with the
+//! same seed are bit-identical however the worker is scheduled.
+//!
+//! The hand-off uses a mutex and two condition variables over per-segment
+//! slots, preallocated at construction: submitting and taking allocate
+//! nothing on the plant's thread (the worker allocates the new section, and
+//! dropping a superseded one only frees).
+
+use std::sync::{Arc, Condvar, Mutex, MutexGuard};
+use std::thread::JoinHandle;
+
+use crate::blade::BladeSection;
+use crate::geometry::{SectionPlane, TriangleMesh};
+use crate::material::Material;
+use crate::section::{CrossSection, SectionError, SectionGeometry, SectionSettings};
+
+use super::section_shape::section_geometry;
+
+/// What the plant needs to cut sections: fixed at construction.
+#[derive(Debug, Clone)]
+pub(crate) struct SectionFactory {
+    /// The object, cut by the planes.
+    pub object: TriangleMesh,
+    /// The material of every section.
+    pub material: Material,
+    /// The blade's cross section.
+    pub blade: BladeSection,
+    /// Mesh and solver settings of every section.
+    pub settings: SectionSettings,
+    /// Rim height below which a dome-shaped section is clipped, as a fraction
+    /// of the section's height.
+    pub rim_fraction: f64,
+}
+
+impl SectionFactory {
+    /// The successor for `plane`: no material, the current shape again, or a
+    /// new section. This is the work a re-choice used to do inside the tick.
+    pub fn prepare(&self, plane: &SectionPlane, current: Option<&SectionGeometry>) -> Preparation {
+        let Some(polygon) = plane.section(&self.object) else {
+            return Preparation::NoMaterial;
+        };
+        let height = polygon.bounds().1.y;
+        let Ok(geometry) = section_geometry(&polygon, self.rim_fraction * height) else {
+            // Lower than the rim everywhere: no material worth a section.
+            return Preparation::NoMaterial;
+        };
+        if current.is_some_and(|c| same_geometry(&geometry, c)) {
+            return Preparation::SameShape;
+        }
+        match CrossSection::new(&geometry, &self.material, &self.blade, &self.settings) {
+            Ok(section) => Preparation::New {
+                geometry: Arc::new(geometry),
+                section: Box::new(section),
+            },
+            Err(e) => Preparation::Failed(e),
+        }
+    }
+}
+
+/// A successor the worker prepared.
+#[derive(Debug)]
+pub(crate) enum Preparation {
+    /// The plane misses the object, or its section is lower than the rim.
+    NoMaterial,
+    /// The plane cuts the same shape as the current section (a prism's
+    /// interior): only the plane moves.
+    SameShape,
+    /// A new section for a new shape, built, factorised and condensed.
+    New {
+        /// Its shape.
+        geometry: Arc<SectionGeometry>,
+        /// The section, in its initial state.
+        section: Box<CrossSection>,
+    },
+    /// The section could not be built.
+    Failed(SectionError),
+}
+
+/// A request for a segment's successor.
+#[derive(Debug, Clone)]
+pub(crate) struct SuccessorJob {
+    /// Plane of the successor.
+    pub plane: SectionPlane,
+    /// The current section's shape, if it is active (to tell a same shape).
+    pub current: Option<Arc<SectionGeometry>>,
+}
+
+#[derive(Debug, Default)]
+struct Slot {
+    /// Generation of the job last submitted for this segment (0: none).
+    wanted: u64,
+    /// The job not yet taken by the worker.
+    job: Option<(u64, SuccessorJob)>,
+    /// The finished result for generation `.0`.
+    result: Option<(u64, Preparation)>,
+}
+
+#[derive(Debug)]
+struct Slots {
+    slots: Vec<Slot>,
+    shutdown: bool,
+}
+
+#[derive(Debug)]
+struct Shared {
+    slots: Mutex<Slots>,
+    /// Signalled when a job is submitted or at shutdown.
+    job_ready: Condvar,
+    /// Signalled when a result is stored.
+    result_ready: Condvar,
+}
+
+impl Shared {
+    fn lock(&self) -> MutexGuard<'_, Slots> {
+        // A panic on the worker while holding the lock leaves consistent
+        // slots (results are stored whole): keep going.
+        self.slots.lock().unwrap_or_else(|e| e.into_inner())
+    }
+}
+
+/// The worker thread preparing successor sections, one slot per segment.
+pub(crate) struct SuccessorWorker {
+    shared: Arc<Shared>,
+    factory: Arc<SectionFactory>,
+    handle: Option<JoinHandle<()>>,
+    next_generation: u64,
+    /// The jobs submitted and not yet taken, per segment (kept to clone the
+    /// worker with the same pending work).
+    pending: Vec<Option<(u64, SuccessorJob)>>,
+    /// Results that were not ready when taken (diagnostic, timing-dependent).
+    waits: usize,
+}
+
+impl std::fmt::Debug for SuccessorWorker {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("SuccessorWorker")
+            .field("segments", &self.pending.len())
+            .field("next_generation", &self.next_generation)
+            .finish_non_exhaustive()
+    }
+}
+
+impl SuccessorWorker {
+    /// Starts the worker for `segments` segments.
+    pub fn new(factory: Arc<SectionFactory>, segments: usize) -> Self {
+        let shared = Arc::new(Shared {
+            slots: Mutex::new(Slots {
+                slots: (0..segments).map(|_| Slot::default()).collect(),
+                shutdown: false,
+            }),
+            job_ready: Condvar::new(),
+            result_ready: Condvar::new(),
+        });
+        let handle = {
+            let shared = Arc::clone(&shared);
+            let factory = Arc::clone(&factory);
+            std::thread::Builder::new()
+                .name("successor-sections".into())
+                .spawn(move || run(&shared, &factory))
+                .ok()
+        };
+        Self {
+            shared,
+            factory,
+            handle,
+            next_generation: 1,
+            pending: (0..segments).map(|_| None).collect(),
+            waits: 0,
+        }
+    }
+
+    /// Whether a job for segment `index` is pending.
+    pub fn is_pending(&self, index: usize) -> bool {
+        self.pending[index].is_some()
+    }
+
+    /// Number of results that were not ready when taken.
+    pub fn waits(&self) -> usize {
+        self.waits
+    }
+
+    /// Submits `job` for segment `index`, superseding any pending one.
+    /// Allocates nothing.
+    pub fn submit(&mut self, index: usize, job: SuccessorJob) {
+        let generation = self.next_generation;
+        self.next_generation += 1;
+        self.pending[index] = Some((generation, job.clone()));
+        if self.handle.is_none() {
+            return;
+        }
+        let mut slots = self.shared.lock();
+        let slot = &mut slots.slots[index];
+        slot.wanted = generation;
+        slot.job = Some((generation, job));
+        // A superseded result is dropped here (frees only).
+        slot.result = None;
+        drop(slots);
+        self.shared.job_ready.notify_one();
+    }
+
+    /// Drops the pending job of segment `index`, if any.
+    pub fn cancel(&mut self, index: usize) {
+        if self.pending[index].take().is_none() || self.handle.is_none() {
+            return;
+        }
+        let mut slots = self.shared.lock();
+        let slot = &mut slots.slots[index];
+        slot.wanted = 0;
+        slot.job = None;
+        slot.result = None;
+    }
+
+    /// Takes the result of segment `index`'s pending job, waiting for the
+    /// worker if it is not ready; `None` without a pending job. Allocates
+    /// nothing. (Without a worker thread, which only happens when the OS
+    /// refused to start one, the job is prepared here.)
+    pub fn take(&mut self, index: usize) -> Option<(SectionPlane, Preparation)> {
+        let (generation, job) = self.pending[index].take()?;
+        if self.handle.is_none() {
+            let p = self.factory.prepare(&job.plane, job.current.as_deref());
+            return Some((job.plane, p));
+        }
+        let mut slots = self.shared.lock();
+        let mut waited = false;
+        loop {
+            let slot = &mut slots.slots[index];
+            if slot.result.as_ref().is_some_and(|(g, _)| *g == generation) {
+                let (_, p) = slot.result.take()?;
+                slot.wanted = 0;
+                if waited {
+                    self.waits += 1;
+                }
+                return Some((job.plane, p));
+            }
+            waited = true;
+            slots = self
+                .shared
+                .result_ready
+                .wait(slots)
+                .unwrap_or_else(|e| e.into_inner());
+        }
+    }
+}
+
+impl Clone for SuccessorWorker {
+    /// A new worker with the same pending jobs: their results are functions
+    /// of the jobs, so the clone adopts the same successors.
+    fn clone(&self) -> Self {
+        let mut w = Self::new(Arc::clone(&self.factory), self.pending.len());
+        let mut jobs: Vec<_> = self
+            .pending
+            .iter()
+            .enumerate()
+            .filter_map(|(i, p)| p.as_ref().map(|(g, j)| (*g, i, j.clone())))
+            .collect();
+        jobs.sort_by_key(|(g, _, _)| *g);
+        for (_, i, j) in jobs {
+            w.submit(i, j);
+        }
+        w.waits = self.waits;
+        w
+    }
+}
+
+impl Drop for SuccessorWorker {
+    fn drop(&mut self) {
+        self.shared.lock().shutdown = true;
+        self.shared.job_ready.notify_all();
+        if let Some(h) = self.handle.take() {
+            let _ = h.join();
+        }
+    }
+}
+
+/// The worker's loop: the oldest submitted job first.
+fn run(shared: &Shared, factory: &SectionFactory) {
+    let mut slots = shared.lock();
+    loop {
+        if slots.shutdown {
+            return;
+        }
+        let next = slots
+            .slots
+            .iter()
+            .enumerate()
+            .filter_map(|(i, s)| s.job.as_ref().map(|(g, _)| (*g, i)))
+            .min();
+        let Some((_, index)) = next else {
+            slots = shared
+                .job_ready
+                .wait(slots)
+                .unwrap_or_else(|e| e.into_inner());
+            continue;
+        };
+        let Some((generation, job)) = slots.slots[index].job.take() else {
+            continue;
+        };
+        drop(slots);
+        let prepared = factory.prepare(&job.plane, job.current.as_deref());
+        slots = shared.lock();
+        let slot = &mut slots.slots[index];
+        if slot.wanted == generation {
+            slot.result = Some((generation, prepared));
+            shared.result_ready.notify_all();
+        }
+    }
+}
+
+/// Whether two section shapes agree to a relative 1e-9 of their size (the
+/// plane cuts of a prism's interior differ by rounding only).
+pub(crate) fn same_geometry(a: &SectionGeometry, b: &SectionGeometry) -> bool {
+    let scale = a.height_at_cut().max(a.half_width());
+    let tol = 1e-9 * scale;
+    let close = |x: f64, y: f64| (x - y).abs() <= tol;
+    if !(close(a.height_at_cut(), b.height_at_cut()) && close(a.half_width(), b.half_width())) {
+        return false;
+    }
+    const SAMPLES: usize = 64;
+    (0..=SAMPLES).all(|k| {
+        let x = a.half_width() * k as f64 / SAMPLES as f64;
+        close(a.top_at(x), b.top_at(x))
+    })
+}
