@@ -189,11 +189,23 @@ pub const DEFAULT_SCENARIO: (&str, &str) = (
 );
 
 /// Scenarios shipped with shearcut, available by name as well as by path.
-pub const BUILT_IN_SCENARIOS: [(&str, &str); 2] = [
+pub const BUILT_IN_SCENARIOS: [(&str, &str); 5] = [
     DEFAULT_SCENARIO,
     (
         "fig7-eggplant",
         include_str!("../config/scenarios/fig7-eggplant.toml"),
+    ),
+    (
+        "loop-potato-cuboid",
+        include_str!("../config/scenarios/loop-potato-cuboid.toml"),
+    ),
+    (
+        "loop-potato-whole",
+        include_str!("../config/scenarios/loop-potato-whole.toml"),
+    ),
+    (
+        "loop-eggplant-whole",
+        include_str!("../config/scenarios/loop-eggplant-whole.toml"),
     ),
 ];
 
