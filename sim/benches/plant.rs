@@ -20,6 +20,19 @@ use shearcut_sim::plant::{ArmLimits, KnifeCommand, Plant, PlantSettings};
 use shearcut_sim::{Knife, KnifePreset, MaterialPreset, ObjectShape, SectionSettings};
 
 fn main() {
+    // The default section mesh (rows every 0.2 mm), then rows every 0.4 mm:
+    // a solve's cost grows with the square of the rows on the cut line, so
+    // the coarser mesh shows what the tick costs scale with.
+    for row_spacing in [2e-4, 4e-4] {
+        println!("-- row spacing {:.1} mm", row_spacing * 1e3);
+        run(&SectionSettings {
+            row_spacing,
+            ..SectionSettings::default()
+        });
+    }
+}
+
+fn run(section: &SectionSettings) {
     let material = MaterialPreset::PotatoWhole.material();
     let knife = Knife::new(&KnifePreset::Chef.settings()).unwrap();
     let object = ObjectShape::HalfPotato {
@@ -38,7 +51,7 @@ fn main() {
         0.046,
         Vector2::new(0.0, -1.0),
         &settings,
-        &SectionSettings::default(),
+        section,
         &ArmLimits::default(),
         0,
     )

@@ -700,6 +700,8 @@ impl Plant {
                     Preparation::NoMaterial => s.active = false,
                     Preparation::SameShape => {}
                     Preparation::Failed(e) => return Err(e),
+                    // `take` resumes a worker's panic; kept for completeness.
+                    Preparation::Panicked(p) => std::panic::resume_unwind(p),
                     Preparation::New { geometry, section } => {
                         // The crack carried over: the front where it crosses
                         // the new plane (its trace in the knife plane is the
@@ -827,6 +829,7 @@ impl Plant {
             let (geometry, mut section) = match prepared {
                 Preparation::New { geometry, section } => (geometry, section),
                 Preparation::Failed(e) => return Err(e),
+                Preparation::Panicked(p) => std::panic::resume_unwind(p),
                 // No material on that plane yet: try again next tick.
                 Preparation::NoMaterial | Preparation::SameShape => {
                     k += 1;
