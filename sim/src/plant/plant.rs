@@ -201,6 +201,20 @@ struct SegmentSection {
 /// it through the first contact of its midpoint's path with the object
 /// (seed 000 §IV).
 ///
+/// # Segments entering through a side face
+/// When slicing steeply, a heel-side midpoint's path can first meet the
+/// object on a vertical side face (a cuboid's near face, min z) below its
+/// top: a section normal to the segment there would be a sliver of the face.
+/// Such a segment starts *dormant*, without a section. Once a section has
+/// started cutting (so a crack front exists) and the midpoint is within two
+/// update distances of the material along the direction of motion, its first
+/// section is ordered from the worker for the plane normal to it through q,
+/// the front's crossing of its path at the entry point (or the entry point
+/// itself if that crossing is not in the material); when the midpoint is
+/// under the silhouette's top the section takes over like a re-choice,
+/// restarted with the crack depth where the front crosses its plane
+/// ([`Plant::dormant_segments`], [`Plant::woken_segments`]).
+///
 /// # Moving cross sections (seed 000 §IV, Fig. 4(b))
 /// After each tick the plant measures, for every section that has started
 /// cutting or taken over a cut (a successor), how far its segment's midpoint has slid off the section's plane
