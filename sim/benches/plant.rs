@@ -1,7 +1,9 @@
 //! Cost of one `Plant::step` at 1 kHz ticks: the whole-potato, curved-knife
 //! scenario of seed 000 Fig. 10(a) (chef's knife, half potato with skin,
 //! α = 0, z₀ = 0.046 m, m = 10 sections), from the approach through the first
-//! fractures to steady cutting. Prints median, p99 and worst µs per tick and
+//! fractures to steady cutting, at the default section mesh and a coarser
+//! one, then Fig. 10(b)'s slice (α = 24°, z₀ = 0.087 m). Prints median, p99
+//! and worst µs per tick and
 //! the real-time factor (1 ms of simulated time per wall-clock tick time),
 //! the condensed-line solves per tick (the sections' cost counter: the
 //! compute a tick needs, free of the machine's load), and the re-choices,
@@ -20,6 +22,30 @@ use shearcut_sim::plant::{ArmLimits, KnifeCommand, Plant, PlantSettings};
 use shearcut_sim::{Knife, KnifePreset, MaterialPreset, ObjectShape, SectionSettings};
 
 fn main() {
+    // The default section mesh (rows every 0.2 mm), then rows every 0.4 mm:
+    // a solve's cost grows with the square of the rows on the cut line, so
+    // the coarser mesh shows what the tick costs scale with.
+    // Then Fig. 10(b)'s slice (α = 24°, z₀ = 0.087 m), whose segments slide
+    // along the potato: frequent re-choices with successors built on the
+    // worker.
+    for (row_spacing, alpha_deg, z0) in
+        [(2e-4, 0.0, 0.046), (4e-4, 0.0, 0.046), (2e-4, 24.0, 0.087)]
+    {
+        println!(
+            "-- row spacing {:.1} mm, alpha {alpha_deg} deg, z0 {z0} m",
+            row_spacing * 1e3
+        );
+        let section = SectionSettings {
+            row_spacing,
+            ..SectionSettings::default()
+        };
+        run(&section, f64::to_radians(alpha_deg), z0);
+    }
+}
+
+fn run(section: &SectionSettings, alpha: f64, z0: f64) {
+    // Towards the tip (+z) and down, as `shearcut simulate` slices.
+    let direction = Vector2::new(alpha.sin(), -alpha.cos());
     let material = MaterialPreset::PotatoWhole.material();
     let knife = Knife::new(&KnifePreset::Chef.settings()).unwrap();
     let object = ObjectShape::HalfPotato {
@@ -35,10 +61,10 @@ fn main() {
         &material,
         &knife,
         &object,
-        0.046,
-        Vector2::new(0.0, -1.0),
+        z0,
+        direction,
         &settings,
-        &SectionSettings::default(),
+        section,
         &ArmLimits::default(),
         0,
     )
@@ -46,7 +72,7 @@ fn main() {
     let build = t0.elapsed();
     let dt = 1e-3;
     let speed = 0.00625;
-    // 4 s: a 50 ms ramp to 6.25 mm/s, then 25 mm of descent.
+    // 4 s: a 50 ms ramp to 6.25 mm/s, then 25 mm of travel.
     let ticks = 4000;
     let mut times = Vec::with_capacity(ticks);
     // Condensed-line solves per tick (the sections' cost counter; a
@@ -56,7 +82,7 @@ fn main() {
     for k in 1..=ticks {
         let v = speed * (k as f64 * dt / 0.05).min(1.0);
         let cmd = KnifeCommand {
-            velocity: Vector3::new(0.0, -v, 0.0),
+            velocity: Vector3::new(0.0, direction.y, direction.x) * v,
         };
         let before = plant.section_solves();
         let t = Instant::now();

@@ -554,9 +554,10 @@ fn steep_slice_gives_near_face_segments_their_sections() {
 #[test]
 fn slice_angle_changing_mid_cut_moves_sections_along_the_executed_path() {
     // A closed loop turns the knife: pressing (α = 0) into a half potato,
-    // then slicing towards the heel at α = 30°. Re-choices follow the
-    // executed direction, the sections stay normal to their segments, and
-    // the work never drops.
+    // then slicing towards the heel at α = 30°, then backing out along that
+    // line. Re-choices follow the executed direction, the successors are
+    // foreseen on the side the segments slide to (also after the reversal),
+    // the sections stay normal to their segments, and the work never drops.
     let material = MaterialPreset::PotatoWhole.material();
     let knife = Knife::new(&KnifePreset::Chef.settings()).unwrap();
     let object = shearcut_sim::ObjectShape::HalfPotato {
@@ -580,16 +581,22 @@ fn slice_angle_changing_mid_cut_moves_sections_along_the_executed_path() {
     let turned = Vector2::new(-alpha.sin(), -alpha.cos());
     let mut prev_work = 0.0;
     let mut rechoices_after_turn = 0;
-    for k in 0..2400 {
+    let mut unforeseen_before_reversal = 0;
+    for k in 0..3000 {
         let u = if k < 1200 {
             Vector2::new(0.0, -1.0)
-        } else {
+        } else if k < 2400 {
             turned
+        } else {
+            -turned
         };
         let cmd = KnifeCommand {
             velocity: Vector3::new(0.0, u.y, u.x) * SPEED,
         };
         let before = plant.rechoices();
+        if k == 2400 {
+            unforeseen_before_reversal = plant.unforeseen_rechoices();
+        }
         let m = plant.step(&cmd, DT).unwrap();
         assert_eq!(m.status, PlantStatus::Moving);
         assert!(
@@ -600,7 +607,7 @@ fn slice_angle_changing_mid_cut_moves_sections_along_the_executed_path() {
         prev_work = m.work;
         assert!(worst_normal_misalignment(&plant) < 1e-12, "tick {k}");
         assert!((plant.direction_of_motion() - u).norm() < 1e-12, "tick {k}");
-        if k >= 1200 {
+        if (1200..2400).contains(&k) {
             rechoices_after_turn += plant.rechoices() - before;
         }
     }
@@ -609,4 +616,51 @@ fn slice_angle_changing_mid_cut_moves_sections_along_the_executed_path() {
         "the turned knife slides its segments off their planes"
     );
     assert!(prev_work > 0.0);
+    // Backing out, the segments slide back over their planes and on to the
+    // other side: those successors are re-ordered in time, none waits.
+    assert_eq!(plant.unforeseen_rechoices(), unforeseen_before_reversal);
+}
+
+#[test]
+fn a_clone_with_pending_successors_runs_on_bit_identically() {
+    // Mid-cut the plant has successors ordered from its worker thread; a
+    // clone starts its own worker with the same jobs, and the two then step
+    // to the same bits (the successors are functions of their jobs, not of
+    // thread timing).
+    let material = MaterialPreset::PotatoWhole.material();
+    let knife = Knife::new(&KnifePreset::Chef.settings()).unwrap();
+    let object = shearcut_sim::ObjectShape::HalfPotato {
+        length: 0.08,
+        width: 0.05,
+        height: 0.03,
+    }
+    .mesh()
+    .unwrap();
+    let mut a = plant(
+        &material,
+        &knife,
+        &object,
+        0.05,
+        Vector2::new(-0.5, -1.0),
+        &settings(4),
+        &LOOSE,
+        5,
+    );
+    let cmd = KnifeCommand {
+        velocity: Vector3::new(0.0, -SPEED, -0.5 * SPEED),
+    };
+    for _ in 0..700 {
+        a.step(&cmd, DT).unwrap();
+    }
+    let mut b = a.clone();
+    let rebuilds = a.rebuilds();
+    for k in 0..800 {
+        let (ma, mb) = (a.step(&cmd, DT).unwrap(), b.step(&cmd, DT).unwrap());
+        assert_eq!(ma, mb, "tick {k}");
+    }
+    assert!(
+        a.rebuilds() > rebuilds,
+        "successors were adopted after the clone"
+    );
+    assert_eq!(a.rebuilds(), b.rebuilds());
 }

@@ -186,6 +186,11 @@ struct SegmentSection {
     /// Side (±1) of the plane towards which the pending successor was
     /// foreseen; 0 when none is pending.
     predicted_sign: f64,
+    /// Whether the section took over a cut (a re-chosen successor, or a
+    /// near-face segment's first section): its plane follows the segment
+    /// even before its edge advances (a successor restarted at the top of
+    /// its section has not advanced yet).
+    successor: bool,
 }
 
 /// The plant: a knife (any edge) cutting an object (any closed mesh) through m
@@ -196,9 +201,23 @@ struct SegmentSection {
 /// it through the first contact of its midpoint's path with the object
 /// (seed 000 §IV).
 ///
+/// # Segments entering through a side face
+/// When slicing steeply, a heel-side midpoint's path can first meet the
+/// object on a vertical side face (a cuboid's near face, min z) below its
+/// top: a section normal to the segment there would be a sliver of the face.
+/// Such a segment starts *dormant*, without a section. Once a section has
+/// started cutting (so a crack front exists) and the midpoint is within two
+/// update distances of the material along the direction of motion, its first
+/// section is ordered from the worker for the plane normal to it through q,
+/// the front's crossing of its path at the entry point (or the entry point
+/// itself if that crossing is not in the material); when the midpoint is
+/// under the silhouette's top the section takes over like a re-choice,
+/// restarted with the crack depth where the front crosses its plane
+/// ([`Plant::dormant_segments`], [`Plant::woken_segments`]).
+///
 /// # Moving cross sections (seed 000 §IV, Fig. 4(b))
 /// After each tick the plant measures, for every section that has started
-/// cutting, how far its segment's midpoint has slid off the section's plane
+/// cutting or taken over a cut (a successor), how far its segment's midpoint has slid off the section's plane
 /// (along the plane's normal) since the plane was chosen. Past
 /// [`PlantSettings::update_distance`] the section is re-chosen: a
 /// [`CrackFront`] is fitted over the crack tips of the started sections, and
@@ -236,9 +255,10 @@ struct SegmentSection {
 /// the front fitted at the re-choice. What the worker returns is a function
 /// of the job alone, and the job is fixed at a deterministic tick, so the
 /// results are bit-identical for a seed whatever the thread timing. A
-/// re-choice that was not foreseen on its side (the motion reversed) orders
-/// its successor from the current front and waits for it
-/// ([`Plant::unforeseen_rechoices`]).
+/// motion that reverses across a plane re-orders the successor for the
+/// other side once the midpoint is back over the plane. A re-choice that was
+/// still not foreseen on its side (see [`Plant::unforeseen_rechoices`])
+/// orders its successor from the current front and waits for it.
 ///
 /// # Memory allocation
 /// [`Plant::new`] allocates everything a tick needs and starts the worker;
@@ -384,6 +404,7 @@ impl Plant {
                 lift: 0.0,
                 tangential_sign: 0.0,
                 predicted_sign: 0.0,
+                successor: false,
             });
         }
         if sections.is_empty() && dormant.is_empty() {
@@ -480,8 +501,11 @@ impl Plant {
     }
 
     /// Number of re-choices whose successor had not been foreseen on the side
-    /// the segment slid to (the motion reversed), so that the tick waited for
-    /// the worker to build it. 0 for a motion that keeps its side.
+    /// the segment slid to, so that the tick waited for the worker to build
+    /// it: the midpoint crossed the whole update distance in one tick, or a
+    /// section's edge first touched after its segment had slid farther than
+    /// that off the plane chosen at construction (a knife turned before that
+    /// part of the edge reached the material).
     pub fn unforeseen_rechoices(&self) -> usize {
         self.unforeseen
     }
@@ -634,17 +658,23 @@ impl Plant {
 
     /// Re-chooses the sections whose segments slid more than
     /// `update_distance` off their planes, and orders the successors of the
-    /// started sections without one from the worker (seed 000 §IV, Fig. 4(b); see the
-    /// type's docs). Allocates nothing.
+    /// tracked sections without one from the worker (seed 000 §IV, Fig. 4(b);
+    /// see the type's docs). Allocates nothing.
     fn rechoose(&mut self) -> Result<(), SectionError> {
         let position = self.position;
         let threshold = self.update_distance;
         let worker = &self.worker;
         let motion = self.motion;
         let due = self.sections.iter().any(|s| {
-            started(s)
-                && (slide_of(s, &position).abs() > threshold
-                    || (!worker.is_pending(s.slot) && approach_rate(s, &motion) != 0.0))
+            let slide = slide_of(s, &position);
+            tracked(s)
+                && (slide.abs() > threshold
+                    || foresee(
+                        s,
+                        slide,
+                        approach_rate(s, &motion),
+                        worker.is_pending(s.slot),
+                    ))
         });
         if !due {
             return Ok(());
@@ -656,7 +686,7 @@ impl Plant {
         let u = self.motion;
         let size = self.factory.object.size();
         for s in self.sections.iter_mut() {
-            if !started(s) {
+            if !tracked(s) {
                 continue;
             }
             let m = midpoint_world(&position, &s.segment);
@@ -684,6 +714,8 @@ impl Plant {
                     Preparation::NoMaterial => s.active = false,
                     Preparation::SameShape => {}
                     Preparation::Failed(e) => return Err(e),
+                    // `take` resumes a worker's panic; kept for completeness.
+                    Preparation::Panicked(p) => std::panic::resume_unwind(p),
                     Preparation::New { geometry, section } => {
                         // The crack carried over: the front where it crosses
                         // the new plane (its trace in the knife plane is the
@@ -703,19 +735,22 @@ impl Plant {
                         s.work_offset += old.work.knife;
                         s.geometry = geometry;
                         s.active = true;
+                        s.successor = true;
                         self.rebuilds += 1;
                     }
                 }
-            } else if !self.worker.is_pending(s.slot) {
+            } else if foresee(
+                s,
+                slide,
+                approach_rate(s, &u),
+                self.worker.is_pending(s.slot),
+            ) {
                 // Foresee the successor: where the midpoint will be when the
                 // slide reaches the threshold on the side it is moving to,
                 // moving on along the direction of motion u, and the front's
-                // crossing of u's line through that point.
+                // crossing of u's line through that point. (A new order
+                // supersedes a pending one.)
                 let rate = approach_rate(s, &u);
-                if rate == 0.0 {
-                    // Moving within the plane: nothing to foresee.
-                    continue;
-                }
                 let sign = rate.signum();
                 let travel = (sign * threshold - slide) / rate;
                 let ahead = m2 + u * travel;
@@ -808,6 +843,7 @@ impl Plant {
             let (geometry, mut section) = match prepared {
                 Preparation::New { geometry, section } => (geometry, section),
                 Preparation::Failed(e) => return Err(e),
+                Preparation::Panicked(p) => std::panic::resume_unwind(p),
                 // No material on that plane yet: try again next tick.
                 Preparation::NoMaterial | Preparation::SameShape => {
                     k += 1;
@@ -845,6 +881,7 @@ impl Plant {
                     lift: 0.0,
                     tangential_sign: 0.0,
                     predicted_sign: 0.0,
+                    successor: true,
                 },
             );
             self.dormant.remove(k);
@@ -875,10 +912,26 @@ fn started(s: &SegmentSection) -> bool {
     s.section.state().knife_displacement > 0.0
 }
 
+/// Whether a section's plane follows its segment: it has started cutting or
+/// took over a cut.
+fn tracked(s: &SegmentSection) -> bool {
+    s.successor || started(s)
+}
+
 /// How far the segment's midpoint slid off the section's plane since it was
 /// chosen (signed, along the plane's normal), m.
 fn slide_of(s: &SegmentSection, position: &Vector3<f64>) -> f64 {
     signed_offset(&s.plane, &midpoint_world(position, &s.segment)) - s.slide_reference
+}
+
+/// Whether to order a successor for `s` (slid `slide` off its plane, moving
+/// off it at `rate` per unit travel): none is pending, or the pending one
+/// was foreseen on the other side of the plane, which the midpoint has
+/// crossed back over and is moving away from (the motion reversed). Never
+/// while moving within the plane (`rate` = 0).
+fn foresee(s: &SegmentSection, slide: f64, rate: f64, pending: bool) -> bool {
+    rate != 0.0
+        && (!pending || (s.predicted_sign * slide < 0.0 && rate.signum() != s.predicted_sign))
 }
 
 /// Rate at which the segment's midpoint leaves its section's plane per unit

@@ -83,6 +83,9 @@ pub(crate) enum Preparation {
     },
     /// The section could not be built.
     Failed(SectionError),
+    /// Building it panicked on the worker (a bug): [`SuccessorWorker::take`]
+    /// resumes the panic on the plant's thread instead of waiting forever.
+    Panicked(Box<dyn std::any::Any + Send>),
 }
 
 /// A request for a segment's successor.
@@ -239,6 +242,10 @@ impl SuccessorWorker {
                 if waited {
                     self.waits += 1;
                 }
+                if let Preparation::Panicked(payload) = p {
+                    drop(slots);
+                    std::panic::resume_unwind(payload);
+                }
                 return Some((job.plane, p));
             }
             waited = true;
@@ -305,7 +312,10 @@ fn run(shared: &Shared, factory: &SectionFactory) {
             continue;
         };
         drop(slots);
-        let prepared = factory.prepare(&job.plane, job.current.as_deref());
+        let prepared = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+            factory.prepare(&job.plane, job.current.as_deref())
+        }))
+        .unwrap_or_else(Preparation::Panicked);
         slots = shared.lock();
         let slot = &mut slots.slots[index];
         if slot.wanted == generation {
