@@ -2,6 +2,7 @@
 
 pub mod check;
 pub mod default_job;
+pub mod fit;
 pub mod simulate;
 pub mod toughness;
 pub mod trajectory;

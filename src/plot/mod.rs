@@ -1,6 +1,7 @@
 //! Plots of runs and of the model, as SVG or PNG chosen by the file extension.
 
 pub mod cut_curves;
+pub mod surrogate_fit;
 pub mod toughness_ratio;
 
 use std::path::Path;
