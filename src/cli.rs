@@ -79,6 +79,21 @@ pub enum Command {
         #[arg(long, value_name = "FILE")]
         out: Option<PathBuf>,
     },
+    /// Fit a surrogate of the cross-section model for a material and knife
+    /// (full-model sweeps on both cores, least squares, accuracy against
+    /// held-out runs, plots); see docs/surrogates.md.
+    Fit {
+        /// Material preset (potato-cuboid, eggplant-cuboid, potato-whole, eggplant-whole, agar).
+        #[arg(long)]
+        material: String,
+        /// Knife preset with a blade (straight, chef).
+        #[arg(long)]
+        knife: String,
+        /// Surrogate file to write (default: config/surrogates/<material>-<knife>.toml);
+        /// the accuracy report and plot go next to it.
+        #[arg(long, value_name = "FILE")]
+        out: Option<PathBuf>,
+    },
     /// Validate a scenario and print its resolved values.
     Check {
         /// Scenario TOML file, or the name of a built-in scenario (fig7-potato, fig7-eggplant).

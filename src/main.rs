@@ -31,6 +31,11 @@ fn main() -> ExitCode {
             commands::trajectory::run(&cases, out.as_deref())
         }
         Some(Command::Check { scenario }) => commands::check::run(&scenario),
+        Some(Command::Fit {
+            material,
+            knife,
+            out,
+        }) => commands::fit::run(&material, &knife, out.as_deref()),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -14,6 +14,7 @@ pub mod mechanics;
 pub mod object;
 pub mod plant;
 pub mod section;
+pub mod surrogate;
 
 pub use blade::BladeSection;
 pub use invalid_setting::InvalidSetting;

@@ -3,6 +3,7 @@
 pub mod check;
 pub mod compare;
 pub mod default_job;
+pub mod fit;
 pub mod run;
 pub mod simulate;
 pub mod toughness;

@@ -1,0 +1,186 @@
+//! The basis functions of the fitted parts of the surrogate, shared by the
+//! fit (`fit`) and the evaluation (`model`). Every fitted function is a
+//! linear combination of these, so its coefficients come from linear least
+//! squares.
+//!
+//! Size features: λ_H = ln(H/b) and λ_w = ln(w/b), with H the section height,
+//! w its half width and b the blade's edge width. Strip indentation of an
+//! elastic body is logarithmic in its size over the strip width (the
+//! half-plane compliance 2(1−ν²)ln(L/b)/(πE), DESIGN §3.2), so compliances
+//! are linear in these logarithms.
+//!
+//! Travel features after fracture: smooth ramps ρ_k(s) = 1 − (1 + s/ℓ_k)·
+//! exp(−s/ℓ_k) (zero slope at s = 0, steepest at s = ℓ_k, → 1) with the
+//! lengths ℓ_k = `RAMP_LENGTHS`[k] × the blade's bevel height h_b: the crack
+//! faces are wedged open progressively while the bevel enters the crack and
+//! to the full blade thickness once it has passed, so the wedge's load builds
+//! up over about h_b. Depth features: powers of d/H, the stiffening as the
+//! crack tip nears the board.
+
+/// Lengths of the travel ramps, in units of the blade's bevel height.
+pub const RAMP_LENGTHS: [f64; RAMPS] = [0.3, 0.6, 1.2, 3.0];
+
+/// Number of travel ramps.
+pub const RAMPS: usize = 4;
+
+/// Size features of a section: (λ_H, λ_w) = (ln(H/b), ln(w/b)).
+#[inline]
+pub fn size_features(height: f64, half_width: f64, edge_width: f64) -> (f64, f64) {
+    (
+        (height.max(edge_width) / edge_width).ln(),
+        (half_width.max(edge_width) / edge_width).ln(),
+    )
+}
+
+/// Number of terms of [`size_basis`].
+pub const SIZE_TERMS: usize = 3;
+
+/// [1, λ_H, λ_w]: compliances and deflection ratios before fracture.
+#[inline]
+pub fn size_basis(lh: f64, lw: f64) -> [f64; SIZE_TERMS] {
+    [1.0, lh, lw]
+}
+
+/// Number of terms of [`onset_basis`].
+pub const ONSET_TERMS: usize = 6;
+
+/// [1, λ_H, λ_w, ξ², ξ²λ_H, ξ²λ_w]: the onset stiffness r(ξ,ν)·R'_c/(E·d*)
+/// (the knife work per depth at onset grows as (k_n + ξ²k_t)·d*).
+#[inline]
+pub fn onset_basis(xi: f64, lh: f64, lw: f64) -> [f64; ONSET_TERMS] {
+    let x2 = xi * xi;
+    [1.0, lh, lw, x2, x2 * lh, x2 * lw]
+}
+
+/// ∂/∂ξ of [`onset_basis`].
+#[inline]
+pub fn onset_basis_slope(xi: f64, lh: f64, lw: f64) -> [f64; ONSET_TERMS] {
+    let d = 2.0 * xi;
+    [0.0, 0.0, 0.0, d, d * lh, d * lw]
+}
+
+/// The ramps ρ_k(s) and their slopes ρ_k'(s), for bevel height `h_b`.
+#[inline]
+pub fn ramps(s: f64, bevel_height: f64) -> ([f64; RAMPS], [f64; RAMPS]) {
+    let s = s.max(0.0);
+    let mut v = [0.0; RAMPS];
+    let mut d = [0.0; RAMPS];
+    for k in 0..RAMPS {
+        let l = RAMP_LENGTHS[k] * bevel_height;
+        let x = s / l;
+        let e = (-x).exp();
+        v[k] = 1.0 - (1.0 + x) * e;
+        d[k] = x * e / l;
+    }
+    (v, d)
+}
+
+/// Number of terms of [`friction_basis`] and [`strain_basis_rate`].
+pub const POST_TERMS: usize = 3 + 3 * RAMPS + 2;
+
+/// Terms shared by the post-fracture bases: [1, λ_H, λ_w] followed by
+/// [v_k, v_kλ_H, v_kλ_w] for each ramp value (or slope) v_k, then the two
+/// depth terms given.
+#[inline]
+fn post_basis(
+    constant: f64,
+    ramp: &[f64; RAMPS],
+    depth_terms: [f64; 2],
+    lh: f64,
+    lw: f64,
+) -> [f64; POST_TERMS] {
+    let mut b = [0.0; POST_TERMS];
+    b[0] = constant;
+    b[1] = constant * lh;
+    b[2] = constant * lw;
+    for k in 0..RAMPS {
+        b[3 + 3 * k] = ramp[k];
+        b[4 + 3 * k] = ramp[k] * lh;
+        b[5 + 3 * k] = ramp[k] * lw;
+    }
+    b[3 + 3 * RAMPS] = depth_terms[0];
+    b[4 + 3 * RAMPS] = depth_terms[1];
+    b
+}
+
+/// Basis of the wedge faces' normal reaction N/(E·Δ) (Δ the blade's
+/// half-thickness): [1, λ_H, λ_w, (ρ_k, ρ_kλ_H, ρ_kλ_w) for k < 4, d/H,
+/// (d/H)³]. The faces are pushed open by Δ, so N scales with E·Δ; it builds
+/// up as the crack passes the bevel (ramps), depends on how stiff the halves
+/// are (λ_H, λ_w), and grows as the tip nears the board.
+#[inline]
+pub fn friction_basis(
+    ramp: &[f64; RAMPS],
+    depth_ratio: f64,
+    lh: f64,
+    lw: f64,
+) -> [f64; POST_TERMS] {
+    post_basis(
+        1.0,
+        ramp,
+        [depth_ratio, depth_ratio * depth_ratio * depth_ratio],
+        lh,
+        lw,
+    )
+}
+
+/// Basis of the strain-energy rate (N/m) over E·Δ²: the slopes d/dd of the
+/// strain energy U/(E·Δ²) on [(ρ_k, ρ_kλ_H, ρ_kλ_w) for k < 4, (d/H)³,
+/// (d/H)⁴] along a cut (travel and depth advance together). The ramps'
+/// slopes vanish in steady cutting and the depth terms' slopes, 3d²/H³ and
+/// 4d³/H⁴, in a deep section, so there dU/dd → 0 (seed 000 eq. 1 with
+/// dU → 0). The first three terms are 0 (a constant stores no work).
+#[inline]
+pub fn strain_basis_rate(
+    ramp_slope: &[f64; RAMPS],
+    depth_ratio: f64,
+    height: f64,
+    lh: f64,
+    lw: f64,
+) -> [f64; POST_TERMS] {
+    let q2 = depth_ratio * depth_ratio;
+    post_basis(
+        0.0,
+        ramp_slope,
+        [3.0 * q2 / height, 4.0 * q2 * depth_ratio / height],
+        lh,
+        lw,
+    )
+}
+
+/// Number of terms of the post-fracture deflection basis.
+pub const DEFLECTION_TERMS: usize = 3;
+
+/// Basis of the surface deflection after fracture over Δ: [1, ρ₀, λ_w].
+#[inline]
+pub fn deflection_basis(ramp: &[f64; RAMPS], lw: f64) -> [f64; DEFLECTION_TERMS] {
+    [1.0, ramp[0], lw]
+}
+
+/// Number of terms of the force split σ(ξ) = F_t/F_n of the non-friction force.
+pub const SPLIT_TERMS: usize = 2;
+
+/// [ξ, ξ²]: σ vanishes at pressing.
+#[inline]
+pub fn split_basis(xi: f64) -> [f64; SPLIT_TERMS] {
+    [xi, xi * xi]
+}
+
+/// ∂/∂ξ of [`split_basis`].
+#[inline]
+pub fn split_basis_slope(xi: f64) -> [f64; SPLIT_TERMS] {
+    [1.0, 2.0 * xi]
+}
+
+/// The decays 1 − ρ_k(s) of the antiplane drag held by the edge at the
+/// first fracture: it is released as the wedge takes the crack over.
+#[inline]
+pub fn drag_basis(ramp: &[f64; RAMPS]) -> [f64; RAMPS] {
+    ramp.map(|r| 1.0 - r)
+}
+
+/// Σ cᵢ·bᵢ.
+#[inline]
+pub fn dot<const N: usize>(c: &[f64; N], b: &[f64; N]) -> f64 {
+    c.iter().zip(b).map(|(c, b)| c * b).sum()
+}

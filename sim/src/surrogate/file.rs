@@ -1,0 +1,168 @@
+//! Reading and writing surrogate files (TOML, versioned).
+
+use std::path::{Path, PathBuf};
+
+use crate::invalid_setting::InvalidSetting;
+
+use super::model::{SURROGATE_FORMAT_VERSION, Surrogate};
+
+/// Why a surrogate file was refused. Each message names the key or value.
+#[derive(Debug, thiserror::Error)]
+pub enum SurrogateFileError {
+    /// The file could not be read.
+    #[error("cannot read surrogate file `{path}`: {source}")]
+    Read {
+        /// The file.
+        path: PathBuf,
+        /// Why.
+        source: std::io::Error,
+    },
+    /// Not TOML, or a key is missing, unknown or of the wrong type.
+    #[error("surrogate file: {0}")]
+    Format(String),
+    /// The key `version` is missing or not an integer.
+    #[error("surrogate file: missing integer key `version` (this build reads version {expected})")]
+    MissingVersion {
+        /// The version this build reads.
+        expected: u32,
+    },
+    /// The file is of another format version.
+    #[error(
+        "surrogate file: `version` = {found}, but this build reads version {expected}; refit with `shearcut fit`"
+    )]
+    WrongVersion {
+        /// The version in the file.
+        found: i64,
+        /// The version this build reads.
+        expected: u32,
+    },
+    /// A material or blade constant is out of its range.
+    #[error("surrogate file: {0}")]
+    Invalid(InvalidSetting),
+    /// A number is not finite (or a physical constant not positive).
+    #[error("surrogate file: `{key}` = {value} {allowed}")]
+    BadValue {
+        /// The key, e.g. `post_fracture.split[1]`.
+        key: String,
+        /// The value.
+        value: f64,
+        /// What is allowed.
+        allowed: &'static str,
+    },
+}
+
+impl Surrogate {
+    /// Reads a surrogate file (see [`Self::from_toml_str`]).
+    pub fn from_path(path: &Path) -> Result<Self, SurrogateFileError> {
+        let text = std::fs::read_to_string(path).map_err(|source| SurrogateFileError::Read {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        Self::from_toml_str(&text)
+    }
+
+    /// Parses a surrogate from TOML: the `version` must be
+    /// [`SURROGATE_FORMAT_VERSION`], every key present and known, every
+    /// coefficient finite and the material and blade constants positive.
+    pub fn from_toml_str(text: &str) -> Result<Self, SurrogateFileError> {
+        let table: toml::Table =
+            toml::from_str(text).map_err(|e| SurrogateFileError::Format(one_line(&e)))?;
+        match table.get("version").and_then(toml::Value::as_integer) {
+            None => {
+                return Err(SurrogateFileError::MissingVersion {
+                    expected: SURROGATE_FORMAT_VERSION,
+                });
+            }
+            Some(v) if v != i64::from(SURROGATE_FORMAT_VERSION) => {
+                return Err(SurrogateFileError::WrongVersion {
+                    found: v,
+                    expected: SURROGATE_FORMAT_VERSION,
+                });
+            }
+            Some(_) => {}
+        }
+        let s: Surrogate =
+            toml::from_str(text).map_err(|e| SurrogateFileError::Format(one_line(&e)))?;
+        s.validate()?;
+        Ok(s)
+    }
+
+    /// The surrogate as TOML.
+    pub fn to_toml_string(&self) -> String {
+        // Serialising plain structs of numbers, strings and arrays cannot fail.
+        toml::to_string(self).unwrap_or_default()
+    }
+
+    /// Every number of the surrogate with its key, in file order.
+    pub fn named_values(&self) -> Vec<(String, f64)> {
+        let mut v = Vec::new();
+        let m = &self.material;
+        for (k, x) in [
+            ("material.youngs_modulus", m.youngs_modulus),
+            ("material.poisson_ratio", m.poisson_ratio),
+            ("material.friction_coefficient", m.friction_coefficient),
+            ("material.fracture_toughness", m.fracture_toughness),
+            (
+                "material.initial_fracture_toughness",
+                m.initial_fracture_toughness,
+            ),
+            ("blade.thickness", self.blade.thickness),
+            ("blade.bevel_angle", self.blade.bevel_angle),
+            ("blade.edge_width", self.blade.edge_width),
+            ("range.xi_max", self.range.xi_max),
+        ] {
+            v.push((k.to_string(), x));
+        }
+        let mut arr = |key: &str, a: &[f64]| {
+            for (i, x) in a.iter().enumerate() {
+                v.push((format!("{key}[{i}]"), *x));
+            }
+        };
+        arr("range.height", &self.range.height);
+        arr("range.half_width", &self.range.half_width);
+        let pre = &self.pre_fracture;
+        arr("pre_fracture.normal_compliance", &pre.normal_compliance);
+        arr(
+            "pre_fracture.tangential_compliance",
+            &pre.tangential_compliance,
+        );
+        arr("pre_fracture.deflection", &pre.deflection);
+        arr("pre_fracture.onset", &pre.onset);
+        let post = &self.post_fracture;
+        arr("post_fracture.split", &post.split);
+        arr("post_fracture.drag", &post.drag);
+        arr("post_fracture.face_reaction", &post.face_reaction);
+        arr("post_fracture.strain_energy_rate", &post.strain_energy_rate);
+        arr("post_fracture.deflection", &post.deflection);
+        v
+    }
+
+    /// Checks that every number is finite and the physical constants valid.
+    pub fn validate(&self) -> Result<(), SurrogateFileError> {
+        for (key, value) in self.named_values() {
+            if !value.is_finite() {
+                return Err(SurrogateFileError::BadValue {
+                    key,
+                    value,
+                    allowed: "must be a finite number",
+                });
+            }
+        }
+        self.material
+            .validate()
+            .map_err(|e| SurrogateFileError::Invalid(e.prefixed("material")))?;
+        self.blade
+            .section()
+            .validate()
+            .map_err(|e| SurrogateFileError::Invalid(e.prefixed("blade")))?;
+        Ok(())
+    }
+}
+
+/// A TOML error on one line.
+fn one_line(e: &toml::de::Error) -> String {
+    e.to_string()
+        .split_whitespace()
+        .collect::<Vec<_>>()
+        .join(" ")
+}

@@ -1,0 +1,101 @@
+//! What one surrogate evaluation returns.
+
+/// An output that is linear in the scale factors, split into the parts
+/// multiplied by each:
+/// `value = toughness·by_toughness + stiffness·by_stiffness + friction·stiffness·by_friction_stiffness`
+/// (friction forces are μ times a normal reaction that scales with E, so
+/// their part is bilinear).
+///
+/// Holds exactly after fracture. Before the first fracture the forces are
+/// `stiffness·by_stiffness` (the other parts 0) but whether the section has
+/// fractured, and the onset depth ∝ toughness/stiffness, are not linear: an
+/// estimator uses the parts at the current phase.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ScaledParts {
+    /// Part multiplied by the toughness factor.
+    pub by_toughness: f64,
+    /// Part multiplied by the stiffness factor.
+    pub by_stiffness: f64,
+    /// Part multiplied by the product friction × stiffness.
+    pub by_friction_stiffness: f64,
+}
+
+impl ScaledParts {
+    /// The output for the given factors.
+    #[inline]
+    pub fn combine(&self, toughness: f64, stiffness: f64, friction: f64) -> f64 {
+        toughness * self.by_toughness
+            + stiffness * self.by_stiffness
+            + friction * stiffness * self.by_friction_stiffness
+    }
+}
+
+/// A quadratic model of a function of ξ around a point ξ₀:
+/// f(ξ) ≈ value + slope·(ξ−ξ₀) + ½·curvature·(ξ−ξ₀)².
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct QuadraticModel {
+    /// f(ξ₀).
+    pub value: f64,
+    /// ∂f/∂ξ at ξ₀.
+    pub slope: f64,
+    /// ∂²f/∂ξ² at ξ₀ (may be negative where f is not convex; see
+    /// [`Surrogate::work_quadratic`](super::Surrogate::work_quadratic)).
+    pub curvature: f64,
+}
+
+/// The surrogate's prediction for one section at one ξ and cut state, per
+/// unit length of edge in contact. Forces are those the material exerts on
+/// the knife, resistance positive (seed 000's plot convention), N/m.
+///
+/// Before the first fracture (T, S, F the scale factors, E₀ … nominal):
+/// F_n = S·E₀·d/C_n, F_t = S·G₀·ξ·d/C_t (antiplane drag ξ·d at constant ξ),
+/// work per depth = F_n + ξF_t, all of it strain energy. After it, with
+/// P = T·r(ξ,ν)·R_c₀ + S·U̇ (fracture plus strain-energy rate) and D the drag
+/// still held from the onset (∝ T):
+/// F_n = (P − ξD)/(1+ξσ(ξ)) + F·S·μ₀N₀/√(1+ξ²),
+/// F_t = σ(ξ)(P − ξD)/(1+ξσ(ξ)) + D + F·S·μ₀N₀ξ/√(1+ξ²),
+/// work per depth = F_n + ξF_t = P + F·S·μ₀N₀√(1+ξ²) (N₀ the wedge faces'
+/// normal reaction at nominal E). See `docs/surrogates.md` for the fitted
+/// functions C_n, C_t, U̇, N₀, σ and D.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct SurrogateOutput {
+    /// Vertical (normal) force F_n, N/m.
+    pub force_normal: f64,
+    /// Horizontal force along the edge F_t, N/m.
+    pub force_tangential: f64,
+    /// Knife work per unit of normal travel, J/m per m = N/m: F_n + ξF_t.
+    pub work_per_depth: f64,
+    /// Of which crack growth: r(ξ,ν)·R_c after the first fracture, 0 before, N/m.
+    pub fracture: f64,
+    /// Of which strain energy stored, N/m (after fracture fitted as the
+    /// knife's non-friction work beyond r·R_c: the energy the wedge stores
+    /// opening the faces, plus the crack's catch-up after its first jump).
+    pub strain: f64,
+    /// Of which friction on the wedge faces, N/m.
+    pub friction: f64,
+    /// Surface deflection next to the blade on the cut line, m (down
+    /// positive): the squashing before the first fracture; after it the
+    /// (small, often negative: bulging) deflection of the split faces.
+    pub deformation: f64,
+    /// Depth at which the first fracture happens at this ξ (constant ξ from
+    /// the first touch), m.
+    pub fracture_onset_depth: f64,
+    /// ∂F_n/∂ξ, N/m.
+    pub force_normal_slope: f64,
+    /// ∂F_t/∂ξ, N/m.
+    pub force_tangential_slope: f64,
+    /// ∂(work per depth)/∂ξ, N/m.
+    pub work_per_depth_slope: f64,
+    /// ∂²(work per depth)/∂ξ², N/m.
+    pub work_per_depth_curvature: f64,
+    /// r(ξ,ν) of seed 000 eq. (6), exact.
+    pub toughness_ratio: f64,
+    /// ∂r/∂ξ, exact.
+    pub toughness_ratio_slope: f64,
+    /// F_n split by scale factor.
+    pub force_normal_parts: ScaledParts,
+    /// F_t split by scale factor.
+    pub force_tangential_parts: ScaledParts,
+    /// Work per depth split by scale factor.
+    pub work_per_depth_parts: ScaledParts,
+}

@@ -1,0 +1,55 @@
+//! The shipped potato surrogate against held-out full-model runs recomputed
+//! here (issue #6: RMS error of F_n, F_t and total work below 5 % of their
+//! range, peak force and fracture-onset depth within 10 %).
+//!
+//! Held out: ξ = 0.6, 1.2, 2.1 (the fit used 0, 0.25, 0.5, 0.75, 1, 1.4, 1.8,
+//! 2.4) on a 25 mm high, 40 mm wide section (the fit's sizes are listed in
+//! `FIT_SECTION_SIZES`; this one is not among them). Forces are compared with
+//! the full model's window means after fracture (the sawtooth; see
+//! `shearcut_sim::surrogate::accuracy`). `shearcut fit` also reports a second
+//! held-out size, 40 mm × 24 mm (tall and narrow), where the F_t error is
+//! 5–6 % of range for potato: that case is not asserted here and is listed as
+//! open in docs/surrogates.md.
+
+use std::path::PathBuf;
+
+use shearcut_sim::surrogate::{
+    HELD_OUT_SLICE_PUSH_RATIOS, Surrogate, SweepCase, SweepSettings, compare_run, run_sweep,
+};
+use shearcut_sim::{KnifePreset, MaterialPreset};
+
+#[test]
+fn potato_surrogate_meets_the_issue_tolerances_on_held_out_runs() {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../config/surrogates/potato-cuboid-straight.toml");
+    let s = Surrogate::from_path(&path).unwrap();
+    let material = MaterialPreset::PotatoCuboid.material();
+    let blade = KnifePreset::Straight.settings().blade;
+    let cases: Vec<SweepCase> = HELD_OUT_SLICE_PUSH_RATIOS
+        .iter()
+        .map(|&xi| SweepCase {
+            xi,
+            height: 0.025,
+            half_width: 0.02,
+        })
+        .collect();
+    let runs = run_sweep(
+        &material,
+        &blade,
+        &cases,
+        &SweepSettings::default(),
+        2,
+        &|| {},
+    )
+    .unwrap();
+    for run in &runs {
+        let a = compare_run(&s, run).accuracy;
+        eprintln!("{a:?}");
+        let xi = a.xi;
+        assert!(a.force_normal_rms_pct < 5.0, "xi {xi}: F_n {a:?}");
+        assert!(a.force_tangential_rms_pct < 5.0, "xi {xi}: F_t {a:?}");
+        assert!(a.work_rms_pct < 5.0, "xi {xi}: work {a:?}");
+        assert!(a.peak_force_error_pct.abs() < 10.0, "xi {xi}: peak {a:?}");
+        assert!(a.onset_depth_error_pct.abs() < 10.0, "xi {xi}: onset {a:?}");
+    }
+}

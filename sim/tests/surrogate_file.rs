@@ -1,0 +1,142 @@
+//! Surrogate files: the shipped ones parse and match their presets; files
+//! with a wrong version, a missing key, an unknown key or a non-finite
+//! coefficient are refused with an error naming it.
+
+use std::path::PathBuf;
+
+use shearcut_sim::surrogate::{SURROGATE_FORMAT_VERSION, Surrogate, SurrogateFileError};
+use shearcut_sim::{KnifePreset, MaterialPreset};
+
+fn shipped(material: &str, knife: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../config/surrogates")
+        .join(format!("{material}-{knife}.toml"))
+}
+
+const TABLE_ONE: [MaterialPreset; 4] = [
+    MaterialPreset::PotatoCuboid,
+    MaterialPreset::EggplantCuboid,
+    MaterialPreset::PotatoWhole,
+    MaterialPreset::EggplantWhole,
+];
+
+#[test]
+fn shipped_surrogates_parse_and_match_their_presets() {
+    for m in TABLE_ONE {
+        let mut coefficients = Vec::new();
+        for k in [KnifePreset::Straight, KnifePreset::Chef] {
+            let path = shipped(m.name(), k.name());
+            let s =
+                Surrogate::from_path(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            assert_eq!(s.version, SURROGATE_FORMAT_VERSION);
+            assert_eq!(s.material_name, m.name());
+            assert_eq!(s.knife_name, k.name());
+            assert_eq!(s.material, m.material(), "{}", path.display());
+            assert_eq!(s.blade.section(), k.settings().blade, "{}", path.display());
+            coefficients.push((s.pre_fracture, s.post_fracture, s.range));
+        }
+        // Straight and chef's knives share the blade section, the only part
+        // of the knife a section sees: the fits are identical.
+        assert_eq!(coefficients[0], coefficients[1], "{}", m.name());
+    }
+}
+
+fn potato_text() -> String {
+    std::fs::read_to_string(shipped("potato-cuboid", "straight")).unwrap()
+}
+
+#[test]
+fn round_trip_through_toml_is_exact() {
+    let s = Surrogate::from_toml_str(&potato_text()).unwrap();
+    let again = Surrogate::from_toml_str(&s.to_toml_string()).unwrap();
+    assert_eq!(s, again);
+}
+
+#[test]
+fn wrong_version_is_refused_with_both_versions() {
+    let text = potato_text().replace(
+        &format!("version = {SURROGATE_FORMAT_VERSION}"),
+        "version = 99",
+    );
+    let e = Surrogate::from_toml_str(&text).unwrap_err();
+    assert!(
+        matches!(e, SurrogateFileError::WrongVersion { found: 99, .. }),
+        "{e}"
+    );
+    let msg = e.to_string();
+    assert!(
+        msg.contains("99") && msg.contains(&SURROGATE_FORMAT_VERSION.to_string()),
+        "{msg}"
+    );
+}
+
+#[test]
+fn missing_version_is_refused() {
+    let text: String = potato_text()
+        .lines()
+        .filter(|l| !l.starts_with("version"))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let e = Surrogate::from_toml_str(&text).unwrap_err();
+    assert!(
+        matches!(e, SurrogateFileError::MissingVersion { .. }),
+        "{e}"
+    );
+    assert!(e.to_string().contains("version"));
+}
+
+#[test]
+fn missing_field_is_refused_and_named() {
+    let text: String = potato_text()
+        .lines()
+        .filter(|l| !l.starts_with("face_reaction"))
+        .map(|l| format!("{l}\n"))
+        .collect();
+    let e = Surrogate::from_toml_str(&text).unwrap_err();
+    assert!(matches!(e, SurrogateFileError::Format(_)), "{e}");
+    assert!(e.to_string().contains("face_reaction"), "{e}");
+    assert!(!e.to_string().contains('\n'), "one line: {e}");
+}
+
+#[test]
+fn unknown_field_is_refused_and_named() {
+    let text = potato_text().replace("[post_fracture]\n", "[post_fracture]\nsplit_typo = [1.0]\n");
+    let e = Surrogate::from_toml_str(&text).unwrap_err();
+    assert!(e.to_string().contains("split_typo"), "{e}");
+}
+
+#[test]
+fn non_finite_coefficient_is_refused_and_named() {
+    let text = potato_text();
+    let line = text.lines().find(|l| l.starts_with("split = [")).unwrap();
+    let first = line
+        .trim_start_matches("split = [")
+        .split(',')
+        .next()
+        .unwrap();
+    for bad in ["nan", "inf", "-inf"] {
+        let t = text.replace(line, &line.replacen(first, bad, 1));
+        let e = Surrogate::from_toml_str(&t).unwrap_err();
+        match &e {
+            SurrogateFileError::BadValue { key, value, .. } => {
+                assert_eq!(key, "post_fracture.split[0]");
+                assert!(!value.is_finite());
+            }
+            other => panic!("{bad}: {other}"),
+        }
+        assert!(e.to_string().contains("post_fracture.split[0]"), "{e}");
+    }
+}
+
+#[test]
+fn invalid_material_constant_is_refused_and_named() {
+    let text = potato_text().replace("poisson_ratio = 0.4", "poisson_ratio = 0.7");
+    let e = Surrogate::from_toml_str(&text).unwrap_err();
+    assert!(e.to_string().contains("material.poisson_ratio"), "{e}");
+}
+
+#[test]
+fn unreadable_file_names_the_path() {
+    let e = Surrogate::from_path(std::path::Path::new("/nonexistent/s.toml")).unwrap_err();
+    assert!(e.to_string().contains("/nonexistent/s.toml"), "{e}");
+}

@@ -1,0 +1,181 @@
+//! `shearcut fit`: full-model sweeps, the least-squares fit of a surrogate,
+//! its accuracy against held-out runs, and plots (DESIGN §3.4,
+//! `docs/surrogates.md`).
+//!
+//! The sweeps cut rectangular sections of the material with the knife's
+//! blade section at constant ξ (`shearcut_sim::surrogate::FIT_SLICE_PUSH_RATIOS`
+//! × `FIT_SECTION_SIZES`), on both cores; the held-out runs use ξ values and
+//! section sizes that are not in the fit. Everything is deterministic, so the
+//! same command reproduces the shipped files under `config/surrogates/`.
+
+use std::path::{Path, PathBuf};
+
+use indicatif::{ProgressBar, ProgressStyle};
+use shearcut_sim::surrogate::{
+    AccuracyReport, FIT_SECTION_SIZES, FIT_SLICE_PUSH_RATIOS, HELD_OUT_SECTION_SIZES,
+    HELD_OUT_SLICE_PUSH_RATIOS, RunComparison, Surrogate, SweepSettings, compare_run,
+    fit_surrogate, grid, run_sweep,
+};
+use shearcut_sim::{EdgeShape, InvalidSetting, KnifePreset, MaterialPreset};
+
+use crate::error::{ConfigError, RunError};
+use crate::plot::ensure_parent;
+use crate::plot::surrogate_fit::draw_surrogate_fit;
+use crate::render_plot;
+
+/// Threads of the sweeps (the machine's cores, at most 2 by default: DESIGN
+/// targets a 2-core development machine).
+const SWEEP_THREADS: usize = 2;
+
+/// What `fit` produced.
+#[derive(Debug, Clone)]
+pub struct FitOutput {
+    /// The surrogate.
+    pub surrogate: Surrogate,
+    /// Its accuracy on the held-out runs.
+    pub report: AccuracyReport,
+    /// The held-out comparisons (for plots).
+    pub comparisons: Vec<RunComparison>,
+}
+
+/// The default surrogate file of a material and knife:
+/// `config/surrogates/<material>-<knife>.toml`.
+pub fn default_path(material: &str, knife: &str) -> PathBuf {
+    PathBuf::from("config/surrogates").join(format!("{material}-{knife}.toml"))
+}
+
+fn names<T: Copy>(all: &[T], name: fn(T) -> &'static str) -> String {
+    all.iter().map(|&p| name(p)).collect::<Vec<_>>().join(", ")
+}
+
+/// Resolves the preset names; a bad name is a config error (exit 2).
+pub fn resolve(material: &str, knife: &str) -> Result<(MaterialPreset, KnifePreset), ConfigError> {
+    let m = MaterialPreset::from_name(material).ok_or_else(|| {
+        ConfigError::Argument(InvalidSetting::new(
+            "--material",
+            material,
+            format!(
+                "must be a material preset: {}",
+                names(&MaterialPreset::ALL, MaterialPreset::name)
+            ),
+        ))
+    })?;
+    let k = KnifePreset::from_name(knife).ok_or_else(|| {
+        ConfigError::Argument(InvalidSetting::new(
+            "--knife",
+            knife,
+            format!(
+                "must be a knife preset: {}",
+                names(&KnifePreset::ALL, KnifePreset::name)
+            ),
+        ))
+    })?;
+    if let EdgeShape::Wire { .. } = k.settings().edge {
+        return Err(ConfigError::Argument(InvalidSetting::new(
+            "--knife",
+            knife,
+            "must be a bladed knife (the surrogate is fitted to the wedge-blade section model; a wire has no blade)",
+        )));
+    }
+    Ok((m, k))
+}
+
+/// Runs the sweeps, fits and compares (no files written). `progress` is
+/// called after each full-model run; the total is [`run_count`].
+pub fn fit(
+    material: MaterialPreset,
+    knife: KnifePreset,
+    progress: &(dyn Fn() + Sync),
+) -> Result<FitOutput, RunError> {
+    let m = material.material();
+    let blade = knife.settings().blade;
+    let settings = SweepSettings::default();
+    let mut cases = grid(&FIT_SLICE_PUSH_RATIOS, &FIT_SECTION_SIZES);
+    let fit_count = cases.len();
+    cases.extend(grid(&HELD_OUT_SLICE_PUSH_RATIOS, &HELD_OUT_SECTION_SIZES));
+    let threads = std::thread::available_parallelism()
+        .map_or(1, |n| n.get())
+        .min(SWEEP_THREADS);
+    let runs = run_sweep(&m, &blade, &cases, &settings, threads, progress)
+        .map_err(|e| RunError::write("full-model sweep", e))?;
+    let (fit_runs, held_out) = runs.split_at(fit_count);
+    let surrogate = fit_surrogate(&m, &blade, material.name(), knife.name(), fit_runs)
+        .map_err(|e| RunError::write("surrogate fit", e))?;
+    let comparisons: Vec<RunComparison> = held_out
+        .iter()
+        .map(|r| compare_run(&surrogate, r))
+        .collect();
+    let report = AccuracyReport::new(
+        material.name(),
+        knife.name(),
+        comparisons.iter().map(|c| c.accuracy).collect(),
+    );
+    Ok(FitOutput {
+        surrogate,
+        report,
+        comparisons,
+    })
+}
+
+/// Number of full-model runs of a fit (sweeps plus held-out).
+pub fn run_count() -> usize {
+    FIT_SLICE_PUSH_RATIOS.len() * FIT_SECTION_SIZES.len()
+        + HELD_OUT_SLICE_PUSH_RATIOS.len() * HELD_OUT_SECTION_SIZES.len()
+}
+
+/// The surrogate file's text: a header comment, then the data.
+pub fn surrogate_file_text(s: &Surrogate) -> String {
+    format!(
+        "# Surrogate of the cross-section model (docs/surrogates.md), written by\n# `shearcut fit --material {} --knife {}`. Do not edit: refit.\n{}",
+        s.material_name,
+        s.knife_name,
+        s.to_toml_string()
+    )
+}
+
+/// Runs the subcommand: sweeps with a progress bar, fit, report, files.
+///
+/// Writes `out` (default [`default_path`]), the report next to it
+/// (`<stem>.accuracy.toml`) and the plot (`<stem>.png`).
+pub fn run(material: &str, knife: &str, out: Option<&Path>) -> Result<(), RunError> {
+    let (m, k) = resolve(material, knife)?;
+    let path = out.map_or_else(|| default_path(m.name(), k.name()), Path::to_path_buf);
+    let bar = ProgressBar::new(run_count() as u64);
+    bar.set_style(
+        ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} runs ({elapsed})")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    bar.set_message(format!("full-model sweeps of {}", m.name()));
+    let result = fit(m, k, &|| bar.inc(1));
+    bar.finish_and_clear();
+    let output = result?;
+    ensure_parent(&path)?;
+    std::fs::write(&path, surrogate_file_text(&output.surrogate))
+        .map_err(|e| RunError::write(&path, e))?;
+    let report_path = path.with_extension("accuracy.toml");
+    let report_text = format!(
+        "# Accuracy of {} against held-out full-model runs (forces: window means over {} mm after fracture).\n{}",
+        path.display(),
+        shearcut_sim::surrogate::SMOOTHING_WINDOW * 1e3,
+        toml::to_string(&output.report).map_err(|e| RunError::write(&report_path, e))?
+    );
+    std::fs::write(&report_path, report_text).map_err(|e| RunError::write(&report_path, e))?;
+    let plot_path = path.with_extension("png");
+    render_plot!(&plot_path, (1000, 1250), |root| draw_surrogate_fit(
+        root,
+        &format!(
+            "Surrogate vs full model, held-out runs: {} / {}",
+            m.name(),
+            k.name()
+        ),
+        &output.comparisons
+    ))?;
+    print!("{}", output.report.table());
+    println!(
+        "wrote {}, {}, {}",
+        path.display(),
+        report_path.display(),
+        plot_path.display()
+    );
+    Ok(())
+}

@@ -1,0 +1,75 @@
+//! `shearcut fit`: bad names exit 2 with one line; the full fit reproduces
+//! the shipped surrogate file byte for byte (ignored by default: about a
+//! minute on two cores; run with `cargo test --test fit -- --ignored`).
+
+use std::process::{Command, Output};
+
+fn shearcut(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_shearcut"))
+        .args(args)
+        .env("RUST_LOG", "error")
+        .output()
+        .expect("the shearcut binary runs")
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+#[test]
+fn unknown_material_is_exit_2_in_one_line() {
+    let o = shearcut(&["fit", "--material", "turnip", "--knife", "straight"]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = stderr(&o);
+    assert_eq!(e.trim_end().lines().count(), 1, "{e}");
+    assert!(
+        e.contains("--material") && e.contains("turnip") && e.contains("potato-cuboid"),
+        "{e}"
+    );
+}
+
+#[test]
+fn unknown_knife_is_exit_2_in_one_line() {
+    let o = shearcut(&["fit", "--material", "potato-cuboid", "--knife", "cleaver"]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = stderr(&o);
+    assert_eq!(e.trim_end().lines().count(), 1, "{e}");
+    assert!(
+        e.contains("--knife") && e.contains("cleaver") && e.contains("chef"),
+        "{e}"
+    );
+}
+
+#[test]
+fn wire_is_refused_with_exit_2() {
+    let o = shearcut(&["fit", "--material", "agar", "--knife", "wire"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("bladed"), "{}", stderr(&o));
+}
+
+#[test]
+#[ignore = "runs the full fit (about a minute on two cores)"]
+fn fit_reproduces_the_shipped_potato_file() {
+    let dir = std::env::temp_dir().join(format!("shearcut-fit-{}", std::process::id()));
+    let out = dir.join("potato-cuboid-straight.toml");
+    let o = shearcut(&[
+        "fit",
+        "--material",
+        "potato-cuboid",
+        "--knife",
+        "straight",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let fresh = std::fs::read_to_string(&out).unwrap();
+    let shipped = std::fs::read_to_string(
+        std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("config/surrogates/potato-cuboid-straight.toml"),
+    )
+    .unwrap();
+    assert_eq!(fresh, shipped);
+    assert!(dir.join("potato-cuboid-straight.accuracy.toml").exists());
+    assert!(dir.join("potato-cuboid-straight.png").exists());
+    std::fs::remove_dir_all(dir).ok();
+}
