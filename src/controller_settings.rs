@@ -37,6 +37,11 @@ pub struct ControllerSettings {
     /// Gains of `force:N` (default: full speed at zero force, integral
     /// time 2 s; see `ForceFeedbackGains::for_setpoint`).
     pub force_gains: Option<ForceFeedbackGains>,
+    /// The surrogate the MPC plans with: a built-in name
+    /// (`<material>-<knife>`, e.g. `potato-whole-chef`) or a file written by
+    /// `shearcut fit` (default: the built-in one for the scenario's material
+    /// and knife presets).
+    pub surrogate: Option<String>,
     /// `[controller.mpc]`: the MPC's horizon, weights and limits.
     pub mpc: MpcSettings,
 }
@@ -52,6 +57,7 @@ impl Default for ControllerSettings {
             blade_budget: None,
             max_duration: 30.0,
             force_gains: None,
+            surrogate: None,
             mpc: MpcSettings::default(),
         }
     }

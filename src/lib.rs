@@ -14,4 +14,5 @@ pub mod object_profile;
 pub mod plot;
 pub mod run_dir;
 pub mod scenario;
+pub mod surrogates;
 pub mod trajectory_cases;

@@ -8,6 +8,7 @@ use serde::Serialize;
 use shearcut_controllers::controller::{
     ConstantSlice, Controller, CutTask, ForceFeedback, ForceFeedbackGains, MotionLimits,
 };
+use shearcut_controllers::mpc::{Mpc, SurrogateModel};
 use shearcut_sim::geometry::TriangleMesh;
 use shearcut_sim::plant::Plant;
 use shearcut_sim::{InvalidSetting, Knife};
@@ -18,11 +19,13 @@ use crate::closed_loop::{
 use crate::controller_choice::ControllerChoice;
 use crate::cut_record::{CutSample, CutSummary, write_json, write_timeseries};
 use crate::error::{ConfigError, RunError};
+use crate::object_profile::depth_profile;
 use crate::plot::control_trace::draw_control_trace;
 use crate::plot::cut_curves::draw_cut_curves;
 use crate::render_plot;
 use crate::run_dir;
 use crate::scenario::Scenario;
+use crate::surrogates::surrogate_for;
 
 /// How controller and plant talk.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, Serialize)]
@@ -102,11 +105,19 @@ pub fn cut_task(s: &Scenario, knife: &Knife, mesh: &TriangleMesh) -> CutTask {
     }
 }
 
-/// The controller a choice names, for a scenario's task.
+/// The ratio the MPC's first plan starts from (and the plant plans its
+/// contact arc for): what spreads the blade budget evenly over the depth, at
+/// most 1.
+pub fn mpc_start(task: &CutTask) -> f64 {
+    (task.blade_budget / task.target_depth).min(1.0)
+}
+
+/// The controller a choice names, for a scenario's task and object.
 pub fn make_controller(
     s: &Scenario,
     choice: ControllerChoice,
     task: &CutTask,
+    mesh: &TriangleMesh,
 ) -> Result<Box<dyn Controller>, RunError> {
     let c = &s.controller;
     let made: Result<Box<dyn Controller>, InvalidSetting> = match choice {
@@ -124,13 +135,16 @@ pub fn make_controller(
                 .map(|x| Box::new(x) as Box<dyn Controller>)
         }
         ControllerChoice::Mpc => {
-            return Err(RunError::Config(ConfigError::Argument(
-                InvalidSetting::new(
-                    "--controller",
-                    "mpc",
-                    "the MPC has not landed yet; use press, slice:XI or force:N",
-                ),
-            )));
+            let surrogate = surrogate_for(s).map_err(|e| invalid(s, e))?;
+            let profile = depth_profile(mesh).map_err(|e| invalid(s, e))?;
+            Mpc::new(
+                task,
+                &c.mpc,
+                SurrogateModel::new(surrogate),
+                profile,
+                mpc_start(task),
+            )
+            .map(|x| Box::new(x) as Box<dyn Controller>)
         }
     };
     made.map_err(|e| invalid(s, e.prefixed("controller")))
@@ -173,8 +187,8 @@ pub fn run_closed_loop(s: &Scenario, choice: ControllerChoice) -> Result<RunOutp
         .mesh()
         .map_err(|e| invalid(s, InvalidSetting::new("object", "mesh", e.to_string())))?;
     let task = cut_task(s, &knife, &mesh);
-    let mut controller = make_controller(s, choice, &task)?;
-    let xi = choice.nominal_slice_push_ratio(0.0);
+    let mut controller = make_controller(s, choice, &task, &mesh)?;
+    let xi = choice.nominal_slice_push_ratio(mpc_start(&task));
     let plant = make_plant(s, &knife, &mesh, xi)?;
     let cut = LoopCut {
         xi_label: xi,

@@ -31,6 +31,11 @@ pub struct MpcStats {
 
 /// Prior variance of each scale factor (a ±100 % belief).
 const ESTIMATOR_PRIOR_VARIANCE: f64 = 1.0;
+/// Crack depth past the first fracture before the estimator uses the
+/// forces again, m: the transition (sections fracturing one by one, the
+/// drag held at onset being released over a few bevel heights) is in
+/// neither the pre- nor the post-fracture model.
+const ESTIMATOR_SETTLE_DEPTH: f64 = 2e-3;
 /// Standard deviation of a force per unit length row, N/m (weights only:
 /// the same for both rows).
 const ESTIMATOR_FORCE_NOISE: f64 = 1.0;
@@ -76,6 +81,8 @@ pub struct Mpc<M: SliceModel> {
     stats: MpcStats,
     replanned: bool,
     estimator: Option<ScaleEstimator>,
+    /// Knife height when the edge first touched (contact length > 0), m.
+    touch_height: Option<f64>,
     telemetry: ControllerTelemetry,
 }
 
@@ -141,6 +148,7 @@ impl<M: SliceModel> Mpc<M> {
             estimator: settings
                 .estimate
                 .then(|| ScaleEstimator::new(ESTIMATOR_PRIOR_VARIANCE, settings.forgetting)),
+            touch_height: None,
             telemetry: ControllerTelemetry::default(),
         })
     }
@@ -185,14 +193,28 @@ impl<M: SliceModel> Mpc<M> {
             return;
         }
         let xi = m.velocity.z.abs() / v_n;
-        let depth = m.crack_depth.max(0.0);
+        let touch = *self.touch_height.get_or_insert(m.position.y);
         let fractured = m.fractured_sections > 0;
+        let depth = if fractured {
+            m.crack_depth.max(0.0)
+        } else {
+            // Before fracture the model's depth is the knife's travel since
+            // the edge touched.
+            (touch - m.position.y).max(0.0)
+        };
+        let since = self.depth_at_fracture.map_or(0.0, |d| (depth - d).max(0.0));
+        // Right after the first fracture the sections fracture one by one
+        // and the crack runs in jumps: the measured force is neither the
+        // pre- nor the post-fracture model's. Wait until the cut has settled.
+        if fractured && since < ESTIMATOR_SETTLE_DEPTH {
+            return;
+        }
         let state = StageState {
             depth,
             height: self.profile.height(),
             half_width: self.profile.half_width(),
             fractured,
-            travel_since_fracture: self.depth_at_fracture.map_or(0.0, |d| (depth - d).max(0.0)),
+            travel_since_fracture: since,
         };
         let Some((normal, tangential)) = self.model.force_parts(xi, &state) else {
             return;

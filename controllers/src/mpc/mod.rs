@@ -5,6 +5,7 @@
 //! - [`DepthProfile`]: edge in contact and section size along the cut;
 //! - [`DepthQp`]: the convex subproblem over depth stages, persistent;
 //! - [`ScaleEstimator`]: online R_c, E, μ scale factors from the forces;
+//! - [`SurrogateModel`]: the fitted surrogate as a [`SliceModel`];
 //! - [`Mpc`]: the controller.
 
 mod controller;
@@ -13,6 +14,7 @@ mod depth_qp;
 mod scale_estimator;
 mod settings;
 mod slice_model;
+mod surrogate_model;
 
 pub use controller::{Mpc, MpcStats};
 pub use depth_profile::DepthProfile;
@@ -20,3 +22,4 @@ pub use depth_qp::{DepthQp, QpLimits, QpStatus, StageData};
 pub use scale_estimator::ScaleEstimator;
 pub use settings::MpcSettings;
 pub use slice_model::{SliceModel, StageCost, StageState};
+pub use surrogate_model::SurrogateModel;
