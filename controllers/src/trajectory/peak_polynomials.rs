@@ -22,8 +22,9 @@ pub(crate) fn distance_hold_hold(q: &PeakInputs) -> (usize, [f64; 7]) {
         t,
         s1,
         s2,
+        radius,
     } = *q;
-    let _ = (v0, a0, vf, af, j, hold1, hold2, dp, t, s1, s2);
+    let _ = (v0, a0, vf, af, j, hold1, hold2, dp, t, s1, s2, radius);
     let x0 = j.powi(-2);
     let x1 = (1_f64 / 3.0) * x0;
     let x2 = hold1.recip();
@@ -71,8 +72,9 @@ pub(crate) fn distance_ramps_hold(q: &PeakInputs) -> (usize, [f64; 7]) {
         t,
         s1,
         s2,
+        radius,
     } = *q;
-    let _ = (v0, a0, vf, af, j, hold1, hold2, dp, t, s1, s2);
+    let _ = (v0, a0, vf, af, j, hold1, hold2, dp, t, s1, s2, radius);
     let x0 = j.powi(-2);
     let x1 = (1_f64 / 3.0) * x0;
     let x2 = hold2.recip();
@@ -121,8 +123,9 @@ pub(crate) fn distance_hold_ramps(q: &PeakInputs) -> (usize, [f64; 7]) {
         t,
         s1,
         s2,
+        radius,
     } = *q;
-    let _ = (v0, a0, vf, af, j, hold1, hold2, dp, t, s1, s2);
+    let _ = (v0, a0, vf, af, j, hold1, hold2, dp, t, s1, s2, radius);
     let x0 = j.powi(-2);
     let x1 = (1_f64 / 3.0) * x0;
     let x2 = hold1.recip();
@@ -171,8 +174,9 @@ pub(crate) fn distance_ramps_ramps(q: &PeakInputs) -> (usize, [f64; 7]) {
         t,
         s1,
         s2,
+        radius,
     } = *q;
-    let _ = (v0, a0, vf, af, j, hold1, hold2, dp, t, s1, s2);
+    let _ = (v0, a0, vf, af, j, hold1, hold2, dp, t, s1, s2, radius);
     let x0 = 4.0 * s1;
     let x1 = j.powi(-2);
     let x2 = s1 * x1;
@@ -201,6 +205,73 @@ pub(crate) fn distance_ramps_ramps(q: &PeakInputs) -> (usize, [f64; 7]) {
     (4, c)
 }
 
+/// `distance` residual, shape `ramps_ramps_same`: degree 6 in `w` (times (1 + w²)^3).
+#[inline]
+pub(crate) fn distance_ramps_ramps_same(q: &PeakInputs) -> (usize, [f64; 7]) {
+    let PeakInputs {
+        v0,
+        a0,
+        vf,
+        af,
+        j,
+        hold1,
+        hold2,
+        dp,
+        t,
+        s1,
+        s2,
+        radius,
+    } = *q;
+    let _ = (v0, a0, vf, af, j, hold1, hold2, dp, t, s1, s2, radius);
+    let x0 = a0.powi(3);
+    let x1 = j.powi(-2);
+    let x2 = x0 * x1;
+    let x3 = af.powi(3);
+    let x4 = x1 * x3;
+    let x5 = a0.powi(2);
+    let x6 = af * x1;
+    let x7 = x5 * x6;
+    let x8 = radius.powi(2);
+    let x9 = x6 * x8;
+    let x10 = j.recip();
+    let x11 = s1 * x10;
+    let x12 = v0 * x11;
+    let x13 = a0 * x12;
+    let x14 = af * x12;
+    let x15 = s1 * x1;
+    let x16 = radius.powi(3) * x15;
+    let x17 = 2.0 * v0;
+    let x18 = radius * x10;
+    let x19 = x17 * x18;
+    let x20 = radius * x15 * x5;
+    let x21 = x16 + x19 - x20;
+    let x22 = x11 * x5;
+    let x23 = 2.0 * x18 * (2.0 * x11 * x8 + x17 - x22);
+    let x24 = 3.0 * dp;
+    let x25 = 3.0 * x9;
+    let x26 = 3.0 * x13;
+    let x27 = 3.0 * x14;
+    let x28 = 3.0 * x16 - x19 + x20;
+    let mut c = [0.0; 7];
+    c[0] =
+        -dp - x13 - x14 + (1_f64 / 3.0) * x2 + x21 + (1_f64 / 6.0) * x4 + (1_f64 / 2.0) * x7 - x9;
+    c[1] = x23;
+    c[2] = (3_f64 / 2.0) * af * x1 * x5 + x0 * x1 + (1_f64 / 2.0) * x1 * x3
+        - x24
+        - x25
+        - x26
+        - x27
+        - x28;
+    c[3] = 4.0 * x18 * (2.0 * v0 - x22);
+    c[4] = x2 - x24 - x25 - x26 - x27 + x28 + (1_f64 / 2.0) * x4 + (3_f64 / 2.0) * x7;
+    c[5] = x23;
+    c[6] = -dp - x13 - x14 - x21 - x9
+        + (1_f64 / 3.0) * x0 * x1
+        + (1_f64 / 6.0) * x1 * x3
+        + (1_f64 / 2.0) * af * x1 * x5;
+    (6, c)
+}
+
 /// `cruise` residual, shape `hold_hold`: degree 2 in `vp`.
 #[inline]
 pub(crate) fn cruise_hold_hold(q: &PeakInputs) -> (usize, [f64; 7]) {
@@ -216,8 +287,9 @@ pub(crate) fn cruise_hold_hold(q: &PeakInputs) -> (usize, [f64; 7]) {
         t,
         s1,
         s2,
+        radius,
     } = *q;
-    let _ = (v0, a0, vf, af, j, hold1, hold2, dp, t, s1, s2);
+    let _ = (v0, a0, vf, af, j, hold1, hold2, dp, t, s1, s2, radius);
     let x0 = j.powi(-2);
     let x1 = (1_f64 / 3.0) * x0;
     let x2 = hold1.recip();
@@ -269,8 +341,9 @@ pub(crate) fn cruise_ramps_hold(q: &PeakInputs) -> (usize, [f64; 7]) {
         t,
         s1,
         s2,
+        radius,
     } = *q;
-    let _ = (v0, a0, vf, af, j, hold1, hold2, dp, t, s1, s2);
+    let _ = (v0, a0, vf, af, j, hold1, hold2, dp, t, s1, s2, radius);
     let x0 = hold2.recip();
     let x1 = j.recip();
     let x2 = s2 * x1;
@@ -337,8 +410,9 @@ pub(crate) fn cruise_hold_ramps(q: &PeakInputs) -> (usize, [f64; 7]) {
         t,
         s1,
         s2,
+        radius,
     } = *q;
-    let _ = (v0, a0, vf, af, j, hold1, hold2, dp, t, s1, s2);
+    let _ = (v0, a0, vf, af, j, hold1, hold2, dp, t, s1, s2, radius);
     let x0 = hold1.recip();
     let x1 = j.recip();
     let x2 = s1 * x1;
@@ -398,8 +472,9 @@ pub(crate) fn cruise_ramps_ramps(q: &PeakInputs) -> (usize, [f64; 7]) {
         t,
         s1,
         s2,
+        radius,
     } = *q;
-    let _ = (v0, a0, vf, af, j, hold1, hold2, dp, t, s1, s2);
+    let _ = (v0, a0, vf, af, j, hold1, hold2, dp, t, s1, s2, radius);
     let x0 = 8.0 * v0 * vf;
     let x1 = v0.powi(2);
     let x2 = 4.0 * a0;
@@ -493,6 +568,53 @@ pub(crate) fn cruise_ramps_ramps(q: &PeakInputs) -> (usize, [f64; 7]) {
     (5, c)
 }
 
+/// `cruise` residual, shape `ramps_ramps_same`: degree 6 in `w` (times (1 + w²)^3).
+#[inline]
+pub(crate) fn cruise_ramps_ramps_same(q: &PeakInputs) -> (usize, [f64; 7]) {
+    let PeakInputs {
+        v0,
+        a0,
+        vf,
+        af,
+        j,
+        hold1,
+        hold2,
+        dp,
+        t,
+        s1,
+        s2,
+        radius,
+    } = *q;
+    let _ = (v0, a0, vf, af, j, hold1, hold2, dp, t, s1, s2, radius);
+    let x0 = a0.powi(3);
+    let x1 = j.powi(-2);
+    let x2 = (1_f64 / 6.0) * x1;
+    let x3 = x0 * x2;
+    let x4 = af.powi(3);
+    let x5 = radius.powi(3) * s1 * x1;
+    let x6 = radius.powi(2);
+    let x7 = x1 * x6;
+    let x8 = a0 * x7;
+    let x9 = s1 * t * j.recip();
+    let x10 = a0.powi(2) * x9;
+    let x11 = (1_f64 / 2.0) * x10;
+    let x12 = x6 * x9;
+    let x13 = 3.0 * x5;
+    let x14 = x12 + x8;
+    let x15 = 3.0 * dp + (3_f64 / 2.0) * x10 + x14 + 4.0 * af * x7 - 3.0 * t * v0
+        + (1_f64 / 2.0) * x0 * x1
+        - 1_f64 / 2.0 * x1 * x4;
+    let mut c = [0.0; 7];
+    c[0] = -dp - x11 + x12 - x3 - x5 + x8 + t * v0 + (1_f64 / 6.0) * x1 * x4;
+    c[1] = 0.0;
+    c[2] = x13 - x15;
+    c[3] = 8.0 * x5;
+    c[4] = -x13 - x15;
+    c[5] = 0.0;
+    c[6] = -dp - x11 + x14 - x3 + x5 + t * v0 + x2 * x4;
+    (6, c)
+}
+
 /// `duration` residual, shape `hold_hold`: degree 1 in `vp`.
 #[inline]
 pub(crate) fn duration_hold_hold(q: &PeakInputs) -> (usize, [f64; 7]) {
@@ -508,8 +630,9 @@ pub(crate) fn duration_hold_hold(q: &PeakInputs) -> (usize, [f64; 7]) {
         t,
         s1,
         s2,
+        radius,
     } = *q;
-    let _ = (v0, a0, vf, af, j, hold1, hold2, dp, t, s1, s2);
+    let _ = (v0, a0, vf, af, j, hold1, hold2, dp, t, s1, s2, radius);
     let x0 = hold2.recip();
     let x1 = hold1.recip();
     let x2 = j.recip();
@@ -539,8 +662,9 @@ pub(crate) fn duration_ramps_hold(q: &PeakInputs) -> (usize, [f64; 7]) {
         t,
         s1,
         s2,
+        radius,
     } = *q;
-    let _ = (v0, a0, vf, af, j, hold1, hold2, dp, t, s1, s2);
+    let _ = (v0, a0, vf, af, j, hold1, hold2, dp, t, s1, s2, radius);
     let x0 = hold2.recip();
     let x1 = j.recip();
     let x2 = s2 * x1;
@@ -570,8 +694,9 @@ pub(crate) fn duration_hold_ramps(q: &PeakInputs) -> (usize, [f64; 7]) {
         t,
         s1,
         s2,
+        radius,
     } = *q;
-    let _ = (v0, a0, vf, af, j, hold1, hold2, dp, t, s1, s2);
+    let _ = (v0, a0, vf, af, j, hold1, hold2, dp, t, s1, s2, radius);
     let x0 = hold1.recip();
     let x1 = j.recip();
     let x2 = s1 * x1;
@@ -601,11 +726,41 @@ pub(crate) fn duration_ramps_ramps(q: &PeakInputs) -> (usize, [f64; 7]) {
         t,
         s1,
         s2,
+        radius,
     } = *q;
-    let _ = (v0, a0, vf, af, j, hold1, hold2, dp, t, s1, s2);
+    let _ = (v0, a0, vf, af, j, hold1, hold2, dp, t, s1, s2, radius);
     let x0 = j.recip();
     let mut c = [0.0; 7];
     c[0] = -t - a0 * s1 * x0 + af * s1 * x0;
     c[1] = 2.0 * x0;
     (1, c)
+}
+
+/// `duration` residual, shape `ramps_ramps_same`: degree 2 in `w` (times (1 + w²)^1).
+#[inline]
+pub(crate) fn duration_ramps_ramps_same(q: &PeakInputs) -> (usize, [f64; 7]) {
+    let PeakInputs {
+        v0,
+        a0,
+        vf,
+        af,
+        j,
+        hold1,
+        hold2,
+        dp,
+        t,
+        s1,
+        s2,
+        radius,
+    } = *q;
+    let _ = (v0, a0, vf, af, j, hold1, hold2, dp, t, s1, s2, radius);
+    let x0 = j.recip();
+    let x1 = s1 * x0;
+    let x2 = t + a0 * x1 + af * x1;
+    let x3 = radius * x0;
+    let mut c = [0.0; 7];
+    c[0] = 2.0 * radius * x0 - x2;
+    c[1] = 4.0 * x3;
+    c[2] = -x2 - 2.0 * x3;
+    (2, c)
 }

@@ -66,9 +66,13 @@ impl PeakResidual {
     /// Closed-form coefficients for the window shape (`h1`, `h2`: the changes hold a limit).
     fn coefficients(self, h1: bool, h2: bool, q: &mut PeakInputs) -> (usize, [f64; 7]) {
         use super::peak_polynomials as pp;
+        let same = !h1 && !h2 && q.s1 == q.s2;
         match self {
             Self::Distance { dp } => {
                 q.dp = dp;
+                if same {
+                    return pp::distance_ramps_ramps_same(q);
+                }
                 match (h1, h2) {
                     (true, true) => pp::distance_hold_hold(q),
                     (false, true) => pp::distance_ramps_hold(q),
@@ -79,6 +83,9 @@ impl PeakResidual {
             Self::CruiseDistance { dp, t } => {
                 q.dp = dp;
                 q.t = t;
+                if same {
+                    return pp::cruise_ramps_ramps_same(q);
+                }
                 match (h1, h2) {
                     (true, true) => pp::cruise_hold_hold(q),
                     (false, true) => pp::cruise_ramps_hold(q),
@@ -88,6 +95,9 @@ impl PeakResidual {
             }
             Self::Duration { t } => {
                 q.t = t;
+                if same {
+                    return pp::duration_ramps_ramps_same(q);
+                }
                 match (h1, h2) {
                     (true, true) => pp::duration_hold_hold(q),
                     (false, true) => pp::duration_ramps_hold(q),
@@ -117,6 +127,8 @@ pub(crate) struct PeakInputs {
     pub s1: f64,
     /// Sign of the second change's first jerk.
     pub s2: f64,
+    /// `R = √(x² + y²)` when both changes are ramp pairs of the same sign.
+    pub radius: f64,
 }
 
 /// Shape of both velocity changes at `vp`: (first holds, first jerk sign, second holds, second
@@ -183,12 +195,16 @@ fn polynomial_window<F: FnMut(f64) -> f64>(
         t: 0.0,
         s1,
         s2,
+        radius: 0.0,
     };
-    let (deg, coef) = if h1 || h2 || s1 != s2 {
-        kind.coefficients(h1, h2, &mut q)
-    } else {
-        (0, [f64::NAN; 7])
-    };
+    if !h1 && !h2 && s1 == s2 {
+        let k = s1 * d.j * (d.vf - d.v0) + 0.5 * (d.a0 * d.a0 + d.af * d.af);
+        if k.is_nan() || k <= 0.0 {
+            return false;
+        }
+        q.radius = k.sqrt();
+    }
+    let (deg, coef) = kind.coefficients(h1, h2, &mut q);
     let j = d.j;
     let (v0, a0, vf, af) = (d.v0, d.a0, d.vf, d.af);
     let ([deg_hh, deg_one, deg_two], mult) = kind.degrees();
@@ -234,10 +250,29 @@ fn polynomial_window<F: FnMut(f64) -> f64>(
                 out.push(vp_of_y(y).clamp(l, r));
             }
         }
-        (false, false) => {
-            if s1 == s2 {
+        (false, false) if s1 == s2 => {
+            // x² + y² = R²: x = R (1 − w²)/(1 + w²), y = 2 R w/(1 + w²), w = y/(R + x) ∈ [0, 1].
+            let rad = q.radius;
+            let w_of = |vp: f64| y_of(vp) / (rad + x_of(vp));
+            let vp_of_w = |w: f64| vp_of_x(rad * (1.0 - w * w) / (1.0 + w * w));
+            let (wl, wr) = (w_of(l), w_of(r));
+            let (lo, hi) = (wl.min(wr), wl.max(wr));
+            let (deg_same, mult_same) = if matches!(kind, PeakResidual::Duration { .. }) {
+                (2, 1)
+            } else {
+                (6, 3)
+            };
+            let mut g = |w: f64| f(vp_of_w(w)) * (1.0 + w * w).powi(mult_same);
+            if !closed_form_roots(deg, &coef, &mut g, lo, hi, &mut roots)
+                && !polynomial_roots(&mut g, lo, hi, deg_same, &mut roots)
+            {
                 return false;
             }
+            for &w in roots.as_slice() {
+                out.push(vp_of_w(w).clamp(l, r));
+            }
+        }
+        (false, false) => {
             // y² − x² = K, constant on the window.
             let k = s1 * j * (v0 - vf) + 0.5 * (af * af - a0 * a0);
             let u_of = |vp: f64| x_of(vp) + y_of(vp);
