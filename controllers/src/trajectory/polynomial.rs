@@ -162,10 +162,24 @@ pub(crate) fn real_roots(p: &Poly, lo: f64, hi: f64, out: &mut [f64; MAX_DEGREE]
     while q.n > 0 && q.c[q.n].abs() <= 1e-14 * s {
         q.n -= 1;
     }
-    roots_rec(&q, lo, hi, s, out)
+    roots_rec(&q, lo, hi, s, 0, out)
 }
 
-fn roots_rec(p: &Poly, lo: f64, hi: f64, scale: f64, out: &mut [f64; MAX_DEGREE]) -> usize {
+/// `depth` 0 is the polynomial itself (roots to full precision); deeper levels are derivatives,
+/// whose roots only separate monotone pieces and are refined to a relative 1e-10.
+fn roots_rec(
+    p: &Poly,
+    lo: f64,
+    hi: f64,
+    scale: f64,
+    depth: usize,
+    out: &mut [f64; MAX_DEGREE],
+) -> usize {
+    // On [−1, 1], |p(t) − c0| ≤ Σ_{k≥1} |c_k|: no root (nor tangency) if c0 dominates.
+    let tail: f64 = p.c[1..=p.n].iter().map(|c| c.abs()).sum();
+    if p.c[0].abs() > tail * (1.0 + 1e-12) + 1e-12 * scale {
+        return 0;
+    }
     let mut n_out = 0;
     let mut push = |x: f64, out: &mut [f64; MAX_DEGREE]| {
         if n_out < MAX_DEGREE && x >= lo && x <= hi {
@@ -203,7 +217,12 @@ fn roots_rec(p: &Poly, lo: f64, hi: f64, scale: f64, out: &mut [f64; MAX_DEGREE]
     // Critical points split [lo, hi] into intervals where p is monotone.
     let d = p.derivative();
     let mut crit = [0.0; MAX_DEGREE];
-    let nc = roots_rec(&d, lo, hi, scale, &mut crit);
+    let nc = roots_rec(&d, lo, hi, scale, depth + 1, &mut crit);
+    let tol = if depth == 0 {
+        4.0 * f64::EPSILON
+    } else {
+        1e-10
+    };
     let crit = &mut crit[..nc];
     crit.sort_unstable_by(f64::total_cmp);
     let mut a = lo;
@@ -218,7 +237,7 @@ fn roots_rec(p: &Poly, lo: f64, hi: f64, scale: f64, out: &mut [f64; MAX_DEGREE]
             if fb == 0.0 {
                 push(b, out);
             } else if fa != 0.0 && (fa > 0.0) != (fb > 0.0) {
-                push(monotone_root(p, a, fa, b), out);
+                push(monotone_root(p, a, fa, b, fb, tol), out);
             } else if k < nc && fb.abs() <= 1e-12 * scale {
                 // Tangency at a critical point.
                 push(b, out);
@@ -230,10 +249,14 @@ fn roots_rec(p: &Poly, lo: f64, hi: f64, scale: f64, out: &mut [f64; MAX_DEGREE]
     n_out
 }
 
-/// The single root of a monotone `p` on `[a, b]` with a sign change: Newton steps kept inside
-/// the shrinking bracket, bisection when a step leaves it.
-fn monotone_root(p: &Poly, mut a: f64, mut fa: f64, mut b: f64) -> f64 {
-    let mut x = 0.5 * (a + b);
+/// The single root of a monotone `p` on `[a, b]` with a sign change: Newton steps from the
+/// secant point, kept inside the shrinking bracket (bisection when a step leaves it), until the
+/// step is below `tol` (relative).
+fn monotone_root(p: &Poly, mut a: f64, mut fa: f64, mut b: f64, fb: f64, tol: f64) -> f64 {
+    let mut x = (a * fb - b * fa) / (fb - fa);
+    if !(x > a.min(b) && x < a.max(b)) {
+        x = 0.5 * (a + b);
+    }
     for _ in 0..100 {
         let (f, df) = p.eval_d(x);
         if f == 0.0 {
@@ -249,7 +272,7 @@ fn monotone_root(p: &Poly, mut a: f64, mut fa: f64, mut b: f64) -> f64 {
         if !(nx > a.min(b) && nx < a.max(b)) {
             nx = 0.5 * (a + b);
         }
-        if (nx - x).abs() <= 4.0 * f64::EPSILON * (1.0 + x.abs()) || (b - a).abs() <= 1e-15 {
+        if (nx - x).abs() <= tol * (1.0 + x.abs()) || (b - a).abs() <= 1e-15 {
             return nx;
         }
         x = nx;

@@ -106,7 +106,8 @@ fn peak_cruise(d: &Dof, prefix: &Profile, t: f64) -> Option<Profile> {
     for w in pts.windows(2) {
         let (l, r) = (w[0], w[1]);
         let mid = 0.5 * (l + r);
-        if h(mid).is_nan() || h(mid) > 0.0 {
+        let h_mid = h(mid);
+        if h_mid.is_nan() || h_mid > 0.0 {
             continue;
         }
         let mut roots = Roots::new();
