@@ -173,15 +173,14 @@ pub(crate) fn calculate<const N: usize>(
             }
         }
         // The DoF that could not be stretched may have an extremal profile (the end of a
-        // blocked interval) that the normal sampling missed: search it once more with eight
-        // times the samples before moving on.
+        // blocked interval) that the normal search missed: search it once more, sampling every
+        // family densely, and add what is found (never replace: the polynomial solutions of
+        // the first search are exact and sampling can miss them).
         if !densified[failed_dof] && position {
             densified[failed_dof] = true;
             if let Some(wi) = work[failed_dof].as_mut() {
                 let dense = time_optimal(&wi.dof, &wi.prefix, 8);
-                if dense.n > 0 {
-                    wi.cands = dense;
-                }
+                wi.cands.merge(&dense);
             }
             continue;
         }

@@ -79,6 +79,28 @@ impl TimeOptimal {
         if dof.accept(prefix, segs, dir).is_none() {
             return;
         }
+        self.insert(d, segs, dir);
+    }
+
+    /// Adds the (already verified) candidates of `other` that are not yet present.
+    pub fn merge(&mut self, other: &Self) {
+        for k in 0..other.n {
+            let d = other.duration[k];
+            if self.duration[..self.n]
+                .iter()
+                .any(|&x| (x - d).abs() <= 1e-12 * (1.0 + d))
+            {
+                continue;
+            }
+            if self.n == MAX_CANDIDATES && d >= self.duration[self.n - 1] {
+                continue;
+            }
+            self.insert(d, &other.segs[k], other.dir[k]);
+        }
+    }
+
+    /// Inserts a verified candidate of duration `d`, keeping the list sorted.
+    fn insert(&mut self, d: f64, segs: &Segments, dir: f64) {
         let mut k = self.n.min(MAX_CANDIDATES - 1);
         if self.n < MAX_CANDIDATES {
             self.n += 1;
