@@ -59,6 +59,7 @@ pub(crate) fn calculate<const N: usize>(
     // Braking and step 1 per DoF.
     let mut braking = false;
     let mut work: [Option<DofWork>; N] = [None; N];
+    let mut alt_work: [Option<DofWork>; N] = [None; N];
     let mut t_min = 0.0_f64;
     #[allow(clippy::needless_range_loop)] // i indexes several input arrays
     for i in 0..N {
@@ -72,7 +73,6 @@ pub(crate) fn calculate<const N: usize>(
         )
         .ok_or(TrajectoryError::NoProfile { dof: i })?;
         braking |= b.active;
-        let mut best: Option<DofWork> = None;
         let alternative = if b.active && position {
             brake_to_limit(
                 input.current_position[i],
@@ -83,21 +83,26 @@ pub(crate) fn calculate<const N: usize>(
         } else {
             None
         };
-        for prefix in core::iter::once(b.prefix).chain(alternative) {
-            if let Some(w) = solve_dof(input, i, &l, &prefix, position)
-                && best.as_ref().is_none_or(|bw| {
-                    w.brake_t + w.cands.duration[0] < bw.brake_t + bw.cands.duration[0]
-                })
-            {
-                best = Some(w);
-            }
+        let total = |w: &DofWork| w.brake_t + w.cands.duration[0];
+        let mut best = solve_dof(input, i, &l, &b.prefix, position);
+        let mut other = alternative.and_then(|alt| solve_dof(input, i, &l, &alt, position));
+        if let (Some(bw), Some(ow)) = (&best, &other)
+            && total(ow) < total(bw)
+        {
+            core::mem::swap(&mut best, &mut other);
+        }
+        if best.is_none() {
+            core::mem::swap(&mut best, &mut other);
         }
         let Some(best) = best else {
             return Err(TrajectoryError::NoProfile { dof: i });
         };
-        traj.independent_min_durations[i] = best.brake_t + best.cands.duration[0];
-        t_min = t_min.max(best.brake_t + best.cands.duration[0]);
+        traj.independent_min_durations[i] = total(&best);
+        t_min = t_min.max(total(&best));
         work[i] = Some(best);
+        // The other braking variant is kept for synchronisation: it may reach durations that
+        // the faster one cannot (blocked intervals differ).
+        alt_work[i] = other;
     }
     traj.braking = braking;
     let status = if braking {
@@ -148,7 +153,9 @@ pub(crate) fn calculate<const N: usize>(
         };
         let mut ok = true;
         for i in 0..N {
-            match stretch(wk(&work, i), t, position) {
+            let p = stretch(wk(&work, i), t, position)
+                .or_else(|| alt_work[i].as_ref().and_then(|a| stretch(a, t, position)));
+            match p {
                 Some(p) => traj.profiles[i] = p,
                 None => {
                     ok = false;
@@ -163,8 +170,7 @@ pub(crate) fn calculate<const N: usize>(
         }
         // Next candidate duration strictly after `t`.
         let mut next = f64::INFINITY;
-        for i in 0..N {
-            let wi = wk(&work, i);
+        for wi in work.iter().chain(&alt_work).flatten() {
             for k in 0..wi.cands.n {
                 let d = wi.brake_t + wi.cands.duration[k];
                 if d > t + 1e-12 * (1.0 + t) && d < next {

@@ -34,8 +34,9 @@
 //! kept, since they bound the blocked intervals used by synchronisation.
 
 use super::dof::{Dof, Segments};
+use super::peak_polynomials as pp;
 use super::peak_window::{PeakResidual, scan_peak_window};
-use super::polynomial::polynomial_roots;
+use super::polynomial::{closed_form_roots, polynomial_roots};
 use super::profile::{Profile, integrate};
 use super::roots::{Roots, scan};
 use super::vel_change::{VelChange, vel_change};
@@ -239,6 +240,24 @@ fn peak_family(d: &Dof, prefix: &Profile, density: usize, out: &mut TimeOptimal)
     }
 }
 
+/// Parameters of the three-arc family's closed-form coefficients
+/// ([`super::peak_polynomials`]), in the frame being solved.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct ArcInputs {
+    pub v0: f64,
+    pub a0: f64,
+    pub af: f64,
+    pub j: f64,
+    pub a_max: f64,
+    pub a_min: f64,
+    /// `vf − v0`.
+    pub dv: f64,
+    /// `K = J Δv + (a0² − af²)/2` of the unlimited variant.
+    pub k: f64,
+    /// `pf − p0`.
+    pub dp: f64,
+}
+
 /// Integrates signed-duration segments from `(0, v0, a0)`; returns the position reached.
 #[inline]
 fn reach(v0: f64, a0: f64, segs: &[(f64, f64)]) -> f64 {
@@ -274,6 +293,17 @@ fn three_arc_family(
 
     // (1) no acceleration limit: +J (a0→a1), −J (a1→a2), +J (a2→af), a1² − a2² = K.
     let k = j * dv + 0.5 * (a0 * a0 - af * af);
+    let q = ArcInputs {
+        v0: d.v0,
+        a0,
+        af,
+        j,
+        a_max: amax,
+        a_min: amin,
+        dv,
+        k,
+        dp,
+    };
     let disc1 = amax * amax - k;
     let disc2 = amin * amin + k;
     if disc1 >= 0.0 && disc2 >= 0.0 && (af > 0.0 || a0 < 0.0) {
@@ -293,7 +323,11 @@ fn three_arc_family(
         let mut roots = Roots::new();
         // r·s is a quartic in s (the times are linear in s and K/s).
         let mut g = |s: f64| f(s) * s;
-        if density > 1 || !polynomial_roots(&mut g, lo, hi, 4, &mut roots) {
+        let (n, c) = pp::arc_free(&q);
+        if density > 1
+            || !(closed_form_roots(n, &c, &mut g, lo, hi, &mut roots)
+                || polynomial_roots(&mut g, lo, hi, 4, &mut roots))
+        {
             scan(&mut f, lo, hi, arc_samples, &mut roots);
         }
         for &s in roots.as_slice() {
@@ -319,7 +353,11 @@ fn three_arc_family(
         let mut roots = Roots::new();
         // A quartic in a2 (the hold is quadratic in a2, the ramps linear).
         let (lo, hi) = (-1e-12 * amax, af.min(amax));
-        if density > 1 || !polynomial_roots(&mut f, lo, hi, 4, &mut roots) {
+        let (n, c) = pp::arc_hold_max(&q);
+        if density > 1
+            || !(closed_form_roots(n, &c, &mut f, lo, hi, &mut roots)
+                || polynomial_roots(&mut f, lo, hi, 4, &mut roots))
+        {
             scan(&mut f, lo, hi, arc_samples, &mut roots);
         }
         for &a2 in roots.as_slice() {
@@ -348,7 +386,11 @@ fn three_arc_family(
         };
         let mut roots = Roots::new();
         let (lo, hi) = (a0.max(amin), -1e-12 * amin);
-        if density > 1 || !polynomial_roots(&mut f, lo, hi, 4, &mut roots) {
+        let (n, c) = pp::arc_hold_min(&q);
+        if density > 1
+            || !(closed_form_roots(n, &c, &mut f, lo, hi, &mut roots)
+                || polynomial_roots(&mut f, lo, hi, 4, &mut roots))
+        {
             scan(&mut f, lo, hi, arc_samples, &mut roots);
         }
         for &a1 in roots.as_slice() {
