@@ -152,9 +152,9 @@ pub(crate) fn calculate<const N: usize>(
             t_cand
         };
         let mut ok = true;
-        for i in 0..N {
+        for (i, alt) in alt_work.iter().enumerate() {
             let p = stretch(wk(&work, i), t, position)
-                .or_else(|| alt_work[i].as_ref().and_then(|a| stretch(a, t, position)));
+                .or_else(|| alt.as_ref().and_then(|a| stretch(a, t, position)));
             match p {
                 Some(p) => traj.profiles[i] = p,
                 None => {
