@@ -57,14 +57,6 @@ fn bench_dofs<const N: usize>(cases: usize, seed: u64, update_trajectories: usiz
         times.push(dt);
     }
     times.sort_by(f64::total_cmp);
-    let st: Vec<usize> = shearcut_controllers::trajectory::polynomial::STATS
-        .iter()
-        .map(|a| a.swap(0, std::sync::atomic::Ordering::Relaxed))
-        .collect();
-    println!(
-        "STATS poly calls {} failed {} scans {} samples {}",
-        st[0], st[1], st[2], st[3]
-    );
     let mean = times.iter().sum::<f64>() / times.len() as f64;
     println!(
         "calculate {N} DoF: median {:.2} us, mean {:.2} us, p99 {:.2} us, max {:.2} us ({} cases, {errors} errors)",

@@ -354,10 +354,6 @@ pub(crate) fn closed_form_roots<F: FnMut(f64) -> f64>(
     true
 }
 
-/// TEMP stats
-pub static STATS: [core::sync::atomic::AtomicUsize; 4] =
-    [const { core::sync::atomic::AtomicUsize::new(0) }; 4];
-
 /// All roots of `f` on `[wl, wr]`, where `f` is known to be a polynomial of degree `n ≤ 6` in
 /// `w` (by the algebra of the calling family). `n + 1` Chebyshev evaluations give the
 /// polynomial, one more evaluation checks it; the roots are polished by Newton steps on `f`
@@ -374,7 +370,6 @@ pub(crate) fn polynomial_roots<F: FnMut(f64) -> f64>(
     if !(wl.is_finite() && wr.is_finite() && wr > wl) || n == 0 || n > MAX_DEGREE {
         return false;
     }
-    STATS[0].fetch_add(1, core::sync::atomic::Ordering::Relaxed);
     let mid = 0.5 * (wl + wr);
     let half = 0.5 * (wr - wl);
     let w_of = |t: f64| (mid + half * t).clamp(wl, wr);
@@ -393,7 +388,6 @@ pub(crate) fn polynomial_roots<F: FnMut(f64) -> f64>(
     const T_CHECK: f64 = 0.412_345;
     let yc = f(w_of(T_CHECK));
     if !yc.is_finite() || (yc - p.eval(T_CHECK)).abs() > 1e-9 * (ymax + yc.abs()) + 1e-300 {
-        STATS[1].fetch_add(1, core::sync::atomic::Ordering::Relaxed);
         return false;
     }
     let mut r = [0.0; MAX_DEGREE];

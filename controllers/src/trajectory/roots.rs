@@ -134,8 +134,6 @@ pub(crate) fn scan<F: FnMut(f64) -> f64>(
     samples: usize,
     out: &mut Roots,
 ) {
-    super::polynomial::STATS[2].fetch_add(1, core::sync::atomic::Ordering::Relaxed);
-    super::polynomial::STATS[3].fetch_add(samples, core::sync::atomic::Ordering::Relaxed);
     if !lo.is_finite() || !hi.is_finite() || lo > hi {
         return;
     }
