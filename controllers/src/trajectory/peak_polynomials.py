@@ -3,7 +3,8 @@
 residuals on one smooth window (see peak_window.rs). Run: python3 peak_polynomials.py > peak_polynomials.rs
 Derivation: symbolic integration of the constant-jerk segments (sympy), no external source."""
 from sympy import symbols, Rational, expand, Poly, cse, Symbol, Pow, together, fraction, simplify
-from sympy.printing import rust_code
+from sympy.printing.str import StrPrinter
+from sympy.printing.precedence import precedence
 
 v0, a0, vf, af, J, A1, A2, dp, T, s1, s2, R = symbols('v0 a0 vf af j hold1 hold2 dp t s1 s2 radius', real=True)
 x, y, u, vp, w = symbols('x y u vp w', real=True)
@@ -40,13 +41,35 @@ def part2(hold, vps):
         p, v, a = seg(p, v, a, jj, t); tt += t
     return p, tt
 
-import re
+class RustPrinter(StrPrinter):
+    """Rust f64 expressions. (sympy's own Rust printer drops the parentheses of sums inside
+    products with a rational factor, e.g. `(1/6)*x*(2*a + b)`; the plain string printer gets
+    precedence right, so only the leaves are changed here.)"""
+
+    def _print_Pow(self, expr):
+        b, e = expr.as_base_exp()
+        base = self.parenthesize(b, precedence(expr), strict=True)
+        if e.is_Integer:
+            if e == -1:
+                return f"{base}.recip()"
+            return f"{base}.powi({int(e)})"
+        if e == Rational(1, 2):
+            return f"{base}.sqrt()"
+        return f"{base}.powf({self._print(e)})"
+
+    def _print_Rational(self, expr):
+        return f"({expr.p}.0/{expr.q}.0)"
+
+    def _print_Integer(self, expr):
+        return f"{int(expr)}.0"
+
+    def _print_Float(self, expr):
+        return repr(float(expr))
 
 
 def rs(e):
-    """Rust code with float literals (sympy prints integers as integers)."""
-    code = rust_code(e)
-    return re.sub(r'(?<![\w.])(?<!powi\()(?<!powi\(-)(\d+)(?![\w.])', r'\1.0', code)
+    """Rust code of a sympy expression."""
+    return RustPrinter().doprint(e)
 
 
 def reduce_signs(e):

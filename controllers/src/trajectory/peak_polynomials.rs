@@ -27,34 +27,36 @@ pub(crate) fn distance_hold_hold(q: &PeakInputs) -> (usize, [f64; 7]) {
     } = *q;
     let _ = (v0, a0, vf, af, j, hold1, hold2, dp, t, s1, s2, radius);
     let x0 = j.powi(-2);
-    let x1 = (1_f64 / 3.0) * x0;
+    let x1 = x0 / 3.0;
     let x2 = hold1.recip();
-    let x3 = (1_f64 / 2.0) * x2;
+    let x3 = x2 / 2.0;
     let x4 = hold2.recip();
-    let x5 = (1_f64 / 2.0) * x4;
+    let x5 = x4 / 2.0;
     let x6 = j.recip();
     let x7 = s1 * v0 * x6;
     let x8 = s2 * vf * x6;
     let x9 = hold1 * s1;
-    let x10 = (1_f64 / 2.0) * x6;
+    let x10 = x6 / 2.0;
     let x11 = hold2 * s2;
     let x12 = a0.powi(2);
-    let x13 = (1_f64 / 4.0) * x0;
+    let x13 = x0 / 4.0;
     let x14 = af.powi(2);
-    let x15 = (1_f64 / 8.0) * x0;
+    let x15 = x0 / 8.0;
     let mut c = [0.0; 7];
-    c[0] = -dp - a0 * x7 + a0.powi(3) * x1 - af * x8 - af.powi(3) * x1 - v0.powi(2) * x3
-        + vf.powi(2) * x5
-        - a0.powi(4) * x15 * x2
-        + af.powi(4) * x15 * x4
+    c[0] = -a0.powi(4) * x15 * x2 + a0.powi(3) * x1 - a0 * x7 + af.powi(4) * x15 * x4
+        - af.powi(3) * x1
+        - af * x8
+        - dp
         - hold1 * x12 * x13
         + hold2 * x13 * x14
+        - v0.powi(2) * x3
         + v0 * x10 * x9
+        + vf.powi(2) * x5
         + vf * x10 * x11
         + x12 * x3 * x7
         + x14 * x5 * x8;
     c[1] = x10 * (x11 + x9);
-    c[2] = (1_f64 / 2.0) * x2 - 1_f64 / 2.0 * x4;
+    c[2] = x2 / 2.0 - x4 / 2.0;
     (2, c)
 }
 
@@ -77,31 +79,33 @@ pub(crate) fn distance_ramps_hold(q: &PeakInputs) -> (usize, [f64; 7]) {
     } = *q;
     let _ = (v0, a0, vf, af, j, hold1, hold2, dp, t, s1, s2, radius);
     let x0 = j.powi(-2);
-    let x1 = (1_f64 / 3.0) * x0;
+    let x1 = x0 / 3.0;
     let x2 = hold2.recip();
-    let x3 = (1_f64 / 2.0) * x2;
+    let x3 = x2 / 2.0;
     let x4 = j.recip();
     let x5 = s1 * x4;
     let x6 = s2 * x4;
     let x7 = vf * x6;
-    let x8 = (1_f64 / 2.0) * hold2;
+    let x8 = hold2 / 2.0;
     let x9 = af.powi(2);
-    let x10 = (1_f64 / 4.0) * hold2;
-    let x11 = (1_f64 / 8.0) * x0 * x2;
+    let x10 = hold2 / 4.0;
+    let x11 = x0 * x2 / 8.0;
     let x12 = a0.powi(2);
     let x13 = s1 * x0;
     let x14 = x12 * x5;
     let mut c = [0.0; 7];
-    c[0] = -dp + a0.powi(3) * x1 - a0.powi(4) * x11 - af * x7 - af.powi(3) * x1 + af.powi(4) * x11
+    c[0] = -a0.powi(4) * x11 + a0.powi(3) * x1 - a0 * v0 * x5 + af.powi(4) * x11
+        - af.powi(3) * x1
+        - af * x7
+        - dp
+        - s2 * x10 * x12 * x13
         - v0.powi(2) * x3
-        + vf.powi(2) * x3
-        + x7 * x8
-        - a0 * v0 * x5
         + v0 * x14 * x3
         + v0 * x6 * x8
+        + vf.powi(2) * x3
         + x0 * x10 * x9
         + x3 * x7 * x9
-        - s2 * x10 * x12 * x13;
+        + x7 * x8;
     c[1] = x4 * (2.0 * v0 - x14);
     c[2] = x4 * (-s1 * v0 * x2 + s2 * x5 * x8 + x12 * x3 * x4);
     c[3] = x13;
@@ -128,31 +132,33 @@ pub(crate) fn distance_hold_ramps(q: &PeakInputs) -> (usize, [f64; 7]) {
     } = *q;
     let _ = (v0, a0, vf, af, j, hold1, hold2, dp, t, s1, s2, radius);
     let x0 = j.powi(-2);
-    let x1 = (1_f64 / 3.0) * x0;
+    let x1 = x0 / 3.0;
     let x2 = hold1.recip();
-    let x3 = (1_f64 / 2.0) * x2;
+    let x3 = x2 / 2.0;
     let x4 = j.recip();
     let x5 = s1 * x4;
     let x6 = v0 * x5;
     let x7 = s2 * x4;
-    let x8 = (1_f64 / 2.0) * hold1;
+    let x8 = hold1 / 2.0;
     let x9 = a0.powi(2);
-    let x10 = (1_f64 / 4.0) * hold1;
-    let x11 = (1_f64 / 8.0) * x0 * x2;
+    let x10 = hold1 / 4.0;
+    let x11 = x0 * x2 / 8.0;
     let x12 = af.powi(2);
     let x13 = s2 * x0;
     let x14 = x12 * x7;
     let mut c = [0.0; 7];
-    c[0] = -dp - a0 * x6 + a0.powi(3) * x1 - a0.powi(4) * x11 - af.powi(3) * x1 + af.powi(4) * x11
+    c[0] = -a0.powi(4) * x11 + a0.powi(3) * x1 - a0 * x6 + af.powi(4) * x11
+        - af.powi(3) * x1
+        - af * vf * x7
+        - dp
+        + s1 * x10 * x12 * x13
         - v0.powi(2) * x3
         + vf.powi(2) * x3
-        + x6 * x8
-        - af * vf * x7
         + vf * x14 * x3
         + vf * x5 * x8
         - x0 * x10 * x9
         + x3 * x6 * x9
-        + s1 * x10 * x12 * x13;
+        + x6 * x8;
     c[1] = x4 * (2.0 * vf + x14);
     c[2] = -x4 * (s1 * x7 * x8 + s2 * vf * x2 + x12 * x3 * x4);
     c[3] = -x13;
@@ -186,23 +192,21 @@ pub(crate) fn distance_ramps_ramps(q: &PeakInputs) -> (usize, [f64; 7]) {
     let x5 = 4.0 * x4;
     let x6 = af.powi(2);
     let x7 = s1 * x4;
-    let x8 = (1_f64 / 2.0) * x7;
+    let x8 = x7 / 2.0;
     let mut c = [0.0; 7];
-    c[0] = -1_f64 / 16.0 * a0.powi(4) * x2
-        - 1_f64 / 16.0 * af.powi(4) * x2
-        - 1_f64 / 16.0 * v0.powi(2) * x0
-        - 1_f64 / 16.0 * vf.powi(2) * x0
-        + (1_f64 / 2.0) * s1 * v0 * vf
-        + (1_f64 / 4.0) * v0 * x3 * x4
-        - 1_f64 / 16.0 * v0 * x5 * x6
-        - 1_f64 / 16.0 * vf * x3 * x5
-        + (1_f64 / 4.0) * vf * x4 * x6
-        + (1_f64 / 8.0) * s1 * x1 * x3 * x6;
-    c[1] = -dp + (1_f64 / 3.0) * a0.powi(3) * x1 - 1_f64 / 3.0 * af.powi(3) * x1 - a0 * v0 * x7
-        + af * s1 * vf * x4;
+    c[0] = -a0.powi(4) * x2 / 16.0 - af.powi(4) * x2 / 16.0
+        + s1 * v0 * vf / 2.0
+        + s1 * x1 * x3 * x6 / 8.0
+        - v0.powi(2) * x0 / 16.0
+        + v0 * x3 * x4 / 4.0
+        - v0 * x5 * x6 / 16.0
+        - vf.powi(2) * x0 / 16.0
+        - vf * x3 * x5 / 16.0
+        + vf * x4 * x6 / 4.0;
+    c[1] = a0.powi(3) * x1 / 3.0 - a0 * v0 * x7 - af.powi(3) * x1 / 3.0 + af * s1 * vf * x4 - dp;
     c[2] = x4 * (v0 + vf - x3 * x8 - x6 * x8);
     c[3] = 0.0;
-    c[4] = (1_f64 / 4.0) * x2;
+    c[4] = x2 / 4.0;
     (4, c)
 }
 
@@ -254,22 +258,13 @@ pub(crate) fn distance_ramps_ramps_same(q: &PeakInputs) -> (usize, [f64; 7]) {
     let x27 = 3.0 * x14;
     let x28 = 3.0 * x16 - x19 + x20;
     let mut c = [0.0; 7];
-    c[0] =
-        -dp - x13 - x14 + (1_f64 / 3.0) * x2 + x21 + (1_f64 / 6.0) * x4 + (1_f64 / 2.0) * x7 - x9;
+    c[0] = -dp - x13 - x14 + x2 / 3.0 + x21 + x4 / 6.0 + x7 / 2.0 - x9;
     c[1] = x23;
-    c[2] = (3_f64 / 2.0) * af * x1 * x5 + x0 * x1 + (1_f64 / 2.0) * x1 * x3
-        - x24
-        - x25
-        - x26
-        - x27
-        - x28;
+    c[2] = 3.0 * af * x1 * x5 / 2.0 + x0 * x1 + x1 * x3 / 2.0 - x24 - x25 - x26 - x27 - x28;
     c[3] = 4.0 * x18 * (2.0 * v0 - x22);
-    c[4] = x2 - x24 - x25 - x26 - x27 + x28 + (1_f64 / 2.0) * x4 + (3_f64 / 2.0) * x7;
+    c[4] = x2 - x24 - x25 - x26 - x27 + x28 + x4 / 2.0 + 3.0 * x7 / 2.0;
     c[5] = x23;
-    c[6] = -dp - x13 - x14 - x21 - x9
-        + (1_f64 / 3.0) * x0 * x1
-        + (1_f64 / 6.0) * x1 * x3
-        + (1_f64 / 2.0) * af * x1 * x5;
+    c[6] = af * x1 * x5 / 2.0 - dp + x0 * x1 / 3.0 + x1 * x3 / 6.0 - x13 - x14 - x21 - x9;
     (6, c)
 }
 
@@ -292,38 +287,39 @@ pub(crate) fn cruise_hold_hold(q: &PeakInputs) -> (usize, [f64; 7]) {
     } = *q;
     let _ = (v0, a0, vf, af, j, hold1, hold2, dp, t, s1, s2, radius);
     let x0 = j.powi(-2);
-    let x1 = (1_f64 / 3.0) * x0;
+    let x1 = x0 / 3.0;
     let x2 = hold1.recip();
-    let x3 = (1_f64 / 2.0) * x2;
+    let x3 = x2 / 2.0;
     let x4 = hold2.recip();
-    let x5 = (1_f64 / 2.0) * x4;
+    let x5 = x4 / 2.0;
     let x6 = j.recip();
     let x7 = s1 * x6;
     let x8 = s2 * x6;
-    let x9 = (1_f64 / 2.0) * x7;
+    let x9 = x7 / 2.0;
     let x10 = hold1 * x9;
-    let x11 = (1_f64 / 2.0) * x8;
+    let x11 = x8 / 2.0;
     let x12 = hold2 * x11;
     let x13 = a0.powi(2);
-    let x14 = (1_f64 / 4.0) * x0;
+    let x14 = x0 / 4.0;
     let x15 = af.powi(2);
-    let x16 = (1_f64 / 8.0) * x0;
+    let x16 = x0 / 8.0;
     let x17 = vf * x4;
     let mut c = [0.0; 7];
-    c[0] = -dp + a0.powi(3) * x1 - af.powi(3) * x1 + v0 * x10 - v0.powi(2) * x3
-        + vf * x12
-        + vf.powi(2) * x5
-        - a0 * v0 * x7
-        - a0.powi(4) * x16 * x2
+    c[0] = -a0.powi(4) * x16 * x2 + a0.powi(3) * x1 - a0 * v0 * x7 + af.powi(4) * x16 * x4
+        - af.powi(3) * x1
         - af * vf * x8
-        + af.powi(4) * x16 * x4
+        - dp
         - hold1 * x13 * x14
         + hold2 * x14 * x15
-        + x11 * x15 * x17
-        + v0 * x13 * x2 * x9;
+        - v0.powi(2) * x3
+        + v0 * x10
+        + v0 * x13 * x2 * x9
+        + vf.powi(2) * x5
+        + vf * x12
+        + x11 * x15 * x17;
     c[1] =
-        t - x10 - x12 - x17 + v0 * x2 + a0 * s1 * x6 + af * s2 * x6 - x13 * x3 * x7 - x15 * x5 * x8;
-    c[2] = -1_f64 / 2.0 * x2 + (1_f64 / 2.0) * x4;
+        a0 * s1 * x6 + af * s2 * x6 + t + v0 * x2 - x10 - x12 - x13 * x3 * x7 - x15 * x5 * x8 - x17;
+    c[2] = -x2 / 2.0 + x4 / 2.0;
     (2, c)
 }
 
@@ -350,15 +346,15 @@ pub(crate) fn cruise_ramps_hold(q: &PeakInputs) -> (usize, [f64; 7]) {
     let x2 = s2 * x1;
     let x3 = af * x2;
     let x4 = j.powi(-2);
-    let x5 = (1_f64 / 2.0) * x0;
-    let x6 = (1_f64 / 2.0) * hold2;
+    let x5 = x0 / 2.0;
+    let x6 = hold2 / 2.0;
     let x7 = x2 * x6;
     let x8 = vf * x2;
     let x9 = af.powi(2);
-    let x10 = (1_f64 / 4.0) * hold2;
+    let x10 = hold2 / 4.0;
     let x11 = a0.powi(2);
     let x12 = x1 * x11;
-    let x13 = (1_f64 / 8.0) * x0 * x4;
+    let x13 = x0 * x4 / 8.0;
     let x14 = s1 * x4;
     let x15 = s2 * x11 * x14;
     let x16 = x12 * x5;
@@ -366,31 +362,33 @@ pub(crate) fn cruise_ramps_hold(q: &PeakInputs) -> (usize, [f64; 7]) {
     let x18 = x5 * x9;
     let x19 = x18 * x2;
     let mut c = [0.0; 7];
-    c[0] = -dp - 1_f64 / 6.0 * a0.powi(3) * x4 + a0.powi(4) * x13
-        - 1_f64 / 2.0 * af * x15
-        - 1_f64 / 3.0 * af.powi(3) * x4
-        + af.powi(4) * x13
+    c[0] = a0.powi(4) * x13 - a0.powi(3) * x4 / 6.0 + af.powi(4) * x13
+        - af.powi(3) * x4 / 3.0
+        - af * x15 / 2.0
+        - dp
+        - s1 * t * x12 / 2.0
+        - s1 * v0 * x16
         + t * v0
+        + v0.powi(2) * x5
+        - v0 * vf * x0
         - v0 * x19
         + v0 * x3
         - v0 * x7
-        + v0.powi(2) * x5
-        - vf * x3
         + vf.powi(2) * x5
+        - vf * x3
+        + x0 * x15 * x9 / 4.0
         + x10 * x15
+        + x10 * x4 * x9
         + x16 * x17
         + x18 * x8
-        + x6 * x8
-        - 1_f64 / 2.0 * s1 * t * x12
-        - s1 * v0 * x16
-        - v0 * vf * x0
-        + (1_f64 / 4.0) * x0 * x15 * x9
-        + x10 * x4 * x9;
+        + x6 * x8;
     c[1] = 0.0;
     c[2] = x1
-        * (-x16 + a0 * x1 + s1 * t - s1 * x19 - s1 * x7 - x0 * x17
-            + s1 * v0 * x0
-            + af * s1 * s2 * x1);
+        * (a0 * x1 + af * s1 * s2 * x1 + s1 * t + s1 * v0 * x0
+            - s1 * x19
+            - s1 * x7
+            - x0 * x17
+            - x16);
     c[3] = -x14;
     c[4] = x4 * x5;
     (4, c)
@@ -419,40 +417,42 @@ pub(crate) fn cruise_hold_ramps(q: &PeakInputs) -> (usize, [f64; 7]) {
     let x2 = s1 * x1;
     let x3 = a0 * x2;
     let x4 = j.powi(-2);
-    let x5 = (1_f64 / 2.0) * x0;
-    let x6 = (1_f64 / 2.0) * hold1 * x2;
+    let x5 = x0 / 2.0;
+    let x6 = hold1 * x2 / 2.0;
     let x7 = a0.powi(2);
-    let x8 = (1_f64 / 4.0) * hold1;
+    let x8 = hold1 / 4.0;
     let x9 = af.powi(2);
-    let x10 = (1_f64 / 8.0) * x0 * x4;
+    let x10 = x0 * x4 / 8.0;
     let x11 = s2 * x4;
     let x12 = s1 * x11 * x9;
     let x13 = x2 * x5 * x7;
     let x14 = x1 * x5 * x9;
     let mut c = [0.0; 7];
-    c[0] = -dp + (1_f64 / 3.0) * a0.powi(3) * x4 - a0.powi(4) * x10
-        + (1_f64 / 6.0) * af.powi(3) * x4
+    c[0] = -a0.powi(4) * x10
+        + a0.powi(3) * x4 / 3.0
+        + a0 * s1 * s2 * x4 * x9 / 2.0
+        + a0 * s1 * vf * x1
         - af.powi(4) * x10
+        + af.powi(3) * x4 / 6.0
+        - dp
+        + hold1 * s1 * v0 * x1 / 2.0
+        + s1 * v0 * x0 * x1 * x7 / 2.0
+        + s2 * t * x1 * x9 / 2.0
+        + s2 * v0 * x0 * x1 * x9 / 2.0
+        - s2 * vf * x14
         + t * vf
-        - v0 * x3
         - v0.powi(2) * x5
+        + v0 * vf * x0
+        - v0 * x3
+        - vf.powi(2) * x5
         - vf * x13
         - vf * x6
-        - vf.powi(2) * x5
+        - x0 * x12 * x7 / 4.0
         - x12 * x8
-        - s2 * vf * x14
-        + v0 * vf * x0
-        - 1_f64 / 4.0 * x0 * x12 * x7
-        - x4 * x7 * x8
-        + a0 * s1 * vf * x1
-        + (1_f64 / 2.0) * hold1 * s1 * v0 * x1
-        + (1_f64 / 2.0) * s2 * t * x1 * x9
-        + (1_f64 / 2.0) * a0 * s1 * s2 * x4 * x9
-        + (1_f64 / 2.0) * s1 * v0 * x0 * x1 * x7
-        + (1_f64 / 2.0) * s2 * v0 * x0 * x1 * x9;
+        - x4 * x7 * x8;
     c[1] = 0.0;
     c[2] =
-        x1 * (x14 - af * x1 - s2 * t + s2 * x13 - s2 * x3 + s2 * x6 - s2 * v0 * x0 + s2 * vf * x0);
+        x1 * (-af * x1 - s2 * t - s2 * v0 * x0 + s2 * vf * x0 + s2 * x13 - s2 * x3 + s2 * x6 + x14);
     c[3] = x11;
     c[4] = -x4 * x5;
     (4, c)
@@ -510,59 +510,58 @@ pub(crate) fn cruise_ramps_ramps(q: &PeakInputs) -> (usize, [f64; 7]) {
     let x31 = af * x19;
     let x32 = x22 * x31;
     let x33 = 4.0 * x19;
-    let x34 = (1_f64 / 2.0) * s1 * v0;
-    let x35 = (1_f64 / 4.0) * x5;
-    let x36 = (1_f64 / 4.0) * x19;
+    let x34 = s1 * v0 / 2.0;
+    let x35 = x5 / 4.0;
+    let x36 = x19 / 4.0;
     let x37 = x12 * x36;
     let mut c = [0.0; 7];
-    c[0] = (1_f64 / 16.0) * a0.powi(5) * x5 - 1_f64 / 16.0 * a0 * x0 + (1_f64 / 16.0) * a0 * x15
-        - 1_f64 / 16.0 * af.powi(5) * x5
-        + (1_f64 / 16.0) * af * x0
-        - 1_f64 / 16.0 * af * x18
-        + (1_f64 / 16.0) * v0 * x11
-        - 1_f64 / 16.0 * vf * x10 * x30
-        - 1_f64 / 16.0 * vf * x11
-        - 1_f64 / 16.0 * x0 * x13
-        + (1_f64 / 16.0) * x1 * x16
-        + (1_f64 / 16.0) * x1 * x2
-        - 1_f64 / 16.0 * x1 * x4
-        - 1_f64 / 8.0 * x10 * x20 * x7
-        - 1_f64 / 16.0 * x10 * x21 * x27
-        + (1_f64 / 16.0) * x14 * x20
-        + (1_f64 / 16.0) * x16 * x3
-        + (1_f64 / 16.0) * x17 * x20
-        + (1_f64 / 16.0) * x2 * x3
-        - 1_f64 / 16.0 * x21 * x24
-        + (1_f64 / 16.0) * x21 * x25
-        - 1_f64 / 16.0 * x24 * x26
-        + (1_f64 / 16.0) * x25 * x26
-        + (1_f64 / 16.0) * x26 * x27 * x7
-        + (1_f64 / 16.0) * x28 * x30
-        - 1_f64 / 16.0 * x3 * x4
-        + (1_f64 / 16.0) * x32 * x8
-        - 1_f64 / 16.0 * x32 * x9
-        - 1_f64 / 16.0 * x6 * x8
-        + (1_f64 / 16.0) * x6 * x9;
-    c[1] = -3_f64 / 16.0 * s1 * x15
-        - 3_f64 / 16.0 * s1 * x18
-        - 3_f64 / 16.0 * x1 * x22
-        - 3_f64 / 16.0 * x22 * x3
-        - 3_f64 / 16.0 * x28 * x33
-        - 3_f64 / 16.0 * x33 * x9
-        + (3_f64 / 2.0) * s1 * v0 * vf
-        + (3_f64 / 4.0) * v0 * x19 * x7
-        + (3_f64 / 4.0) * vf * x10 * x19
-        + (3_f64 / 8.0) * s1 * x10 * x5 * x7;
-    c[2] = -dp + (1_f64 / 2.0) * t * v0 + (1_f64 / 2.0) * t * vf - x10 * x37
-        + (1_f64 / 12.0) * x21 * x5
-        - 1_f64 / 12.0 * x26 * x5
-        - x29 * x34
-        - x31 * x34
-        - x37 * x7
-        - a0 * x10 * x35
-        + (1_f64 / 4.0) * af * x5 * x7
-        + (1_f64 / 2.0) * a0 * s1 * vf * x19
-        + (1_f64 / 2.0) * af * s1 * vf * x19;
+    c[0] = a0.powi(5) * x5 / 16.0 - a0 * x0 / 16.0 + a0 * x15 / 16.0 - af.powi(5) * x5 / 16.0
+        + af * x0 / 16.0
+        - af * x18 / 16.0
+        + v0 * x11 / 16.0
+        - vf * x10 * x30 / 16.0
+        - vf * x11 / 16.0
+        - x0 * x13 / 16.0
+        + x1 * x16 / 16.0
+        + x1 * x2 / 16.0
+        - x1 * x4 / 16.0
+        - x10 * x20 * x7 / 8.0
+        - x10 * x21 * x27 / 16.0
+        + x14 * x20 / 16.0
+        + x16 * x3 / 16.0
+        + x17 * x20 / 16.0
+        + x2 * x3 / 16.0
+        - x21 * x24 / 16.0
+        + x21 * x25 / 16.0
+        - x24 * x26 / 16.0
+        + x25 * x26 / 16.0
+        + x26 * x27 * x7 / 16.0
+        + x28 * x30 / 16.0
+        - x3 * x4 / 16.0
+        + x32 * x8 / 16.0
+        - x32 * x9 / 16.0
+        - x6 * x8 / 16.0
+        + x6 * x9 / 16.0;
+    c[1] = 3.0 * s1 * v0 * vf / 2.0 + 3.0 * s1 * x10 * x5 * x7 / 8.0
+        - 3.0 * s1 * x15 / 16.0
+        - 3.0 * s1 * x18 / 16.0
+        + 3.0 * v0 * x19 * x7 / 4.0
+        + 3.0 * vf * x10 * x19 / 4.0
+        - 3.0 * x1 * x22 / 16.0
+        - 3.0 * x22 * x3 / 16.0
+        - 3.0 * x28 * x33 / 16.0
+        - 3.0 * x33 * x9 / 16.0;
+    c[2] =
+        a0 * s1 * vf * x19 / 2.0 - a0 * x10 * x35 + af * s1 * vf * x19 / 2.0 + af * x5 * x7 / 4.0
+            - dp
+            + t * v0 / 2.0
+            + t * vf / 2.0
+            - x10 * x37
+            + x21 * x5 / 12.0
+            - x26 * x5 / 12.0
+            - x29 * x34
+            - x31 * x34
+            - x37 * x7;
     c[3] = 0.0;
     c[4] = x36 * (x12 + x29 - x31);
     c[5] = -s1 * x35;
@@ -589,30 +588,30 @@ pub(crate) fn cruise_ramps_ramps_same(q: &PeakInputs) -> (usize, [f64; 7]) {
     let _ = (v0, a0, vf, af, j, hold1, hold2, dp, t, s1, s2, radius);
     let x0 = a0.powi(3);
     let x1 = j.powi(-2);
-    let x2 = (1_f64 / 6.0) * x1;
+    let x2 = x1 / 6.0;
     let x3 = x0 * x2;
     let x4 = af.powi(3);
     let x5 = radius.powi(3) * s1 * x1;
     let x6 = radius.powi(2);
     let x7 = x1 * x6;
     let x8 = a0 * x7;
-    let x9 = s1 * t * j.recip();
+    let x9 = s1 * t / j;
     let x10 = a0.powi(2) * x9;
-    let x11 = (1_f64 / 2.0) * x10;
+    let x11 = x10 / 2.0;
     let x12 = x6 * x9;
     let x13 = 3.0 * x5;
     let x14 = x12 + x8;
-    let x15 = 3.0 * dp + (3_f64 / 2.0) * x10 + x14 + 4.0 * af * x7 - 3.0 * t * v0
-        + (1_f64 / 2.0) * x0 * x1
-        - 1_f64 / 2.0 * x1 * x4;
+    let x15 = 4.0 * af * x7 + 3.0 * dp - 3.0 * t * v0 + x0 * x1 / 2.0 - x1 * x4 / 2.0
+        + 3.0 * x10 / 2.0
+        + x14;
     let mut c = [0.0; 7];
-    c[0] = -dp - x11 + x12 - x3 - x5 + x8 + t * v0 + (1_f64 / 6.0) * x1 * x4;
+    c[0] = -dp + t * v0 + x1 * x4 / 6.0 - x11 + x12 - x3 - x5 + x8;
     c[1] = 0.0;
     c[2] = x13 - x15;
     c[3] = 8.0 * x5;
     c[4] = -x13 - x15;
     c[5] = 0.0;
-    c[6] = -dp - x11 + x14 - x3 + x5 + t * v0 + x2 * x4;
+    c[6] = -dp + t * v0 - x11 + x14 + x2 * x4 - x3 + x5;
     (6, c)
 }
 
@@ -640,10 +639,12 @@ pub(crate) fn duration_hold_hold(q: &PeakInputs) -> (usize, [f64; 7]) {
     let x3 = s1 * x2;
     let x4 = s2 * x2;
     let mut c = [0.0; 7];
-    c[0] = -t - a0 * x3 - af * x4 + hold1 * x3 + hold2 * x4 - v0 * x1
-        + vf * x0
-        + (1_f64 / 2.0) * a0.powi(2) * x1 * x3
-        + (1_f64 / 2.0) * af.powi(2) * x0 * x4;
+    c[0] = a0.powi(2) * x1 * x3 / 2.0 - a0 * x3 + af.powi(2) * x0 * x4 / 2.0 - af * x4
+        + hold1 * x3
+        + hold2 * x4
+        - t
+        - v0 * x1
+        + vf * x0;
     c[1] = -x0 + x1;
     (1, c)
 }
@@ -672,9 +673,10 @@ pub(crate) fn duration_ramps_hold(q: &PeakInputs) -> (usize, [f64; 7]) {
     let x3 = s1 * x1;
     let x4 = x0 * x3;
     let mut c = [0.0; 7];
-    c[0] = -t - a0 * x3 + (1_f64 / 2.0) * a0.powi(2) * x4 - af * x2 + hold2 * x2 - v0 * x0
-        + vf * x0
-        + (1_f64 / 2.0) * af.powi(2) * x0 * x2;
+    c[0] = a0.powi(2) * x4 / 2.0 - a0 * x3 + af.powi(2) * x0 * x2 / 2.0 - af * x2 + hold2 * x2
+        - t
+        - v0 * x0
+        + vf * x0;
     c[1] = 2.0 * x1;
     c[2] = -x4;
     (2, c)
@@ -704,9 +706,10 @@ pub(crate) fn duration_hold_ramps(q: &PeakInputs) -> (usize, [f64; 7]) {
     let x3 = s2 * x1;
     let x4 = x0 * x3;
     let mut c = [0.0; 7];
-    c[0] = -t - a0 * x2 - af * x3 + (1_f64 / 2.0) * af.powi(2) * x4 + hold1 * x2 - v0 * x0
-        + vf * x0
-        + (1_f64 / 2.0) * a0.powi(2) * x0 * x2;
+    c[0] = a0.powi(2) * x0 * x2 / 2.0 - a0 * x2 + af.powi(2) * x4 / 2.0 - af * x3 + hold1 * x2
+        - t
+        - v0 * x0
+        + vf * x0;
     c[1] = 2.0 * x1;
     c[2] = -x4;
     (2, c)
@@ -732,7 +735,7 @@ pub(crate) fn duration_ramps_ramps(q: &PeakInputs) -> (usize, [f64; 7]) {
     let _ = (v0, a0, vf, af, j, hold1, hold2, dp, t, s1, s2, radius);
     let x0 = j.recip();
     let mut c = [0.0; 7];
-    c[0] = -t - a0 * s1 * x0 + af * s1 * x0;
+    c[0] = -a0 * s1 * x0 + af * s1 * x0 - t;
     c[1] = 2.0 * x0;
     (1, c)
 }
@@ -757,7 +760,7 @@ pub(crate) fn duration_ramps_ramps_same(q: &PeakInputs) -> (usize, [f64; 7]) {
     let _ = (v0, a0, vf, af, j, hold1, hold2, dp, t, s1, s2, radius);
     let x0 = j.recip();
     let x1 = s1 * x0;
-    let x2 = t + a0 * x1 + af * x1;
+    let x2 = a0 * x1 + af * x1 + t;
     let x3 = radius * x0;
     let mut c = [0.0; 7];
     c[0] = 2.0 * radius * x0 - x2;
@@ -783,18 +786,17 @@ pub(crate) fn arc_free(q: &ArcInputs) -> (usize, [f64; 7]) {
     let _ = (v0, a0, af, j, a_max, a_min, dv, k, dp);
     let x0 = j.powi(2);
     let x1 = x0.recip();
-    let x2 = (1_f64 / 4.0) * x1;
+    let x2 = x1 / 4.0;
     let x3 = 6.0 * af;
     let x4 = j * v0;
     let x5 = a0.powi(2);
     let mut c = [0.0; 7];
     c[0] = -k.powi(2) * x2;
-    c[1] = (1_f64 / 6.0) * x1 * 2.0 * a0.powi(3) + af.powi(3)
-        - 6.0 * a0 * x4
-        - 3.0 * af * x5
-        - 6.0 * dp * x0
-        + k * x3
-        + x3 * x4;
+    c[1] = x1
+        * (2.0 * a0.powi(3) - 6.0 * a0 * x4 + af.powi(3) - 3.0 * af * x5 - 6.0 * dp * x0
+            + k * x3
+            + x3 * x4)
+        / 6.0;
     c[2] = x1 * (k + 2.0 * x4 - x5);
     c[3] = 0.0;
     c[4] = x2;
@@ -832,23 +834,23 @@ pub(crate) fn arc_hold_max(q: &ArcInputs) -> (usize, [f64; 7]) {
     let x13 = x12 / a_max;
     let x14 = 2.0 * j;
     let x15 = dv * x14 + v0 * x14 - x9;
-    let x16 = (1_f64 / 2.0) * x13;
+    let x16 = x13 / 2.0;
     let mut c = [0.0; 7];
-    c[0] = (1_f64 / 24.0) * x13 * -3.0 * a0.powi(4) + 3.0 * af.powi(4) - a0 * x3
-        + a0.powi(3) * x0
-        + af * x3
-        - af.powi(3) * x0
-        - dv * x10
-        + 12.0 * dv.powi(2) * x6
-        - v0 * x10
-        - x11 * x4
-        - x11 * x9
-        + x2 * x8
-        - a_max * dp * x7
-        + dv * v0 * x7
-        + dv * x5 * x8
-        + v0 * x4 * x5
-        + a_max * af * dv * x1;
+    c[0] = x13
+        * (-3.0 * a0.powi(4) + a0.powi(3) * x0 - a0 * x3 + a_max * af * dv * x1 - a_max * dp * x7
+            + 3.0 * af.powi(4)
+            - af.powi(3) * x0
+            + af * x3
+            + 12.0 * dv.powi(2) * x6
+            + dv * v0 * x7
+            - dv * x10
+            + dv * x5 * x8
+            - v0 * x10
+            + v0 * x4 * x5
+            - x11 * x4
+            - x11 * x9
+            + x2 * x8)
+        / 24.0;
     c[1] = -x12 * x15;
     c[2] = x16 * (x15 + x8);
     c[3] = -x12;
@@ -887,23 +889,24 @@ pub(crate) fn arc_hold_min(q: &ArcInputs) -> (usize, [f64; 7]) {
     let x13 = x7.recip();
     let x14 = x13 / a_min;
     let x15 = 2.0 * x1;
-    let x16 = (1_f64 / 2.0) * x14;
+    let x16 = x14 / 2.0;
     let mut c = [0.0; 7];
-    c[0] = (1_f64 / 24.0) * x14 * -3.0 * a0.powi(4) + 3.0 * af.powi(4) - a0 * x3
-        + a0.powi(3) * x0
-        + af * x3
-        - af.powi(3) * x0
-        + 12.0 * dv.powi(2) * x7
-        - x10 * x11
-        - x10 * x9
-        + x11 * x12
-        - x11 * x6
-        + x12 * x5
-        - x2 * x9
-        + x5 * x6
-        + 24.0 * a_min * af * x4
-        - a_min * dp * x8
-        + dv * v0 * x8;
+    c[0] = x14
+        * (-3.0 * a0.powi(4) + a0.powi(3) * x0 - a0 * x3 + 24.0 * a_min * af * x4
+            - a_min * dp * x8
+            + 3.0 * af.powi(4)
+            - af.powi(3) * x0
+            + af * x3
+            + 12.0 * dv.powi(2) * x7
+            + dv * v0 * x8
+            - x10 * x11
+            - x10 * x9
+            + x11 * x12
+            - x11 * x6
+            + x12 * x5
+            - x2 * x9
+            + x5 * x6)
+        / 24.0;
     c[1] = -x13 * (-x15 + x5);
     c[2] = -x16 * (x15 - x5 + x9);
     c[3] = x13;

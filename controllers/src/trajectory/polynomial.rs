@@ -318,6 +318,14 @@ pub(crate) fn closed_form_roots<F: FnMut(f64) -> f64>(
     }
     let scale = q.scale();
     let w_of = |t: f64| (mid + half * t).clamp(wl, wr);
+    // One evaluation of the residual itself guards against a closed form that does not describe
+    // it (a window whose shape differs from the expected one): the roots of a wrong polynomial
+    // would silently miss profiles.
+    const T_CHECK: f64 = 0.412_345;
+    let yc = f(w_of(T_CHECK));
+    if !yc.is_finite() || (yc - q.eval(T_CHECK)).abs() > 1e-9 * (scale + yc.abs()) + 1e-300 {
+        return false;
+    }
     let mut r = [0.0; MAX_DEGREE];
     let nr = real_roots(&q, -1.0, 1.0, &mut r);
     let mut polished = [0.0; MAX_DEGREE];
