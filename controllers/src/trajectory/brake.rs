@@ -19,9 +19,10 @@
 //! change to `(v_max, a_b)` (bang-bang: −J below `a_b`, +J back; holding `a_b` instead arrives
 //! later, which made a slower braking than necessary in an earlier version). The main profile
 //! then starts from the safe state; the trajectory reports
-//! [`super::TrajectoryStatus::BrakingThenTarget`] while the pre-phase runs. The calculator also
-//! tries [`brake_to_limit`] and keeps, per DoF, the variant with the shorter total duration (the
-//! other one stays available to the synchronisation).
+//! [`super::TrajectoryStatus::BrakingThenTarget`] while the pre-phase runs. Returning earliest is
+//! not always fastest overall, so the calculator also tries holding `a_b` ([`brake_with`]) and
+//! [`brake_to_limit`], keeps per DoF the variant with the shortest total duration, and keeps the
+//! others available to the synchronisation.
 
 use super::profile::Profile;
 use super::vel_change::vel_change;
@@ -71,7 +72,7 @@ pub(crate) fn is_safe(v: f64, a: f64, l: &Limits, check_velocity: bool) -> bool 
 /// time-optimal velocity change ([`vel_change`], bang-bang: −J beyond `a_b`, then +J back) to
 /// `(v_max, a_b)`, the earliest entry into the safe set at `v_max` (holding `a_b` instead would
 /// arrive later). Returns the segments `(duration, jerk)`.
-fn down_velocity(v0: f64, a0: f64, l: &Limits) -> Option<[(f64, f64); 3]> {
+fn down_velocity(v0: f64, a0: f64, l: &Limits, hold: bool) -> Option<[(f64, f64); 3]> {
     let j = l.j;
     // Deepest braking acceleration: the limit, and shallow enough that the state is safe when v
     // returns to v_max (v_max − a²/(2J) ≥ v_min).
@@ -98,7 +99,7 @@ fn down_velocity(v0: f64, a0: f64, l: &Limits) -> Option<[(f64, f64); 3]> {
             }
         }
     }
-    if let Some(c) = vel_change(v0, a0, l.v_max, a_b, l.a_max, l.a_min, j) {
+    if !hold && let Some(c) = vel_change(v0, a0, l.v_max, a_b, l.a_max, l.a_min, j) {
         return Some([(c.t1, c.j1), (c.t2, 0.0), (c.t3, c.j3)]);
     }
     let vr = v0 + a0 * t_ramp + 0.5 * js * t_ramp * t_ramp;
@@ -121,6 +122,20 @@ pub(crate) struct Brake {
 /// (down or up) follows; this repeats at most four times. Returns `None` if no safe state is
 /// reached (zero jerk, or a zero acceleration limit on the side needed).
 pub(crate) fn brake(p0: f64, v0: f64, a0: f64, l: &Limits, check_velocity: bool) -> Option<Brake> {
+    brake_with(p0, v0, a0, l, check_velocity, false)
+}
+
+/// [`brake`] whose velocity braking ramps to `a_b` and holds it (`hold`), instead of the
+/// earliest return: it re-enters the safe set later, but its continuation is sometimes faster
+/// overall, so the calculator tries both.
+pub(crate) fn brake_with(
+    p0: f64,
+    v0: f64,
+    a0: f64,
+    l: &Limits,
+    check_velocity: bool,
+    hold: bool,
+) -> Option<Brake> {
     let mut prefix = Profile::new(p0, v0, a0);
     if is_safe(v0, a0, l, check_velocity) {
         return Some(Brake {
@@ -151,7 +166,7 @@ pub(crate) fn brake(p0: f64, v0: f64, a0: f64, l: &Limits, check_velocity: bool)
             } else {
                 (-1.0, l.mirrored())
             };
-            let segs = down_velocity(dir * v, dir * a, &lim)?;
+            let segs = down_velocity(dir * v, dir * a, &lim, hold)?;
             for (t, js) in segs {
                 prefix.push(t, dir * js);
             }

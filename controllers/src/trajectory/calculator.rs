@@ -18,7 +18,7 @@
 //! limits) and mapped to each DoF as `p_i(t) = p_i(0) + u_i s(t)`: a straight line. Otherwise
 //! (or if any DoF brakes) it falls back to time synchronisation.
 
-use super::brake::{Limits, brake, brake_to_limit};
+use super::brake::{Limits, brake, brake_to_limit, brake_with};
 use super::dof::{Dof, Segments};
 use super::input::{
     ControlInterface, DurationDiscretization, Synchronization, TrajectoryError, TrajectoryInput,
@@ -59,7 +59,7 @@ pub(crate) fn calculate<const N: usize>(
     // Braking and step 1 per DoF.
     let mut braking = false;
     let mut work: [Option<DofWork>; N] = [None; N];
-    let mut alt_work: [Option<DofWork>; N] = [None; N];
+    let mut alt_work: [[Option<DofWork>; 2]; N] = [[None; 2]; N];
     let mut t_min = 0.0_f64;
     #[allow(clippy::needless_range_loop)] // i indexes several input arrays
     for i in 0..N {
@@ -85,14 +85,33 @@ pub(crate) fn calculate<const N: usize>(
         };
         let total = |w: &DofWork| w.brake_t + w.cands.duration[0];
         let mut best = solve_dof(input, i, &l, &b.prefix, position);
-        let mut other = alternative.and_then(|alt| solve_dof(input, i, &l, &alt, position));
-        if let (Some(bw), Some(ow)) = (&best, &other)
-            && total(ow) < total(bw)
-        {
-            core::mem::swap(&mut best, &mut other);
-        }
-        if best.is_none() {
-            core::mem::swap(&mut best, &mut other);
+        // Alternative braking variants: braking to rest at the limit velocity, and holding the
+        // braking acceleration (both only when velocity braking is involved).
+        let held = if b.active && position {
+            brake_with(
+                input.current_position[i],
+                input.current_velocity[i],
+                input.current_acceleration[i],
+                &l,
+                position,
+                true,
+            )
+            .filter(|h| h.prefix.end() != b.prefix.end())
+            .map(|h| h.prefix)
+        } else {
+            None
+        };
+        let mut others =
+            [alternative, held].map(|p| p.and_then(|p| solve_dof(input, i, &l, &p, position)));
+        for o in &mut others {
+            let better = match (&best, &*o) {
+                (Some(bw), Some(ow)) => total(ow) < total(bw),
+                (None, Some(_)) => true,
+                _ => false,
+            };
+            if better {
+                core::mem::swap(&mut best, o);
+            }
         }
         let Some(best) = best else {
             return Err(TrajectoryError::NoProfile { dof: i });
@@ -100,9 +119,9 @@ pub(crate) fn calculate<const N: usize>(
         traj.independent_min_durations[i] = total(&best);
         t_min = t_min.max(total(&best));
         work[i] = Some(best);
-        // The other braking variant is kept for synchronisation: it may reach durations that
-        // the faster one cannot (blocked intervals differ).
-        alt_work[i] = other;
+        // The other braking variants are kept for synchronisation: they may reach durations that
+        // the fastest one cannot (blocked intervals differ).
+        alt_work[i] = others;
     }
     traj.braking = braking;
     let status = if braking {
@@ -154,7 +173,7 @@ pub(crate) fn calculate<const N: usize>(
         let mut ok = true;
         for (i, alt) in alt_work.iter().enumerate() {
             let p = stretch(wk(&work, i), t, position)
-                .or_else(|| alt.as_ref().and_then(|a| stretch(a, t, position)));
+                .or_else(|| alt.iter().flatten().find_map(|a| stretch(a, t, position)));
             match p {
                 Some(p) => traj.profiles[i] = p,
                 None => {
@@ -170,7 +189,7 @@ pub(crate) fn calculate<const N: usize>(
         }
         // Next candidate duration strictly after `t`.
         let mut next = f64::INFINITY;
-        for wi in work.iter().chain(&alt_work).flatten() {
+        for wi in work.iter().chain(alt_work.iter().flatten()).flatten() {
             for k in 0..wi.cands.n {
                 let d = wi.brake_t + wi.cands.duration[k];
                 if d > t + 1e-12 * (1.0 + t) && d < next {
