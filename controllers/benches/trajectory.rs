@@ -4,7 +4,8 @@
 //! median, p99 and worst calculation time, the per-tick cost of `update()` on an already
 //! calculated trajectory, and a randomised stress run (default 10⁶ cases, every result checked).
 //! Environment: `OTG_BENCH_CASES` (per DoF count, default 100000), `OTG_STRESS_CASES` (default
-//! 1000000), `OTG_SEED` (default 42). Inputs are generated before timing; timing uses
+//! 1000000), `OTG_SEED` (default 42), `OTG_UPDATE_TRAJECTORIES` (trajectories stepped through for the
+//! `update()` timing, default 2000). Inputs are generated before timing; timing uses
 //! `std::time::Instant` around each call.
 
 // A benchmark measures wall time by design.
@@ -37,7 +38,7 @@ fn percentile(sorted: &[f64], q: f64) -> f64 {
     sorted[((sorted.len() - 1) as f64 * q).round() as usize]
 }
 
-fn bench_dofs<const N: usize>(cases: usize, seed: u64) {
+fn bench_dofs<const N: usize>(cases: usize, seed: u64, update_trajectories: usize) {
     let mut rng = ChaCha8Rng::seed_from_u64(seed + N as u64);
     let inputs: Vec<TrajectoryInput<N>> = (0..cases)
         .map(|_| random_input::<N, _>(&mut rng))
@@ -72,7 +73,7 @@ fn bench_dofs<const N: usize>(cases: usize, seed: u64) {
     let mut ticks = 0u64;
     let mut tick_time = 0.0;
     let mut worst_tick = 0.0_f64;
-    for inp in inputs.iter().take(2000) {
+    for inp in inputs.iter().take(update_trajectories) {
         let mut inp = *inp;
         if otg.update(&inp, &mut out).is_err() {
             continue;
@@ -90,6 +91,9 @@ fn bench_dofs<const N: usize>(cases: usize, seed: u64) {
                 break;
             }
         }
+    }
+    if ticks == 0 {
+        return;
     }
     println!(
         "update    {N} DoF: mean {:.1} ns per tick ({:.1} ns per DoF), worst {:.2} us ({ticks} ticks)",
@@ -161,10 +165,11 @@ fn main() {
     let cases = env("OTG_BENCH_CASES", 100_000) as usize;
     let stress = env("OTG_STRESS_CASES", 1_000_000);
     let seed = env("OTG_SEED", 42);
-    bench_dofs::<1>(cases, seed);
-    bench_dofs::<3>(cases, seed);
-    bench_dofs::<6>(cases, seed);
-    bench_dofs::<7>(cases, seed);
+    let upd = env("OTG_UPDATE_TRAJECTORIES", 2000) as usize;
+    bench_dofs::<1>(cases, seed, upd);
+    bench_dofs::<3>(cases, seed, upd);
+    bench_dofs::<6>(cases, seed, upd);
+    bench_dofs::<7>(cases, seed, upd);
 
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut tally = Tally::default();

@@ -222,3 +222,30 @@ fn velocity_interface_blocked_interval_matches_ruckig() {
             && (d[1] - 0.086_181_213_708_092_12).abs() < 1e-9
     );
 }
+
+#[test]
+fn three_arc_profile_matches_ruckig() {
+    // Oracle case 156 (seed 42): the optimum is +J, −J, +J without a = 0 in between (three-arc
+    // family). A code-generation bug (sympy's Rust printer dropped parentheses) once gave wrong
+    // closed-form coefficients for this family and the 6.53 s peak profile instead.
+    // ruckig 0.19.4: 4.7758706347583075 s.
+    let mut input = TrajectoryInput::<1>::default();
+    input.current_position = [0.2240465054986746];
+    input.current_velocity = [1.8316004922766043];
+    input.current_acceleration = [-0.2591096197764721];
+    input.target_position = [2.809211148085389];
+    input.target_velocity = [-0.46817080164814984];
+    input.max_velocity = [11.974315482635271];
+    input.max_acceleration = [2.6922112563386085];
+    input.max_jerk = [0.31192965813907997];
+    let mut t = Trajectory::default();
+    otg().calculate(&input, &mut t).unwrap();
+    assert!(
+        (t.duration() - 4.775_870_634_758_307_5).abs() < 1e-9,
+        "{}",
+        t.duration()
+    );
+    let e = t.profile(0).end();
+    assert!((e.position - input.target_position[0]).abs() < 1e-8);
+    assert!((e.velocity - input.target_velocity[0]).abs() < 1e-8);
+}

@@ -9,16 +9,20 @@
 //! ```
 //!
 //! Outside this set no trajectory respects the limits, and a generator that silently starts a
-//! normal profile overshoots (ruckig's issues #86 and #188). We instead brake first, with the
-//! largest jerk that reduces the violation ("down": jerk −J until `a_b`, then hold `a_b`; or the
-//! mirror image "up"), and stop at the first instant the state is safe. The braking acceleration
-//! is `a_b = max(a_min, −√(2J (v_max − v_min)))`: the deepest one from which the state is safe on
-//! re-entering `v ≤ v_max` (braking harder would overshoot `v_min` afterwards). Along −J the quantity
-//! `v + a²/(2J)` is constant while `a > 0`, so the overshoot above `v_max` is the smallest
-//! possible (`v0 + a0²/(2J)`), and since every segment uses the extreme admissible jerk or
-//! acceleration, no other motion reaches the safe set sooner. The main profile then starts from
-//! the safe state; the trajectory reports [`super::TrajectoryStatus::BrakingThenTarget`] while
-//! the pre-phase runs.
+//! normal profile overshoots (ruckig's issues #86 and #188). We instead brake first ("down":
+//! decreasing the acceleration; or the mirror image "up") and stop at the first instant the state
+//! is safe. Along −J the quantity `v + a²/(2J)` is constant, so the overshoot above `v_max` is the
+//! smallest possible (`v0 + a0²/(2J)`). The state re-enters the safe set at `v = v_max` with an
+//! acceleration in `[a_b, 0]`, `a_b = max(a_min, −√(2J (v_max − v_min)))` (deeper, and `v_min`
+//! would be overshot afterwards). If `v` comes back to `v_max` while the −J ramp is still above
+//! `a_b`, that is the earliest entry; otherwise the earliest entry is the time-optimal velocity
+//! change to `(v_max, a_b)` (bang-bang: −J below `a_b`, +J back; holding `a_b` instead arrives
+//! later, which made a slower braking than necessary in an earlier version). The main profile
+//! then starts from the safe state; the trajectory reports
+//! [`super::TrajectoryStatus::BrakingThenTarget`] while the pre-phase runs. Returning earliest is
+//! not always fastest overall, so the calculator also tries holding `a_b` ([`brake_with`]) and
+//! [`brake_to_limit`], keeps per DoF the variant with the shortest total duration, and keeps the
+//! others available to the synchronisation.
 
 use super::profile::Profile;
 use super::vel_change::vel_change;
@@ -62,10 +66,13 @@ pub(crate) fn is_safe(v: f64, a: f64, l: &Limits, check_velocity: bool) -> bool 
     !needs_down(v, a, l, check_velocity) && !needs_down(-v, -a, &l.mirrored(), check_velocity)
 }
 
-/// Velocity braking "down" from `(v0, a0)` with `a_min ≤ a0 ≤ a_max`: ramp with ±J towards the
-/// braking acceleration `a_b`, then hold `a_b`, until `v ≤ v_max` with `a ≤ 0`. Returns the
-/// segments `(duration, jerk)` of the ramp and the hold.
-fn down_velocity(v0: f64, a0: f64, l: &Limits) -> Option<[(f64, f64); 2]> {
+/// Velocity braking "down" from `(v0, a0)` with `a_min ≤ a0 ≤ a_max`, until the state is back
+/// in the safe set. If `v` returns to `v_max` on the ramp with −J before the acceleration falls
+/// below the braking acceleration `a_b`, the braking ends there; otherwise the braking is the
+/// time-optimal velocity change ([`vel_change`], bang-bang: −J beyond `a_b`, then +J back) to
+/// `(v_max, a_b)`, the earliest entry into the safe set at `v_max` (holding `a_b` instead would
+/// arrive later). Returns the segments `(duration, jerk)`.
+fn down_velocity(v0: f64, a0: f64, l: &Limits, hold: bool) -> Option<[(f64, f64); 3]> {
     let j = l.j;
     // Deepest braking acceleration: the limit, and shallow enough that the state is safe when v
     // returns to v_max (v_max − a²/(2J) ≥ v_min).
@@ -75,24 +82,29 @@ fn down_velocity(v0: f64, a0: f64, l: &Limits) -> Option<[(f64, f64); 2]> {
     }
     let js = if a0 > a_b { -j } else { j };
     let t_ramp = (a_b - a0) / js;
-    // v(t) = v0 + a0 t + js t²/2 = v_max on the ramp, after the velocity peak (a ≤ 0).
-    let (qa, qb, qc) = (0.5 * js, a0, v0 - l.v_max);
-    let disc = qb * qb - 4.0 * qa * qc;
-    if disc >= 0.0 {
-        let sq = disc.sqrt();
-        let mut best = f64::INFINITY;
-        for t in [(-qb - sq) / (2.0 * qa), (-qb + sq) / (2.0 * qa)] {
-            if t >= 0.0 && t <= t_ramp && a0 + js * t <= 0.0 && t < best {
-                best = t;
+    // v(t) = v0 + a0 t − J t²/2 = v_max on the ramp, after the velocity peak (a ≤ 0).
+    if js < 0.0 {
+        let (qa, qb, qc) = (0.5 * js, a0, v0 - l.v_max);
+        let disc = qb * qb - 4.0 * qa * qc;
+        if disc >= 0.0 {
+            let sq = disc.sqrt();
+            let mut best = f64::INFINITY;
+            for t in [(-qb - sq) / (2.0 * qa), (-qb + sq) / (2.0 * qa)] {
+                if t >= 0.0 && t <= t_ramp && a0 + js * t <= 0.0 && t < best {
+                    best = t;
+                }
+            }
+            if best.is_finite() {
+                return Some([(best, js), (0.0, 0.0), (0.0, 0.0)]);
             }
         }
-        if best.is_finite() {
-            return Some([(best, js), (0.0, 0.0)]);
-        }
+    }
+    if !hold && let Some(c) = vel_change(v0, a0, l.v_max, a_b, l.a_max, l.a_min, j) {
+        return Some([(c.t1, c.j1), (c.t2, 0.0), (c.t3, c.j3)]);
     }
     let vr = v0 + a0 * t_ramp + 0.5 * js * t_ramp * t_ramp;
     let t_hold = ((vr - l.v_max) / (-a_b)).max(0.0);
-    Some([(t_ramp, js), (t_hold, 0.0)])
+    Some([(t_ramp, js), (t_hold, 0.0), (0.0, 0.0)])
 }
 
 /// Outcome of the braking analysis of one DoF.
@@ -110,6 +122,20 @@ pub(crate) struct Brake {
 /// (down or up) follows; this repeats at most four times. Returns `None` if no safe state is
 /// reached (zero jerk, or a zero acceleration limit on the side needed).
 pub(crate) fn brake(p0: f64, v0: f64, a0: f64, l: &Limits, check_velocity: bool) -> Option<Brake> {
+    brake_with(p0, v0, a0, l, check_velocity, false)
+}
+
+/// [`brake`] whose velocity braking ramps to `a_b` and holds it (`hold`), instead of the
+/// earliest return: it re-enters the safe set later, but its continuation is sometimes faster
+/// overall, so the calculator tries both.
+pub(crate) fn brake_with(
+    p0: f64,
+    v0: f64,
+    a0: f64,
+    l: &Limits,
+    check_velocity: bool,
+    hold: bool,
+) -> Option<Brake> {
     let mut prefix = Profile::new(p0, v0, a0);
     if is_safe(v0, a0, l, check_velocity) {
         return Some(Brake {
@@ -140,7 +166,7 @@ pub(crate) fn brake(p0: f64, v0: f64, a0: f64, l: &Limits, check_velocity: bool)
             } else {
                 (-1.0, l.mirrored())
             };
-            let segs = down_velocity(dir * v, dir * a, &lim)?;
+            let segs = down_velocity(dir * v, dir * a, &lim, hold)?;
             for (t, js) in segs {
                 prefix.push(t, dir * js);
             }

@@ -18,7 +18,7 @@
 //! limits) and mapped to each DoF as `p_i(t) = p_i(0) + u_i s(t)`: a straight line. Otherwise
 //! (or if any DoF brakes) it falls back to time synchronisation.
 
-use super::brake::{Limits, brake, brake_to_limit};
+use super::brake::{Limits, brake, brake_to_limit, brake_with};
 use super::dof::{Dof, Segments};
 use super::input::{
     ControlInterface, DurationDiscretization, Synchronization, TrajectoryError, TrajectoryInput,
@@ -59,6 +59,7 @@ pub(crate) fn calculate<const N: usize>(
     // Braking and step 1 per DoF.
     let mut braking = false;
     let mut work: [Option<DofWork>; N] = [None; N];
+    let mut alt_work: [[Option<DofWork>; 2]; N] = [[None; 2]; N];
     let mut t_min = 0.0_f64;
     #[allow(clippy::needless_range_loop)] // i indexes several input arrays
     for i in 0..N {
@@ -72,7 +73,6 @@ pub(crate) fn calculate<const N: usize>(
         )
         .ok_or(TrajectoryError::NoProfile { dof: i })?;
         braking |= b.active;
-        let mut best: Option<DofWork> = None;
         let alternative = if b.active && position {
             brake_to_limit(
                 input.current_position[i],
@@ -83,21 +83,45 @@ pub(crate) fn calculate<const N: usize>(
         } else {
             None
         };
-        for prefix in core::iter::once(b.prefix).chain(alternative) {
-            if let Some(w) = solve_dof(input, i, &l, &prefix, position)
-                && best.as_ref().is_none_or(|bw| {
-                    w.brake_t + w.cands.duration[0] < bw.brake_t + bw.cands.duration[0]
-                })
-            {
-                best = Some(w);
+        let total = |w: &DofWork| w.brake_t + w.cands.duration[0];
+        let mut best = solve_dof(input, i, &l, &b.prefix, position);
+        // Alternative braking variants: braking to rest at the limit velocity, and holding the
+        // braking acceleration (both only when velocity braking is involved).
+        let held = if b.active && position {
+            brake_with(
+                input.current_position[i],
+                input.current_velocity[i],
+                input.current_acceleration[i],
+                &l,
+                position,
+                true,
+            )
+            .filter(|h| h.prefix.end() != b.prefix.end())
+            .map(|h| h.prefix)
+        } else {
+            None
+        };
+        let mut others =
+            [alternative, held].map(|p| p.and_then(|p| solve_dof(input, i, &l, &p, position)));
+        for o in &mut others {
+            let better = match (&best, &*o) {
+                (Some(bw), Some(ow)) => total(ow) < total(bw),
+                (None, Some(_)) => true,
+                _ => false,
+            };
+            if better {
+                core::mem::swap(&mut best, o);
             }
         }
         let Some(best) = best else {
             return Err(TrajectoryError::NoProfile { dof: i });
         };
-        traj.independent_min_durations[i] = best.brake_t + best.cands.duration[0];
-        t_min = t_min.max(best.brake_t + best.cands.duration[0]);
+        traj.independent_min_durations[i] = total(&best);
+        t_min = t_min.max(total(&best));
         work[i] = Some(best);
+        // The other braking variants are kept for synchronisation: they may reach durations that
+        // the fastest one cannot (blocked intervals differ).
+        alt_work[i] = others;
     }
     traj.braking = braking;
     let status = if braking {
@@ -147,8 +171,10 @@ pub(crate) fn calculate<const N: usize>(
             t_cand
         };
         let mut ok = true;
-        for i in 0..N {
-            match stretch(wk(&work, i), t, position) {
+        for (i, alt) in alt_work.iter().enumerate() {
+            let p = stretch(wk(&work, i), t, position)
+                .or_else(|| alt.iter().flatten().find_map(|a| stretch(a, t, position)));
+            match p {
                 Some(p) => traj.profiles[i] = p,
                 None => {
                     ok = false;
@@ -163,8 +189,7 @@ pub(crate) fn calculate<const N: usize>(
         }
         // Next candidate duration strictly after `t`.
         let mut next = f64::INFINITY;
-        for i in 0..N {
-            let wi = wk(&work, i);
+        for wi in work.iter().chain(alt_work.iter().flatten()).flatten() {
             for k in 0..wi.cands.n {
                 let d = wi.brake_t + wi.cands.duration[k];
                 if d > t + 1e-12 * (1.0 + t) && d < next {
@@ -173,15 +198,14 @@ pub(crate) fn calculate<const N: usize>(
             }
         }
         // The DoF that could not be stretched may have an extremal profile (the end of a
-        // blocked interval) that the normal sampling missed: search it once more with eight
-        // times the samples before moving on.
+        // blocked interval) that the normal search missed: search it once more, sampling every
+        // family densely, and add what is found (never replace: the polynomial solutions of
+        // the first search are exact and sampling can miss them).
         if !densified[failed_dof] && position {
             densified[failed_dof] = true;
             if let Some(wi) = work[failed_dof].as_mut() {
                 let dense = time_optimal(&wi.dof, &wi.prefix, 8);
-                if dense.n > 0 {
-                    wi.cands = dense;
-                }
+                wi.cands.merge(&dense);
             }
             continue;
         }

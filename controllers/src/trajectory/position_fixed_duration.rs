@@ -23,13 +23,12 @@
 //! candidate is integrated and verified before use.
 
 use super::dof::{Dof, Segments};
-use super::position_time_optimal::{
-    peak_breaks, peak_distance, peak_parts, peak_segments, scan_peak_window,
-};
+use super::peak_window::{PeakResidual, scan_peak_window};
+use super::polynomial::polynomial_roots;
+use super::position_time_optimal::{peak_breaks, peak_distance, peak_parts, peak_segments};
 use super::profile::{Profile, integrate};
 use super::roots::{Roots, scan};
 
-const SAMPLES: usize = 6;
 const ARC_SAMPLES: usize = 12;
 
 /// A profile of one DoF lasting exactly `t` seconds after the braking `prefix`, if one is found.
@@ -67,7 +66,15 @@ fn peak_cruise(d: &Dof, prefix: &Profile, t: f64) -> Option<Profile> {
     let nb = peak_breaks(d, &mut br);
     let mut ends = Roots::new();
     for w in br[..nb].windows(2) {
-        scan(&mut h, w[0], w[1], SAMPLES, &mut ends);
+        scan_peak_window(
+            d,
+            &mut h,
+            w[0],
+            w[1],
+            1,
+            PeakResidual::Duration { t },
+            &mut ends,
+        );
     }
     // Interval end points: domain ends and roots of T₁ + T₂ = T, sorted.
     let mut pts = [0.0; 32];
@@ -99,11 +106,20 @@ fn peak_cruise(d: &Dof, prefix: &Profile, t: f64) -> Option<Profile> {
     for w in pts.windows(2) {
         let (l, r) = (w[0], w[1]);
         let mid = 0.5 * (l + r);
-        if h(mid).is_nan() || h(mid) > 0.0 {
+        let h_mid = h(mid);
+        if h_mid.is_nan() || h_mid > 0.0 {
             continue;
         }
         let mut roots = Roots::new();
-        scan_peak_window(d, &mut g, l, r, 1, &mut roots);
+        scan_peak_window(
+            d,
+            &mut g,
+            l,
+            r,
+            1,
+            PeakResidual::CruiseDistance { dp, t },
+            &mut roots,
+        );
         for &vp in roots.as_slice() {
             if let Some(p) = try_vp(vp) {
                 return Some(p);
@@ -240,6 +256,25 @@ fn held(orig: &Dof, d: &Dof, prefix: &Profile, t: f64, dir: f64) -> Option<Profi
         pts[..=n].sort_unstable_by(f64::total_cmp);
         let mut roots = Roots::new();
         for w in pts[..=n].windows(2) {
+            // The held families are quartics in z = √(radicand) (radicand k·a1 + m, resp.
+            // −k·a2 − m, linear in the parameter).
+            if fam < 2 && k != 0.0 {
+                let sg = if fam == 0 { 1.0 } else { -1.0 };
+                let rad = |x: f64| sg * (k * x + m);
+                let x_of_z = |z: f64| (sg * z * z - m) / k;
+                if rad(0.5 * (w[0] + w[1])) < 0.0 {
+                    continue;
+                }
+                let (zl, zr) = (rad(w[0]).max(0.0).sqrt(), rad(w[1]).max(0.0).sqrt());
+                let mut g = |z: f64| f(x_of_z(z).clamp(w[0], w[1]));
+                let mut rz = Roots::new();
+                if polynomial_roots(&mut g, zl.min(zr), zl.max(zr), 4, &mut rz) {
+                    for &z in rz.as_slice() {
+                        roots.push(x_of_z(z).clamp(w[0], w[1]));
+                    }
+                    continue;
+                }
+            }
             scan(&mut f, w[0], w[1], ARC_SAMPLES, &mut roots);
         }
         for &x in roots.as_slice() {

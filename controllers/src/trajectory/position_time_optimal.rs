@@ -28,11 +28,15 @@
 //!   length linear in `a2²` from the velocity equation) or by `a1` (phase 6 at `a−`). The
 //!   residual is again the position equation, solved in the problem's frame and its mirror.
 //!
-//! Roots are found by [`super::roots::scan`]; each candidate is integrated and verified
+//! Roots are found as polynomial roots on every smooth window ([`super::peak_window`]) or,
+//! where the family is not polynomial in one variable, by [`super::roots::scan`]; each candidate is integrated and verified
 //! ([`Dof::accept`]). The shortest valid one is time-optimal; the other valid durations are
 //! kept, since they bound the blocked intervals used by synchronisation.
 
 use super::dof::{Dof, Segments};
+use super::peak_polynomials as pp;
+use super::peak_window::{PeakResidual, scan_peak_window};
+use super::polynomial::{closed_form_roots, polynomial_roots};
 use super::profile::{Profile, integrate};
 use super::roots::{Roots, scan};
 use super::vel_change::{VelChange, vel_change};
@@ -40,8 +44,6 @@ use super::vel_change::{VelChange, vel_change};
 /// Maximum number of distinct valid candidates kept.
 pub(crate) const MAX_CANDIDATES: usize = 12;
 
-/// Samples per smooth sub-interval of the peak family.
-const PEAK_SAMPLES: usize = 6;
 /// Samples for the three-arc families.
 const ARC_SAMPLES: usize = 10;
 
@@ -78,6 +80,28 @@ impl TimeOptimal {
         if dof.accept(prefix, segs, dir).is_none() {
             return;
         }
+        self.insert(d, segs, dir);
+    }
+
+    /// Adds the (already verified) candidates of `other` that are not yet present.
+    pub fn merge(&mut self, other: &Self) {
+        for k in 0..other.n {
+            let d = other.duration[k];
+            if self.duration[..self.n]
+                .iter()
+                .any(|&x| (x - d).abs() <= 1e-12 * (1.0 + d))
+            {
+                continue;
+            }
+            if self.n == MAX_CANDIDATES && d >= self.duration[self.n - 1] {
+                continue;
+            }
+            self.insert(d, &other.segs[k], other.dir[k]);
+        }
+    }
+
+    /// Inserts a verified candidate of duration `d`, keeping the list sorted.
+    fn insert(&mut self, d: f64, segs: &Segments, dir: f64) {
         let mut k = self.n.min(MAX_CANDIDATES - 1);
         if self.n < MAX_CANDIDATES {
             self.n += 1;
@@ -161,67 +185,6 @@ pub(crate) fn peak_breaks(d: &Dof, out: &mut [f64; 8]) -> usize {
     n
 }
 
-/// True if both velocity changes hold an acceleration limit at peak velocity `vp`.
-fn both_hold(d: &Dof, vp: f64) -> bool {
-    peak_parts(d, vp).is_some_and(|(c1, c2)| c1.t2 > 0.0 && c2.t2 > 0.0)
-}
-
-/// Roots of a peak-family residual `f` on one smooth window `[l, r]` between break points.
-///
-/// Where both velocity changes hold an acceleration limit, their ramps have fixed durations and
-/// the holds grow linearly with `v_p`, so the residual is exactly quadratic: it is interpolated
-/// from three points and solved in closed form, then polished. Elsewhere the window is sampled,
-/// more densely when it is wide compared with the velocity `a²/J` gained by one ramp.
-pub(crate) fn scan_peak_window<F: FnMut(f64) -> f64>(
-    d: &Dof,
-    f: &mut F,
-    l: f64,
-    r: f64,
-    density: usize,
-    out: &mut Roots,
-) {
-    let w = r - l;
-    if w.is_nan() || w <= 0.0 {
-        scan(f, l, r, 1, out);
-        return;
-    }
-    let eps = 1e-9 * w;
-    if both_hold(d, l + eps) && both_hold(d, 0.5 * (l + r)) && both_hold(d, r - eps) {
-        let (f0, f1, f2) = (f(l), f(0.5 * (l + r)), f(r));
-        // f(x) = f0 + b x + c x² in x = vp − l, from three equally spaced points.
-        let h = 0.5 * w;
-        let c = (f2 - 2.0 * f1 + f0) / (2.0 * h * h);
-        let b = (f1 - f0) / h - c * h;
-        let mut xs = [f64::NAN; 2];
-        if c.abs() > 1e-300 {
-            let disc = b * b - 4.0 * c * f0;
-            if disc >= 0.0 {
-                let q = -0.5 * (b + b.signum() * disc.sqrt());
-                xs = [q / c, if q != 0.0 { f0 / q } else { f64::NAN }];
-            }
-        } else if b != 0.0 {
-            xs[0] = -f0 / b;
-        }
-        for x in xs {
-            if x.is_finite() && x >= -eps && x <= w + eps {
-                let x0 = (l + x).clamp(l, r);
-                let dx = 1e-6 * w.min(1.0);
-                scan(f, (x0 - dx).max(l), (x0 + dx).min(r), 2, out);
-            }
-        }
-        return;
-    }
-    let scale = d.a_max.max(-d.a_min).powi(2) / d.j;
-    let samples = if scale > 0.0 {
-        ((w / scale) * 2.0 * density as f64)
-            .ceil()
-            .clamp((PEAK_SAMPLES * density) as f64, (48 * density) as f64) as usize
-    } else {
-        PEAK_SAMPLES * density
-    };
-    scan(f, l, r, samples, out);
-}
-
 /// Segments of a peak-family profile with an optional cruise.
 pub(crate) fn peak_segments(
     c1: &VelChange,
@@ -243,7 +206,15 @@ fn peak_family(d: &Dof, prefix: &Profile, density: usize, out: &mut TimeOptimal)
     let nb = peak_breaks(d, &mut br);
     let mut roots = Roots::new();
     for w in br[..nb].windows(2) {
-        scan_peak_window(d, &mut f, w[0], w[1], density, &mut roots);
+        scan_peak_window(
+            d,
+            &mut f,
+            w[0],
+            w[1],
+            density,
+            PeakResidual::Distance { dp },
+            &mut roots,
+        );
     }
     for &vp in roots.as_slice() {
         if let Some((c1, c2)) = peak_parts(d, vp)
@@ -267,6 +238,24 @@ fn peak_family(d: &Dof, prefix: &Profile, density: usize, out: &mut TimeOptimal)
             }
         }
     }
+}
+
+/// Parameters of the three-arc family's closed-form coefficients
+/// ([`super::peak_polynomials`]), in the frame being solved.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct ArcInputs {
+    pub v0: f64,
+    pub a0: f64,
+    pub af: f64,
+    pub j: f64,
+    pub a_max: f64,
+    pub a_min: f64,
+    /// `vf − v0`.
+    pub dv: f64,
+    /// `K = J Δv + (a0² − af²)/2` of the unlimited variant.
+    pub k: f64,
+    /// `pf − p0`.
+    pub dp: f64,
 }
 
 /// Integrates signed-duration segments from `(0, v0, a0)`; returns the position reached.
@@ -304,6 +293,17 @@ fn three_arc_family(
 
     // (1) no acceleration limit: +J (a0→a1), −J (a1→a2), +J (a2→af), a1² − a2² = K.
     let k = j * dv + 0.5 * (a0 * a0 - af * af);
+    let q = ArcInputs {
+        v0: d.v0,
+        a0,
+        af,
+        j,
+        a_max: amax,
+        a_min: amin,
+        dv,
+        k,
+        dp,
+    };
     let disc1 = amax * amax - k;
     let disc2 = amin * amin + k;
     if disc1 >= 0.0 && disc2 >= 0.0 && (af > 0.0 || a0 < 0.0) {
@@ -321,7 +321,15 @@ fn three_arc_family(
             reach(d.v0, a0, &[(t1, j), (t2, -j), (t3, j)]) - dp
         };
         let mut roots = Roots::new();
-        scan(&mut f, lo, hi, arc_samples, &mut roots);
+        // r·s is a quartic in s (the times are linear in s and K/s).
+        let mut g = |s: f64| f(s) * s;
+        let (n, c) = pp::arc_free(&q);
+        if density > 1
+            || !(closed_form_roots(n, &c, &mut g, lo, hi, &mut roots)
+                || polynomial_roots(&mut g, lo, hi, 4, &mut roots))
+        {
+            scan(&mut f, lo, hi, arc_samples, &mut roots);
+        }
         for &s in roots.as_slice() {
             let (t1, t2, t3) = times(s);
             let mut sg = Segments::default();
@@ -343,7 +351,15 @@ fn three_arc_family(
             reach(d.v0, a0, &[(t1, j), (t2, 0.0), (t3, -j), (t4, j)]) - dp
         };
         let mut roots = Roots::new();
-        scan(&mut f, -1e-12 * amax, af.min(amax), arc_samples, &mut roots);
+        // A quartic in a2 (the hold is quadratic in a2, the ramps linear).
+        let (lo, hi) = (-1e-12 * amax, af.min(amax));
+        let (n, c) = pp::arc_hold_max(&q);
+        if density > 1
+            || !(closed_form_roots(n, &c, &mut f, lo, hi, &mut roots)
+                || polynomial_roots(&mut f, lo, hi, 4, &mut roots))
+        {
+            scan(&mut f, lo, hi, arc_samples, &mut roots);
+        }
         for &a2 in roots.as_slice() {
             let (t1, t2, t3, t4) = times(a2);
             let mut sg = Segments::default();
@@ -369,7 +385,14 @@ fn three_arc_family(
             reach(d.v0, a0, &[(t1, j), (t2, -j), (t3, 0.0), (t4, j)]) - dp
         };
         let mut roots = Roots::new();
-        scan(&mut f, a0.max(amin), -1e-12 * amin, arc_samples, &mut roots);
+        let (lo, hi) = (a0.max(amin), -1e-12 * amin);
+        let (n, c) = pp::arc_hold_min(&q);
+        if density > 1
+            || !(closed_form_roots(n, &c, &mut f, lo, hi, &mut roots)
+                || polynomial_roots(&mut f, lo, hi, 4, &mut roots))
+        {
+            scan(&mut f, lo, hi, arc_samples, &mut roots);
+        }
         for &a1 in roots.as_slice() {
             let (t1, t2, t3, t4) = times(a1);
             let mut sg = Segments::default();

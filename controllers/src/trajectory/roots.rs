@@ -25,7 +25,7 @@ impl Roots {
         }
     }
 
-    fn push(&mut self, x: f64) {
+    pub fn push(&mut self, x: f64) {
         if self.n < Self::CAP {
             // Skip duplicates found from adjacent brackets.
             for &y in &self.x[..self.n] {

@@ -1,0 +1,481 @@
+//! Low-degree polynomials on an interval: exact interpolation and all real roots.
+//!
+//! Inside one smooth window of a profile family the residual equations are polynomials in a
+//! suitable parameter (see [`super::family_window`]), of degree at most [`MAX_DEGREE`]. We do not
+//! transcribe their coefficients per family: the polynomial is *interpolated* from `n + 1`
+//! evaluations of the residual itself at Chebyshev points of the window, checked at one extra
+//! point, and its real roots are isolated by the critical points (the roots of the derivative,
+//! recursively down to a closed-form quadratic) and refined by safeguarded Newton steps. Every
+//! step is closed form or a bracketed iteration on a polynomial: no sampling of the residual.
+//!
+//! The interpolation variable is the window mapped to `t ∈ [−1, 1]`, where the monomial basis
+//! of degree ≤ 6 is well conditioned.
+
+use super::roots::Roots;
+
+/// Highest supported degree.
+pub(crate) const MAX_DEGREE: usize = 6;
+
+/// A polynomial `Σ c_k t^k` in the normalised variable `t ∈ [−1, 1]`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Poly {
+    /// Degree (number of coefficients − 1).
+    pub n: usize,
+    /// Coefficients, lowest first.
+    pub c: [f64; MAX_DEGREE + 1],
+}
+
+impl Poly {
+    /// Value at `t` (Horner).
+    #[inline]
+    pub fn eval(&self, t: f64) -> f64 {
+        let mut y = self.c[self.n];
+        for k in (0..self.n).rev() {
+            y = y * t + self.c[k];
+        }
+        y
+    }
+
+    /// Value and first derivative at `t`.
+    #[inline]
+    pub fn eval_d(&self, t: f64) -> (f64, f64) {
+        let mut y = self.c[self.n];
+        let mut dy = 0.0;
+        for k in (0..self.n).rev() {
+            dy = dy * t + y;
+            y = y * t + self.c[k];
+        }
+        (y, dy)
+    }
+
+    fn derivative(&self) -> Self {
+        let mut d = Self {
+            n: self.n.saturating_sub(1),
+            c: [0.0; MAX_DEGREE + 1],
+        };
+        for k in 1..=self.n {
+            d.c[k - 1] = k as f64 * self.c[k];
+        }
+        d
+    }
+
+    /// Largest coefficient magnitude (the scale of the values on `[−1, 1]`).
+    pub fn scale(&self) -> f64 {
+        self.c[..=self.n].iter().fold(0.0, |m, x| m.max(x.abs()))
+    }
+}
+
+/// Chebyshev points `cos((2k + 1)π / (2m))`, `k = 0..m`, for `m = n + 1` nodes, per degree `n`.
+#[allow(clippy::excessive_precision, clippy::approx_constant)]
+const CHEBYSHEV: [[f64; MAX_DEGREE + 1]; MAX_DEGREE + 1] = [
+    [6.123233995736766e-17, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0],
+    [
+        0.7071067811865476,
+        -0.7071067811865475,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+    ],
+    [
+        0.8660254037844387,
+        6.123233995736766e-17,
+        -0.8660254037844387,
+        0.0,
+        0.0,
+        0.0,
+        0.0,
+    ],
+    [
+        0.9238795325112867,
+        0.38268343236508984,
+        -0.3826834323650897,
+        -0.9238795325112867,
+        0.0,
+        0.0,
+        0.0,
+    ],
+    [
+        0.9510565162951535,
+        0.5877852522924731,
+        6.123233995736766e-17,
+        -0.587785252292473,
+        -0.9510565162951535,
+        0.0,
+        0.0,
+    ],
+    [
+        0.9659258262890683,
+        0.7071067811865476,
+        0.25881904510252074,
+        -0.25881904510252063,
+        -0.7071067811865475,
+        -0.9659258262890682,
+        0.0,
+    ],
+    [
+        0.9749279121818236,
+        0.7818314824680298,
+        0.4338837391175582,
+        6.123233995736766e-17,
+        -0.43388373911755806,
+        -0.7818314824680295,
+        -0.9749279121818237,
+    ],
+];
+
+/// The interpolating polynomial of degree `n` through `(t_k, y_k)`, `k = 0..=n`
+/// (Newton divided differences, expanded to monomials).
+pub(crate) fn interpolate(n: usize, t: &[f64; MAX_DEGREE + 1], y: &[f64; MAX_DEGREE + 1]) -> Poly {
+    let mut dd = *y;
+    for level in 1..=n {
+        for k in (level..=n).rev() {
+            dd[k] = (dd[k] - dd[k - 1]) / (t[k] - t[k - level]);
+        }
+    }
+    // p(t) = dd0 + (t − t0)(dd1 + (t − t1)(dd2 + …)): expand from the innermost term.
+    let mut c = [0.0; MAX_DEGREE + 1];
+    c[0] = dd[n];
+    let mut deg = 0;
+    for k in (0..n).rev() {
+        // c ← c·(t − t_k) + dd_k
+        deg += 1;
+        for i in (1..=deg).rev() {
+            c[i] = c[i - 1] - t[k] * c[i];
+        }
+        c[0] = -t[k] * c[0] + dd[k];
+    }
+    Poly { n, c }
+}
+
+/// Real roots of `p` in `[lo, hi] ⊆ [−1, 1]`, unsorted, written to `out`; returns their number.
+/// Double roots (tangencies) are reported at the critical point when `|p|` there is below
+/// `1e-12 · scale`.
+pub(crate) fn real_roots(p: &Poly, lo: f64, hi: f64, out: &mut [f64; MAX_DEGREE]) -> usize {
+    // Strip vanishing leading coefficients.
+    let mut q = *p;
+    let s = q.scale();
+    if s == 0.0 {
+        return 0;
+    }
+    while q.n > 0 && q.c[q.n].abs() <= 1e-14 * s {
+        q.n -= 1;
+    }
+    roots_rec(&q, lo, hi, s, 0, out)
+}
+
+/// `depth` 0 is the polynomial itself (roots to full precision); deeper levels are derivatives,
+/// whose roots only separate monotone pieces and are refined to a relative 1e-10.
+fn roots_rec(
+    p: &Poly,
+    lo: f64,
+    hi: f64,
+    scale: f64,
+    depth: usize,
+    out: &mut [f64; MAX_DEGREE],
+) -> usize {
+    // On [−1, 1], |p(t) − c0| ≤ Σ_{k≥1} |c_k|: no root (nor tangency) if c0 dominates.
+    let tail: f64 = p.c[1..=p.n].iter().map(|c| c.abs()).sum();
+    if p.c[0].abs() > tail * (1.0 + 1e-12) + 1e-12 * scale {
+        return 0;
+    }
+    let mut n_out = 0;
+    let mut push = |x: f64, out: &mut [f64; MAX_DEGREE]| {
+        if n_out < MAX_DEGREE && x >= lo && x <= hi {
+            out[n_out] = x;
+            n_out += 1;
+        }
+    };
+    match p.n {
+        0 => return 0,
+        1 => {
+            if p.c[1] != 0.0 {
+                push(-p.c[0] / p.c[1], out);
+            }
+            return n_out;
+        }
+        2 => {
+            let (a, b, c) = (p.c[2], p.c[1], p.c[0]);
+            let disc = b * b - 4.0 * a * c;
+            if disc >= 0.0 {
+                let q = -0.5 * (b + b.signum() * disc.sqrt());
+                if q != 0.0 {
+                    push(q / a, out);
+                    push(c / q, out);
+                } else {
+                    push(0.0, out);
+                }
+            } else if disc > -1e-13 * (b * b).max((4.0 * a * c).abs()) {
+                // Numerically a double root.
+                push(-b / (2.0 * a), out);
+            }
+            return n_out;
+        }
+        _ => {}
+    }
+    // Critical points split [lo, hi] into intervals where p is monotone.
+    let d = p.derivative();
+    let mut crit = [0.0; MAX_DEGREE];
+    let nc = roots_rec(&d, lo, hi, scale, depth + 1, &mut crit);
+    let tol = if depth == 0 {
+        4.0 * f64::EPSILON
+    } else {
+        1e-10
+    };
+    let crit = &mut crit[..nc];
+    crit.sort_unstable_by(f64::total_cmp);
+    let mut a = lo;
+    let mut fa = p.eval(a);
+    if fa == 0.0 {
+        push(a, out);
+    }
+    for k in 0..=nc {
+        let b = crit.get(k).copied().unwrap_or(hi);
+        let fb = p.eval(b);
+        if b > a {
+            if fb == 0.0 {
+                push(b, out);
+            } else if fa != 0.0 && (fa > 0.0) != (fb > 0.0) {
+                push(monotone_root(p, a, fa, b, fb, tol), out);
+            } else if k < nc && fb.abs() <= 1e-12 * scale {
+                // Tangency at a critical point.
+                push(b, out);
+            }
+        }
+        a = b;
+        fa = fb;
+    }
+    n_out
+}
+
+/// The single root of a monotone `p` on `[a, b]` with a sign change: Newton steps from the
+/// secant point, kept inside the shrinking bracket (bisection when a step leaves it), until the
+/// step is below `tol` (relative).
+fn monotone_root(p: &Poly, mut a: f64, mut fa: f64, mut b: f64, fb: f64, tol: f64) -> f64 {
+    let mut x = (a * fb - b * fa) / (fb - fa);
+    if !(x > a.min(b) && x < a.max(b)) {
+        x = 0.5 * (a + b);
+    }
+    for _ in 0..100 {
+        let (f, df) = p.eval_d(x);
+        if f == 0.0 {
+            return x;
+        }
+        if (f > 0.0) == (fa > 0.0) {
+            a = x;
+            fa = f;
+        } else {
+            b = x;
+        }
+        let mut nx = x - f / df;
+        if !(nx > a.min(b) && nx < a.max(b)) {
+            nx = 0.5 * (a + b);
+        }
+        if (nx - x).abs() <= tol * (1.0 + x.abs()) || (b - a).abs() <= 1e-15 {
+            return nx;
+        }
+        x = nx;
+    }
+    x
+}
+
+/// Roots of the polynomial `Σ c_k w^k` of degree `n` (coefficients in the raw variable `w`,
+/// e.g. from the closed forms of [`super::peak_polynomials`]) on `[wl, wr]`, polished by Newton
+/// steps on the residual `f` they stand for, pushed to `out`. Returns `false` (leaving `out`
+/// unchanged) if a polished root still leaves a residual that the polynomial does not explain
+/// (the caller then interpolates or samples).
+pub(crate) fn closed_form_roots<F: FnMut(f64) -> f64>(
+    n: usize,
+    c: &[f64; MAX_DEGREE + 1],
+    f: &mut F,
+    wl: f64,
+    wr: f64,
+    out: &mut Roots,
+) -> bool {
+    if !(wl.is_finite() && wr.is_finite() && wr >= wl) || n > MAX_DEGREE {
+        return false;
+    }
+    if c[..=n].iter().any(|x| !x.is_finite()) {
+        return false;
+    }
+    let mid = 0.5 * (wl + wr);
+    let half = 0.5 * (wr - wl);
+    // q(t) = p(mid + half·t): Taylor shift by `mid`, then scale.
+    let mut q = Poly { n, c: *c };
+    for k in 0..n {
+        for i in (k..n).rev() {
+            q.c[i] += mid * q.c[i + 1];
+        }
+    }
+    let mut h = 1.0;
+    for k in 0..=n {
+        q.c[k] *= h;
+        h *= half;
+    }
+    if half == 0.0 {
+        q.n = 0;
+    }
+    let scale = q.scale();
+    let w_of = |t: f64| (mid + half * t).clamp(wl, wr);
+    // One evaluation of the residual itself guards against a closed form that does not describe
+    // it (a window whose shape differs from the expected one): the roots of a wrong polynomial
+    // would silently miss profiles.
+    const T_CHECK: f64 = 0.412_345;
+    let yc = f(w_of(T_CHECK));
+    if !yc.is_finite() || (yc - q.eval(T_CHECK)).abs() > 1e-9 * (scale + yc.abs()) + 1e-300 {
+        return false;
+    }
+    let mut r = [0.0; MAX_DEGREE];
+    let nr = real_roots(&q, -1.0, 1.0, &mut r);
+    let mut polished = [0.0; MAX_DEGREE];
+    for (k, &tr) in r[..nr].iter().enumerate() {
+        let mut tt = tr;
+        let mut ft = f(w_of(tt));
+        for _ in 0..3 {
+            if !ft.is_finite() {
+                return false;
+            }
+            if ft.abs() <= 1e-14 * scale {
+                break;
+            }
+            let (_, dq) = q.eval_d(tt);
+            if dq == 0.0 {
+                break;
+            }
+            let tn = (tt - ft / dq).clamp(-1.0, 1.0);
+            let fnew = f(w_of(tn));
+            if fnew.is_nan() || fnew.abs() >= ft.abs() {
+                break;
+            }
+            tt = tn;
+            ft = fnew;
+        }
+        if ft.is_nan() || ft.abs() > 1e-8 * scale.max(1e-300) {
+            return false;
+        }
+        polished[k] = w_of(tt);
+    }
+    for &w in &polished[..nr] {
+        out.push(w);
+    }
+    true
+}
+
+/// All roots of `f` on `[wl, wr]`, where `f` is known to be a polynomial of degree `n ≤ 6` in
+/// `w` (by the algebra of the calling family). `n + 1` Chebyshev evaluations give the
+/// polynomial, one more evaluation checks it; the roots are polished by Newton steps on `f`
+/// itself (with the polynomial's derivative) and pushed to `out`. Returns `false`, leaving `out`
+/// unchanged, if a value is not finite or the check fails; the caller then falls back to
+/// [`super::roots::scan`].
+pub(crate) fn polynomial_roots<F: FnMut(f64) -> f64>(
+    f: &mut F,
+    wl: f64,
+    wr: f64,
+    n: usize,
+    out: &mut Roots,
+) -> bool {
+    if !(wl.is_finite() && wr.is_finite() && wr > wl) || n == 0 || n > MAX_DEGREE {
+        return false;
+    }
+    let mid = 0.5 * (wl + wr);
+    let half = 0.5 * (wr - wl);
+    let w_of = |t: f64| (mid + half * t).clamp(wl, wr);
+    let t = CHEBYSHEV[n];
+    let mut y = [0.0; MAX_DEGREE + 1];
+    let mut ymax = 0.0_f64;
+    for k in 0..=n {
+        y[k] = f(w_of(t[k]));
+        if !y[k].is_finite() {
+            return false;
+        }
+        ymax = ymax.max(y[k].abs());
+    }
+    let p = interpolate(n, &t, &y);
+    // Check at a point that is no node of any degree ≤ 6.
+    const T_CHECK: f64 = 0.412_345;
+    let yc = f(w_of(T_CHECK));
+    if !yc.is_finite() || (yc - p.eval(T_CHECK)).abs() > 1e-9 * (ymax + yc.abs()) + 1e-300 {
+        return false;
+    }
+    let mut r = [0.0; MAX_DEGREE];
+    let nr = real_roots(&p, -1.0, 1.0, &mut r);
+    for &tr in &r[..nr] {
+        // Newton polish on f, in t, with the interpolant's slope.
+        let mut tt = tr;
+        let mut ft = f(w_of(tt));
+        for _ in 0..3 {
+            let (_, dp) = p.eval_d(tt);
+            if ft == 0.0 || dp == 0.0 || !ft.is_finite() {
+                break;
+            }
+            let tn = (tt - ft / dp).clamp(-1.0, 1.0);
+            let fnew = f(w_of(tn));
+            if fnew.is_nan() || fnew.abs() >= ft.abs() {
+                break;
+            }
+            tt = tn;
+            ft = fnew;
+            if ft.abs() <= 1e-15 * ymax {
+                break;
+            }
+        }
+        out.push(w_of(tt));
+    }
+    true
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn from_roots(r: &[f64]) -> Poly {
+        let mut c = [0.0; MAX_DEGREE + 1];
+        c[0] = 1.0;
+        for (deg, &x) in r.iter().enumerate() {
+            for i in (1..=deg + 1).rev() {
+                c[i] = c[i - 1] - x * c[i];
+            }
+            c[0] *= -x;
+        }
+        Poly { n: r.len(), c }
+    }
+
+    #[test]
+    fn interpolation_is_exact_for_polynomials() {
+        let p = from_roots(&[-0.9, -0.2, 0.1, 0.5, 0.7, 0.95]);
+        let t = CHEBYSHEV[6];
+        let y = t.map(|x| p.eval(x));
+        let q = interpolate(6, &t, &y);
+        for k in 0..=6 {
+            assert!(
+                (q.c[k] - p.c[k]).abs() < 1e-13,
+                "{k}: {} {}",
+                q.c[k],
+                p.c[k]
+            );
+        }
+    }
+
+    #[test]
+    fn finds_all_roots_including_close_ones() {
+        let want = [-0.9, -0.2, 0.1, 0.1001, 0.7, 0.95];
+        let p = from_roots(&want);
+        let mut out = [0.0; MAX_DEGREE];
+        let n = real_roots(&p, -1.0, 1.0, &mut out);
+        let mut got = out[..n].to_vec();
+        got.sort_by(f64::total_cmp);
+        assert_eq!(got.len(), 6, "{got:?}");
+        for (g, w) in got.iter().zip(want) {
+            assert!((g - w).abs() < 1e-12, "{g} {w}");
+        }
+        // A double root is found at the tangency.
+        let p = from_roots(&[0.3, 0.3, -0.5]);
+        let n = real_roots(&p, -1.0, 1.0, &mut out);
+        assert!(
+            out[..n].iter().any(|x| (x - 0.3).abs() < 1e-9),
+            "{:?}",
+            &out[..n]
+        );
+    }
+}
