@@ -28,6 +28,7 @@ impl SliceModel for Quadratic {
             force_normal_slope: -140.0 / ((1.0 + xi) * (1.0 + xi)),
             deformation: 0.0,
             deformation_slope: 0.0,
+            ..StageCost::default()
         }
     }
 }

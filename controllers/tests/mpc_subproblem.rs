@@ -19,6 +19,7 @@ fn stage(xi_bar: f64, contact_length: f64, depth_step: f64) -> StageData {
             force_normal_slope: -f0 / ((1.0 + xi_bar) * (1.0 + xi_bar)),
             deformation: 0.0,
             deformation_slope: 0.0,
+            ..StageCost::default()
         },
         before_fracture: false,
     }

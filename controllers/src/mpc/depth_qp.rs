@@ -8,7 +8,8 @@
 //! convexified quadratic model and the force per unit length by its tangent:
 //!
 //! minimise   Σ_k Δd_k L_k [g_k (ξ_k − ξ̄_k) + ½ h_k (ξ_k − ξ̄_k)²]      work
-//!          + w_D L_0 δ'_0 ξ_0   (before the first fracture)          deformation
+//!          + L_0 [W'_0 (ξ_0 − ξ̄_0) + ½ W''⁺_0 (ξ_0 − ξ̄_0)²]    work to fracture
+//!          + w_D L_0 δ'_0 ξ_0   (both before the first fracture)     deformation
 //!          + w_T Σ_k Δd_k τ_k                                         time
 //!          + w_S [(ξ_0 − ξ_prev)² + Σ_k (ξ_k − ξ_{k−1})²]             smoothness
 //!          + w_F Σ_k σ_k                                              force excess
@@ -271,7 +272,11 @@ impl DepthQp {
                 * l
                 * (s.cost.work_per_depth + s.cost.work_per_depth_slope * dx + 0.5 * h * dx * dx);
             if k == 0 && s.before_fracture {
-                j += limits.deformation_weight * l * s.cost.deformation_slope * xi[0];
+                let h0 = s.cost.onset_work_curvature.max(0.0);
+                j += l * (s.cost.onset_work + s.cost.onset_work_slope * dx + 0.5 * h0 * dx * dx);
+                j += limits.deformation_weight
+                    * l
+                    * (s.cost.deformation + s.cost.deformation_slope * dx);
             }
             j += limits.time_weight * s.depth_step * tau[k];
             j += limits.smoothness_weight * (xi[k] - prev) * (xi[k] - prev);
@@ -312,6 +317,10 @@ impl DepthQp {
             self.p.nzval[self.p_diag[k]] += dd * l * h;
             self.q[k] += dd * l * (s.cost.work_per_depth_slope - h * s.xi_bar);
             if k == 0 && s.before_fracture {
+                // Work to reach the fracture, ½h₀dx² + g₀dx, and deflection.
+                let h0 = s.cost.onset_work_curvature.max(0.0);
+                self.p.nzval[self.p_diag[0]] += l * h0;
+                self.q[0] += l * (s.cost.onset_work_slope - h0 * s.xi_bar);
                 self.q[0] += limits.deformation_weight * l * s.cost.deformation_slope;
             }
             // Smoothness (ξ_k − ξ_{k−1})², and (ξ_0 − ξ_prev)².

@@ -10,6 +10,9 @@ pub struct StageState {
     /// Half width of the object's section across the cut, m.
     pub half_width: f64,
     /// Whether the material has fractured (the crack runs) by the stage.
+    /// When not, the model answers with the cut's rates after fracture plus
+    /// the cost of reaching the fracture (`onset_work`, `deformation`, and
+    /// the peak force as `force_normal`).
     pub fractured: bool,
     /// Normal knife travel since the first fracture, m (friction grows with it).
     pub travel_since_fracture: f64,
@@ -33,6 +36,15 @@ pub struct StageCost {
     pub deformation: f64,
     /// Its derivative with respect to ξ.
     pub deformation_slope: f64,
+    /// Before the first fracture: the knife work per unit length spent
+    /// indenting until the material fractures, J/m (0 once fractured). The
+    /// crack does not advance meanwhile, so it is a cost of the first
+    /// stage, not a rate per depth.
+    pub onset_work: f64,
+    /// Its derivative with respect to ξ.
+    pub onset_work_slope: f64,
+    /// Its second derivative with respect to ξ.
+    pub onset_work_curvature: f64,
 }
 
 /// A cutting model the MPC can plan with: cost and force per unit length

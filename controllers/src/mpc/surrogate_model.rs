@@ -4,10 +4,10 @@ use shearcut_sim::surrogate::{CutState, ScaleFactors, Surrogate};
 
 use super::slice_model::{SliceModel, StageCost, StageState};
 
-/// Step of the central difference for the deflection's ξ-slope (the
-/// surrogate gives the forces' and work's derivatives analytically, not
-/// the deflection's).
-const DEFLECTION_STEP: f64 = 1e-4;
+/// Step of the differences in ξ of the onset quantities (the surrogate
+/// gives the rates' derivatives analytically, not those of the work and
+/// deflection at the onset depth).
+const ONSET_STEP: f64 = 1e-3;
 
 /// A [`Surrogate`] (seed 000's model reduced by `shearcut fit`) with the
 /// scale factors the estimator last set.
@@ -42,27 +42,75 @@ impl SurrogateModel {
     }
 }
 
+impl SurrogateModel {
+    /// What reaching the first fracture costs at `xi` from an intact
+    /// surface: (work per unit length, deflection, vertical force per unit
+    /// length) at the onset depth d*(ξ). The force grows linearly with the
+    /// indentation (the surrogate's pre-fracture stiffness), so the work is
+    /// ½·w(d*)·d*.
+    fn onset(&self, xi: f64, cut: &CutState) -> (f64, f64, f64) {
+        let d_star = self
+            .surrogate
+            .evaluate(xi, cut, &self.scale)
+            .fracture_onset_depth;
+        let at_onset = CutState {
+            depth: d_star,
+            fractured: false,
+            ..*cut
+        };
+        let o = self.surrogate.evaluate(xi, &at_onset, &self.scale);
+        (
+            0.5 * o.work_per_depth * d_star,
+            o.deformation,
+            o.force_normal,
+        )
+    }
+}
+
 impl SliceModel for SurrogateModel {
     fn stage(&self, xi: f64, state: &StageState) -> StageCost {
-        let cut = Self::cut_state(state);
+        let mut cut = Self::cut_state(state);
+        if state.fractured {
+            let o = self.surrogate.evaluate(xi, &cut, &self.scale);
+            return StageCost {
+                work_per_depth: o.work_per_depth,
+                work_per_depth_slope: o.work_per_depth_slope,
+                work_per_depth_curvature: o.work_per_depth_curvature,
+                force_normal: o.force_normal,
+                force_normal_slope: o.force_normal_slope,
+                ..StageCost::default()
+            };
+        }
+        // Before the first fracture: the rates once cutting, plus the cost
+        // of getting there (central differences in ξ; one-sided at 0).
+        cut.fractured = true;
+        cut.travel_since_fracture = 0.0;
         let o = self.surrogate.evaluate(xi, &cut, &self.scale);
-        let deformation_slope = if state.fractured {
-            0.0
-        } else {
-            let lo = (xi - DEFLECTION_STEP).max(0.0);
-            let hi = xi + DEFLECTION_STEP;
-            let d_lo = self.surrogate.evaluate(lo, &cut, &self.scale).deformation;
-            let d_hi = self.surrogate.evaluate(hi, &cut, &self.scale).deformation;
-            (d_hi - d_lo) / (hi - lo)
-        };
+        cut.fractured = false;
+        let h = ONSET_STEP;
+        let (lo, hi) = ((xi - h).max(0.0), xi + h);
+        let (w0, d0, f0) = self.onset(xi, &cut);
+        let (wl, dl, fl) = self.onset(lo, &cut);
+        let (wh, dh, fh) = self.onset(hi, &cut);
+        let span = hi - lo;
+        // Second difference on the possibly uneven stencil.
+        let curvature = 2.0 * ((wh - w0) / (hi - xi) - (w0 - wl) / (xi - lo).max(h)) / span;
         StageCost {
             work_per_depth: o.work_per_depth,
             work_per_depth_slope: o.work_per_depth_slope,
             work_per_depth_curvature: o.work_per_depth_curvature,
-            force_normal: o.force_normal,
-            force_normal_slope: o.force_normal_slope,
-            deformation: if state.fractured { 0.0 } else { o.deformation },
-            deformation_slope,
+            // The peak force is the one at the onset.
+            force_normal: f0.max(o.force_normal),
+            force_normal_slope: if f0 > o.force_normal {
+                (fh - fl) / span
+            } else {
+                o.force_normal_slope
+            },
+            deformation: d0,
+            deformation_slope: (dh - dl) / span,
+            onset_work: w0,
+            onset_work_slope: (wh - wl) / span,
+            onset_work_curvature: if xi - lo > 0.0 { curvature } else { 0.0 },
         }
     }
 

@@ -116,6 +116,7 @@ impl shearcut_controllers::mpc::SliceModel for QuadraticModel {
             force_normal_slope: -140.0 / ((1.0 + xi) * (1.0 + xi)),
             deformation: 0.0,
             deformation_slope: 0.0,
+            ..shearcut_controllers::mpc::StageCost::default()
         }
     }
 }
