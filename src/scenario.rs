@@ -182,15 +182,12 @@ pub struct Scenario {
     pub controller: ControllerSettings,
 }
 
-/// The scenario that `shearcut` runs when given none.
-pub const DEFAULT_SCENARIO: (&str, &str) = (
-    "fig7-potato",
-    include_str!("../config/scenarios/fig7-potato.toml"),
-);
-
 /// Scenarios shipped with shearcut, available by name as well as by path.
 pub const BUILT_IN_SCENARIOS: [(&str, &str); 5] = [
-    DEFAULT_SCENARIO,
+    (
+        "fig7-potato",
+        include_str!("../config/scenarios/fig7-potato.toml"),
+    ),
     (
         "fig7-eggplant",
         include_str!("../config/scenarios/fig7-eggplant.toml"),

@@ -1,20 +1,25 @@
 //! What `shearcut` does with no subcommand: the main job on the built-in
 //! default scenario.
 //!
-//! Until the closed loop lands, the main job is the open-loop simulation of
-//! the default scenario (`fig7-potato`, seed 000 Fig. 7(b)): four cuts of a
-//! potato cuboid by the FEM cross-section model, written to `runs/`.
+//! The main job is the closed loop: the MPC cutting a whole half potato with
+//! the chef's knife (`shearcut run loop-potato-whole --controller mpc`),
+//! the plant stepped in lockstep at 1 kHz, written to `runs/`.
 
-use crate::commands::simulate;
+use crate::commands::run;
 use crate::error::RunError;
-use crate::scenario::{DEFAULT_SCENARIO, Scenario};
+
+/// The default scenario of the main job.
+pub const DEFAULT_JOB_SCENARIO: &str = "loop-potato-whole";
 
 /// Runs the main job on the default scenario.
 pub fn run() -> Result<(), RunError> {
-    let (name, text) = DEFAULT_SCENARIO;
-    let s = Scenario::parse(text, name, name)?;
     println!(
-        "shearcut: no command given, running `shearcut simulate {name}` (see --help for all commands)"
+        "shearcut: no command given, running `shearcut run {DEFAULT_JOB_SCENARIO} --controller mpc` (see --help for all commands)"
     );
-    simulate::run_scenario(&s, None)
+    run::run(
+        DEFAULT_JOB_SCENARIO,
+        Some("mpc"),
+        run::Transport::Inproc,
+        None,
+    )
 }
