@@ -15,3 +15,4 @@ pub mod plot;
 pub mod run_dir;
 pub mod scenario;
 pub mod trajectory_cases;
+pub mod transport;

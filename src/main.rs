@@ -31,6 +31,25 @@ fn main() -> ExitCode {
             commands::trajectory::run(&cases, out.as_deref())
         }
         Some(Command::Check { scenario }) => commands::check::run(&scenario),
+        Some(Command::Plant {
+            scenario,
+            run_id,
+            controller,
+            wait,
+        }) => commands::plant::run(&scenario, &run_id, controller.as_deref(), wait),
+        Some(Command::Controller {
+            scenario,
+            run_id,
+            controller,
+            wait,
+            out,
+        }) => commands::controller::run(
+            &scenario,
+            &run_id,
+            controller.as_deref(),
+            wait,
+            out.as_deref(),
+        ),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

@@ -2,7 +2,9 @@
 
 pub mod check;
 pub mod compare;
+pub mod controller;
 pub mod default_job;
+pub mod plant;
 pub mod run;
 pub mod simulate;
 pub mod toughness;

@@ -30,6 +30,9 @@ use crate::scenario::Scenario;
 pub enum Transport {
     /// Plant and controller in one process, stepped in lockstep.
     Inproc,
+    /// Plant and controller in two processes (`shearcut plant`, `shearcut
+    /// controller`) over iceoryx2 shared memory.
+    Iceoryx2,
 }
 
 /// Margin on the arm's acceleration and jerk limits for the controllers'
@@ -202,6 +205,9 @@ pub fn run(
     transport: Transport,
     out: Option<&Path>,
 ) -> Result<(), RunError> {
+    if transport == Transport::Iceoryx2 {
+        return crate::transport::run_supervisor::run_both(scenario, controller, out);
+    }
     let s = Scenario::load(scenario)?;
     let choice = match controller {
         Some(text) => text
@@ -223,7 +229,7 @@ pub fn run(
     Ok(())
 }
 
-fn write_results(
+pub(crate) fn write_results(
     s: &Scenario,
     run: &RunOutput,
     transport: Transport,
@@ -282,7 +288,7 @@ fn write_control(path: &Path, samples: &[ControlSample]) -> Result<(), RunError>
     w.flush().map_err(|e| RunError::write(path, e))
 }
 
-fn print_summary(s: &Scenario, run: &RunOutput) {
+pub(crate) fn print_summary(s: &Scenario, run: &RunOutput) {
     let c = &run.summary;
     let o = &run.output;
     println!(
