@@ -181,21 +181,35 @@ fn start_pair(sb: &Sandbox, s: &str, id: &str, out: &Path) -> (Child, Child) {
     (plant, controller)
 }
 
-/// Realtime 1 kHz: the 2 cm cut takes seconds of wall time, time enough to
-/// kill a side mid-run.
-fn realtime_extra(limit: u32) -> String {
-    format!("\n[loop]\nclock = \"realtime\"\nmissed_command_limit = {limit}\n")
+/// Realtime at `rate_hz`, the knife at 2 mm/s: the 2 cm cut takes about
+/// 10 s of wall time, time enough to kill a side mid-run.
+fn realtime_extra(rate_hz: f64, limit: u32) -> String {
+    format!(
+        "\n[loop]\nclock = \"realtime\"\nrate_hz = {rate_hz}\nmissed_command_limit = {limit}\n\n[controller]\nspeed = 0.002\n"
+    )
+}
+
+/// Fails with the child's stderr if it has ended.
+fn assert_running(child: &mut Child, role: &str) {
+    if child.try_wait().unwrap().is_some() {
+        use std::io::Read;
+        let mut err = String::new();
+        if let Some(e) = child.stderr.as_mut() {
+            e.read_to_string(&mut err).ok();
+        }
+        panic!("the {role} ended early: {err}");
+    }
 }
 
 #[test]
 fn killing_the_plant_stops_the_controller_with_a_named_error_and_readable_results() {
     let sb = Sandbox::new("killplant");
     // A high limit: a loaded machine's stalls must not brake the plant first.
-    let s = sb.scenario("long", 0.02, &realtime_extra(100_000));
+    let s = sb.scenario("long", 0.02, &realtime_extra(1000.0, 100_000));
     let out = sb.dir.join("out");
     let (mut plant, controller) = start_pair(&sb, &s, "kp", &out);
     std::thread::sleep(Duration::from_millis(1500));
-    assert!(plant.try_wait().unwrap().is_none(), "the plant ended early");
+    assert_running(&mut plant, "plant");
     plant.kill().unwrap(); // SIGKILL: no cleanup.
     plant.wait().unwrap();
     let o = watchdog(controller, Duration::from_secs(30));
@@ -224,14 +238,13 @@ fn killing_the_plant_stops_the_controller_with_a_named_error_and_readable_result
 #[test]
 fn killing_the_controller_brakes_the_plant_after_the_missed_command_limit() {
     let sb = Sandbox::new("killctl");
-    let s = sb.scenario("long", 0.02, &realtime_extra(20));
+    // 100 Hz: 20 missed commands are 200 ms, longer than a loaded
+    // machine's stalls (at 1 kHz those alone could brake the plant).
+    let s = sb.scenario("long", 0.02, &realtime_extra(100.0, 20));
     let out = sb.dir.join("out");
     let (plant, mut controller) = start_pair(&sb, &s, "kc", &out);
     std::thread::sleep(Duration::from_millis(1500));
-    assert!(
-        controller.try_wait().unwrap().is_none(),
-        "the controller ended early"
-    );
+    assert_running(&mut controller, "controller");
     controller.kill().unwrap();
     controller.wait().unwrap();
     let o = watchdog(plant, Duration::from_secs(30));
@@ -280,7 +293,7 @@ fn two_runs_in_parallel_do_not_interfere() {
 #[test]
 fn a_run_killed_with_sigkill_leaves_nothing_that_blocks_the_next() {
     let sb = Sandbox::new("sigkill");
-    let s = sb.scenario("long", 0.02, &realtime_extra(100_000));
+    let s = sb.scenario("long", 0.02, &realtime_extra(1000.0, 100_000));
     let (mut p, mut c) = start_pair(&sb, &s, "sk", &sb.dir.join("killed"));
     std::thread::sleep(Duration::from_millis(1000));
     p.kill().unwrap();
