@@ -306,3 +306,38 @@ fn a_run_killed_with_sigkill_leaves_nothing_that_blocks_the_next() {
     assert!(c.status.success(), "{}", stderr(&c));
     assert!(p.status.success(), "{}", stderr(&p));
 }
+
+#[test]
+fn sigterm_stops_plant_and_controller_cleanly_with_partial_results() {
+    let sb = Sandbox::new("sigterm");
+    let s = sb.scenario("long", 0.02, &realtime_extra(1000.0, 100_000));
+    let out = sb.dir.join("out");
+    let mut run = sb.spawn(&[
+        "run",
+        &s,
+        "--controller",
+        "slice:0.75",
+        "--transport",
+        "iceoryx2",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    std::thread::sleep(Duration::from_millis(1500));
+    assert_running(&mut run, "run");
+    let sent = Command::new("kill")
+        .args(["-TERM", &run.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(sent.success());
+    let o = watchdog(run, Duration::from_secs(30));
+    let err = stderr(&o);
+    assert!(!o.status.success(), "{err}");
+    assert!(err.contains("termination requested"), "{err}");
+    // Both children stopped by themselves (none needed a SIGKILL).
+    assert!(!err.contains("signal 9"), "{err}");
+    let summary: serde_json::Value =
+        serde_json::from_str(&read(&out.join("summary.json"))).unwrap();
+    let end = summary["end"]["failed"].as_str().unwrap();
+    assert!(end.contains("SIGINT/SIGTERM"), "{end}");
+    assert!(read(&out.join("controller.csv")).lines().count() > 100);
+}

@@ -52,6 +52,9 @@ pub struct Iceoryx2PlantLink {
     round_trips_us: Vec<f64>,
     missed_commands: u32,
     plant: String,
+    /// When to look for a termination request next (they are also checked
+    /// while a round trip waits).
+    next_signal_check: Option<Instant>,
 }
 
 impl Iceoryx2PlantLink {
@@ -100,6 +103,7 @@ impl Iceoryx2PlantLink {
             round_trips_us: Vec::with_capacity(expected_ticks),
             missed_commands: 0,
             plant,
+            next_signal_check: None,
         })
     }
 
@@ -183,6 +187,13 @@ impl Iceoryx2PlantLink {
     #[allow(clippy::disallowed_methods)] // Deadlines and latency statistics, not model time.
     fn round_trip(&mut self, command: WireCommand) -> Result<WireMeasurement, LinkError> {
         let started = Instant::now();
+        // SIGINT/SIGTERM between fast round trips: look every `check_every`.
+        if self.next_signal_check.is_none_or(|t| started >= t) {
+            if self.services.termination_requested() {
+                return Err(self.stopped());
+            }
+            self.next_signal_check = Some(started + self.timeouts.check_every);
+        }
         let pending = self.client.send_copy(command).map_err(|e| {
             LinkError::Lost(format!(
                 "cannot send command {} to the plant '{}': {e:?}",

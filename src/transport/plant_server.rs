@@ -24,8 +24,9 @@ pub struct PlantServerSettings {
     /// Consecutive missed commands after which the plant brakes.
     pub missed_command_limit: u32,
     /// Lockstep only: a command counts as missed after this much silence
-    /// (default 50 ms: the default limit of 20 brakes after 1 s). Realtime
-    /// misses are ticks without a command.
+    /// (default 100 ms: the default limit of 20 brakes after 2 s, so a
+    /// controller's slow tick on a loaded machine does not brake a
+    /// simulation). Realtime misses are ticks without a command.
     pub lockstep_patience: Duration,
     /// Longest wait for the first command.
     pub connect_timeout: Duration,
@@ -35,12 +36,12 @@ pub struct PlantServerSettings {
 
 impl PlantServerSettings {
     /// The settings for `clock` and `missed_command_limit`, with the default
-    /// patience (50 ms), connect timeout (30 s) and blocking waits.
+    /// patience (100 ms), connect timeout (30 s) and blocking waits.
     pub fn new(clock: ClockMode, missed_command_limit: u32) -> Self {
         Self {
             clock,
             missed_command_limit,
-            lockstep_patience: Duration::from_millis(50),
+            lockstep_patience: Duration::from_millis(100),
             connect_timeout: Duration::from_secs(30),
             wait: WaitMode::Blocking,
         }
@@ -142,7 +143,7 @@ pub fn serve_plant(
     // Start of the current window: the last command (lockstep) or the next
     // tick (realtime); None until the first command.
     let mut window_start: Option<Instant> = None;
-    let mut spins = 0u32;
+    let mut signals = SignalCheck::new();
     loop {
         if realtime && let Some(tick) = window_start {
             // Sleep to the tick (node.wait also sees SIGINT/SIGTERM).
@@ -220,7 +221,7 @@ pub fn serve_plant(
                 &listener,
                 settings.wait,
                 Duration::from_millis(5),
-                &mut spins,
+                &mut signals,
             ) {
                 report.end = PlantEnd::Terminated;
                 return Ok(report);
@@ -233,7 +234,7 @@ pub fn serve_plant(
         } else {
             let due = start + window;
             if now < due {
-                if listen(services, &listener, settings.wait, due - now, &mut spins) {
+                if listen(services, &listener, settings.wait, due - now, &mut signals) {
                     report.end = PlantEnd::Terminated;
                     return Ok(report);
                 }
@@ -288,6 +289,32 @@ pub fn serve_plant(
     }
 }
 
+/// Looks for termination requests at most every 5 ms (the look is a
+/// system call).
+struct SignalCheck {
+    next: Instant,
+}
+
+impl SignalCheck {
+    #[allow(clippy::disallowed_methods)] // Pacing of a check, not model time.
+    fn new() -> Self {
+        Self {
+            next: Instant::now(),
+        }
+    }
+
+    /// True when a termination request arrived (looked at if due).
+    #[allow(clippy::disallowed_methods)] // Pacing of a check, not model time.
+    fn terminated(&mut self, services: &LoopServices) -> bool {
+        let now = Instant::now();
+        if now < self.next {
+            return false;
+        }
+        self.next = now + Duration::from_millis(5);
+        services.termination_requested()
+    }
+}
+
 /// Waits for a command notification up to `timeout` (or spins once);
 /// true when a termination request arrived.
 fn listen(
@@ -295,19 +322,15 @@ fn listen(
     listener: &iceoryx2::port::listener::Listener<ipc::Service>,
     wait: WaitMode,
     timeout: Duration,
-    spins: &mut u32,
+    signals: &mut SignalCheck,
 ) -> bool {
     match wait {
         WaitMode::Blocking => {
             let _ = listener.timed_wait(|_| {}, timeout);
-            services.termination_requested()
         }
-        WaitMode::BusyPoll => {
-            *spins = spins.wrapping_add(1);
-            std::hint::spin_loop();
-            spins.is_multiple_of(4096) && services.termination_requested()
-        }
+        WaitMode::BusyPoll => std::hint::spin_loop(),
     }
+    signals.terminated(services)
 }
 
 /// Commands zero velocity; a refused (too abrupt) stop holds the knife.
