@@ -166,4 +166,13 @@ fn main() {
     echo(WaitMode::Blocking, ticks);
     real_plant(WaitMode::BusyPoll);
     real_plant(WaitMode::Blocking);
+    // Each prefix keeps a 16-byte management file by design: remove ours.
+    let mine = format!("scb{}", std::process::id());
+    if let Ok(entries) = std::fs::read_dir("/dev/shm") {
+        for e in entries.flatten() {
+            if e.file_name().to_string_lossy().starts_with(&mine) {
+                std::fs::remove_file(e.path()).ok();
+            }
+        }
+    }
 }
