@@ -94,6 +94,45 @@ pub enum Command {
         #[arg(long, value_name = "FILE")]
         out: Option<PathBuf>,
     },
+    /// The plant process of the arm-style loop: serve the scenario's plant
+    /// over iceoryx2 to the controller of run ID (lockstep or realtime per
+    /// the scenario's `[loop] clock`), braking after `missed_command_limit`
+    /// consecutive missed commands.
+    Plant {
+        /// Scenario TOML file, or the name of a built-in scenario.
+        #[arg(long)]
+        scenario: String,
+        /// The run's id (service names `shearcut/<ID>/...`): letters, digits, '-', '_', '.'.
+        #[arg(long, value_name = "ID")]
+        run_id: String,
+        /// The controller whose nominal direction the plant's sections are
+        /// planned for (default: the scenario's `[controller] kind`).
+        #[arg(long, value_name = "NAME")]
+        controller: Option<String>,
+        /// How to wait for commands.
+        #[arg(long, value_enum, default_value = "blocking")]
+        wait: crate::transport::WaitMode,
+    },
+    /// The controller process of the arm-style loop: drive run ID's plant
+    /// (`shearcut plant` or an arm bridge) over iceoryx2 and write the results.
+    Controller {
+        /// Scenario TOML file, or the name of a built-in scenario.
+        #[arg(long)]
+        scenario: String,
+        /// The run's id (service names `shearcut/<ID>/...`): letters, digits, '-', '_', '.'.
+        #[arg(long, value_name = "ID")]
+        run_id: String,
+        /// The controller: mpc, press, slice:XI or force:N (default: the
+        /// scenario's `[controller] kind`).
+        #[arg(long, value_name = "NAME")]
+        controller: Option<String>,
+        /// How to wait for measurements.
+        #[arg(long, value_enum, default_value = "blocking")]
+        wait: crate::transport::WaitMode,
+        /// Result directory (default: runs/<scenario>-<UTC time>).
+        #[arg(long, value_name = "DIR")]
+        out: Option<PathBuf>,
+    },
     /// Validate a scenario and print its resolved values.
     Check {
         /// Scenario TOML file, or the name of a built-in scenario (fig7-potato, fig7-eggplant).

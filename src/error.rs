@@ -55,6 +55,10 @@ pub enum RunError {
         /// Why.
         message: String,
     },
+    /// The control loop between processes failed (a side lost, braked or
+    /// stopped): exit code 1.
+    #[error("{0}")]
+    Loop(String),
 }
 
 impl RunError {
@@ -62,7 +66,7 @@ impl RunError {
     pub fn exit_code(&self) -> u8 {
         match self {
             RunError::Config(_) => 2,
-            RunError::Write { .. } => 1,
+            RunError::Write { .. } | RunError::Loop(_) => 1,
         }
     }
 

@@ -16,3 +16,4 @@ pub mod run_dir;
 pub mod scenario;
 pub mod surrogates;
 pub mod trajectory_cases;
+pub mod transport;

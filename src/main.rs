@@ -36,6 +36,25 @@ fn main() -> ExitCode {
             knife,
             out,
         }) => commands::fit::run(&material, &knife, out.as_deref()),
+        Some(Command::Plant {
+            scenario,
+            run_id,
+            controller,
+            wait,
+        }) => commands::plant::run(&scenario, &run_id, controller.as_deref(), wait),
+        Some(Command::Controller {
+            scenario,
+            run_id,
+            controller,
+            wait,
+            out,
+        }) => commands::controller::run(
+            &scenario,
+            &run_id,
+            controller.as_deref(),
+            wait,
+            out.as_deref(),
+        ),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

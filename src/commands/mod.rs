@@ -2,8 +2,10 @@
 
 pub mod check;
 pub mod compare;
+pub mod controller;
 pub mod default_job;
 pub mod fit;
+pub mod plant;
 pub mod run;
 pub mod simulate;
 pub mod toughness;

@@ -33,6 +33,9 @@ use crate::surrogates::surrogate_for;
 pub enum Transport {
     /// Plant and controller in one process, stepped in lockstep.
     Inproc,
+    /// Plant and controller in two processes (`shearcut plant`, `shearcut
+    /// controller`) over iceoryx2 shared memory.
+    Iceoryx2,
 }
 
 /// Margin on the arm's acceleration and jerk limits for the controllers'
@@ -181,32 +184,81 @@ pub fn make_plant(
 
 /// Runs the closed loop for a loaded scenario (no files written).
 pub fn run_closed_loop(s: &Scenario, choice: ControllerChoice) -> Result<RunOutput, RunError> {
-    let knife = Knife::new(&s.knife).map_err(|e| invalid(s, e.prefixed("knife")))?;
-    let mesh = s
-        .object
-        .mesh()
-        .map_err(|e| invalid(s, InvalidSetting::new("object", "mesh", e.to_string())))?;
-    let task = cut_task(s, &knife, &mesh);
-    let mut controller = make_controller(s, choice, &task, &mesh)?;
-    let xi = choice.nominal_slice_push_ratio(mpc_start(&task));
-    let plant = make_plant(s, &knife, &mesh, xi)?;
-    let cut = LoopCut {
-        xi_label: xi,
-        z0: s.motion.z0.first().copied().unwrap_or(0.0),
-        start: plant.position(),
-        gap: s.plant.start_gap,
-        target_depth: task.target_depth,
-        max_duration: s.controller.max_duration,
-    };
-    let mut link = InProcessPlant::new(plant, task.period);
+    let setup = LoopSetup::new(s, choice)?;
+    let mut controller = setup.controller(s, choice)?;
+    let plant = setup.plant(s)?;
+    let cut = setup.cut(s, &plant);
+    let mut link = InProcessPlant::new(plant, setup.task.period);
     let output = run_loop(&mut link, controller.as_mut(), &cut);
-    let summary = CutSummary::from_samples(&output.samples, task.target_depth);
+    let summary = CutSummary::from_samples(&output.samples, setup.task.target_depth);
     Ok(RunOutput {
         controller: controller.name().to_string(),
         output,
         summary,
-        target_depth_m: task.target_depth,
+        target_depth_m: setup.task.target_depth,
     })
+}
+
+/// What every closed loop of a scenario is built from, in one place so that
+/// the in-process loop and the two processes of the iceoryx2 loop build the
+/// same plant, controller and labels (their runs must be bit-identical).
+#[derive(Debug, Clone)]
+pub struct LoopSetup {
+    /// The knife.
+    pub knife: Knife,
+    /// The object.
+    pub mesh: TriangleMesh,
+    /// The cut the controller is given.
+    pub task: CutTask,
+    /// The controller's nominal slice-push ratio: the plant plans its
+    /// contact arc for it and the samples carry it as `xi`.
+    pub xi: f64,
+}
+
+impl LoopSetup {
+    /// The setup of `s` under the controller `choice`.
+    pub fn new(s: &Scenario, choice: ControllerChoice) -> Result<Self, RunError> {
+        let knife = Knife::new(&s.knife).map_err(|e| invalid(s, e.prefixed("knife")))?;
+        let mesh = s
+            .object
+            .mesh()
+            .map_err(|e| invalid(s, InvalidSetting::new("object", "mesh", e.to_string())))?;
+        let task = cut_task(s, &knife, &mesh);
+        let xi = choice.nominal_slice_push_ratio(mpc_start(&task));
+        Ok(Self {
+            knife,
+            mesh,
+            task,
+            xi,
+        })
+    }
+
+    /// A fresh plant.
+    pub fn plant(&self, s: &Scenario) -> Result<Plant, RunError> {
+        make_plant(s, &self.knife, &self.mesh, self.xi)
+    }
+
+    /// A fresh controller.
+    pub fn controller(
+        &self,
+        s: &Scenario,
+        choice: ControllerChoice,
+    ) -> Result<Box<dyn Controller>, RunError> {
+        make_controller(s, choice, &self.task, &self.mesh)
+    }
+
+    /// The loop's labels and stop conditions, for the knife's start as
+    /// `plant` has it.
+    pub fn cut(&self, s: &Scenario, plant: &Plant) -> LoopCut {
+        LoopCut {
+            xi_label: self.xi,
+            z0: s.motion.z0.first().copied().unwrap_or(0.0),
+            start: plant.position(),
+            gap: s.plant.start_gap,
+            target_depth: self.task.target_depth,
+            max_duration: s.controller.max_duration,
+        }
+    }
 }
 
 /// Runs the subcommand: load, run, write the results and print a summary.
@@ -216,6 +268,9 @@ pub fn run(
     transport: Transport,
     out: Option<&Path>,
 ) -> Result<(), RunError> {
+    if transport == Transport::Iceoryx2 {
+        return crate::transport::run_supervisor::run_both(scenario, controller, out);
+    }
     let s = Scenario::load(scenario)?;
     let choice = match controller {
         Some(text) => text
@@ -237,7 +292,7 @@ pub fn run(
     Ok(())
 }
 
-fn write_results(
+pub(crate) fn write_results(
     s: &Scenario,
     run: &RunOutput,
     transport: Transport,
@@ -296,7 +351,7 @@ fn write_control(path: &Path, samples: &[ControlSample]) -> Result<(), RunError>
     w.flush().map_err(|e| RunError::write(path, e))
 }
 
-fn print_summary(s: &Scenario, run: &RunOutput) {
+pub(crate) fn print_summary(s: &Scenario, run: &RunOutput) {
     let c = &run.summary;
     let o = &run.output;
     println!(

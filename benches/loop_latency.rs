@@ -1,0 +1,178 @@
+//! Round-trip latency of the loop over iceoryx2 (controller → plant →
+//! controller), in one process with the plant served from a second thread:
+//! 100 000 ticks against an echo plant with busy polling and with blocking
+//! waits, then the real plant (fig7-potato, `slice:0.75`, lockstep) closed by
+//! the real controller, with its real-time factor.
+//!
+//! `cargo bench -p shearcut --bench loop_latency` (add `-- --ticks N` to
+//! change the echo tick count). Timings on a shared VM are noisy: repeat.
+#![allow(clippy::disallowed_methods)] // A benchmark reads the wall clock.
+
+use std::time::{Duration, Instant};
+
+use nalgebra::Vector3;
+use shearcut::closed_loop::{InProcessPlant, LinkError, LoopCut, PlantLink, TickTimes, run_loop};
+use shearcut::commands::run::{cut_task, make_controller, make_plant};
+use shearcut::controller_choice::ControllerChoice;
+use shearcut::scenario::{ClockMode, Scenario};
+use shearcut::transport::{
+    Iceoryx2PlantLink, LinkTimeouts, LoopServices, PlantServerSettings, Role, WaitMode, serve_plant,
+};
+use shearcut_sim::Knife;
+use shearcut_sim::plant::{KnifeCommand, Measurement, PlantStatus, Wrench};
+
+/// A plant that answers each command with it: the transport alone.
+struct Echo {
+    time: f64,
+}
+
+impl PlantLink for Echo {
+    fn period(&self) -> f64 {
+        1e-3
+    }
+
+    fn exchange(&mut self, command: &KnifeCommand) -> Result<Measurement, LinkError> {
+        self.time += 1e-3;
+        Ok(Measurement {
+            time: self.time,
+            position: Vector3::zeros(),
+            velocity: command.velocity,
+            wrench: [0.0; 6],
+            true_wrench: Wrench {
+                force: Vector3::zeros(),
+                torque: Vector3::zeros(),
+            },
+            crack_depth: 0.0,
+            contact_length: 0.0,
+            fractured_sections: 0,
+            work: 0.0,
+            deformation: 0.0,
+            status: PlantStatus::Moving,
+        })
+    }
+}
+
+fn prefix(tag: &str) -> String {
+    format!("scb{}{tag}_", std::process::id())
+}
+
+/// Serves `make_plant()` on run `id` from a thread; returns the thread.
+fn spawn_plant<P: PlantLink + 'static>(
+    id: &'static str,
+    prefix: String,
+    wait: WaitMode,
+    make_plant: impl FnOnce() -> P + Send + 'static,
+) -> std::thread::JoinHandle<()> {
+    std::thread::spawn(move || {
+        let mut plant = make_plant();
+        let services = LoopServices::open(Role::Plant, id, &prefix).expect("plant services");
+        let mut settings = PlantServerSettings::new(ClockMode::Lockstep, 20);
+        settings.wait = wait;
+        serve_plant(&services, &mut plant, &settings).expect("plant serves");
+    })
+}
+
+fn connect(id: &str, prefix: &str, wait: WaitMode, ticks: usize) -> Iceoryx2PlantLink {
+    let services = LoopServices::open(Role::Controller, id, prefix).expect("controller services");
+    let link = Iceoryx2PlantLink::new(services, 1e-3, LinkTimeouts::default(), wait, ticks + 2)
+        .expect("link");
+    link.wait_for_plant().expect("a plant");
+    link
+}
+
+fn report(what: &str, t: &TickTimes, n: usize) {
+    println!(
+        "{what:<44} n = {n:>6}: median {:>8.2} us, p99 {:>8.2} us, max {:>10.2} us",
+        t.median_us, t.p99_us, t.max_us
+    );
+}
+
+fn echo(wait: WaitMode, ticks: usize) {
+    let (id, tag) = match wait {
+        WaitMode::BusyPoll => ("echo-busy", "b"),
+        WaitMode::Blocking => ("echo-block", "w"),
+    };
+    let p = prefix(tag);
+    let server = spawn_plant(id, p.clone(), wait, || Echo { time: 0.0 });
+    let mut link = connect(id, &p, wait, ticks);
+    let command = KnifeCommand {
+        velocity: Vector3::new(0.0, -0.00625, 0.0047),
+    };
+    for _ in 0..ticks {
+        link.exchange(&command).expect("echo answers");
+    }
+    link.finish().expect("echo ends");
+    server.join().unwrap();
+    report(&format!("echo plant, {wait:?}"), &link.round_trips(), ticks);
+}
+
+fn real_plant(wait: WaitMode) {
+    let s = Scenario::load("fig7-potato").unwrap();
+    let choice = ControllerChoice::Slice(0.75);
+    let knife = Knife::new(&s.knife).unwrap();
+    let mesh = s.object.mesh().unwrap();
+    let task = cut_task(&s, &knife, &mesh);
+    let plant = make_plant(&s, &knife, &mesh, 0.75).unwrap();
+    let cut = LoopCut {
+        xi_label: 0.75,
+        z0: s.motion.z0[0],
+        start: plant.position(),
+        gap: s.plant.start_gap,
+        target_depth: task.target_depth,
+        max_duration: s.controller.max_duration,
+    };
+    let mut controller = make_controller(&s, choice, &task).unwrap();
+    let p = prefix(match wait {
+        WaitMode::BusyPoll => "rb",
+        WaitMode::Blocking => "rw",
+    });
+    let period = task.period;
+    let server = spawn_plant("real", p.clone(), wait, move || {
+        InProcessPlant::new(plant, period)
+    });
+    let max_ticks = (cut.max_duration / period) as usize;
+    let mut link = connect("real", &p, wait, max_ticks);
+    let started = Instant::now();
+    let out = run_loop(&mut link, controller.as_mut(), &cut);
+    let wall = started.elapsed();
+    link.finish().expect("plant ends");
+    server.join().unwrap();
+    let simulated = out.ticks as f64 * period;
+    report(
+        &format!("fig7-potato slice:0.75 lockstep, {wait:?}"),
+        &link.round_trips(),
+        out.ticks + 1,
+    );
+    println!(
+        "    end {:?}; {:.3} s simulated in {:.3} s wall: real-time factor {:.2} (simulated/wall)",
+        out.end,
+        simulated,
+        wall.as_secs_f64(),
+        simulated / wall.as_secs_f64().max(1e-9)
+    );
+}
+
+fn main() {
+    let args: Vec<String> = std::env::args().collect();
+    let ticks = args
+        .iter()
+        .position(|a| a == "--ticks")
+        .and_then(|i| args.get(i + 1))
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(100_000);
+    // Give the other benches' processes a moment to leave the cores.
+    std::thread::sleep(Duration::from_millis(100));
+    echo(WaitMode::BusyPoll, ticks);
+    echo(WaitMode::Blocking, ticks);
+    real_plant(WaitMode::BusyPoll);
+    real_plant(WaitMode::Blocking);
+    // Each prefix keeps a 16-byte management file by design: remove ours.
+    let mine = format!("scb{}", std::process::id());
+    if let Ok(entries) = std::fs::read_dir("/dev/shm") {
+        for e in entries.flatten() {
+            if e.file_name().to_string_lossy().starts_with(&mine) {
+                std::fs::remove_file(e.path()).ok();
+            }
+        }
+    }
+}

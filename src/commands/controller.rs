@@ -1,0 +1,145 @@
+//! `shearcut controller`: the controller process of the arm-style loop. It
+//! drives a plant served over iceoryx2 (`shearcut plant`, or an arm bridge
+//! speaking the wire format) tick by tick, then writes the same results as
+//! the in-process `shearcut run`, plus the loop's statistics.
+
+use std::path::Path;
+
+use serde::Serialize;
+
+use crate::closed_loop::{LoopEnd, TickTimes, run_loop};
+use crate::commands::run::{LoopSetup, RunOutput, Transport, print_summary, write_results};
+use crate::controller_choice::ControllerChoice;
+use crate::cut_record::{CutSummary, write_json};
+use crate::error::{ConfigError, RunError};
+use crate::run_dir;
+use crate::scenario::{ClockMode, Scenario};
+use crate::transport::loop_services::prefix;
+use crate::transport::{Iceoryx2PlantLink, LinkTimeouts, LoopServices, Role, WaitMode};
+
+/// `loop_stats.json`: how the link between the processes behaved.
+#[derive(Debug, Serialize)]
+struct LoopStats<'a> {
+    run_id: &'a str,
+    plant: &'a str,
+    clock: ClockMode,
+    wait: &'a str,
+    /// Wall-clock command → measurement round trips.
+    round_trip: TickTimes,
+    /// Commands the plant reported missed (realtime clock).
+    missed_commands: u32,
+    /// Commands the arm refused for breaking a limit.
+    limit_faults: usize,
+    end: &'a LoopEnd,
+}
+
+/// The controller choice named on the command line, or the scenario's.
+pub fn controller_choice(s: &Scenario, text: Option<&str>) -> Result<ControllerChoice, RunError> {
+    match text {
+        Some(text) => text
+            .parse::<ControllerChoice>()
+            .map_err(|e| RunError::Config(ConfigError::Argument(e.prefixed("-")))),
+        None => Ok(s.controller.kind),
+    }
+}
+
+/// The link's timeouts for a scenario: lockstep waits up to 5 s for an
+/// answer (a plant may rebuild a section); realtime up to the braking time
+/// (missed-command limit × period) plus 1 s.
+pub fn link_timeouts(s: &Scenario) -> LinkTimeouts {
+    let mut t = LinkTimeouts::default();
+    if s.control_loop.clock == ClockMode::Realtime {
+        t.response = std::time::Duration::from_secs_f64(
+            1.0 + f64::from(s.control_loop.missed_command_limit) / s.control_loop.rate_hz,
+        );
+    }
+    t
+}
+
+/// Runs the controller process: connect to run `run_id`'s plant, close the
+/// loop, write the results to `out` (default `runs/<scenario>-<time>/`).
+///
+/// # Errors
+/// Bad input; the plant is lost, braked or failed (partial results are
+/// written first); writing failed.
+pub fn run(
+    scenario: &str,
+    run_id: &str,
+    controller: Option<&str>,
+    wait: WaitMode,
+    out: Option<&Path>,
+) -> Result<(), RunError> {
+    let s = Scenario::load(scenario)?;
+    let choice = controller_choice(&s, controller)?;
+    let setup = LoopSetup::new(&s, choice)?;
+    let task = setup.task;
+    let mut ctl = setup.controller(&s, choice)?;
+    // The knife's start, as the plant process builds it (same scenario and
+    // direction), labels the samples exactly as the in-process loop does.
+    let cut = setup.cut(&s, &setup.plant(&s)?);
+    let services = LoopServices::open(Role::Controller, run_id, &prefix())
+        .map_err(|e| RunError::Loop(format!("controller/{run_id}: {e}")))?;
+    let max_ticks = (cut.max_duration / task.period).ceil() as usize + 2;
+    let mut link = Iceoryx2PlantLink::new(
+        services,
+        task.period,
+        link_timeouts(&s),
+        wait,
+        max_ticks.min(1 << 22),
+    )
+    .map_err(|e| RunError::Loop(e.to_string()))?;
+    link.wait_for_plant()
+        .map_err(|e| RunError::Loop(e.to_string()))?;
+    let output = run_loop(&mut link, ctl.as_mut(), &cut);
+    if !matches!(output.end, LoopEnd::Failed(_))
+        && let Err(e) = link.finish()
+    {
+        tracing::warn!("{e}");
+    }
+    let summary = CutSummary::from_samples(&output.samples, task.target_depth);
+    let run = RunOutput {
+        controller: ctl.name().to_string(),
+        output,
+        summary,
+        target_depth_m: task.target_depth,
+    };
+    let dir = run_dir::create(&s.name, out)?;
+    write_results(&s, &run, Transport::Iceoryx2, &dir)?;
+    let round_trip = link.round_trips();
+    write_json(
+        &dir.join("loop_stats.json"),
+        &LoopStats {
+            run_id,
+            plant: link.plant_name(),
+            clock: s.control_loop.clock,
+            wait: match wait {
+                WaitMode::Blocking => "blocking",
+                WaitMode::BusyPoll => "busy-poll",
+            },
+            round_trip,
+            missed_commands: link.missed_commands(),
+            limit_faults: run.output.limit_faults,
+            end: &run.output.end,
+        },
+    )?;
+    print_summary(&s, &run);
+    println!(
+        "loop over iceoryx2 (run {run_id}, {:?} clock): round trip median {:.1} us, p99 {:.1} us, max {:.1} us; missed commands {}",
+        s.control_loop.clock,
+        round_trip.median_us,
+        round_trip.p99_us,
+        round_trip.max_us,
+        link.missed_commands()
+    );
+    println!(
+        "results: {}/ (timeseries.csv, controller.csv, summary.json, loop_stats.json, scenario.toml, forces_work.svg/.png, controller.svg/.png)",
+        dir.display()
+    );
+    if let LoopEnd::Failed(why) = &run.output.end {
+        return Err(RunError::Loop(format!(
+            "the run was aborted: {why} (partial results in {}/)",
+            dir.display()
+        )));
+    }
+    Ok(())
+}

@@ -1,0 +1,64 @@
+//! `shearcut plant`: the plant process of the arm-style loop. It builds the
+//! scenario's plant and serves it over iceoryx2 to one controller
+//! (`shearcut controller`) until the run ends, the plant brakes after too
+//! many missed commands, or SIGINT/SIGTERM.
+
+use crate::closed_loop::InProcessPlant;
+use crate::commands::controller::controller_choice;
+use crate::commands::run::LoopSetup;
+use crate::error::RunError;
+use crate::scenario::Scenario;
+use crate::transport::loop_services::{node_name, prefix};
+use crate::transport::{LoopServices, PlantEnd, PlantServerSettings, Role, WaitMode, serve_plant};
+
+/// Runs the plant process for run `run_id`. `controller` names the
+/// controller whose nominal direction the plant's sections are planned for
+/// (assumption A2; default: the scenario's).
+///
+/// # Errors
+/// Bad input; the plant braked, failed, saw no controller or was stopped.
+pub fn run(
+    scenario: &str,
+    run_id: &str,
+    controller: Option<&str>,
+    wait: WaitMode,
+) -> Result<(), RunError> {
+    let s = Scenario::load(scenario)?;
+    let choice = controller_choice(&s, controller)?;
+    let setup = LoopSetup::new(&s, choice)?;
+    let task = setup.task;
+    let plant = setup.plant(&s)?;
+    let mut link = InProcessPlant::new(plant, task.period);
+    let name = node_name(Role::Plant, run_id);
+    let services = LoopServices::open(Role::Plant, run_id, &prefix())
+        .map_err(|e| RunError::Loop(format!("{name}: {e}")))?;
+    let mut settings =
+        PlantServerSettings::new(s.control_loop.clock, s.control_loop.missed_command_limit);
+    settings.wait = wait;
+    let report = serve_plant(&services, &mut link, &settings)
+        .map_err(|e| RunError::Loop(format!("{name}: {e}")))?;
+    let counts = format!(
+        "{} commands answered, {} steps, {} missed commands (longest run {})",
+        report.commands, report.steps, report.missed_commands, report.max_consecutive_missed
+    );
+    match report.end {
+        PlantEnd::Ended => {
+            eprintln!("{name}: the controller ended the run; {counts}");
+            Ok(())
+        }
+        PlantEnd::Braked(n) => Err(RunError::Loop(format!(
+            "{name}: braked after {n} consecutive missed commands (missed_command_limit = {}); {counts}",
+            s.control_loop.missed_command_limit
+        ))),
+        PlantEnd::ModelFailed(why) => Err(RunError::Loop(format!(
+            "{name}: the plant model failed: {why}; {counts}"
+        ))),
+        PlantEnd::NoController => Err(RunError::Loop(format!(
+            "{name}: no controller sent a command within {:?}",
+            settings.connect_timeout
+        ))),
+        PlantEnd::Terminated => Err(RunError::Loop(format!(
+            "{name}: stopped by SIGINT/SIGTERM; {counts}"
+        ))),
+    }
+}

@@ -1,0 +1,272 @@
+//! The controller's end of the loop over iceoryx2: a [`PlantLink`] whose
+//! plant runs in another process (`shearcut plant`, or an arm bridge).
+
+use std::time::{Duration, Instant};
+
+use iceoryx2::port::{client::Client, listener::Listener, notifier::Notifier};
+use iceoryx2::prelude::*;
+use shearcut_sim::plant::{KnifeCommand, Measurement};
+
+use super::loop_services::{LoopServices, PeerState, Role, node_name};
+use super::wait_mode::WaitMode;
+use super::wire::{WireCommand, WireError, WireMeasurement};
+use crate::closed_loop::{LinkError, PlantLink, TickTimes};
+
+/// How long the controller waits for the plant.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LinkTimeouts {
+    /// Longest wait for a plant to serve the run before the first command.
+    pub connect: Duration,
+    /// Longest wait for the answer to one command.
+    pub response: Duration,
+    /// How often, while waiting, the plant's liveness (iceoryx2 dead-node
+    /// detection) and termination requests are checked.
+    pub check_every: Duration,
+}
+
+impl Default for LinkTimeouts {
+    /// Connect 30 s, response 5 s (a lockstep plant may rebuild a section),
+    /// checks every 5 ms.
+    fn default() -> Self {
+        Self {
+            connect: Duration::from_secs(30),
+            response: Duration::from_secs(5),
+            check_every: Duration::from_millis(5),
+        }
+    }
+}
+
+/// A plant in another process, reached over iceoryx2 shared memory: one
+/// request (command) and one response (measurement) per servo tick.
+#[derive(Debug)]
+pub struct Iceoryx2PlantLink {
+    services: LoopServices,
+    client: Client<ipc::Service, WireCommand, (), WireMeasurement, ()>,
+    notifier: Notifier<ipc::Service>,
+    listener: Listener<ipc::Service>,
+    period: f64,
+    sequence: u64,
+    last_time: f64,
+    timeouts: LinkTimeouts,
+    wait: WaitMode,
+    round_trips_us: Vec<f64>,
+    missed_commands: u32,
+    plant: String,
+    /// When to look for a termination request next (they are also checked
+    /// while a round trip waits).
+    next_signal_check: Option<Instant>,
+}
+
+impl Iceoryx2PlantLink {
+    /// The controller's ports on `services`, for a plant stepped every
+    /// `period` seconds; room for `expected_ticks` latency records before
+    /// the record grows.
+    ///
+    /// # Errors
+    /// iceoryx2 refused to create a port.
+    pub fn new(
+        services: LoopServices,
+        period: f64,
+        timeouts: LinkTimeouts,
+        wait: WaitMode,
+        expected_ticks: usize,
+    ) -> Result<Self, LinkError> {
+        let lost = |what: &str, e: &dyn std::fmt::Debug| {
+            LinkError::Lost(format!("cannot create the controller's {what}: {e:?}"))
+        };
+        let client = services
+            .exchange
+            .client_builder()
+            .create()
+            .map_err(|e| lost("client", &e))?;
+        let notifier = services
+            .command_ready
+            .notifier_builder()
+            .create()
+            .map_err(|e| lost("notifier", &e))?;
+        let listener = services
+            .measurement_ready
+            .listener_builder()
+            .create()
+            .map_err(|e| lost("listener", &e))?;
+        let plant = node_name(Role::Plant, &services.run_id);
+        Ok(Self {
+            services,
+            client,
+            notifier,
+            listener,
+            period,
+            sequence: 0,
+            last_time: 0.0,
+            timeouts,
+            wait,
+            round_trips_us: Vec::with_capacity(expected_ticks),
+            missed_commands: 0,
+            plant,
+            next_signal_check: None,
+        })
+    }
+
+    /// Waits until a plant serves the run.
+    ///
+    /// # Errors
+    /// No plant within the connect timeout, or a termination request.
+    #[allow(clippy::disallowed_methods)] // Timeouts, not model time.
+    pub fn wait_for_plant(&self) -> Result<(), LinkError> {
+        let started = Instant::now();
+        while self.services.exchange.dynamic_config().number_of_servers() == 0 {
+            if self.services.node.wait(Duration::from_millis(1)).is_err() {
+                return Err(self.stopped());
+            }
+            if started.elapsed() > self.timeouts.connect {
+                return Err(LinkError::Lost(format!(
+                    "no plant '{}' served the run within {:?}",
+                    self.plant, self.timeouts.connect
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    /// Wall-clock round trips (command sent → measurement received) so far.
+    pub fn round_trips(&self) -> TickTimes {
+        TickTimes::from_durations(&mut self.round_trips_us.clone())
+    }
+
+    /// Commands the plant reported missed (realtime clock) so far.
+    pub fn missed_commands(&self) -> u32 {
+        self.missed_commands
+    }
+
+    /// The plant's node name (`plant/<run-id>`).
+    pub fn plant_name(&self) -> &str {
+        &self.plant
+    }
+
+    /// Tells the plant the run is over and waits for its acknowledgement.
+    ///
+    /// # Errors
+    /// The plant did not acknowledge.
+    pub fn finish(&mut self) -> Result<(), LinkError> {
+        let command = WireCommand::end_of_run(self.sequence, self.last_time);
+        match self.round_trip(command)?.measurement() {
+            Err(WireError::Ended) => Ok(()),
+            other => Err(LinkError::Lost(format!(
+                "the plant '{}' did not acknowledge the end of the run: {other:?}",
+                self.plant
+            ))),
+        }
+    }
+
+    fn stopped(&self) -> LinkError {
+        LinkError::Lost(format!(
+            "stopped by SIGINT/SIGTERM while waiting for the plant '{}'",
+            self.plant
+        ))
+    }
+
+    /// Why the plant has not answered, if it is gone.
+    fn check_plant(&self) -> Result<(), LinkError> {
+        if self.services.termination_requested() {
+            return Err(self.stopped());
+        }
+        match self.services.peer_state(Role::Plant) {
+            PeerState::Alive => Ok(()),
+            PeerState::Dead => Err(LinkError::Lost(format!(
+                "the plant '{}' died (iceoryx2 dead-node detection)",
+                self.plant
+            ))),
+            PeerState::Absent => Err(LinkError::Lost(format!(
+                "the plant '{}' is gone",
+                self.plant
+            ))),
+        }
+    }
+
+    /// Sends `command` and waits for its answer.
+    #[allow(clippy::disallowed_methods)] // Deadlines and latency statistics, not model time.
+    fn round_trip(&mut self, command: WireCommand) -> Result<WireMeasurement, LinkError> {
+        let started = Instant::now();
+        // SIGINT/SIGTERM between fast round trips: look every `check_every`.
+        if self.next_signal_check.is_none_or(|t| started >= t) {
+            if self.services.termination_requested() {
+                return Err(self.stopped());
+            }
+            self.next_signal_check = Some(started + self.timeouts.check_every);
+        }
+        let pending = self.client.send_copy(command).map_err(|e| {
+            LinkError::Lost(format!(
+                "cannot send command {} to the plant '{}': {e:?}",
+                command.sequence, self.plant
+            ))
+        })?;
+        if self.wait == WaitMode::Blocking {
+            let _ = self.notifier.notify();
+        }
+        let mut next_check = self.timeouts.check_every;
+        let mut spins = 0u32;
+        loop {
+            let answer = pending.receive().map_err(|e| {
+                LinkError::Lost(format!(
+                    "cannot receive from the plant '{}': {e:?}",
+                    self.plant
+                ))
+            })?;
+            if let Some(answer) = answer {
+                let m = *answer.payload();
+                self.round_trips_us
+                    .push(started.elapsed().as_secs_f64() * 1e6);
+                if m.sequence != command.sequence {
+                    return Err(LinkError::Lost(format!(
+                        "the plant '{}' answered command {} with measurement {}",
+                        self.plant, command.sequence, m.sequence
+                    )));
+                }
+                return Ok(m);
+            }
+            match self.wait {
+                WaitMode::Blocking => {
+                    let slice = next_check.saturating_sub(started.elapsed());
+                    let _ = self.listener.timed_wait(|_| {}, slice);
+                }
+                WaitMode::BusyPoll => {
+                    spins = spins.wrapping_add(1);
+                    if !spins.is_multiple_of(1024) {
+                        std::hint::spin_loop();
+                        continue;
+                    }
+                }
+            }
+            let elapsed = started.elapsed();
+            if elapsed >= next_check {
+                self.check_plant()?;
+                next_check = elapsed + self.timeouts.check_every;
+                if elapsed > self.timeouts.response {
+                    return Err(LinkError::Lost(format!(
+                        "the plant '{}' did not answer command {} within {:?}",
+                        self.plant, command.sequence, self.timeouts.response
+                    )));
+                }
+            }
+        }
+    }
+}
+
+impl PlantLink for Iceoryx2PlantLink {
+    fn period(&self) -> f64 {
+        self.period
+    }
+
+    fn exchange(&mut self, command: &KnifeCommand) -> Result<Measurement, LinkError> {
+        let wire = WireCommand::new(self.sequence, self.last_time, command);
+        let answer = self.round_trip(wire)?;
+        self.missed_commands = answer.missed_commands;
+        let m = answer.measurement().map_err(|e| match e {
+            WireError::ModelFailed => LinkError::Model(format!("in the plant '{}'", self.plant)),
+            e => LinkError::Lost(format!("the plant '{}': {e}", self.plant)),
+        })?;
+        self.sequence += 1;
+        self.last_time = m.time;
+        Ok(m)
+    }
+}

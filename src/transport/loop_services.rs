@@ -1,0 +1,212 @@
+//! The iceoryx2 services of one run: a request-response service carrying
+//! commands and measurements, and two event services waking the side that
+//! waits (`shearcut/<run-id>/loop`, `…/command-ready`, `…/measurement-ready`).
+//! All live under one iceoryx2 prefix (default [`DEFAULT_PREFIX`], or the
+//! environment's [`PREFIX_ENV`]): the next node created under the prefix
+//! cleans what killed processes left behind, and the run id in the names
+//! keeps concurrent runs apart.
+
+use std::time::Duration;
+
+use iceoryx2::node::NodeView;
+use iceoryx2::prelude::*;
+use iceoryx2::service::port_factory::{event, request_response};
+
+use super::wire::{WireCommand, WireMeasurement};
+
+/// The iceoryx2 prefix of every shearcut run (files under `/dev/shm` and
+/// `/tmp/iceoryx2` start with it).
+pub const DEFAULT_PREFIX: &str = "shearcut_";
+
+/// Environment variable overriding [`DEFAULT_PREFIX`] (tests isolate
+/// themselves with a unique one).
+pub const PREFIX_ENV: &str = "SHEARCUT_IPC_PREFIX";
+
+/// The request-response service of a run.
+pub type LoopService =
+    request_response::PortFactory<ipc::Service, WireCommand, (), WireMeasurement, ()>;
+
+/// Why the services could not be set up.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum ServiceError {
+    /// The run id is not usable in service and node names.
+    #[error(
+        "run id {0:?} is not allowed: use 1 to 64 characters among letters, digits, '-', '_' and '.'"
+    )]
+    RunId(String),
+    /// The prefix is not a valid file name start.
+    #[error(
+        "iceoryx2 prefix {0:?} (from {PREFIX_ENV} or the default) is not allowed: use 1 to 32 characters among letters, digits, '-', '_' and '.'"
+    )]
+    Prefix(String),
+    /// iceoryx2 refused.
+    #[error("iceoryx2: {0}")]
+    Iceoryx(String),
+}
+
+fn iceoryx(context: &str, e: impl std::fmt::Debug) -> ServiceError {
+    ServiceError::Iceoryx(format!("{context}: {e:?}"))
+}
+
+fn is_name(s: &str, max: usize) -> bool {
+    !s.is_empty()
+        && s.len() <= max
+        && s.chars()
+            .all(|c| c.is_ascii_alphanumeric() || matches!(c, '-' | '_' | '.'))
+}
+
+/// Which side of the loop a process is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Role {
+    /// The plant (or an arm bridge): answers commands.
+    Plant,
+    /// The controller: sends commands.
+    Controller,
+}
+
+impl Role {
+    fn as_str(self) -> &'static str {
+        match self {
+            Role::Plant => "plant",
+            Role::Controller => "controller",
+        }
+    }
+}
+
+/// The node name of `role` in run `run_id` (`plant/<run-id>`).
+pub fn node_name(role: Role, run_id: &str) -> String {
+    format!("{}/{run_id}", role.as_str())
+}
+
+/// The prefix in force: the environment's [`PREFIX_ENV`] or [`DEFAULT_PREFIX`].
+pub fn prefix() -> String {
+    std::env::var(PREFIX_ENV).unwrap_or_else(|_| DEFAULT_PREFIX.to_string())
+}
+
+/// The iceoryx2 configuration of `prefix`.
+///
+/// # Errors
+/// The prefix is not allowed.
+pub fn config(prefix: &str) -> Result<Config, ServiceError> {
+    if !is_name(prefix, 32) {
+        return Err(ServiceError::Prefix(prefix.to_string()));
+    }
+    let mut cfg = Config::default();
+    cfg.global.prefix =
+        FileName::new(prefix.as_bytes()).map_err(|_| ServiceError::Prefix(prefix.to_string()))?;
+    Ok(cfg)
+}
+
+/// One process's node and the run's services.
+#[derive(Debug)]
+pub struct LoopServices {
+    /// The process's node (`plant/<run-id>` or `controller/<run-id>`).
+    pub node: Node<ipc::Service>,
+    /// Commands and measurements.
+    pub exchange: LoopService,
+    /// Notifications "a command is waiting" (controller → plant).
+    pub command_ready: event::PortFactory<ipc::Service>,
+    /// Notifications "a measurement is waiting" (plant → controller).
+    pub measurement_ready: event::PortFactory<ipc::Service>,
+    /// The run id.
+    pub run_id: String,
+    /// The configuration (prefix) in force.
+    pub config: Config,
+}
+
+impl LoopServices {
+    /// Creates `role`'s node for run `run_id` under `prefix` (cleaning the
+    /// resources of dead nodes under that prefix) and opens or creates the
+    /// run's services.
+    ///
+    /// # Errors
+    /// The run id or prefix is not allowed, or iceoryx2 refused.
+    pub fn open(role: Role, run_id: &str, prefix: &str) -> Result<Self, ServiceError> {
+        if !is_name(run_id, 64) {
+            return Err(ServiceError::RunId(run_id.to_string()));
+        }
+        let config = config(prefix)?;
+        let name = NodeName::new(&node_name(role, run_id)).map_err(|e| iceoryx("node name", e))?;
+        let node = NodeBuilder::new()
+            .name(&name)
+            .config(&config)
+            .create::<ipc::Service>()
+            .map_err(|e| iceoryx("node", e))?;
+        // Stale resources of killed processes under this prefix; the node
+        // creation already tried, this waits for a concurrent cleaner.
+        let _ = node.blocking_cleanup_dead_nodes(Duration::from_millis(100));
+        let service_name = |what: &str| {
+            ServiceName::new(&format!("shearcut/{run_id}/{what}"))
+                .map_err(|e| iceoryx("service name", e))
+        };
+        let exchange = node
+            .service_builder(&service_name("loop")?)
+            .request_response::<WireCommand, WireMeasurement>()
+            .open_or_create()
+            .map_err(|e| iceoryx("loop service", e))?;
+        let command_ready = node
+            .service_builder(&service_name("command-ready")?)
+            .event()
+            .open_or_create()
+            .map_err(|e| iceoryx("command-ready service", e))?;
+        let measurement_ready = node
+            .service_builder(&service_name("measurement-ready")?)
+            .event()
+            .open_or_create()
+            .map_err(|e| iceoryx("measurement-ready service", e))?;
+        Ok(Self {
+            node,
+            exchange,
+            command_ready,
+            measurement_ready,
+            run_id: run_id.to_string(),
+            config,
+        })
+    }
+
+    /// Whether a termination request (SIGINT/SIGTERM) has arrived.
+    pub fn termination_requested(&self) -> bool {
+        self.node.wait(Duration::ZERO).is_err()
+    }
+
+    /// The state of `role`'s node in this run: alive, dead (its process died
+    /// without cleaning up) or absent.
+    pub fn peer_state(&self, role: Role) -> PeerState {
+        let wanted = node_name(role, &self.run_id);
+        let mut state = PeerState::Absent;
+        let _ = Node::<ipc::Service>::list(&self.config, |n| {
+            let (details, alive) = match &n {
+                NodeState::Alive(v) => (v.details().clone(), true),
+                NodeState::Dead(v) => (v.details().clone(), false),
+                _ => return CallbackProgression::Continue,
+            };
+            match details {
+                Some(d) if d.name().as_str() == wanted => {
+                    state = if alive {
+                        PeerState::Alive
+                    } else {
+                        PeerState::Dead
+                    };
+                    if alive {
+                        CallbackProgression::Stop
+                    } else {
+                        CallbackProgression::Continue
+                    }
+                }
+                _ => CallbackProgression::Continue,
+            }
+        });
+        state
+    }
+}
+
+/// What iceoryx2's node list says about the other side.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PeerState {
+    /// Its process runs.
+    Alive,
+    /// Its process died without cleaning up (iceoryx2 dead-node detection).
+    Dead,
+    /// No such node.
+    Absent,
+}

@@ -1,0 +1,362 @@
+//! The plant's end of the loop over iceoryx2: owns the plant, answers each
+//! command with one measurement, and behaves like an arm's servo loop:
+//! lockstep (one step per command) or realtime (paced by the wall clock,
+//! missed commands counted), braking after too many consecutive missed
+//! commands.
+
+use std::time::{Duration, Instant};
+
+use iceoryx2::prelude::*;
+use serde::Serialize;
+use shearcut_sim::plant::{KnifeCommand, Measurement, PlantStatus};
+
+use super::loop_services::{LoopServices, ServiceError};
+use super::wait_mode::WaitMode;
+use super::wire::{WireCommand, WireFault, WireMeasurement, WireStatus};
+use crate::closed_loop::PlantLink;
+use crate::scenario::ClockMode;
+
+/// How the plant serves.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlantServerSettings {
+    /// Lockstep or realtime.
+    pub clock: ClockMode,
+    /// Consecutive missed commands after which the plant brakes.
+    pub missed_command_limit: u32,
+    /// Lockstep only: a command counts as missed after this much silence
+    /// (default 100 ms: the default limit of 20 brakes after 2 s, so a
+    /// controller's slow tick on a loaded machine does not brake a
+    /// simulation). Realtime misses are ticks without a command.
+    pub lockstep_patience: Duration,
+    /// Longest wait for the first command.
+    pub connect_timeout: Duration,
+    /// How to wait for commands.
+    pub wait: WaitMode,
+}
+
+impl PlantServerSettings {
+    /// The settings for `clock` and `missed_command_limit`, with the default
+    /// patience (100 ms), connect timeout (30 s) and blocking waits.
+    pub fn new(clock: ClockMode, missed_command_limit: u32) -> Self {
+        Self {
+            clock,
+            missed_command_limit,
+            lockstep_patience: Duration::from_millis(100),
+            connect_timeout: Duration::from_secs(30),
+            wait: WaitMode::Blocking,
+        }
+    }
+}
+
+/// Why the plant stopped serving.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum PlantEnd {
+    /// The controller ended the run.
+    Ended,
+    /// Braked after this many consecutive missed commands.
+    Braked(u32),
+    /// The plant's model failed.
+    ModelFailed(String),
+    /// No controller sent a first command in time.
+    NoController,
+    /// SIGINT or SIGTERM.
+    Terminated,
+}
+
+/// What a plant's serving produced.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PlantReport {
+    /// Why it stopped.
+    pub end: PlantEnd,
+    /// Commands answered.
+    pub commands: u64,
+    /// Ticks the plant advanced (commands answered plus realtime ticks
+    /// stepped without a command, plus the braking step).
+    pub steps: u64,
+    /// Commands missed in total.
+    pub missed_commands: u32,
+    /// Longest run of consecutive missed commands.
+    pub max_consecutive_missed: u32,
+}
+
+fn iceoryx(context: &str, e: impl std::fmt::Debug) -> ServiceError {
+    ServiceError::Iceoryx(format!("{context}: {e:?}"))
+}
+
+/// Serves `plant` (any [`PlantLink`], e.g. an
+/// [`InProcessPlant`](crate::closed_loop::InProcessPlant)) on `services`
+/// until the controller ends the run, the plant brakes or fails, or a
+/// termination request arrives.
+///
+/// Lockstep: each command is stepped as soon as it arrives; silence longer
+/// than the patience counts as a missed command. Realtime: the plant steps
+/// every period by the wall clock with the command that arrived since the
+/// last tick, or, missing one, with the last command (the arm keeps its
+/// motion). After `missed_command_limit` consecutive misses the plant
+/// commands zero velocity (the arm-limit monitor holds the knife if that
+/// stop is too abrupt), answers any further command with
+/// [`WireStatus::Braked`] and stops.
+///
+/// # Errors
+/// iceoryx2 refused to create a port or to send.
+#[allow(clippy::disallowed_methods)] // Pacing and deadlines, not model time.
+pub fn serve_plant(
+    services: &LoopServices,
+    plant: &mut dyn PlantLink,
+    settings: &PlantServerSettings,
+) -> Result<PlantReport, ServiceError> {
+    let server = services
+        .exchange
+        .server_builder()
+        .create()
+        .map_err(|e| iceoryx("server", e))?;
+    let listener = services
+        .command_ready
+        .listener_builder()
+        .create()
+        .map_err(|e| iceoryx("listener", e))?;
+    let notifier = services
+        .measurement_ready
+        .notifier_builder()
+        .create()
+        .map_err(|e| iceoryx("notifier", e))?;
+    let period = plant.period();
+    let realtime = settings.clock == ClockMode::Realtime;
+    let window = if realtime {
+        Duration::from_secs_f64(period)
+    } else {
+        settings.lockstep_patience
+    };
+    let mut report = PlantReport {
+        end: PlantEnd::Terminated,
+        commands: 0,
+        steps: 0,
+        missed_commands: 0,
+        max_consecutive_missed: 0,
+    };
+    let mut consecutive = 0u32;
+    let mut last_command = KnifeCommand::default();
+    let mut last: Option<Measurement> = None;
+    let mut last_sequence = 0u64;
+    let started = Instant::now();
+    // Start of the current window: the last command (lockstep) or the next
+    // tick (realtime); None until the first command.
+    let mut window_start: Option<Instant> = None;
+    let mut signals = SignalCheck::new();
+    loop {
+        if realtime && let Some(tick) = window_start {
+            // Sleep to the tick (node.wait also sees SIGINT/SIGTERM).
+            let now = Instant::now();
+            if tick > now && services.node.wait(tick - now).is_err() {
+                report.end = PlantEnd::Terminated;
+                return Ok(report);
+            }
+        }
+        let request = server.receive().map_err(|e| iceoryx("receive", e))?;
+        if let Some(request) = request {
+            let command: WireCommand = *request.payload();
+            consecutive = 0;
+            last_sequence = command.sequence;
+            let answer = |w: WireMeasurement| -> Result<(), ServiceError> {
+                request.send_copy(w).map_err(|e| iceoryx("send", e))?;
+                if settings.wait == WaitMode::Blocking {
+                    let _ = notifier.notify();
+                }
+                Ok(())
+            };
+            if command.is_end_of_run() {
+                let m = last.unwrap_or_else(rest_measurement);
+                answer(
+                    WireMeasurement::new(command.sequence, &m, report.missed_commands).stopped(
+                        WireStatus::Ended,
+                        WireFault::None,
+                        0.0,
+                    ),
+                )?;
+                report.end = PlantEnd::Ended;
+                return Ok(report);
+            }
+            last_command = command.knife_command();
+            match plant.exchange(&last_command) {
+                Ok(m) => {
+                    answer(WireMeasurement::new(
+                        command.sequence,
+                        &m,
+                        report.missed_commands,
+                    ))?;
+                    last = Some(m);
+                }
+                Err(e) => {
+                    let m = last.unwrap_or_else(rest_measurement);
+                    answer(
+                        WireMeasurement::new(command.sequence, &m, report.missed_commands).stopped(
+                            WireStatus::ModelFailed,
+                            WireFault::None,
+                            0.0,
+                        ),
+                    )?;
+                    report.end = PlantEnd::ModelFailed(e.to_string());
+                    return Ok(report);
+                }
+            }
+            report.commands += 1;
+            report.steps += 1;
+            window_start = Some(match window_start {
+                Some(t) if realtime => t + window,
+                _ => Instant::now() + if realtime { window } else { Duration::ZERO },
+            });
+            continue;
+        }
+        // No command waiting.
+        let now = Instant::now();
+        let Some(start) = window_start else {
+            // Before the first command: wait for a controller.
+            if now - started > settings.connect_timeout {
+                report.end = PlantEnd::NoController;
+                return Ok(report);
+            }
+            if listen(
+                services,
+                &listener,
+                settings.wait,
+                Duration::from_millis(5),
+                &mut signals,
+            ) {
+                report.end = PlantEnd::Terminated;
+                return Ok(report);
+            }
+            continue;
+        };
+        let missed = if realtime {
+            // At the tick without a command: the arm keeps its last command.
+            true
+        } else {
+            let due = start + window;
+            if now < due {
+                if listen(services, &listener, settings.wait, due - now, &mut signals) {
+                    report.end = PlantEnd::Terminated;
+                    return Ok(report);
+                }
+                false
+            } else {
+                true
+            }
+        };
+        if !missed {
+            continue;
+        }
+        consecutive += 1;
+        report.missed_commands += 1;
+        report.max_consecutive_missed = report.max_consecutive_missed.max(consecutive);
+        window_start = Some(start + window);
+        if consecutive >= settings.missed_command_limit {
+            brake(plant, &mut report, &mut last);
+            report.end = PlantEnd::Braked(consecutive);
+            let m = last.unwrap_or_else(rest_measurement);
+            let braked = WireMeasurement::new(last_sequence + 1, &m, report.missed_commands)
+                .stopped(
+                    WireStatus::Braked,
+                    WireFault::MissedCommands,
+                    f64::from(consecutive),
+                );
+            // Answer a late controller, if one turns up soon, with the fault.
+            let until = Instant::now() + Duration::from_millis(100);
+            while Instant::now() < until {
+                if let Some(request) = server.receive().map_err(|e| iceoryx("receive", e))? {
+                    let mut w = braked;
+                    w.sequence = request.payload().sequence;
+                    request.send_copy(w).map_err(|e| iceoryx("send", e))?;
+                    let _ = notifier.notify();
+                    break;
+                }
+                if services.node.wait(Duration::from_millis(1)).is_err() {
+                    break;
+                }
+            }
+            return Ok(report);
+        }
+        if realtime {
+            match plant.exchange(&last_command) {
+                Ok(m) => last = Some(m),
+                Err(e) => {
+                    report.end = PlantEnd::ModelFailed(e.to_string());
+                    return Ok(report);
+                }
+            }
+            report.steps += 1;
+        }
+    }
+}
+
+/// Looks for termination requests at most every 5 ms (the look is a
+/// system call).
+struct SignalCheck {
+    next: Instant,
+}
+
+impl SignalCheck {
+    #[allow(clippy::disallowed_methods)] // Pacing of a check, not model time.
+    fn new() -> Self {
+        Self {
+            next: Instant::now(),
+        }
+    }
+
+    /// True when a termination request arrived (looked at if due).
+    #[allow(clippy::disallowed_methods)] // Pacing of a check, not model time.
+    fn terminated(&mut self, services: &LoopServices) -> bool {
+        let now = Instant::now();
+        if now < self.next {
+            return false;
+        }
+        self.next = now + Duration::from_millis(5);
+        services.termination_requested()
+    }
+}
+
+/// Waits for a command notification up to `timeout` (or spins once);
+/// true when a termination request arrived.
+fn listen(
+    services: &LoopServices,
+    listener: &iceoryx2::port::listener::Listener<ipc::Service>,
+    wait: WaitMode,
+    timeout: Duration,
+    signals: &mut SignalCheck,
+) -> bool {
+    match wait {
+        WaitMode::Blocking => {
+            let _ = listener.timed_wait(|_| {}, timeout);
+        }
+        WaitMode::BusyPoll => std::hint::spin_loop(),
+    }
+    signals.terminated(services)
+}
+
+/// Commands zero velocity; a refused (too abrupt) stop holds the knife.
+fn brake(plant: &mut dyn PlantLink, report: &mut PlantReport, last: &mut Option<Measurement>) {
+    if let Ok(m) = plant.exchange(&KnifeCommand::default()) {
+        *last = Some(m);
+        report.steps += 1;
+    }
+}
+
+/// The measurement of a plant that has not stepped yet.
+fn rest_measurement() -> Measurement {
+    Measurement {
+        time: 0.0,
+        position: nalgebra::Vector3::zeros(),
+        velocity: nalgebra::Vector3::zeros(),
+        wrench: [0.0; 6],
+        true_wrench: shearcut_sim::plant::Wrench {
+            force: nalgebra::Vector3::zeros(),
+            torque: nalgebra::Vector3::zeros(),
+        },
+        crack_depth: 0.0,
+        contact_length: 0.0,
+        fractured_sections: 0,
+        work: 0.0,
+        deformation: 0.0,
+        status: PlantStatus::Moving,
+    }
+}

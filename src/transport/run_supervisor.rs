@@ -1,0 +1,169 @@
+//! `shearcut run --transport iceoryx2`: spawns the plant and controller
+//! processes for one run, supervises them and reports how they ended.
+
+use std::path::Path;
+use std::process::{Child, Command, ExitStatus};
+use std::time::{Duration, Instant};
+
+use iceoryx2::prelude::*;
+
+use super::loop_services::{config, prefix};
+use crate::error::RunError;
+
+/// How long the plant may outlive the controller (it brakes after its
+/// missed-command limit if the controller died without ending the run).
+const PLANT_GRACE: Duration = Duration::from_secs(5);
+/// How long the controller may outlive the plant (it detects the loss
+/// within its response timeout).
+const CONTROLLER_GRACE: Duration = Duration::from_secs(10);
+
+/// A unique run id: `<scenario>-<pid>-<ns>` (scenario name reduced to the
+/// allowed characters and 32 of them).
+#[allow(clippy::disallowed_methods)] // A unique name, not model time.
+pub fn new_run_id(scenario: &str) -> String {
+    let name: String = Path::new(scenario)
+        .file_stem()
+        .and_then(|s| s.to_str())
+        .unwrap_or("run")
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' || c == '_' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .take(32)
+        .collect();
+    let ns = std::time::SystemTime::now()
+        .duration_since(std::time::UNIX_EPOCH)
+        .map_or(0, |d| d.subsec_nanos());
+    format!("{name}-{}-{ns}", std::process::id())
+}
+
+fn describe(role: &str, child: &Child, status: ExitStatus) -> String {
+    use std::os::unix::process::ExitStatusExt;
+    match (status.code(), status.signal()) {
+        (Some(c), _) => format!(
+            "the {role} process (pid {}) exited with code {c}",
+            child.id()
+        ),
+        (None, Some(s)) => format!("the {role} process (pid {}) died by signal {s}", child.id()),
+        _ => format!("the {role} process (pid {}) ended: {status}", child.id()),
+    }
+}
+
+/// Sends SIGTERM to `child` (through `kill(1)`: no unsafe code here).
+fn terminate(child: &Child) {
+    let _ = Command::new("kill")
+        .args(["-TERM", &child.id().to_string()])
+        .status();
+}
+
+/// Waits for `child` up to `grace`; kills it (SIGKILL) after that. Polls
+/// with `node.wait` so SIGINT/SIGTERM to this process are still seen.
+fn wait_or_kill(child: &mut Child, grace: Duration) -> Option<ExitStatus> {
+    #[allow(clippy::disallowed_methods)] // Supervision deadline.
+    let until = Instant::now() + grace;
+    loop {
+        if let Ok(Some(s)) = child.try_wait() {
+            return Some(s);
+        }
+        #[allow(clippy::disallowed_methods)]
+        if Instant::now() > until {
+            let _ = child.kill();
+            return child.wait().ok();
+        }
+        std::thread::sleep(Duration::from_millis(5));
+    }
+}
+
+/// Runs `scenario` as two processes (plant and controller) over iceoryx2,
+/// supervising both: a child that dies is reported, SIGINT/SIGTERM stop
+/// both, and the controller writes the results.
+///
+/// # Errors
+/// A child could not start, or either ended with a failure (its message is
+/// on stderr; the controller still wrote the partial results).
+pub fn run_both(
+    scenario: &str,
+    controller: Option<&str>,
+    out: Option<&Path>,
+) -> Result<(), RunError> {
+    let exe = std::env::current_exe()
+        .map_err(|e| RunError::Loop(format!("cannot find the shearcut executable: {e}")))?;
+    let run_id = new_run_id(scenario);
+    // This process's node: only to see SIGINT/SIGTERM (iceoryx2's handler).
+    let cfg = config(&prefix()).map_err(|e| RunError::Loop(e.to_string()))?;
+    let node = NodeBuilder::new()
+        .config(&cfg)
+        .create::<ipc::Service>()
+        .map_err(|e| RunError::Loop(format!("iceoryx2 node: {e:?}")))?;
+    let spawn = |role: &str| {
+        let mut c = Command::new(&exe);
+        c.args([role, "--scenario", scenario, "--run-id", &run_id]);
+        if let Some(name) = controller {
+            c.args(["--controller", name]);
+        }
+        if role == "controller"
+            && let Some(dir) = out
+        {
+            c.arg("--out").arg(dir);
+        }
+        c.spawn()
+            .map_err(|e| RunError::Loop(format!("cannot start the {role} process: {e}")))
+    };
+    let mut plant = spawn("plant")?;
+    let mut ctl = match spawn("controller") {
+        Ok(c) => c,
+        Err(e) => {
+            terminate(&plant);
+            wait_or_kill(&mut plant, PLANT_GRACE);
+            return Err(e);
+        }
+    };
+    eprintln!(
+        "run {run_id}: plant pid {}, controller pid {}",
+        plant.id(),
+        ctl.id()
+    );
+    let mut stopped = false;
+    let (plant_status, ctl_status) = loop {
+        if node.wait(Duration::from_millis(5)).is_err() && !stopped {
+            stopped = true;
+            eprintln!("run {run_id}: termination requested, stopping plant and controller");
+            terminate(&ctl);
+            terminate(&plant);
+        }
+        if let Ok(Some(c)) = ctl.try_wait() {
+            let p = wait_or_kill(&mut plant, PLANT_GRACE);
+            break (p, Some(c));
+        }
+        if let Ok(Some(p)) = plant.try_wait() {
+            if !p.success() {
+                eprintln!("run {run_id}: {}", describe("plant", &plant, p));
+            }
+            let c = wait_or_kill(&mut ctl, CONTROLLER_GRACE);
+            break (Some(p), c);
+        }
+    };
+    let mut failures = Vec::new();
+    match ctl_status {
+        Some(s) if s.success() => {}
+        Some(s) => failures.push(describe("controller", &ctl, s)),
+        None => failures.push("the controller process could not be reaped".to_string()),
+    }
+    match plant_status {
+        Some(s) if s.success() => {}
+        Some(s) => failures.push(describe("plant", &plant, s)),
+        None => failures.push("the plant process could not be reaped".to_string()),
+    }
+    if failures.is_empty() {
+        Ok(())
+    } else {
+        Err(RunError::Loop(format!(
+            "run {run_id} failed: {}",
+            failures.join("; ")
+        )))
+    }
+}

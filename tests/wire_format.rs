@@ -1,0 +1,109 @@
+//! The wire types have the documented size, alignment and field offsets
+//! (`docs/wire_format.md`), and convert losslessly.
+
+use std::mem::{align_of, offset_of, size_of};
+
+use nalgebra::Vector3;
+use proptest::prelude::*;
+use shearcut::transport::wire::{WireCommand, WireError, WireMeasurement, WireStatus};
+use shearcut_sim::plant::{KnifeCommand, LimitViolation, Measurement, PlantStatus, Wrench};
+
+#[test]
+fn command_layout_is_the_documented_one() {
+    assert_eq!(size_of::<WireCommand>(), 48);
+    assert_eq!(align_of::<WireCommand>(), 8);
+    assert_eq!(offset_of!(WireCommand, sequence), 0);
+    assert_eq!(offset_of!(WireCommand, time), 8);
+    assert_eq!(offset_of!(WireCommand, velocity), 16);
+    assert_eq!(offset_of!(WireCommand, flags), 40);
+    assert_eq!(offset_of!(WireCommand, reserved), 44);
+}
+
+#[test]
+fn measurement_layout_is_the_documented_one() {
+    assert_eq!(size_of::<WireMeasurement>(), 224);
+    assert_eq!(align_of::<WireMeasurement>(), 8);
+    let offsets = [
+        (offset_of!(WireMeasurement, sequence), 0),
+        (offset_of!(WireMeasurement, time), 8),
+        (offset_of!(WireMeasurement, position), 16),
+        (offset_of!(WireMeasurement, velocity), 40),
+        (offset_of!(WireMeasurement, wrench), 64),
+        (offset_of!(WireMeasurement, true_wrench), 112),
+        (offset_of!(WireMeasurement, crack_depth), 160),
+        (offset_of!(WireMeasurement, contact_length), 168),
+        (offset_of!(WireMeasurement, work), 176),
+        (offset_of!(WireMeasurement, deformation), 184),
+        (offset_of!(WireMeasurement, fault_value), 192),
+        (offset_of!(WireMeasurement, fractured_sections), 200),
+        (offset_of!(WireMeasurement, status), 208),
+        (offset_of!(WireMeasurement, fault), 212),
+        (offset_of!(WireMeasurement, missed_commands), 216),
+        (offset_of!(WireMeasurement, reserved), 220),
+    ];
+    for (i, (got, want)) in offsets.iter().enumerate() {
+        assert_eq!(got, want, "field {i}");
+    }
+}
+
+fn measurement(x: [f64; 8], status: PlantStatus) -> Measurement {
+    Measurement {
+        time: x[0],
+        position: Vector3::new(x[1], x[2], x[3]),
+        velocity: Vector3::new(x[4], -x[5], x[6]),
+        wrench: [x[7], x[0], x[1], x[2], x[3], x[4]],
+        true_wrench: Wrench {
+            force: Vector3::new(x[5], x[6], x[7]),
+            torque: Vector3::new(x[1], -x[2], x[3]),
+        },
+        crack_depth: x[4],
+        contact_length: x[5],
+        fractured_sections: 7,
+        work: x[6],
+        deformation: x[7],
+        status,
+    }
+}
+
+proptest! {
+    #[test]
+    fn measurements_cross_the_wire_bit_for_bit(
+        x in prop::array::uniform8(any::<f64>().prop_filter("not NaN", |v| !v.is_nan())),
+        kind in 0u8..5,
+    ) {
+        let status = match kind {
+            0 => PlantStatus::Moving,
+            1 => PlantStatus::LimitViolation(LimitViolation::Velocity(x[0])),
+            2 => PlantStatus::LimitViolation(LimitViolation::Acceleration(x[1])),
+            3 => PlantStatus::LimitViolation(LimitViolation::Jerk(x[2])),
+            _ => PlantStatus::LimitViolation(LimitViolation::NotFinite),
+        };
+        let m = measurement(x, status);
+        let back = WireMeasurement::new(42, &m, 3).measurement().unwrap();
+        // Debug prints each f64 in its shortest round-trip form.
+        prop_assert_eq!(format!("{m:?}"), format!("{back:?}"));
+    }
+
+    #[test]
+    fn commands_cross_the_wire_bit_for_bit(v in prop::array::uniform3(any::<f64>())) {
+        let c = KnifeCommand { velocity: Vector3::from(v) };
+        let w = WireCommand::new(9, 0.25, &c);
+        let back = w.knife_command();
+        for (b, x) in back.velocity.iter().zip(v) {
+            prop_assert_eq!(b.to_bits(), x.to_bits());
+        }
+        prop_assert!(!w.is_end_of_run());
+    }
+}
+
+#[test]
+fn a_braked_plant_is_not_a_measurement() {
+    let m = measurement([0.5; 8], PlantStatus::Moving);
+    let w = WireMeasurement::new(1, &m, 20).stopped(
+        WireStatus::Braked,
+        shearcut::transport::wire::WireFault::MissedCommands,
+        20.0,
+    );
+    assert_eq!(w.measurement(), Err(WireError::Braked(20)));
+    assert!(WireCommand::end_of_run(3, 1.0).is_end_of_run());
+}
