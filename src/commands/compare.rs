@@ -163,17 +163,29 @@ pub fn compare(s: &Scenario) -> Result<Vec<ComparisonRow>, RunError> {
     for _ in 0..REFINEMENTS {
         let a = round3(hi - INV_PHI * (hi - lo));
         let b = round3(lo + INV_PHI * (hi - lo));
-        let runs = run_all(s, &[ControllerChoice::Slice(a), ControllerChoice::Slice(b)]);
-        let mut it = runs.into_iter();
-        let ra = it.next().expect("two runs")?;
-        let rb = it.next().expect("two runs")?;
-        if work(&ra) <= work(&rb) {
+        // Ratios already run (the rounding to 3 decimals makes repeats
+        // likely near the end) are not run again.
+        let fresh: Vec<ControllerChoice> = [a, b]
+            .into_iter()
+            .filter(|x| !tried.iter().any(|(t, _)| t == x))
+            .map(ControllerChoice::Slice)
+            .collect();
+        for (c, r) in fresh.iter().zip(run_all(s, &fresh)) {
+            if let ControllerChoice::Slice(x) = c {
+                tried.push((*x, r?));
+            }
+        }
+        let work_at = |x: f64| {
+            tried
+                .iter()
+                .find(|(t, _)| *t == x)
+                .map_or(f64::INFINITY, |(_, r)| work(r))
+        };
+        if work_at(a) <= work_at(b) {
             hi = b;
         } else {
             lo = a;
         }
-        tried.push((a, ra));
-        tried.push((b, rb));
     }
     let best = best_index(&tried);
     // The other contestants.
