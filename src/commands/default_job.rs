@@ -1,9 +1,11 @@
 //! What `shearcut` does with no subcommand: the main job on the built-in
 //! default scenario.
 //!
-//! The main job is the closed loop: the MPC cutting a whole half potato with
-//! the chef's knife (`shearcut run loop-potato-whole --controller mpc`),
-//! the plant stepped in lockstep at 1 kHz, written to `runs/`.
+//! The main job is the arm-style closed loop: the MPC cutting a whole half
+//! potato with the chef's knife, controller and plant in two processes over
+//! iceoryx2 shared memory, in lockstep at 1 kHz
+//! (`shearcut run loop-potato-whole --controller mpc --transport iceoryx2`),
+//! written to `runs/`.
 
 use crate::commands::run;
 use crate::error::RunError;
@@ -14,12 +16,12 @@ pub const DEFAULT_JOB_SCENARIO: &str = "loop-potato-whole";
 /// Runs the main job on the default scenario.
 pub fn run() -> Result<(), RunError> {
     println!(
-        "shearcut: no command given, running `shearcut run {DEFAULT_JOB_SCENARIO} --controller mpc` (see --help for all commands)"
+        "shearcut: no command given, running `shearcut run {DEFAULT_JOB_SCENARIO} --controller mpc --transport iceoryx2` (see --help for all commands)"
     );
     run::run(
         DEFAULT_JOB_SCENARIO,
         Some("mpc"),
-        run::Transport::Inproc,
+        run::Transport::Iceoryx2,
         None,
     )
 }
