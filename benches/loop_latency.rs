@@ -11,14 +11,13 @@
 use std::time::{Duration, Instant};
 
 use nalgebra::Vector3;
-use shearcut::closed_loop::{InProcessPlant, LinkError, LoopCut, PlantLink, TickTimes, run_loop};
-use shearcut::commands::run::{cut_task, make_controller, make_plant};
+use shearcut::closed_loop::{InProcessPlant, LinkError, PlantLink, TickTimes, run_loop};
+use shearcut::commands::run::LoopSetup;
 use shearcut::controller_choice::ControllerChoice;
 use shearcut::scenario::{ClockMode, Scenario};
 use shearcut::transport::{
     Iceoryx2PlantLink, LinkTimeouts, LoopServices, PlantServerSettings, Role, WaitMode, serve_plant,
 };
-use shearcut_sim::Knife;
 use shearcut_sim::plant::{KnifeCommand, Measurement, PlantStatus, Wrench};
 
 /// A plant that answers each command with it: the transport alone.
@@ -109,19 +108,11 @@ fn echo(wait: WaitMode, ticks: usize) {
 fn real_plant(wait: WaitMode) {
     let s = Scenario::load("fig7-potato").unwrap();
     let choice = ControllerChoice::Slice(0.75);
-    let knife = Knife::new(&s.knife).unwrap();
-    let mesh = s.object.mesh().unwrap();
-    let task = cut_task(&s, &knife, &mesh);
-    let plant = make_plant(&s, &knife, &mesh, 0.75).unwrap();
-    let cut = LoopCut {
-        xi_label: 0.75,
-        z0: s.motion.z0[0],
-        start: plant.position(),
-        gap: s.plant.start_gap,
-        target_depth: task.target_depth,
-        max_duration: s.controller.max_duration,
-    };
-    let mut controller = make_controller(&s, choice, &task).unwrap();
+    let setup = LoopSetup::new(&s, choice).unwrap();
+    let task = setup.task;
+    let plant = setup.plant(&s).unwrap();
+    let cut = setup.cut(&s, &plant);
+    let mut controller = setup.controller(&s, choice).unwrap();
     let p = prefix(match wait {
         WaitMode::BusyPoll => "rb",
         WaitMode::Blocking => "rw",

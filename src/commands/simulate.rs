@@ -261,47 +261,8 @@ fn simulate_plant(scenario: &Scenario, knife: &Knife) -> Result<SimulationOutput
                     ),
                 ));
             }
-            let displacement = start.y - m.position.y - gap;
-            if displacement >= 0.0 {
-                let per_length = |f: f64| {
-                    if m.contact_length > 0.0 {
-                        f / m.contact_length
-                    } else {
-                        0.0
-                    }
-                };
-                let w = &m.true_wrench;
-                // Resistance positive: the object pushes the knife up (+y) and
-                // against its tangential motion (−z when moving towards the tip).
-                let fv = w.force.y;
-                let fh = if xi > 0.0 {
-                    -w.force.z
-                } else {
-                    w.force.z.abs()
-                };
-                samples.push(CutSample {
-                    xi,
-                    z0_m: z0,
-                    time_s: m.time,
-                    displacement_m: displacement,
-                    tangential_displacement_m: m.position.z - start.z,
-                    force_vertical_n_per_m: per_length(fv),
-                    force_horizontal_n_per_m: per_length(fh),
-                    force_vertical_n: fv,
-                    force_horizontal_n: fh,
-                    torque_x_nm: m.wrench[3],
-                    torque_y_nm: m.wrench[4],
-                    torque_z_nm: m.wrench[5],
-                    contact_length_m: m.contact_length,
-                    work_j_per_m: per_length(m.work),
-                    work_j: m.work,
-                    fracture_energy_j_per_m: 0.0,
-                    strain_energy_j_per_m: 0.0,
-                    friction_work_j_per_m: 0.0,
-                    crack_depth_m: m.crack_depth,
-                    deformation_m: m.deformation,
-                    fractured: m.fractured_sections > 0,
-                });
+            if let Some(sample) = CutSample::from_plant(&m, xi, z0, &start, gap) {
+                samples.push(sample);
             }
             if m.crack_depth >= depth {
                 break;

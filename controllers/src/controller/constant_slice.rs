@@ -6,7 +6,7 @@ use shearcut_sim::plant::{KnifeCommand, Measurement, PlantStatus};
 use super::blade_budget::BladeBudget;
 use super::cut_task::CutTask;
 use super::velocity_shaper::VelocityShaper;
-use super::{Controller, ControllerTelemetry, CutPhase};
+use super::{Controller, ControllerTelemetry};
 
 /// Moves the knife at a constant slice-push ratio ξ and speed until the
 /// target depth (seed 000 §V's prescribed motions, closed only on the depth):
@@ -101,20 +101,7 @@ impl Controller for ConstantSlice {
                 .allowed_speed(self.tangential_speed, l.acceleration, l.jerk);
             (self.normal_speed, v_t)
         };
-        self.telemetry = ControllerTelemetry {
-            slice_push_ratio: if v_n > 0.0 { v_t / v_n } else { 0.0 },
-            normal_speed: v_n,
-            tangential_speed: v_t,
-            blade_travel: self.budget.used(),
-            phase: if done {
-                CutPhase::Done
-            } else {
-                CutPhase::Cutting
-            },
-            planned: false,
-            fallbacks: 0,
-            scale: [1.0; 3],
-        };
+        self.telemetry = ControllerTelemetry::moving(v_n, v_t, self.budget.used(), done);
         self.shaper.command(v_n, v_t)
     }
 

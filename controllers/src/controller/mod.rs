@@ -67,6 +67,31 @@ pub struct ControllerTelemetry {
     pub scale: [f64; 3],
 }
 
+impl ControllerTelemetry {
+    /// The telemetry of a tick that commands (v_n, v_t) (m/s), with
+    /// `blade_travel` (m) used so far, `done` once the target depth is
+    /// reached; not planning, no fallbacks, nominal scale factors (a
+    /// planner overwrites those fields).
+    pub fn moving(normal_speed: f64, tangential_speed: f64, blade_travel: f64, done: bool) -> Self {
+        Self {
+            slice_push_ratio: if normal_speed > 0.0 {
+                tangential_speed / normal_speed
+            } else {
+                0.0
+            },
+            normal_speed,
+            tangential_speed,
+            blade_travel,
+            phase: if done {
+                CutPhase::Done
+            } else {
+                CutPhase::Cutting
+            },
+            ..Self::default()
+        }
+    }
+}
+
 impl Default for ControllerTelemetry {
     fn default() -> Self {
         Self {

@@ -10,8 +10,7 @@ use super::scale_estimator::ScaleEstimator;
 use super::settings::MpcSettings;
 use super::slice_model::{SliceModel, StageState};
 use crate::controller::{
-    BladeBudget, Controller, ControllerTelemetry, CutPhase, CutTask, VelocityShaper,
-    stopping_distance,
+    BladeBudget, Controller, ControllerTelemetry, CutTask, VelocityShaper, stopping_distance,
 };
 
 /// Counters of the MPC's plans.
@@ -315,18 +314,10 @@ impl<M: SliceModel> Controller for Mpc<M> {
             (self.normal_speed, v_t)
         };
         self.telemetry = ControllerTelemetry {
-            slice_push_ratio: if v_n > 0.0 { v_t / v_n } else { 0.0 },
-            normal_speed: v_n,
-            tangential_speed: v_t,
-            blade_travel: self.budget.used(),
-            phase: if done {
-                CutPhase::Done
-            } else {
-                CutPhase::Cutting
-            },
             planned: self.replanned,
             fallbacks: self.stats.fallbacks,
             scale: self.scale(),
+            ..ControllerTelemetry::moving(v_n, v_t, self.budget.used(), done)
         };
         self.shaper.command(v_n, v_t)
     }
