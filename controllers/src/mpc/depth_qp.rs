@@ -218,6 +218,7 @@ impl DepthQp {
             .presolve_enable(false)
             .input_sparse_dropzeros(false)
             .max_iter(max_iterations)
+            .iterative_refinement_enable(false)
             .build()
             .expect("valid Clarabel settings");
         let solver =
