@@ -6,7 +6,7 @@ use std::path::Path;
 
 use serde::Serialize;
 
-use crate::commands::run::{RunOutput, run_closed_loop};
+use crate::commands::run::{LoopSetup, RunOutput, run_closed_loop};
 use crate::controller_choice::ControllerChoice;
 use crate::cut_record::write_json;
 use crate::error::RunError;
@@ -101,19 +101,7 @@ fn run_all(s: &Scenario, choices: &[ControllerChoice]) -> Vec<Result<RunOutput, 
 
 /// The comparison for a loaded scenario.
 pub fn compare(s: &Scenario) -> Result<Vec<ComparisonRow>, RunError> {
-    let knife = shearcut_sim::Knife::new(&s.knife).map_err(|e| {
-        RunError::Config(crate::error::ConfigError::Invalid {
-            path: s.name.clone(),
-            setting: e.prefixed("knife"),
-        })
-    })?;
-    let mesh = s.object.mesh().map_err(|e| {
-        RunError::Config(crate::error::ConfigError::Invalid {
-            path: s.name.clone(),
-            setting: shearcut_sim::InvalidSetting::new("object", "mesh", e.to_string()),
-        })
-    })?;
-    let task = crate::commands::run::cut_task(s, &knife, &mesh);
+    let task = LoopSetup::new(s, ControllerChoice::Press)?.task;
     let target = task.target_depth;
     // The largest constant ratio the blade allows over the whole cut.
     let xi_cap = (task.blade_budget / target).min(s.controller.mpc.max_slice_push_ratio);

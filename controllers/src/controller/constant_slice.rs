@@ -49,14 +49,8 @@ impl ConstantSlice {
                 "a finite speed > 0 m/s",
             ));
         }
-        let l = &task.limits;
-        let mut normal_speed =
-            (speed / (1.0 + slice_push_ratio * slice_push_ratio).sqrt()).min(l.normal_speed);
-        if slice_push_ratio * normal_speed > l.tangential_speed {
-            normal_speed = l.tangential_speed / slice_push_ratio;
-        }
-        let shaper = VelocityShaper::new(task.period, l)
-            .map_err(|e| InvalidSetting::new("period", task.period, e.to_string()))?;
+        let normal_speed = task.limits.normal_speed_for(speed, slice_push_ratio);
+        let shaper = VelocityShaper::for_task(task)?;
         Ok(Self {
             name: if slice_push_ratio == 0.0 {
                 "press".to_string()

@@ -38,6 +38,18 @@ impl MotionLimits {
         }
     }
 
+    /// The normal speed of a knife moving at `speed` (m/s, along its
+    /// velocity) with slice-push ratio `xi`: s/√(1+ξ²), lowered so that
+    /// neither the normal nor the tangential (ξ·v_n) speed limit is exceeded.
+    pub fn normal_speed_for(&self, speed: f64, xi: f64) -> f64 {
+        let v_n = (speed / (1.0 + xi * xi).sqrt()).min(self.normal_speed);
+        if xi * v_n > self.tangential_speed {
+            self.tangential_speed / xi
+        } else {
+            v_n
+        }
+    }
+
     /// Checks every limit is finite and positive.
     pub fn validate(&self) -> Result<(), InvalidSetting> {
         for (key, value) in [

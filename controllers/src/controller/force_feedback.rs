@@ -109,14 +109,8 @@ impl ForceFeedback {
                 "a finite ratio >= 0",
             ));
         }
-        let l = &task.limits;
-        let mut max_normal_speed =
-            (max_speed / (1.0 + slice_push_ratio * slice_push_ratio).sqrt()).min(l.normal_speed);
-        if slice_push_ratio * max_normal_speed > l.tangential_speed {
-            max_normal_speed = l.tangential_speed / slice_push_ratio;
-        }
-        let shaper = VelocityShaper::new(task.period, l)
-            .map_err(|e| InvalidSetting::new("period", task.period, e.to_string()))?;
+        let max_normal_speed = task.limits.normal_speed_for(max_speed, slice_push_ratio);
+        let shaper = VelocityShaper::for_task(task)?;
         Ok(Self {
             name: format!("force:{setpoint}"),
             task: *task,

@@ -50,6 +50,13 @@ impl VelocityShaper {
         })
     }
 
+    /// A shaper at rest for a cut task's servo period and limits; a bad
+    /// period is reported as the task's invalid setting.
+    pub fn for_task(task: &super::CutTask) -> Result<Self, shearcut_sim::InvalidSetting> {
+        Self::new(task.period, &task.limits)
+            .map_err(|e| shearcut_sim::InvalidSetting::new("period", task.period, e.to_string()))
+    }
+
     /// The command for the next tick on the way to the planned normal speed
     /// `normal_speed` (m/s, down) and `tangential_speed` (m/s, towards the tip).
     pub fn command(&mut self, normal_speed: f64, tangential_speed: f64) -> KnifeCommand {

@@ -122,8 +122,7 @@ impl<M: SliceModel> Mpc<M> {
             deformation_weight: settings.deformation_weight,
             force_penalty: settings.force_penalty,
         };
-        let shaper = VelocityShaper::new(task.period, l)
-            .map_err(|e| InvalidSetting::new("period", task.period, e.to_string()))?;
+        let shaper = VelocityShaper::for_task(task)?;
         let ticks_per_plan = ((1.0 / settings.rate_hz) / task.period).round().max(1.0) as u64;
         let xi0 = initial_xi.clamp(0.0, settings.max_slice_push_ratio);
         Ok(Self {
