@@ -293,6 +293,21 @@ pub(crate) fn closed_form_roots<F: FnMut(f64) -> f64>(
     wr: f64,
     out: &mut Roots,
 ) -> bool {
+    closed_form_roots_checked(n, c, f, wl, wr, None, out)
+}
+
+/// [`closed_form_roots`] with the guard value supplied by the caller: `check = (w, f(w))` for
+/// some `w` inside `[wl, wr]` that the caller has already evaluated (saves one evaluation of
+/// the residual per window).
+pub(crate) fn closed_form_roots_checked<F: FnMut(f64) -> f64>(
+    n: usize,
+    c: &[f64; MAX_DEGREE + 1],
+    f: &mut F,
+    wl: f64,
+    wr: f64,
+    check: Option<(f64, f64)>,
+    out: &mut Roots,
+) -> bool {
     if !(wl.is_finite() && wr.is_finite() && wr >= wl) || n > MAX_DEGREE {
         return false;
     }
@@ -322,8 +337,11 @@ pub(crate) fn closed_form_roots<F: FnMut(f64) -> f64>(
     // it (a window whose shape differs from the expected one): the roots of a wrong polynomial
     // would silently miss profiles.
     const T_CHECK: f64 = 0.412_345;
-    let yc = f(w_of(T_CHECK));
-    if !yc.is_finite() || (yc - q.eval(T_CHECK)).abs() > 1e-9 * (scale + yc.abs()) + 1e-300 {
+    let (tc, yc) = match check {
+        Some((w, y)) if w >= wl && w <= wr => (if half > 0.0 { (w - mid) / half } else { 0.0 }, y),
+        _ => (T_CHECK, f(w_of(T_CHECK))),
+    };
+    if !yc.is_finite() || (yc - q.eval(tc)).abs() > 1e-9 * (scale + yc.abs()) + 1e-300 {
         return false;
     }
     let mut r = [0.0; MAX_DEGREE];

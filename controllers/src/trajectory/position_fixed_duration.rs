@@ -78,7 +78,24 @@ fn peak_cruise(d: &Dof, prefix: &Profile, t: f64) -> Option<(Segments, f64)> {
         let s = peak_segments(&c1, tc, &c2, t)?;
         d.check(prefix, &s, 1.0).then_some((s, 1.0))
     };
-    for w in br[..nb].windows(2) {
+    // Any valid profile will do, so the windows are visited starting with the one that holds
+    // the mean velocity Δp/T (where a long cruise, the common case, has its peak), then
+    // alternately outwards; every window is still visited before giving up.
+    let nw = nb - 1;
+    let guess = dp / t;
+    let first = br[1..nb - 1].iter().take_while(|&&b| b < guess).count();
+    for k in 0..2 * nw {
+        // first, first + 1, first − 1, first + 2, …, skipping indices outside 0..nw (each
+        // window exactly once).
+        let step = k.div_ceil(2);
+        let idx = if k % 2 == 1 {
+            first + step
+        } else {
+            first.wrapping_sub(step)
+        };
+        let Some(w) = (idx < nw).then(|| [br[idx], br[idx + 1]]) else {
+            continue;
+        };
         let mut roots = Roots::new();
         scan_peak_window(
             d,
