@@ -351,6 +351,17 @@ fn monotone_root(p: &Poly, mut a: f64, mut fa: f64, mut b: f64, fb: f64, tol: f6
             b = x;
         }
         let mut nx = x - f / df;
+        // Converged: test the Newton step before the bracket safeguard. Once x sits on the
+        // root, x is also a bracket end, and a tiny step beyond it must not trigger the
+        // bisection fallback (which restarted from the midpoint of a wide bracket and cost
+        // dozens of iterations).
+        if (nx - x).abs() <= tol * (1.0 + x.abs()) {
+            return if nx > a.min(b) && nx < a.max(b) {
+                nx
+            } else {
+                x
+            };
+        }
         if !(nx > a.min(b) && nx < a.max(b)) {
             nx = 0.5 * (a + b);
         }
