@@ -1,10 +1,11 @@
 //! Low-degree polynomials on an interval: exact interpolation and all real roots.
 //!
 //! Inside one smooth window of a profile family the residual equations are polynomials in a
-//! suitable parameter (see [`super::family_window`]), of degree at most [`MAX_DEGREE`]. We do not
-//! transcribe their coefficients per family: the polynomial is *interpolated* from `n + 1`
-//! evaluations of the residual itself at Chebyshev points of the window, checked at one extra
-//! point, and its real roots are isolated by the critical points (the roots of the derivative,
+//! suitable parameter (see [`super::peak_window`]), of degree at most [`MAX_DEGREE`]. Their
+//! coefficients are closed forms ([`closed_form_roots`], from [`super::peak_polynomials`]) or,
+//! as a fallback, *interpolated* from `n + 1` evaluations of the residual at Chebyshev points
+//! of the window ([`polynomial_roots`]); either is checked against the residual at one more
+//! point. The real roots are isolated by the critical points (the roots of the derivative,
 //! recursively down to a closed-form quadratic) and refined by safeguarded Newton steps. Every
 //! step is closed form or a bracketed iteration on a polynomial: no sampling of the residual.
 //!
@@ -162,89 +163,7 @@ pub(crate) fn real_roots(p: &Poly, lo: f64, hi: f64, out: &mut [f64; MAX_DEGREE]
     while q.n > 0 && q.c[q.n].abs() <= 1e-14 * s {
         q.n -= 1;
     }
-    if q.n >= 3 {
-        roots_lazy(&q, lo, hi, s, out)
-    } else {
-        roots_rec(&q, lo, hi, s, 0, out)
-    }
-}
-
-/// The roots of `p` (degree ≥ 3) on `[lo, hi]`, as [`roots_rec`] finds them, but refining the
-/// critical points of `p` only where needed.
-///
-/// `[lo, hi]` is split at the roots of `p''` (found by [`roots_rec`]) into pieces on which `p'`
-/// is monotone. On a piece where `p'` keeps its sign, `p` is monotone. On a piece where `p'`
-/// changes sign, `p` is unimodal with its extremum at the (unknown) critical point `c`: if the
-/// end values of `p` have opposite signs there is exactly one root, bracketed by the piece; if
-/// they have the same sign and the extremum points away from zero there is none (in both cases
-/// the end values must exceed the tangency threshold `1e-12·scale`, so that [`roots_rec`]
-/// could not report a tangency either). In every other case (the extremum heads towards zero,
-/// a value within the threshold, `p'` vanishing or touching zero at an inner piece end) the
-/// full recursion [`roots_rec`] decides, so the result is the same.
-fn roots_lazy(p: &Poly, lo: f64, hi: f64, scale: f64, out: &mut [f64; MAX_DEGREE]) -> usize {
-    let tail: f64 = p.c[1..=p.n].iter().map(|c| c.abs()).sum();
-    if p.c[0].abs() > tail * (1.0 + 1e-12) + 1e-12 * scale {
-        return 0;
-    }
-    let thr = 1e-12 * scale;
-    let d = p.derivative();
-    let dd = d.derivative();
-    let mut cuts = [0.0; MAX_DEGREE];
-    let nc = roots_rec(&dd, lo, hi, scale, 2, &mut cuts);
-    let cuts = &mut cuts[..nc];
-    cuts.sort_unstable_by(f64::total_cmp);
-    let mut n_out = 0;
-    let mut push = |x: f64, out: &mut [f64; MAX_DEGREE]| {
-        if n_out < MAX_DEGREE && x >= lo && x <= hi {
-            out[n_out] = x;
-            n_out += 1;
-        }
-    };
-    const TOL: f64 = 4.0 * f64::EPSILON;
-    let mut a = lo;
-    let (mut pa, mut da) = (p.eval(a), d.eval(a));
-    if pa == 0.0 {
-        push(a, out);
-    }
-    for k in 0..=nc {
-        let b = cuts.get(k).copied().unwrap_or(hi);
-        let (pb, db) = (p.eval(b), d.eval(b));
-        if b > a {
-            let opposite = pa != 0.0 && pb != 0.0 && (pa > 0.0) != (pb > 0.0);
-            let unimodal = da != 0.0 && db != 0.0 && (da > 0.0) != (db > 0.0);
-            if !unimodal {
-                // p monotone on [a, b].
-                if pb == 0.0 {
-                    push(b, out);
-                } else if opposite {
-                    push(monotone_root(p, a, pa, b, pb, TOL), out);
-                }
-            } else if opposite && pa.abs().min(pb.abs()) > thr {
-                // Unimodal, ends of opposite signs: exactly one root.
-                push(monotone_root(p, a, pa, b, pb, TOL), out);
-            } else if !opposite
-                && pa != 0.0
-                && pb != 0.0
-                && pa.abs().min(pb.abs()) > thr
-                && (pa > 0.0) == (da > 0.0)
-            {
-                // Same signs, the extremum points away from zero (a maximum above a positive
-                // p, or a minimum below a negative p): no root.
-            } else {
-                // The extremum may touch or cross zero: the full recursion decides.
-                return roots_rec(p, lo, hi, scale, 0, out);
-            }
-            // p' zero or touching zero at an inner piece end (a critical point that the
-            // recursion would test for tangency): the full recursion decides.
-            if db == 0.0 || (k < nc && db.abs() <= thr) {
-                return roots_rec(p, lo, hi, scale, 0, out);
-            }
-        }
-        a = b;
-        pa = pb;
-        da = db;
-    }
-    n_out
+    roots_rec(&q, lo, hi, s, 0, out)
 }
 
 /// `depth` 0 is the polynomial itself (roots to full precision); deeper levels are derivatives,
@@ -550,63 +469,6 @@ mod tests {
             c[0] *= -x;
         }
         Poly { n: r.len(), c }
-    }
-
-    /// `roots_lazy` (used for degree ≥ 3) finds what the full critical-point recursion finds,
-    /// on random polynomials with clustered, double and outside roots.
-    #[test]
-    fn lazy_isolation_matches_the_full_recursion() {
-        let mut seed = 99_u64;
-        let mut next = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((seed >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
-        };
-        let mut compared = 0;
-        for trial in 0..20000 {
-            let n = 3 + trial % 4;
-            let mut r = [0.0; MAX_DEGREE];
-            for k in 0..n {
-                r[k] = 1.3 * next();
-                if k > 0 && trial % 5 == 0 {
-                    r[k] = r[k - 1] + 1e-4 * next(); // close pairs
-                }
-                if k > 0 && trial % 7 == 0 {
-                    r[k] = r[k - 1]; // double roots
-                }
-            }
-            let mut p = from_roots(&r[..n]);
-            // Shift some to remove roots (complex pairs near the interval).
-            if trial % 3 == 0 {
-                p.c[0] += 0.05 * next();
-            }
-            let s = p.scale();
-            let mut full = [0.0; MAX_DEGREE];
-            let nf = roots_rec(&p, -1.0, 1.0, s, 0, &mut full);
-            let mut lazy = [0.0; MAX_DEGREE];
-            let nl = roots_lazy(&p, -1.0, 1.0, s, &mut lazy);
-            for &x in &full[..nf] {
-                compared += 1;
-                assert!(
-                    lazy[..nl].iter().any(|&y| (x - y).abs() <= 1e-7),
-                    "{:?}: full {:?}, lazy {:?}",
-                    p,
-                    &full[..nf],
-                    &lazy[..nl]
-                );
-            }
-            for &y in &lazy[..nl] {
-                assert!(
-                    full[..nf].iter().any(|&x| (x - y).abs() <= 1e-7),
-                    "{:?}: full {:?}, lazy {:?}",
-                    p,
-                    &full[..nf],
-                    &lazy[..nl]
-                );
-            }
-        }
-        assert!(compared > 10000, "{compared}");
     }
 
     #[test]
