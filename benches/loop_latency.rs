@@ -8,48 +8,22 @@
 //! change the echo tick count). Timings on a shared VM are noisy: repeat.
 #![allow(clippy::disallowed_methods)] // A benchmark reads the wall clock.
 
+#[path = "../tests/support/echo_plant.rs"]
+mod echo_plant;
+
 use std::time::{Duration, Instant};
 
+use echo_plant::{EchoPlant, remove_shm_files};
+
 use nalgebra::Vector3;
-use shearcut::closed_loop::{InProcessPlant, LinkError, PlantLink, TickTimes, run_loop};
+use shearcut::closed_loop::{InProcessPlant, PlantLink, TickTimes, run_loop};
 use shearcut::commands::run::LoopSetup;
 use shearcut::controller_choice::ControllerChoice;
 use shearcut::scenario::{ClockMode, Scenario};
 use shearcut::transport::{
     Iceoryx2PlantLink, LinkTimeouts, LoopServices, PlantServerSettings, Role, WaitMode, serve_plant,
 };
-use shearcut_sim::plant::{KnifeCommand, Measurement, PlantStatus, Wrench};
-
-/// A plant that answers each command with it: the transport alone.
-struct Echo {
-    time: f64,
-}
-
-impl PlantLink for Echo {
-    fn period(&self) -> f64 {
-        1e-3
-    }
-
-    fn exchange(&mut self, command: &KnifeCommand) -> Result<Measurement, LinkError> {
-        self.time += 1e-3;
-        Ok(Measurement {
-            time: self.time,
-            position: Vector3::zeros(),
-            velocity: command.velocity,
-            wrench: [0.0; 6],
-            true_wrench: Wrench {
-                force: Vector3::zeros(),
-                torque: Vector3::zeros(),
-            },
-            crack_depth: 0.0,
-            contact_length: 0.0,
-            fractured_sections: 0,
-            work: 0.0,
-            deformation: 0.0,
-            status: PlantStatus::Moving,
-        })
-    }
-}
+use shearcut_sim::plant::KnifeCommand;
 
 fn prefix(tag: &str) -> String {
     format!("scb{}{tag}_", std::process::id())
@@ -73,7 +47,7 @@ fn spawn_plant<P: PlantLink + 'static>(
 
 fn connect(id: &str, prefix: &str, wait: WaitMode, ticks: usize) -> Iceoryx2PlantLink {
     let services = LoopServices::open(Role::Controller, id, prefix).expect("controller services");
-    let link = Iceoryx2PlantLink::new(services, 1e-3, LinkTimeouts::default(), wait, ticks + 2)
+    let mut link = Iceoryx2PlantLink::new(services, 1e-3, LinkTimeouts::default(), wait, ticks + 2)
         .expect("link");
     link.wait_for_plant().expect("a plant");
     link
@@ -92,7 +66,7 @@ fn echo(wait: WaitMode, ticks: usize) {
         WaitMode::Blocking => ("echo-block", "w"),
     };
     let p = prefix(tag);
-    let server = spawn_plant(id, p.clone(), wait, || Echo { time: 0.0 });
+    let server = spawn_plant(id, p.clone(), wait, EchoPlant::new);
     let mut link = connect(id, &p, wait, ticks);
     let command = KnifeCommand {
         velocity: Vector3::new(0.0, -0.00625, 0.0047),
@@ -158,12 +132,5 @@ fn main() {
     real_plant(WaitMode::BusyPoll);
     real_plant(WaitMode::Blocking);
     // Each prefix keeps a 16-byte management file by design: remove ours.
-    let mine = format!("scb{}", std::process::id());
-    if let Ok(entries) = std::fs::read_dir("/dev/shm") {
-        for e in entries.flatten() {
-            if e.file_name().to_string_lossy().starts_with(&mine) {
-                std::fs::remove_file(e.path()).ok();
-            }
-        }
-    }
+    remove_shm_files(&format!("scb{}", std::process::id()));
 }
