@@ -1,11 +1,15 @@
 //! Round-trip latency of the loop over iceoryx2 (controller → plant →
 //! controller), in one process with the plant served from a second thread:
 //! 100 000 ticks against an echo plant with busy polling and with blocking
-//! waits, then the real plant (fig7-potato, `slice:0.75`, lockstep) closed by
-//! the real controller, with its real-time factor.
+//! waits; then the real plant (fig7-potato, `slice:0.75`, lockstep) closed by
+//! the real controller, with its real-time factor; then the main job's
+//! scenario (`loop-potato-whole`, MPC, lockstep) in process and over
+//! iceoryx2, with their real-time factors (the transport's share is their
+//! difference).
 //!
 //! `cargo bench -p shearcut --bench loop_latency` (add `-- --ticks N` to
-//! change the echo tick count). Timings on a shared VM are noisy: repeat.
+//! change the echo tick count, `-- --skip-default` to leave out the main
+//! job's scenario). Timings on a shared VM are noisy: repeat.
 #![allow(clippy::disallowed_methods)] // A benchmark reads the wall clock.
 
 #[path = "../tests/support/echo_plant.rs"]
@@ -17,6 +21,7 @@ use echo_plant::{EchoPlant, remove_shm_files};
 
 use nalgebra::Vector3;
 use shearcut::closed_loop::{InProcessPlant, PlantLink, TickTimes, run_loop};
+use shearcut::commands::default_job::DEFAULT_JOB_SCENARIO;
 use shearcut::commands::run::LoopSetup;
 use shearcut::controller_choice::ControllerChoice;
 use shearcut::scenario::{ClockMode, Scenario};
@@ -79,37 +84,49 @@ fn echo(wait: WaitMode, ticks: usize) {
     report(&format!("echo plant, {wait:?}"), &link.round_trips(), ticks);
 }
 
-fn real_plant(wait: WaitMode) {
-    let s = Scenario::load("fig7-potato").unwrap();
-    let choice = ControllerChoice::Slice(0.75);
+/// One closed loop of `scenario` under `choice` in lockstep, its plant
+/// served over iceoryx2 from a second thread (`Some(wait)`) or called in
+/// process (`None`); prints the round trips (iceoryx2) and the real-time
+/// factor of the loop (plant and controller built before the clock starts).
+fn closed_loop(scenario: &str, choice: &str, transport: Option<WaitMode>, tag: &str) {
+    let s = Scenario::load(scenario).unwrap();
+    let choice: ControllerChoice = choice.parse().unwrap();
     let setup = LoopSetup::new(&s, choice).unwrap();
-    let task = setup.task;
+    let period = setup.task.period;
     let plant = setup.plant(&s).unwrap();
     let cut = setup.cut(&s, &plant);
     let mut controller = setup.controller(&s, choice).unwrap();
-    let p = prefix(match wait {
-        WaitMode::BusyPoll => "rb",
-        WaitMode::Blocking => "rw",
-    });
-    let period = task.period;
-    let server = spawn_plant("real", p.clone(), wait, move || {
-        InProcessPlant::new(plant, period)
-    });
-    let max_ticks = (cut.max_duration / period) as usize;
-    let mut link = connect("real", &p, wait, max_ticks);
-    let started = Instant::now();
-    let out = run_loop(&mut link, controller.as_mut(), &cut);
-    let wall = started.elapsed();
-    link.finish().expect("plant ends");
-    server.join().unwrap();
-    let simulated = out.ticks as f64 * period;
-    report(
-        &format!("fig7-potato slice:0.75 lockstep, {wait:?}"),
-        &link.round_trips(),
-        out.ticks + 1,
+    let what = format!(
+        "{} {choice} lockstep, {}",
+        s.name,
+        transport.map_or("in process".to_string(), |w| format!("iceoryx2 {w:?}"))
     );
+    let (out, wall) = match transport {
+        None => {
+            let mut link = InProcessPlant::new(plant, period);
+            let started = Instant::now();
+            let out = run_loop(&mut link, controller.as_mut(), &cut);
+            (out, started.elapsed())
+        }
+        Some(wait) => {
+            let p = prefix(tag);
+            let server = spawn_plant("real", p.clone(), wait, move || {
+                InProcessPlant::new(plant, period)
+            });
+            let max_ticks = (cut.max_duration / period) as usize;
+            let mut link = connect("real", &p, wait, max_ticks);
+            let started = Instant::now();
+            let out = run_loop(&mut link, controller.as_mut(), &cut);
+            let wall = started.elapsed();
+            link.finish().expect("plant ends");
+            server.join().unwrap();
+            report(&what, &link.round_trips(), out.ticks + 1);
+            (out, wall)
+        }
+    };
+    let simulated = out.ticks as f64 * period;
     println!(
-        "    end {:?}; {:.3} s simulated in {:.3} s wall: real-time factor {:.2} (simulated/wall)",
+        "{what:<44} end {:?}; {:.3} s simulated in {:.3} s wall: real-time factor {:.3} (simulated/wall)",
         out.end,
         simulated,
         wall.as_secs_f64(),
@@ -129,8 +146,14 @@ fn main() {
     std::thread::sleep(Duration::from_millis(100));
     echo(WaitMode::BusyPoll, ticks);
     echo(WaitMode::Blocking, ticks);
-    real_plant(WaitMode::BusyPoll);
-    real_plant(WaitMode::Blocking);
+    closed_loop("fig7-potato", "slice:0.75", Some(WaitMode::BusyPoll), "rb");
+    closed_loop("fig7-potato", "slice:0.75", Some(WaitMode::Blocking), "rw");
+    if !args.iter().any(|a| a == "--skip-default") {
+        // The main job's scenario (about a minute in all): in process, then
+        // over iceoryx2 with blocking waits as `shearcut run` uses them.
+        closed_loop(DEFAULT_JOB_SCENARIO, "mpc", None, "");
+        closed_loop(DEFAULT_JOB_SCENARIO, "mpc", Some(WaitMode::Blocking), "dw");
+    }
     // Each prefix keeps a 16-byte management file by design: remove ours.
     remove_shm_files(&format!("scb{}", std::process::id()));
 }

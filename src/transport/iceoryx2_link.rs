@@ -152,7 +152,8 @@ impl Iceoryx2PlantLink {
         TickTimes::from_durations(&mut self.round_trips_us.clone())
     }
 
-    /// Commands the plant reported missed (realtime clock) so far.
+    /// Commands the plant reported missed (realtime clock) so far; after
+    /// [`finish`](Self::finish), the plant's total.
     pub fn missed_commands(&self) -> u32 {
         self.missed_commands
     }
@@ -168,7 +169,10 @@ impl Iceoryx2PlantLink {
     /// The plant did not acknowledge.
     pub fn finish(&mut self) -> Result<(), LinkError> {
         let command = WireCommand::end_of_run(self.sequence, self.last_time);
-        match self.round_trip(command)?.measurement() {
+        let answer = self.round_trip(command)?;
+        // The plant's final count, misses after the last command included.
+        self.missed_commands = answer.missed_commands;
+        match answer.measurement() {
             Err(WireError::Ended) => Ok(()),
             other => Err(LinkError::Lost(format!(
                 "the plant '{}' did not acknowledge the end of the run: {other:?}",
