@@ -20,7 +20,7 @@ use std::time::{Duration, Instant};
 use echo_plant::{EchoPlant, remove_shm_files};
 
 use nalgebra::Vector3;
-use shearcut::closed_loop::{InProcessPlant, PlantLink, TickTimes, run_loop};
+use shearcut::closed_loop::{InProcessPlant, LoopEnd, PlantLink, TickTimes, run_loop};
 use shearcut::commands::default_job::DEFAULT_JOB_SCENARIO;
 use shearcut::commands::run::LoopSetup;
 use shearcut::controller_choice::ControllerChoice;
@@ -118,7 +118,10 @@ fn closed_loop(scenario: &str, choice: &str, transport: Option<WaitMode>, tag: &
             let started = Instant::now();
             let out = run_loop(&mut link, controller.as_mut(), &cut);
             let wall = started.elapsed();
-            link.finish().expect("plant ends");
+            // A failed loop is reported below; its plant brakes by itself.
+            if !matches!(out.end, LoopEnd::Failed(_)) {
+                link.finish().expect("plant ends");
+            }
             server.join().unwrap();
             report(&what, &link.round_trips(), out.ticks + 1);
             (out, wall)
