@@ -64,8 +64,8 @@ unsafe impl GlobalAlloc for Counting {
 #[global_allocator]
 static GLOBAL: Counting = Counting;
 
-const WARM_UP: usize = 1000;
-const MEASURED: usize = 10_000;
+const WARM_UP: usize = 500;
+const MEASURED: usize = 5000;
 
 /// Allocations (all threads, controller's thread) in `MEASURED` round trips
 /// after `WARM_UP` ones.
