@@ -1,7 +1,7 @@
 //! The controller's iceoryx2 link against a plant served from a thread of
 //! this process: answers are matched to their commands by sequence number,
 //! a late answer to a command given up on is discarded, and the run still
-//! ends cleanly.
+//! ends cleanly; a second plant for a served run is refused.
 
 #[path = "support/echo_plant.rs"]
 mod echo_plant;
@@ -90,4 +90,24 @@ fn a_late_answer_is_discarded_and_the_run_still_ends_cleanly() {
         assert_eq!(report.end, PlantEnd::Ended, "{wait:?}");
         assert_eq!(report.commands, 3, "{wait:?}");
     }
+}
+
+#[test]
+fn a_second_plant_for_the_same_run_is_refused() {
+    let prefix = format!("scd{}_", std::process::id());
+    let first = LoopServices::open(Role::Plant, "twice", &prefix).unwrap();
+    let second = LoopServices::open(Role::Plant, "twice", &prefix);
+    match second {
+        Err(e) => assert!(
+            e.to_string()
+                .contains("is another plant serving this run id"),
+            "{e}"
+        ),
+        Ok(_) => panic!("two plants serve run 'twice'"),
+    }
+    // The first still serves: a controller finds its board.
+    let controller = LoopServices::open(Role::Controller, "twice", &prefix).unwrap();
+    assert!(controller.open_peer_board().unwrap().is_some());
+    drop((controller, first));
+    remove_shm_files(&prefix);
 }
