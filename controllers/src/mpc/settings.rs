@@ -41,6 +41,11 @@ pub struct MpcSettings {
     /// Forgetting factor of the estimator per row, in (0, 1] (default
     /// 0.999: a memory of about 1000 rows, half a second at 1 kHz).
     pub forgetting: f64,
+    /// Sawing: the most reversals of the tangential direction the MPC may
+    /// make in one cut (default 16; 0 keeps the whole cut within one stroke
+    /// of the blade budget). A plan uses strokes only if their cost (the
+    /// time a reversal loses, at `time_weight`) is below the work they save.
+    pub max_reversals: u32,
 }
 
 impl Default for MpcSettings {
@@ -58,6 +63,7 @@ impl Default for MpcSettings {
             max_iterations: 40,
             estimate: true,
             forgetting: 0.999,
+            max_reversals: 16,
         }
     }
 }
