@@ -1097,4 +1097,79 @@ mod tests {
                 .state()
         );
     }
+
+    #[test]
+    fn take_over_on_the_same_shape_continues_the_cut_unchanged() {
+        // Eggplant with skin (R'_c = 650 N/m): an edge pressing 2 mm into
+        // the intact skin, then handed over to a successor of the same shape
+        // with the knife where it is. Nothing physical changes: the same
+        // elastic state, the first fracture at the same knife travel as
+        // without the hand-over, and the balance closes with the inherited
+        // strain energy. (A restart at the crack tip would need the whole
+        // indentation again.)
+        let material = MaterialPreset::EggplantWhole.material();
+        let geometry = SectionGeometry::rectangle(0.03, 0.02).unwrap();
+        let settings = SectionSettings {
+            row_spacing: 5e-4,
+            ..SectionSettings::default()
+        };
+        let new = || {
+            CrossSection::new(&geometry, &material, &BladeSection::default(), &settings).unwrap()
+        };
+        let (step, xi) = (2e-5, 0.3);
+        let mut reference = new();
+        let mut pred = new();
+        for _ in 0..100 {
+            reference.advance(step, xi * step).unwrap();
+            pred.advance(step, xi * step).unwrap();
+        }
+        let p = *pred.state();
+        assert!(!p.fractured && p.indentation > 1.9e-3, "{p:?}");
+        let mut succ = new();
+        succ.take_over(&pred, p.crack_depth, p.edge_height);
+        let s = *succ.state();
+        assert_eq!(s.edge_height, p.edge_height);
+        assert_eq!(s.crack_tip_height, p.crack_tip_height);
+        assert_eq!(s.indentation, p.indentation);
+        assert!(!s.fractured);
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * a.abs().max(b.abs());
+        // The elastic parts (the predecessor's forces include its last
+        // step's friction; a hand-over moves nothing).
+        assert!(close(
+            s.force_vertical,
+            p.force_vertical - p.force_vertical_friction
+        ));
+        assert!(close(s.surface_deflection, p.surface_deflection));
+        assert!(close(s.work.strain_energy, p.work.strain_energy));
+        assert_eq!(s.work.inherited, s.work.strain_energy);
+        assert_eq!(s.work.knife, 0.0);
+        // On to the first fracture: at the same travel as the uninterrupted
+        // reference.
+        let first = |c: &mut CrossSection| -> usize {
+            for k in 0..2000 {
+                if c.advance(step, xi * step).unwrap().fractured {
+                    return k;
+                }
+            }
+            panic!("never fractured");
+        };
+        let k_ref = first(&mut reference);
+        let k_succ = first(&mut succ);
+        assert!(k_ref.abs_diff(k_succ) <= 1, "{k_ref} vs {k_succ}");
+        for _ in 0..200 {
+            succ.advance(step, xi * step).unwrap();
+        }
+        let w = succ.state().work;
+        let closure =
+            w.knife + w.inherited - (w.fracture + w.strain_energy + w.friction + w.unstable);
+        assert!(
+            closure.abs() <= 1e-6 * (w.knife + w.inherited),
+            "balance off by {closure}"
+        );
+        // The old hand-over (edge restarted at the tip) indents from zero.
+        let mut restarted = new();
+        restarted.restart_with_crack(p.crack_depth, p.fractured);
+        let k_restart = first(&mut restarted);
+        assert!(k_restart > k_ref + 50, "{k_restart} vs {k_ref}");
+    }
 }
