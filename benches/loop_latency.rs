@@ -1,55 +1,34 @@
 //! Round-trip latency of the loop over iceoryx2 (controller → plant →
 //! controller), in one process with the plant served from a second thread:
 //! 100 000 ticks against an echo plant with busy polling and with blocking
-//! waits, then the real plant (fig7-potato, `slice:0.75`, lockstep) closed by
-//! the real controller, with its real-time factor.
+//! waits; then the real plant (fig7-potato, `slice:0.75`, lockstep) closed by
+//! the real controller, with its real-time factor; then the main job's
+//! scenario (`loop-potato-whole`, MPC, lockstep) in process and over
+//! iceoryx2, with their real-time factors (the transport's share is their
+//! difference).
 //!
 //! `cargo bench -p shearcut --bench loop_latency` (add `-- --ticks N` to
-//! change the echo tick count). Timings on a shared VM are noisy: repeat.
+//! change the echo tick count, `-- --skip-default` to leave out the main
+//! job's scenario). Timings on a shared VM are noisy: repeat.
 #![allow(clippy::disallowed_methods)] // A benchmark reads the wall clock.
+
+#[path = "../tests/support/echo_plant.rs"]
+mod echo_plant;
 
 use std::time::{Duration, Instant};
 
+use echo_plant::{EchoPlant, remove_shm_files};
+
 use nalgebra::Vector3;
-use shearcut::closed_loop::{InProcessPlant, LinkError, PlantLink, TickTimes, run_loop};
+use shearcut::closed_loop::{InProcessPlant, LoopEnd, PlantLink, TickTimes, run_loop};
+use shearcut::commands::default_job::DEFAULT_JOB_SCENARIO;
 use shearcut::commands::run::LoopSetup;
 use shearcut::controller_choice::ControllerChoice;
 use shearcut::scenario::{ClockMode, Scenario};
 use shearcut::transport::{
     Iceoryx2PlantLink, LinkTimeouts, LoopServices, PlantServerSettings, Role, WaitMode, serve_plant,
 };
-use shearcut_sim::plant::{KnifeCommand, Measurement, PlantStatus, Wrench};
-
-/// A plant that answers each command with it: the transport alone.
-struct Echo {
-    time: f64,
-}
-
-impl PlantLink for Echo {
-    fn period(&self) -> f64 {
-        1e-3
-    }
-
-    fn exchange(&mut self, command: &KnifeCommand) -> Result<Measurement, LinkError> {
-        self.time += 1e-3;
-        Ok(Measurement {
-            time: self.time,
-            position: Vector3::zeros(),
-            velocity: command.velocity,
-            wrench: [0.0; 6],
-            true_wrench: Wrench {
-                force: Vector3::zeros(),
-                torque: Vector3::zeros(),
-            },
-            crack_depth: 0.0,
-            contact_length: 0.0,
-            fractured_sections: 0,
-            work: 0.0,
-            deformation: 0.0,
-            status: PlantStatus::Moving,
-        })
-    }
-}
+use shearcut_sim::plant::KnifeCommand;
 
 fn prefix(tag: &str) -> String {
     format!("scb{}{tag}_", std::process::id())
@@ -73,7 +52,7 @@ fn spawn_plant<P: PlantLink + 'static>(
 
 fn connect(id: &str, prefix: &str, wait: WaitMode, ticks: usize) -> Iceoryx2PlantLink {
     let services = LoopServices::open(Role::Controller, id, prefix).expect("controller services");
-    let link = Iceoryx2PlantLink::new(services, 1e-3, LinkTimeouts::default(), wait, ticks + 2)
+    let mut link = Iceoryx2PlantLink::new(services, 1e-3, LinkTimeouts::default(), wait, ticks + 2)
         .expect("link");
     link.wait_for_plant().expect("a plant");
     link
@@ -92,7 +71,7 @@ fn echo(wait: WaitMode, ticks: usize) {
         WaitMode::Blocking => ("echo-block", "w"),
     };
     let p = prefix(tag);
-    let server = spawn_plant(id, p.clone(), wait, || Echo { time: 0.0 });
+    let server = spawn_plant(id, p.clone(), wait, EchoPlant::new);
     let mut link = connect(id, &p, wait, ticks);
     let command = KnifeCommand {
         velocity: Vector3::new(0.0, -0.00625, 0.0047),
@@ -105,37 +84,52 @@ fn echo(wait: WaitMode, ticks: usize) {
     report(&format!("echo plant, {wait:?}"), &link.round_trips(), ticks);
 }
 
-fn real_plant(wait: WaitMode) {
-    let s = Scenario::load("fig7-potato").unwrap();
-    let choice = ControllerChoice::Slice(0.75);
+/// One closed loop of `scenario` under `choice` in lockstep, its plant
+/// served over iceoryx2 from a second thread (`Some(wait)`) or called in
+/// process (`None`); prints the round trips (iceoryx2) and the real-time
+/// factor of the loop (plant and controller built before the clock starts).
+fn closed_loop(scenario: &str, choice: &str, transport: Option<WaitMode>, tag: &str) {
+    let s = Scenario::load(scenario).unwrap();
+    let choice: ControllerChoice = choice.parse().unwrap();
     let setup = LoopSetup::new(&s, choice).unwrap();
-    let task = setup.task;
+    let period = setup.task.period;
     let plant = setup.plant(&s).unwrap();
     let cut = setup.cut(&s, &plant);
     let mut controller = setup.controller(&s, choice).unwrap();
-    let p = prefix(match wait {
-        WaitMode::BusyPoll => "rb",
-        WaitMode::Blocking => "rw",
-    });
-    let period = task.period;
-    let server = spawn_plant("real", p.clone(), wait, move || {
-        InProcessPlant::new(plant, period)
-    });
-    let max_ticks = (cut.max_duration / period) as usize;
-    let mut link = connect("real", &p, wait, max_ticks);
-    let started = Instant::now();
-    let out = run_loop(&mut link, controller.as_mut(), &cut);
-    let wall = started.elapsed();
-    link.finish().expect("plant ends");
-    server.join().unwrap();
-    let simulated = out.ticks as f64 * period;
-    report(
-        &format!("fig7-potato slice:0.75 lockstep, {wait:?}"),
-        &link.round_trips(),
-        out.ticks + 1,
+    let what = format!(
+        "{} {choice} lockstep, {}",
+        s.name,
+        transport.map_or("in process".to_string(), |w| format!("iceoryx2 {w:?}"))
     );
+    let (out, wall) = match transport {
+        None => {
+            let mut link = InProcessPlant::new(plant, period);
+            let started = Instant::now();
+            let out = run_loop(&mut link, controller.as_mut(), &cut);
+            (out, started.elapsed())
+        }
+        Some(wait) => {
+            let p = prefix(tag);
+            let server = spawn_plant("real", p.clone(), wait, move || {
+                InProcessPlant::new(plant, period)
+            });
+            let max_ticks = (cut.max_duration / period) as usize;
+            let mut link = connect("real", &p, wait, max_ticks);
+            let started = Instant::now();
+            let out = run_loop(&mut link, controller.as_mut(), &cut);
+            let wall = started.elapsed();
+            // A failed loop is reported below; its plant brakes by itself.
+            if !matches!(out.end, LoopEnd::Failed(_)) {
+                link.finish().expect("plant ends");
+            }
+            server.join().unwrap();
+            report(&what, &link.round_trips(), out.ticks + 1);
+            (out, wall)
+        }
+    };
+    let simulated = out.ticks as f64 * period;
     println!(
-        "    end {:?}; {:.3} s simulated in {:.3} s wall: real-time factor {:.2} (simulated/wall)",
+        "{what:<44} end {:?}; {:.3} s simulated in {:.3} s wall: real-time factor {:.3} (simulated/wall)",
         out.end,
         simulated,
         wall.as_secs_f64(),
@@ -155,15 +149,14 @@ fn main() {
     std::thread::sleep(Duration::from_millis(100));
     echo(WaitMode::BusyPoll, ticks);
     echo(WaitMode::Blocking, ticks);
-    real_plant(WaitMode::BusyPoll);
-    real_plant(WaitMode::Blocking);
-    // Each prefix keeps a 16-byte management file by design: remove ours.
-    let mine = format!("scb{}", std::process::id());
-    if let Ok(entries) = std::fs::read_dir("/dev/shm") {
-        for e in entries.flatten() {
-            if e.file_name().to_string_lossy().starts_with(&mine) {
-                std::fs::remove_file(e.path()).ok();
-            }
-        }
+    closed_loop("fig7-potato", "slice:0.75", Some(WaitMode::BusyPoll), "rb");
+    closed_loop("fig7-potato", "slice:0.75", Some(WaitMode::Blocking), "rw");
+    if !args.iter().any(|a| a == "--skip-default") {
+        // The main job's scenario (about a minute in all): in process, then
+        // over iceoryx2 with blocking waits as `shearcut run` uses them.
+        closed_loop(DEFAULT_JOB_SCENARIO, "mpc", None, "");
+        closed_loop(DEFAULT_JOB_SCENARIO, "mpc", Some(WaitMode::Blocking), "dw");
     }
+    // Each prefix keeps a 16-byte management file by design: remove ours.
+    remove_shm_files(&format!("scb{}", std::process::id()));
 }

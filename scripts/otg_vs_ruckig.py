@@ -143,10 +143,16 @@ def main():
     ap.add_argument("--workdir", default="target/otg_vs_ruckig")
     ap.add_argument("--timing-cases", type=int, default=20000)
     ap.add_argument("--control-interface", choices=["position", "velocity"], default="position")
+    ap.add_argument("--timing-only", action="store_true",
+                    help="only time ruckig per DoF count (to measure it back to back with "
+                         "`cargo bench -p shearcut-controllers --bench trajectory`)")
     ap.add_argument("shearcut", nargs="+", help="command that runs the shearcut binary")
     args = ap.parse_args()
     os.makedirs(args.workdir, exist_ok=True)
     rng = np.random.default_rng(args.seed)
+    if args.timing_only:
+        ruckig_timing(rng, args.timing_cases)
+        return 0
 
     cases = [gen_case(rng, int(rng.integers(1, 8)), k) for k in range(args.cases)]
     for c in cases:
@@ -222,11 +228,16 @@ def main():
     for c, probs in shorter_bad[:3]:
         print("  SHORTER BUT VIOLATING", c["id"], probs[:4])
 
-    # ruckig timing per DoF count (Python binding: includes the call overhead).
+    ruckig_timing(rng, args.timing_cases)
+    return 1 if longer or shorter_bad or o_err else 0
+
+
+def ruckig_timing(rng, timing_cases):
+    """ruckig timing per DoF count (Python binding: includes the call overhead)."""
     print("ruckig calculation time through the Python binding (per calculation):")
     for dofs in (1, 3, 6, 7):
         times = []
-        for k in range(args.timing_cases):
+        for k in range(timing_cases):
             c = gen_case(rng, dofs, k)
             r = ruckig_run(c)
             if "time" in r:
@@ -234,7 +245,6 @@ def main():
         times.sort()
         print(f"  {dofs} DoF: median {statistics.median(times) * 1e6:.2f} us, "
               f"p99 {times[int(0.99 * len(times))] * 1e6:.2f} us, max {times[-1] * 1e6:.2f} us ({len(times)} cases)")
-    return 1 if longer or shorter_bad or o_err else 0
 
 
 if __name__ == "__main__":

@@ -148,8 +148,13 @@ pub struct CutSummary {
     pub first_fracture_displacement_m: Option<f64>,
     /// Whether the cut reached the target depth.
     pub completed: bool,
-    /// Tangential blade travel, m.
+    /// Blade used: the largest tangential displacement from the start, m
+    /// (what must fit on the edge).
     pub blade_travel_m: f64,
+    /// Tangential path length, m: the blade travel summed over strokes.
+    pub blade_path_m: f64,
+    /// Reversals of the tangential direction (sawing strokes back).
+    pub reversals: u32,
     /// Simulated duration, s.
     pub duration_s: f64,
 }
@@ -202,10 +207,38 @@ impl CutSummary {
                 .map(|s| s.displacement_m),
             // Within a micrometre: the crack advances in finite increments.
             completed: last.crack_depth_m >= target_depth_m - 1e-6,
-            blade_travel_m: last.tangential_displacement_m.abs(),
+            blade_travel_m: max(|s| s.tangential_displacement_m.abs()),
+            blade_path_m: samples
+                .first()
+                .map_or(0.0, |s| s.tangential_displacement_m.abs())
+                + samples
+                    .windows(2)
+                    .map(|w| {
+                        (w[1].tangential_displacement_m - w[0].tangential_displacement_m).abs()
+                    })
+                    .sum::<f64>(),
+            reversals: reversals(samples),
             duration_s: last.time_s,
         }
     }
+}
+
+/// Reversals of the tangential direction of motion over `samples`
+/// (moves shorter than a nanometre per sample are standstill).
+fn reversals(samples: &[CutSample]) -> u32 {
+    let mut sign = 0.0;
+    let mut count = 0;
+    for w in samples.windows(2) {
+        let d = w[1].tangential_displacement_m - w[0].tangential_displacement_m;
+        if d.abs() < 1e-9 {
+            continue;
+        }
+        if sign != 0.0 && d.signum() != sign {
+            count += 1;
+        }
+        sign = d.signum();
+    }
+    count
 }
 
 /// Writes all samples to `path` as CSV with a header of the field names.

@@ -183,7 +183,7 @@ pub struct Scenario {
 }
 
 /// Scenarios shipped with shearcut, available by name as well as by path.
-pub const BUILT_IN_SCENARIOS: [(&str, &str); 5] = [
+pub const BUILT_IN_SCENARIOS: [(&str, &str); 6] = [
     (
         "fig7-potato",
         include_str!("../config/scenarios/fig7-potato.toml"),
@@ -195,6 +195,10 @@ pub const BUILT_IN_SCENARIOS: [(&str, &str); 5] = [
     (
         "loop-potato-cuboid",
         include_str!("../config/scenarios/loop-potato-cuboid.toml"),
+    ),
+    (
+        "loop-potato-cuboid-short-stroke",
+        include_str!("../config/scenarios/loop-potato-cuboid-short-stroke.toml"),
     ),
     (
         "loop-potato-whole",

@@ -1,122 +1,16 @@
 //! The loop over iceoryx2, end to end through the `shearcut` binary: plant
 //! and controller processes, bit-identity with the in-process loop, a lost
-//! plant, a lost controller, parallel runs and restarts after SIGKILL. Every
-//! child runs under a watchdog: a hang fails the test instead of blocking.
+//! plant, a lost controller, parallel runs, restarts after SIGKILL, SIGTERM
+//! and the realtime clock's missed-command count. Every child runs under a
+//! watchdog: a hang fails the test instead of blocking.
 
-use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Output, Stdio};
-use std::sync::atomic::{AtomicU32, Ordering};
-use std::time::{Duration, Instant};
+#[path = "support/sandbox.rs"]
+mod sandbox;
 
-/// Longest any child may run.
-const WATCHDOG: Duration = Duration::from_secs(120);
+use std::process::{Child, Command};
+use std::time::Duration;
 
-static NEXT: AtomicU32 = AtomicU32::new(0);
-
-/// A test's private directory and iceoryx2 prefix, cleaned on drop.
-struct Sandbox {
-    dir: PathBuf,
-    prefix: String,
-}
-
-impl Sandbox {
-    fn new(tag: &str) -> Self {
-        let n = NEXT.fetch_add(1, Ordering::Relaxed);
-        let prefix = format!("sct{}x{n}_", std::process::id());
-        let dir =
-            std::env::temp_dir().join(format!("shearcut-ipc-{tag}-{}-{n}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        Self { dir, prefix }
-    }
-
-    /// The small potato (tests/closed_loop.rs) with `extra` TOML appended.
-    fn scenario(&self, name: &str, depth: f64, extra: &str) -> String {
-        let text = include_str!("../config/scenarios/fig7-potato.toml").to_string()
-            + "\n[plant]\nsegments = 2\n\n[section]\nrow_spacing = 0.0005\n"
-            + extra;
-        let path = self.dir.join(format!("{name}.toml"));
-        std::fs::write(
-            &path,
-            text.replace("depth = 0.02", &format!("depth = {depth}")),
-        )
-        .unwrap();
-        path.to_str().unwrap().to_string()
-    }
-
-    fn command(&self, args: &[&str]) -> Command {
-        let mut c = Command::new(env!("CARGO_BIN_EXE_shearcut"));
-        c.args(args)
-            .env("RUST_LOG", "error")
-            .env("SHEARCUT_IPC_PREFIX", &self.prefix)
-            .stdout(Stdio::piped())
-            .stderr(Stdio::piped());
-        c
-    }
-
-    fn spawn(&self, args: &[&str]) -> Child {
-        self.command(args).spawn().expect("shearcut starts")
-    }
-
-    fn run(&self, args: &[&str]) -> Output {
-        watchdog(self.spawn(args), WATCHDOG)
-    }
-}
-
-impl Drop for Sandbox {
-    fn drop(&mut self) {
-        std::fs::remove_dir_all(&self.dir).ok();
-        remove_prefixed(Path::new("/dev/shm"), &self.prefix);
-        remove_prefixed(Path::new("/tmp/iceoryx2"), &self.prefix);
-    }
-}
-
-/// Removes every file or directory under `dir` whose name starts with `prefix`.
-fn remove_prefixed(dir: &Path, prefix: &str) {
-    let Ok(entries) = std::fs::read_dir(dir) else {
-        return;
-    };
-    for e in entries.flatten() {
-        let path = e.path();
-        let named = e.file_name().to_string_lossy().starts_with(prefix);
-        if path.is_dir() {
-            if named {
-                std::fs::remove_dir_all(&path).ok();
-            } else {
-                remove_prefixed(&path, prefix);
-            }
-        } else if named {
-            std::fs::remove_file(&path).ok();
-        }
-    }
-}
-
-/// Waits for `child` up to `limit`; kills it and fails the test after that.
-#[allow(clippy::disallowed_methods)] // A watchdog measures wall time.
-fn watchdog(mut child: Child, limit: Duration) -> Output {
-    let until = Instant::now() + limit;
-    loop {
-        if child.try_wait().unwrap().is_some() {
-            return child.wait_with_output().unwrap();
-        }
-        if Instant::now() > until {
-            child.kill().ok();
-            let o = child.wait_with_output().unwrap();
-            panic!(
-                "watchdog: the child hung for {limit:?}; stderr: {}",
-                String::from_utf8_lossy(&o.stderr)
-            );
-        }
-        std::thread::sleep(Duration::from_millis(10));
-    }
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
-
-fn read(path: &Path) -> String {
-    std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
-}
+use sandbox::{Sandbox, WATCHDOG, assert_running, read, read_json, stderr, watchdog};
 
 #[test]
 fn lockstep_over_iceoryx2_is_bit_identical_to_the_in_process_loop() {
@@ -125,16 +19,7 @@ fn lockstep_over_iceoryx2_is_bit_identical_to_the_in_process_loop() {
     let inproc = sb.dir.join("inproc");
     let ipc = sb.dir.join("ipc");
     for (dir, transport) in [(&inproc, "inproc"), (&ipc, "iceoryx2")] {
-        let o = sb.run(&[
-            "run",
-            &s,
-            "--controller",
-            "slice:0.75",
-            "--transport",
-            transport,
-            "--out",
-            dir.to_str().unwrap(),
-        ]);
+        let o = watchdog(sb.spawn_run(&s, transport, dir), WATCHDOG);
         assert!(o.status.success(), "{transport}: {}", stderr(&o));
     }
     for f in ["timeseries.csv", "controller.csv"] {
@@ -146,39 +31,12 @@ fn lockstep_over_iceoryx2_is_bit_identical_to_the_in_process_loop() {
         );
         assert!(a == b, "{f} differs between inproc and iceoryx2");
     }
-    let summary: serde_json::Value =
-        serde_json::from_str(&read(&ipc.join("summary.json"))).unwrap();
+    let summary = read_json(&ipc.join("summary.json"));
     assert_eq!(summary["end"], "completed");
     assert_eq!(summary["transport"], "iceoryx2");
-    let stats: serde_json::Value =
-        serde_json::from_str(&read(&ipc.join("loop_stats.json"))).unwrap();
+    let stats = read_json(&ipc.join("loop_stats.json"));
     assert_eq!(stats["missed_commands"], 0);
     assert!(stats["round_trip"]["median_us"].as_f64().unwrap() > 0.0);
-}
-
-/// Starts plant and controller of run `id` separately (realtime clock).
-fn start_pair(sb: &Sandbox, s: &str, id: &str, out: &Path) -> (Child, Child) {
-    let plant = sb.spawn(&[
-        "plant",
-        "--scenario",
-        s,
-        "--run-id",
-        id,
-        "--controller",
-        "slice:0.75",
-    ]);
-    let controller = sb.spawn(&[
-        "controller",
-        "--scenario",
-        s,
-        "--run-id",
-        id,
-        "--controller",
-        "slice:0.75",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
-    (plant, controller)
 }
 
 /// Realtime at `rate_hz`, the knife at 2 mm/s: the 2 cm cut takes about
@@ -189,25 +47,13 @@ fn realtime_extra(rate_hz: f64, limit: u32) -> String {
     )
 }
 
-/// Fails with the child's stderr if it has ended.
-fn assert_running(child: &mut Child, role: &str) {
-    if child.try_wait().unwrap().is_some() {
-        use std::io::Read;
-        let mut err = String::new();
-        if let Some(e) = child.stderr.as_mut() {
-            e.read_to_string(&mut err).ok();
-        }
-        panic!("the {role} ended early: {err}");
-    }
-}
-
 #[test]
 fn killing_the_plant_stops_the_controller_with_a_named_error_and_readable_results() {
     let sb = Sandbox::new("killplant");
     // A high limit: a loaded machine's stalls must not brake the plant first.
     let s = sb.scenario("long", 0.02, &realtime_extra(1000.0, 100_000));
     let out = sb.dir.join("out");
-    let (mut plant, controller) = start_pair(&sb, &s, "kp", &out);
+    let (mut plant, controller) = sb.spawn_pair(&s, "kp", &out);
     std::thread::sleep(Duration::from_millis(1500));
     assert_running(&mut plant, "plant");
     plant.kill().unwrap(); // SIGKILL: no cleanup.
@@ -223,16 +69,10 @@ fn killing_the_plant_stops_the_controller_with_a_named_error_and_readable_result
     // Partial results, readable.
     let rows = read(&out.join("controller.csv")).lines().count();
     assert!(rows > 100, "controller.csv has {rows} lines");
-    let summary: serde_json::Value =
-        serde_json::from_str(&read(&out.join("summary.json"))).unwrap();
+    let summary = read_json(&out.join("summary.json"));
     let end = summary["end"]["failed"].as_str().unwrap();
     assert!(end.contains("plant/kp"), "{end}");
-    // The next run under the same run id and prefix starts cleanly.
-    let s2 = sb.scenario("short", 0.003, "");
-    let (p, c) = start_pair(&sb, &s2, "kp", &sb.dir.join("again"));
-    let (p, c) = (watchdog(p, WATCHDOG), watchdog(c, WATCHDOG));
-    assert!(c.status.success(), "{}", stderr(&c));
-    assert!(p.status.success(), "{}", stderr(&p));
+    sb.assert_next_run_starts_cleanly("kp");
 }
 
 #[test]
@@ -242,7 +82,7 @@ fn killing_the_controller_brakes_the_plant_after_the_missed_command_limit() {
     // machine's stalls (at 1 kHz those alone could brake the plant).
     let s = sb.scenario("long", 0.02, &realtime_extra(100.0, 20));
     let out = sb.dir.join("out");
-    let (plant, mut controller) = start_pair(&sb, &s, "kc", &out);
+    let (plant, mut controller) = sb.spawn_pair(&s, "kc", &out);
     std::thread::sleep(Duration::from_millis(1500));
     assert_running(&mut controller, "controller");
     controller.kill().unwrap();
@@ -254,12 +94,7 @@ fn killing_the_controller_brakes_the_plant_after_the_missed_command_limit() {
         err.contains("plant/kc: braked after 20 consecutive missed commands"),
         "{err}"
     );
-    // The next run under the same run id and prefix starts cleanly.
-    let s2 = sb.scenario("short", 0.003, "");
-    let (p, c) = start_pair(&sb, &s2, "kc", &sb.dir.join("again"));
-    let (p, c) = (watchdog(p, WATCHDOG), watchdog(c, WATCHDOG));
-    assert!(c.status.success(), "{}", stderr(&c));
-    assert!(p.status.success(), "{}", stderr(&p));
+    sb.assert_next_run_starts_cleanly("kc");
 }
 
 #[test]
@@ -269,18 +104,7 @@ fn two_runs_in_parallel_do_not_interfere() {
     let dirs = [sb.dir.join("a"), sb.dir.join("b")];
     let children: Vec<Child> = dirs
         .iter()
-        .map(|d| {
-            sb.spawn(&[
-                "run",
-                &s,
-                "--controller",
-                "slice:0.75",
-                "--transport",
-                "iceoryx2",
-                "--out",
-                d.to_str().unwrap(),
-            ])
-        })
+        .map(|d| sb.spawn_run(&s, "iceoryx2", d))
         .collect();
     for o in children.into_iter().map(|c| watchdog(c, WATCHDOG)) {
         assert!(o.status.success(), "{}", stderr(&o));
@@ -294,17 +118,13 @@ fn two_runs_in_parallel_do_not_interfere() {
 fn a_run_killed_with_sigkill_leaves_nothing_that_blocks_the_next() {
     let sb = Sandbox::new("sigkill");
     let s = sb.scenario("long", 0.02, &realtime_extra(1000.0, 100_000));
-    let (mut p, mut c) = start_pair(&sb, &s, "sk", &sb.dir.join("killed"));
+    let (mut p, mut c) = sb.spawn_pair(&s, "sk", &sb.dir.join("killed"));
     std::thread::sleep(Duration::from_millis(1000));
     p.kill().unwrap();
     c.kill().unwrap();
     p.wait().unwrap();
     c.wait().unwrap();
-    let s2 = sb.scenario("short", 0.003, "");
-    let (p, c) = start_pair(&sb, &s2, "sk", &sb.dir.join("again"));
-    let (p, c) = (watchdog(p, WATCHDOG), watchdog(c, WATCHDOG));
-    assert!(c.status.success(), "{}", stderr(&c));
-    assert!(p.status.success(), "{}", stderr(&p));
+    sb.assert_next_run_starts_cleanly("sk");
 }
 
 #[test]
@@ -312,16 +132,7 @@ fn sigterm_stops_plant_and_controller_cleanly_with_partial_results() {
     let sb = Sandbox::new("sigterm");
     let s = sb.scenario("long", 0.02, &realtime_extra(1000.0, 100_000));
     let out = sb.dir.join("out");
-    let mut run = sb.spawn(&[
-        "run",
-        &s,
-        "--controller",
-        "slice:0.75",
-        "--transport",
-        "iceoryx2",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let mut run = sb.spawn_run(&s, "iceoryx2", &out);
     std::thread::sleep(Duration::from_millis(1500));
     assert_running(&mut run, "run");
     let sent = Command::new("kill")
@@ -335,9 +146,52 @@ fn sigterm_stops_plant_and_controller_cleanly_with_partial_results() {
     assert!(err.contains("termination requested"), "{err}");
     // Both children stopped by themselves (none needed a SIGKILL).
     assert!(!err.contains("signal 9"), "{err}");
-    let summary: serde_json::Value =
-        serde_json::from_str(&read(&out.join("summary.json"))).unwrap();
+    let summary = read_json(&out.join("summary.json"));
     let end = summary["end"]["failed"].as_str().unwrap();
     assert!(end.contains("SIGINT/SIGTERM"), "{end}");
     assert!(read(&out.join("controller.csv")).lines().count() > 100);
+}
+
+/// The number written just before `label` in `text` ("…, 12 missed commands").
+fn count_before(text: &str, label: &str) -> u64 {
+    let head = &text[..text
+        .find(label)
+        .unwrap_or_else(|| panic!("no {label:?} in {text}"))];
+    let digits: String = head
+        .trim_end()
+        .chars()
+        .rev()
+        .take_while(char::is_ascii_digit)
+        .collect::<Vec<_>>()
+        .into_iter()
+        .rev()
+        .collect();
+    digits
+        .parse()
+        .unwrap_or_else(|_| panic!("no count before {label:?} in {text}"))
+}
+
+#[test]
+fn realtime_loop_stats_report_the_plants_missed_commands() {
+    let sb = Sandbox::new("realtime");
+    // 1 kHz, a 3 mm cut at 2 mm/s (about 2 s of wall time); a limit no
+    // loaded machine reaches, so the run completes whatever it misses.
+    let s = sb.scenario("rt", 0.003, &realtime_extra(1000.0, 100_000));
+    let out = sb.dir.join("out");
+    let o = watchdog(sb.spawn_run(&s, "iceoryx2", &out), WATCHDOG);
+    let err = stderr(&o);
+    assert!(o.status.success(), "{err}");
+    let stats = read_json(&out.join("loop_stats.json"));
+    assert_eq!(stats["clock"], "realtime", "{stats}");
+    // The plant's own account (on the run's stderr): it steps every tick,
+    // with a command or, missing one, with the last.
+    let commands = count_before(&err, " commands answered");
+    let steps = count_before(&err, " steps,");
+    let missed = count_before(&err, " missed commands (longest run");
+    assert_eq!(steps, commands + missed, "{err}");
+    // loop_stats carries the plant's total, whatever this machine's load
+    // made it.
+    assert_eq!(stats["missed_commands"].as_u64(), Some(missed), "{stats}");
+    let summary = read_json(&out.join("summary.json"));
+    assert_eq!(summary["end"], "completed");
 }

@@ -79,10 +79,12 @@ fn controller_ticks_allocate_nothing() {
     assert_eq!(allocations(&mut force, 2000), 0);
     // In the same test: the counter is global, tests run in parallel.
     //
-    // The MPC: ticks between plans allocate nothing; a plan allocates one
-    // block inside clarabel 0.11.1 itself (`Timers::reset` clears the solve
-    // timer's nested maps, and the next `timeit!` re-creates one), nothing
-    // in our code. Counted exactly so that any new allocation shows.
+    // The MPC: ticks between plans allocate nothing; each solve of a plan
+    // (two while sawing is considered) allocates one block inside clarabel
+    // 0.11.1 itself (`Timers::reset` clears the solve timer's nested maps,
+    // and the next `timeit!` re-creates one), nothing in our code. Counted
+    // exactly so that any new allocation shows. 4 mm of blade for 40 mm of
+    // depth: the plans consider sawing and the knife reverses.
     use shearcut_controllers::mpc::{DepthProfile, Mpc, MpcSettings};
     let profile = DepthProfile::new(vec![0.0, 0.02], vec![0.01, 0.05], 0.03, 0.015).unwrap();
     let mut mpc = Mpc::new(
@@ -99,6 +101,7 @@ fn controller_ticks_allocate_nothing() {
     let command = mpc.tick(&m);
     m = arm.step(&command);
     let (mut plans, mut in_plans, mut between) = (0, 0, 0);
+    let solves_before = mpc.stats().solves;
     for _ in 0..2000 {
         ALLOCATIONS.store(0, Ordering::SeqCst);
         TRACK.with(|t| t.set(true));
@@ -113,7 +116,16 @@ fn controller_ticks_allocate_nothing() {
             between += n;
         }
     }
+    let solves = mpc.stats().solves - solves_before;
     assert!(plans > 50, "{plans} plans");
+    assert!(
+        solves > plans,
+        "{solves} solves in {plans} plans: sawing never considered"
+    );
+    assert!(mpc.stroke().reversals() > 0, "no reversal");
     assert_eq!(between, 0);
-    assert_eq!(in_plans, plans, "one allocation per plan, inside clarabel");
+    assert_eq!(
+        in_plans as u64, solves,
+        "one allocation per solve, inside clarabel"
+    );
 }

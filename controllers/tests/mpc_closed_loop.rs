@@ -1,11 +1,12 @@
 //! The MPC in closed loop with a synthetic arm: it reaches the target depth
 //! within the arm's limits and the blade budget, heads for the model's
-//! optimum when the blade is plentiful, and spends a short blade where more
-//! edge is in contact.
+//! optimum when the blade is plentiful, spends a short blade where more
+//! edge is in contact when it may not saw, and saws (reverses the
+//! tangential direction at constant ξ) when it may.
 
 mod synthetic_arm;
 
-use shearcut_controllers::controller::{Controller, CutPhase};
+use shearcut_controllers::controller::{Controller, CutPhase, StrokePhase};
 use shearcut_controllers::mpc::{DepthProfile, Mpc, MpcSettings};
 use shearcut_sim::plant::PlantStatus;
 use synthetic_arm::{QuadraticModel, SyntheticArm, task};
@@ -45,14 +46,11 @@ fn a_short_blade_is_respected_and_spent_where_the_contact_is_long() {
     // widening object); 8 mm of blade for 20 mm of depth.
     let profile = DepthProfile::new(vec![0.0, 0.02], vec![0.01, 0.05], 0.03, 0.015).unwrap();
     let budget = 0.008;
-    let mut mpc = Mpc::new(
-        &task(0.02, budget),
-        &MpcSettings::default(),
-        QuadraticModel,
-        profile,
-        0.4,
-    )
-    .unwrap();
+    let settings = MpcSettings {
+        max_reversals: 0,
+        ..MpcSettings::default()
+    };
+    let mut mpc = Mpc::new(&task(0.02, budget), &settings, QuadraticModel, profile, 0.4).unwrap();
     let (arm, trace) = run(&mut mpc, 20_000);
     assert_eq!(arm.refused, 0);
     assert_eq!(mpc.telemetry().phase, CutPhase::Done);
@@ -71,4 +69,68 @@ fn a_short_blade_is_respected_and_spent_where_the_contact_is_long() {
         xi_at(0.005),
         xi_at(0.015)
     );
+}
+
+#[test]
+fn a_short_blade_is_sawn_through_at_the_model_optimum_and_ratio() {
+    // 8 mm of blade for 20 mm of depth, but the model's optimum ξ = 4/3
+    // wants 27 mm: sawing pays (a reversal costs only time).
+    let profile = DepthProfile::uniform(0.03, 0.03, 0.015).unwrap();
+    let budget = 0.008;
+    let mut mpc = Mpc::new(
+        &task(0.02, budget),
+        &MpcSettings::default(),
+        QuadraticModel,
+        profile,
+        0.4,
+    )
+    .unwrap();
+    let mut arm = SyntheticArm::new(0.0);
+    let mut m = arm.measure(PlantStatus::Moving);
+    let mut reversing_ticks = 0;
+    let mut mid_ratios = Vec::new();
+    for _ in 0..40_000 {
+        let c = mpc.tick(&m);
+        // Never beyond the blade: the net travel stays within [0, budget]
+        // (a micrometre for the last tick before a stop).
+        assert!(
+            arm.position.z >= -1e-6 && arm.position.z <= budget + 1e-6,
+            "blade at {} m",
+            arm.position.z
+        );
+        if let StrokePhase::Stopping { xi } | StrokePhase::Restarting { xi, .. } =
+            mpc.stroke().phase()
+        {
+            // A reversal stops and restarts on straight lines through rest:
+            // whenever the knife moves, its ratio is the one held.
+            let (v_n, v_t) = (-c.velocity.y, c.velocity.z.abs());
+            if v_n > 1e-9 {
+                assert!(
+                    (v_t / v_n - xi).abs() < 1e-9 * (1.0 + xi),
+                    "{v_t} / {v_n} vs {xi}"
+                );
+                reversing_ticks += 1;
+            }
+        }
+        m = arm.step(&c);
+        if (0.008..0.012).contains(&m.crack_depth) && m.velocity.y < 0.0 {
+            mid_ratios.push(m.velocity.z.abs() / -m.velocity.y);
+        }
+        if mpc.telemetry().phase == CutPhase::Done {
+            break;
+        }
+    }
+    assert_eq!(arm.refused, 0);
+    assert_eq!(mpc.telemetry().phase, CutPhase::Done);
+    assert!(
+        mpc.stroke().reversals() >= 2,
+        "{} reversals",
+        mpc.stroke().reversals()
+    );
+    assert!(reversing_ticks > 0);
+    assert_eq!(mpc.stats().fallbacks, 0, "{:?}", mpc.stats());
+    // Between reversals the knife cuts near the model's optimum (the ticks
+    // of a reversal hold the ratio too).
+    let mean = mid_ratios.iter().sum::<f64>() / mid_ratios.len() as f64;
+    assert!((mean - 4.0 / 3.0).abs() < 0.1, "mean ξ = {mean}");
 }

@@ -102,3 +102,43 @@ fn blocked_interval_end_survives_the_dense_re_search() {
         );
     }
 }
+
+/// Oracle case 7531 of `scripts/otg_vs_ruckig.sh 100000 42`: ruckig synchronises in
+/// 7.999 034 165 767 s. An attempted shortcut of the polynomial root isolation (bracketing a
+/// root on a whole unimodal piece instead of between critical points) moved one root of a
+/// near-quadruple-root quartic by 3e-12, the extremal profile it stands for failed
+/// verification, and ours took 9.491 s. Every DoF starts inside its limits.
+#[test]
+fn oracle_case_7531_not_longer_than_ruckig() {
+    let inp = TrajectoryInput::<3> {
+        current_position: [-8.543967091913883, 0.16230390870749528, -0.8943028294075916],
+        current_velocity: [1.5745485066470355, 0.2781619302188924, 1.20031340242475],
+        current_acceleration: [
+            -1.895808290759838,
+            -0.7178758105272248,
+            -0.24862798698320995,
+        ],
+        target_position: [-1.2362164937778077, 4.415295110205181, 2.126527044807395],
+        target_velocity: [0.21491603613952026, 1.4225507375056736, 0.0],
+        target_acceleration: [0.0, 0.29648001947275127, 0.18823824652215482],
+        max_velocity: [5.000958065904342, 7.802183367284388, 11.980486451421795],
+        max_acceleration: [10.065107992924668, 11.9912754151376, 11.75195414819332],
+        max_jerk: [5.506726861949611, 8.485050682619178, 0.12446067465348118],
+        ..Default::default()
+    };
+    let otg = TrajectoryGenerator::<3>::new(TrajectorySettings::default()).unwrap();
+    let mut t = Trajectory::default();
+    otg.calculate(&inp, &mut t).unwrap();
+    let ruckig = 7.999_034_165_767_009;
+    assert!(
+        t.duration() <= ruckig + 1e-9 * ruckig,
+        "ours {} > ruckig {ruckig}",
+        t.duration()
+    );
+    for i in 0..3 {
+        let e = t.profile(i).end();
+        assert!((e.position - inp.target_position[i]).abs() < 1e-8);
+        assert!((e.velocity - inp.target_velocity[i]).abs() < 1e-8);
+        assert!((e.acceleration - inp.target_acceleration[i]).abs() < 1e-10);
+    }
+}

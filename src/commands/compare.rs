@@ -42,8 +42,12 @@ pub struct ComparisonRow {
     pub max_deformation_mm: f64,
     /// Time to the target depth, s.
     pub duration_s: f64,
-    /// Tangential blade travel, mm.
+    /// Blade used (largest tangential displacement from the start), mm.
     pub blade_travel_mm: f64,
+    /// Tangential path over all strokes, mm.
+    pub blade_path_mm: f64,
+    /// Reversals of the tangential direction (sawing).
+    pub reversals: u32,
     /// Whether the target depth was reached.
     pub completed: bool,
     /// Commands the arm refused.
@@ -63,6 +67,8 @@ impl ComparisonRow {
             max_deformation_mm: c.max_deformation_m * 1e3,
             duration_s: c.duration_s,
             blade_travel_mm: c.blade_travel_m * 1e3,
+            blade_path_mm: c.blade_path_m * 1e3,
+            reversals: c.reversals,
             completed: c.completed,
             limit_faults: run.output.limit_faults,
             plan_p99_us: run.output.plan_times.p99_us,
@@ -209,11 +215,11 @@ pub fn compare(s: &Scenario) -> Result<Vec<ComparisonRow>, RunError> {
 /// Markdown table of the main rows.
 pub fn markdown_table(rows: &[ComparisonRow]) -> String {
     let mut t = String::from(
-        "| controller | role | work (J) | peak Fv (N) | max deformation (mm) | time (s) | blade travel (mm) | completed | limit faults | plan p99 (µs) |\n|---|---|---|---|---|---|---|---|---|---|\n",
+        "| controller | role | work (J) | peak Fv (N) | max deformation (mm) | time (s) | blade used (mm) | blade path (mm) | reversals | completed | limit faults | plan p99 (µs) |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n",
     );
     for r in rows.iter().filter(|r| r.role != "search") {
         t += &format!(
-            "| {} | {} | {:.4} | {:.2} | {:.3} | {:.2} | {:.1} | {} | {} | {:.0} |\n",
+            "| {} | {} | {:.4} | {:.2} | {:.3} | {:.2} | {:.1} | {:.1} | {} | {} | {} | {:.0} |\n",
             r.controller,
             r.role,
             r.work_j,
@@ -221,6 +227,8 @@ pub fn markdown_table(rows: &[ComparisonRow]) -> String {
             r.max_deformation_mm,
             r.duration_s,
             r.blade_travel_mm,
+            r.blade_path_mm,
+            r.reversals,
             r.completed,
             r.limit_faults,
             r.plan_p99_us

@@ -43,7 +43,7 @@ pub fn controller_choice(s: &Scenario, text: Option<&str>) -> Result<ControllerC
     }
 }
 
-/// The link's timeouts for a scenario: lockstep waits up to 5 s for an
+/// The link's timeouts for a scenario: lockstep waits up to 30 s for an
 /// answer (a plant may rebuild a section); realtime up to the braking time
 /// (missed-command limit × period) plus 1 s.
 pub fn link_timeouts(s: &Scenario) -> LinkTimeouts {

@@ -363,14 +363,16 @@ pub(crate) fn print_summary(s: &Scenario, run: &RunOutput) {
         o.end, o.ticks, c.duration_s, o.limit_faults
     );
     println!(
-        "work {:.4} J, peak Fv {:.3} N, peak Fh {:.3} N, max deformation {:.3} mm, depth {:.2} mm of {:.2} mm, blade travel {:.1} mm",
+        "work {:.4} J, peak Fv {:.3} N, peak Fh {:.3} N, max deformation {:.3} mm, depth {:.2} mm of {:.2} mm, blade used {:.1} mm (path {:.1} mm, {} reversals)",
         c.work_j,
         c.peak_force_vertical_n,
         c.peak_force_horizontal_n,
         c.max_deformation_m * 1e3,
         c.cut_depth_m * 1e3,
         run.target_depth_m * 1e3,
-        c.blade_travel_m * 1e3
+        c.blade_travel_m * 1e3,
+        c.blade_path_m * 1e3,
+        c.reversals
     );
     println!(
         "controller tick: median {:.2} us, p99 {:.2} us, max {:.2} us (wall clock)",

@@ -13,7 +13,7 @@ const METRICS: [Metric; 5] = [
     ("peak vertical force (N)", |r| r.peak_force_vertical_n),
     ("max deformation (mm)", |r| r.max_deformation_mm),
     ("time (s)", |r| r.duration_s),
-    ("blade travel (mm)", |r| r.blade_travel_mm),
+    ("blade used (mm)", |r| r.blade_travel_mm),
 ];
 
 const BAR_COLORS: [RGBColor; 6] = [

@@ -3,10 +3,11 @@
 
 use std::time::{Duration, Instant};
 
-use iceoryx2::port::{client::Client, listener::Listener, notifier::Notifier};
+use iceoryx2::port::{listener::Listener, notifier::Notifier};
 use iceoryx2::prelude::*;
 use shearcut_sim::plant::{KnifeCommand, Measurement};
 
+use super::board::{BoardReader, BoardWriter};
 use super::loop_services::{LoopServices, PeerState, Role, node_name};
 use super::wait_mode::WaitMode;
 use super::wire::{WireCommand, WireError, WireMeasurement};
@@ -25,23 +26,32 @@ pub struct LinkTimeouts {
 }
 
 impl Default for LinkTimeouts {
-    /// Connect 30 s, response 5 s (a lockstep plant may rebuild a section),
-    /// checks every 5 ms.
+    /// Connect 30 s, response 30 s (a lockstep plant may rebuild a section:
+    /// up to 4.7 s measured on a loaded 2-core machine; a dead plant is
+    /// still detected within a check), checks every 5 ms.
     fn default() -> Self {
         Self {
             connect: Duration::from_secs(30),
-            response: Duration::from_secs(5),
+            response: Duration::from_secs(30),
             check_every: Duration::from_millis(5),
         }
     }
 }
 
-/// A plant in another process, reached over iceoryx2 shared memory: one
-/// request (command) and one response (measurement) per servo tick.
+/// A plant in another process, reached over iceoryx2 shared memory: per
+/// servo tick the controller writes one command to the run's command board
+/// and waits until the measurement board holds the answer with the same
+/// sequence number (older entries are the previous answer and are skipped).
+/// After construction a round trip allocates nothing
+/// (`tests/iceoryx2_link_alloc.rs`) as long as the answer comes within
+/// [`LinkTimeouts::check_every`]; a longer wait asks iceoryx2's node list
+/// whether the plant died, which allocates.
 #[derive(Debug)]
 pub struct Iceoryx2PlantLink {
-    services: LoopServices,
-    client: Client<ipc::Service, WireCommand, (), WireMeasurement, ()>,
+    // Ports drop before the services (fields drop in order).
+    commands: BoardWriter<WireCommand>,
+    /// The plant's measurement board, once the plant serves the run.
+    measurements: Option<BoardReader<WireMeasurement>>,
     notifier: Notifier<ipc::Service>,
     listener: Listener<ipc::Service>,
     period: f64,
@@ -55,6 +65,7 @@ pub struct Iceoryx2PlantLink {
     /// When to look for a termination request next (they are also checked
     /// while a round trip waits).
     next_signal_check: Option<Instant>,
+    services: LoopServices,
 }
 
 impl Iceoryx2PlantLink {
@@ -74,11 +85,8 @@ impl Iceoryx2PlantLink {
         let lost = |what: &str, e: &dyn std::fmt::Debug| {
             LinkError::Lost(format!("cannot create the controller's {what}: {e:?}"))
         };
-        let client = services
-            .exchange
-            .client_builder()
-            .create()
-            .map_err(|e| lost("client", &e))?;
+        let commands =
+            BoardWriter::new(&services.own_board).map_err(|e| lost("command board writer", &e))?;
         let notifier = services
             .command_ready
             .notifier_builder()
@@ -91,8 +99,8 @@ impl Iceoryx2PlantLink {
             .map_err(|e| lost("listener", &e))?;
         let plant = node_name(Role::Plant, &services.run_id);
         Ok(Self {
-            services,
-            client,
+            commands,
+            measurements: None,
             notifier,
             listener,
             period,
@@ -104,17 +112,30 @@ impl Iceoryx2PlantLink {
             missed_commands: 0,
             plant,
             next_signal_check: None,
+            services,
         })
     }
 
-    /// Waits until a plant serves the run.
+    /// Waits until a plant serves the run (its measurement board exists)
+    /// and opens its board.
     ///
     /// # Errors
-    /// No plant within the connect timeout, or a termination request.
+    /// No plant within the connect timeout, a termination request, or
+    /// iceoryx2 refused to open the plant's board.
     #[allow(clippy::disallowed_methods)] // Timeouts, not model time.
-    pub fn wait_for_plant(&self) -> Result<(), LinkError> {
+    pub fn wait_for_plant(&mut self) -> Result<(), LinkError> {
         let started = Instant::now();
-        while self.services.exchange.dynamic_config().number_of_servers() == 0 {
+        loop {
+            let board = self
+                .services
+                .open_peer_board()
+                .map_err(|e| LinkError::Lost(format!("the plant '{}'s board: {e}", self.plant)))?;
+            if let Some(board) = board {
+                self.measurements = Some(BoardReader::new(board).map_err(|e| {
+                    LinkError::Lost(format!("the plant '{}'s board: {e}", self.plant))
+                })?);
+                return Ok(());
+            }
             if self.services.node.wait(Duration::from_millis(1)).is_err() {
                 return Err(self.stopped());
             }
@@ -125,7 +146,6 @@ impl Iceoryx2PlantLink {
                 )));
             }
         }
-        Ok(())
     }
 
     /// Wall-clock round trips (command sent → measurement received) so far.
@@ -133,7 +153,8 @@ impl Iceoryx2PlantLink {
         TickTimes::from_durations(&mut self.round_trips_us.clone())
     }
 
-    /// Commands the plant reported missed (realtime clock) so far.
+    /// Commands the plant reported missed (realtime clock) so far; after
+    /// [`finish`](Self::finish), the plant's total.
     pub fn missed_commands(&self) -> u32 {
         self.missed_commands
     }
@@ -149,7 +170,10 @@ impl Iceoryx2PlantLink {
     /// The plant did not acknowledge.
     pub fn finish(&mut self) -> Result<(), LinkError> {
         let command = WireCommand::end_of_run(self.sequence, self.last_time);
-        match self.round_trip(command)?.measurement() {
+        let answer = self.round_trip(command)?;
+        // The plant's final count, misses after the last command included.
+        self.missed_commands = answer.missed_commands;
+        match answer.measurement() {
             Err(WireError::Ended) => Ok(()),
             other => Err(LinkError::Lost(format!(
                 "the plant '{}' did not acknowledge the end of the run: {other:?}",
@@ -194,34 +218,28 @@ impl Iceoryx2PlantLink {
             }
             self.next_signal_check = Some(started + self.timeouts.check_every);
         }
-        let pending = self.client.send_copy(command).map_err(|e| {
-            LinkError::Lost(format!(
-                "cannot send command {} to the plant '{}': {e:?}",
-                command.sequence, self.plant
-            ))
-        })?;
+        let Some(measurements) = &self.measurements else {
+            return Err(LinkError::Lost(format!(
+                "not connected to the plant '{}' (wait_for_plant first)",
+                self.plant
+            )));
+        };
+        self.commands.publish(command);
+        // Every command sent takes a new number, answered or not: a late
+        // answer to a command given up on never passes for the next one's.
+        self.sequence = command.sequence.wrapping_add(1);
         if self.wait == WaitMode::Blocking {
             let _ = self.notifier.notify();
         }
         let mut next_check = self.timeouts.check_every;
         let mut spins = 0u32;
         loop {
-            let answer = pending.receive().map_err(|e| {
-                LinkError::Lost(format!(
-                    "cannot receive from the plant '{}': {e:?}",
-                    self.plant
-                ))
-            })?;
-            if let Some(answer) = answer {
-                let m = *answer.payload();
+            // The entry holds the previous answer until the plant writes
+            // this command's.
+            let m = measurements.latest();
+            if m.sequence == command.sequence {
                 self.round_trips_us
                     .push(started.elapsed().as_secs_f64() * 1e6);
-                if m.sequence != command.sequence {
-                    return Err(LinkError::Lost(format!(
-                        "the plant '{}' answered command {} with measurement {}",
-                        self.plant, command.sequence, m.sequence
-                    )));
-                }
                 return Ok(m);
             }
             match self.wait {
@@ -265,7 +283,6 @@ impl PlantLink for Iceoryx2PlantLink {
             WireError::ModelFailed => LinkError::Model(format!("in the plant '{}'", self.plant)),
             e => LinkError::Lost(format!("the plant '{}': {e}", self.plant)),
         })?;
-        self.sequence += 1;
         self.last_time = m.time;
         Ok(m)
     }

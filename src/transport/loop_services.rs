@@ -1,7 +1,10 @@
-//! The iceoryx2 services of one run: a request-response service carrying
-//! commands and measurements, and two event services waking the side that
-//! waits (`shearcut/<run-id>/loop`, `…/command-ready`, `…/measurement-ready`).
-//! All live under one iceoryx2 prefix (default [`DEFAULT_PREFIX`], or the
+//! The iceoryx2 services of one run: two one-entry blackboards carrying the
+//! latest command and measurement, and two event services waking the side
+//! that waits (`shearcut/<run-id>/command`, `…/measurement`,
+//! `…/command-ready`, `…/measurement-ready`). Each board is created by its
+//! writer (the controller creates the command board, the plant the
+//! measurement board) and opened by the other side once it exists. All live
+//! under one iceoryx2 prefix (default [`DEFAULT_PREFIX`], or the
 //! environment's [`PREFIX_ENV`]): the next node created under the prefix
 //! cleans what killed processes left behind, and the run id in the names
 //! keeps concurrent runs apart.
@@ -10,8 +13,10 @@ use std::time::Duration;
 
 use iceoryx2::node::NodeView;
 use iceoryx2::prelude::*;
-use iceoryx2::service::port_factory::{event, request_response};
+use iceoryx2::service::builder::blackboard::{BlackboardCreateError, BlackboardOpenError};
+use iceoryx2::service::port_factory::event;
 
+use super::board::{Board, ENTRY_KEY};
 use super::wire::{WireCommand, WireMeasurement};
 
 /// The iceoryx2 prefix of every shearcut run (files under `/dev/shm` and
@@ -21,10 +26,6 @@ pub const DEFAULT_PREFIX: &str = "shearcut_";
 /// Environment variable overriding [`DEFAULT_PREFIX`] (tests isolate
 /// themselves with a unique one).
 pub const PREFIX_ENV: &str = "SHEARCUT_IPC_PREFIX";
-
-/// The request-response service of a run.
-pub type LoopService =
-    request_response::PortFactory<ipc::Service, WireCommand, (), WireMeasurement, ()>;
 
 /// Why the services could not be set up.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -71,6 +72,60 @@ impl Role {
             Role::Controller => "controller",
         }
     }
+
+    /// The other side.
+    pub fn peer(self) -> Role {
+        match self {
+            Role::Plant => Role::Controller,
+            Role::Controller => Role::Plant,
+        }
+    }
+}
+
+/// The board `role` writes: `command` (controller) or `measurement` (plant).
+fn board_name(role: Role) -> &'static str {
+    match role {
+        Role::Controller => "command",
+        Role::Plant => "measurement",
+    }
+}
+
+/// Creates `role`'s board `name` with its empty entry. A board left by a
+/// killed process of an earlier run under the same run id is being removed
+/// by the dead-node cleanup: retry for up to a second.
+fn create_board(
+    node: &Node<ipc::Service>,
+    name: &ServiceName,
+    role: Role,
+) -> Result<Board, ServiceError> {
+    let mut last = None;
+    for _ in 0..100 {
+        let builder = node.service_builder(name).blackboard_creator::<u64>();
+        let builder = match role {
+            Role::Controller => builder.add::<WireCommand>(ENTRY_KEY, WireCommand::empty()),
+            Role::Plant => builder.add::<WireMeasurement>(ENTRY_KEY, WireMeasurement::empty()),
+        };
+        match builder.create() {
+            Ok(board) => return Ok(board),
+            Err(
+                e @ (BlackboardCreateError::AlreadyExists
+                | BlackboardCreateError::IsBeingCreatedByAnotherInstance),
+            ) => {
+                last = Some(e);
+                let _ = node.try_cleanup_dead_nodes();
+                if node.wait(Duration::from_millis(10)).is_err() {
+                    break;
+                }
+            }
+            Err(e) => return Err(iceoryx(&format!("{} board", board_name(role)), e)),
+        }
+    }
+    Err(ServiceError::Iceoryx(format!(
+        "{} board '{}': {last:?} (is another {} serving this run id?)",
+        board_name(role),
+        name.as_str(),
+        role.as_str()
+    )))
 }
 
 /// The node name of `role` in run `run_id` (`plant/<run-id>`).
@@ -102,8 +157,9 @@ pub fn config(prefix: &str) -> Result<Config, ServiceError> {
 pub struct LoopServices {
     /// The process's node (`plant/<run-id>` or `controller/<run-id>`).
     pub node: Node<ipc::Service>,
-    /// Commands and measurements.
-    pub exchange: LoopService,
+    /// The board this role writes, created by it: the command board
+    /// (controller) or the measurement board (plant).
+    pub own_board: Board,
     /// Notifications "a command is waiting" (controller → plant).
     pub command_ready: event::PortFactory<ipc::Service>,
     /// Notifications "a measurement is waiting" (plant → controller).
@@ -112,6 +168,8 @@ pub struct LoopServices {
     pub run_id: String,
     /// The configuration (prefix) in force.
     pub config: Config,
+    /// This process's role.
+    pub role: Role,
 }
 
 impl LoopServices {
@@ -139,11 +197,6 @@ impl LoopServices {
             ServiceName::new(&format!("shearcut/{run_id}/{what}"))
                 .map_err(|e| iceoryx("service name", e))
         };
-        let exchange = node
-            .service_builder(&service_name("loop")?)
-            .request_response::<WireCommand, WireMeasurement>()
-            .open_or_create()
-            .map_err(|e| iceoryx("loop service", e))?;
         let command_ready = node
             .service_builder(&service_name("command-ready")?)
             .event()
@@ -154,14 +207,41 @@ impl LoopServices {
             .event()
             .open_or_create()
             .map_err(|e| iceoryx("measurement-ready service", e))?;
+        let own_board = create_board(&node, &service_name(board_name(role))?, role)?;
         Ok(Self {
             node,
-            exchange,
+            own_board,
             command_ready,
             measurement_ready,
             run_id: run_id.to_string(),
             config,
+            role,
         })
+    }
+
+    /// The other role's board, once that side has created it (`None`
+    /// before).
+    ///
+    /// # Errors
+    /// The board exists but iceoryx2 refused to open it.
+    pub fn open_peer_board(&self) -> Result<Option<Board>, ServiceError> {
+        let peer = self.role.peer();
+        let name = ServiceName::new(&format!("shearcut/{}/{}", self.run_id, board_name(peer)))
+            .map_err(|e| iceoryx("service name", e))?;
+        match self
+            .node
+            .service_builder(&name)
+            .blackboard_opener::<u64>()
+            .open()
+        {
+            Ok(board) => Ok(Some(board)),
+            Err(
+                BlackboardOpenError::DoesNotExist
+                | BlackboardOpenError::IsMarkedForDestruction
+                | BlackboardOpenError::HangsInCreation,
+            ) => Ok(None),
+            Err(e) => Err(iceoryx(&format!("{} board", board_name(peer)), e)),
+        }
     }
 
     /// Whether a termination request (SIGINT/SIGTERM) has arrived.

@@ -1,6 +1,7 @@
 //! The arm-style loop across processes: the wire format and the iceoryx2
 //! shared-memory link between a controller process and a plant process.
 
+pub mod board;
 pub mod iceoryx2_link;
 pub mod loop_services;
 pub mod plant_server;

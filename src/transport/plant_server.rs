@@ -10,9 +10,10 @@ use iceoryx2::prelude::*;
 use serde::Serialize;
 use shearcut_sim::plant::{KnifeCommand, Measurement, PlantStatus};
 
+use super::board::{BoardReader, BoardWriter};
 use super::loop_services::{LoopServices, ServiceError};
 use super::wait_mode::WaitMode;
-use super::wire::{WireCommand, WireFault, WireMeasurement, WireStatus};
+use super::wire::{NO_SEQUENCE, WireCommand, WireFault, WireMeasurement, WireStatus};
 use crate::closed_loop::PlantLink;
 use crate::scenario::ClockMode;
 
@@ -84,6 +85,43 @@ fn iceoryx(context: &str, e: impl std::fmt::Debug) -> ServiceError {
     ServiceError::Iceoryx(format!("{context}: {e:?}"))
 }
 
+/// The plant's end of the boards: the controller's command board (opened
+/// once the controller created it) and its own measurement board.
+struct PlantPorts<'a> {
+    services: &'a LoopServices,
+    commands: Option<BoardReader<WireCommand>>,
+    measurements: BoardWriter<WireMeasurement>,
+    notifier: iceoryx2::port::notifier::Notifier<ipc::Service>,
+    wait: WaitMode,
+    /// The sequence number of the last command answered.
+    answered: Option<u64>,
+}
+
+impl PlantPorts<'_> {
+    /// A command not answered yet, if the controller wrote one.
+    fn poll(&mut self) -> Result<Option<WireCommand>, ServiceError> {
+        if self.commands.is_none() {
+            match self.services.open_peer_board()? {
+                Some(board) => self.commands = Some(BoardReader::new(board)?),
+                None => return Ok(None),
+            }
+        }
+        Ok(self.commands.as_ref().and_then(|board| {
+            let c = board.latest();
+            (c.sequence != NO_SEQUENCE && Some(c.sequence) != self.answered).then_some(c)
+        }))
+    }
+
+    /// Writes `w` (the answer to command `w.sequence`) and wakes the controller.
+    fn answer(&mut self, w: WireMeasurement) {
+        self.measurements.publish(w);
+        self.answered = Some(w.sequence);
+        if self.wait == WaitMode::Blocking {
+            let _ = self.notifier.notify();
+        }
+    }
+}
+
 /// Serves `plant` (any [`PlantLink`], e.g. an
 /// [`InProcessPlant`](crate::closed_loop::InProcessPlant)) on `services`
 /// until the controller ends the run, the plant brakes or fails, or a
@@ -95,32 +133,37 @@ fn iceoryx(context: &str, e: impl std::fmt::Debug) -> ServiceError {
 /// last tick, or, missing one, with the last command (the arm keeps its
 /// motion). After `missed_command_limit` consecutive misses the plant
 /// commands zero velocity (the arm-limit monitor holds the knife if that
-/// stop is too abrupt), answers any further command with
-/// [`WireStatus::Braked`] and stops.
+/// stop is too abrupt), answers the next command number in advance with
+/// [`WireStatus::Braked`], and stops.
+///
+/// Answering a command allocates nothing after the ports are built (the
+/// plant's own step aside).
 ///
 /// # Errors
-/// iceoryx2 refused to create a port or to send.
+/// iceoryx2 refused to create or open a port.
 #[allow(clippy::disallowed_methods)] // Pacing and deadlines, not model time.
 pub fn serve_plant(
     services: &LoopServices,
     plant: &mut dyn PlantLink,
     settings: &PlantServerSettings,
 ) -> Result<PlantReport, ServiceError> {
-    let server = services
-        .exchange
-        .server_builder()
-        .create()
-        .map_err(|e| iceoryx("server", e))?;
     let listener = services
         .command_ready
         .listener_builder()
         .create()
         .map_err(|e| iceoryx("listener", e))?;
-    let notifier = services
-        .measurement_ready
-        .notifier_builder()
-        .create()
-        .map_err(|e| iceoryx("notifier", e))?;
+    let mut ports = PlantPorts {
+        services,
+        commands: None,
+        measurements: BoardWriter::new(&services.own_board)?,
+        notifier: services
+            .measurement_ready
+            .notifier_builder()
+            .create()
+            .map_err(|e| iceoryx("notifier", e))?,
+        wait: settings.wait,
+        answered: None,
+    };
     let period = plant.period();
     let realtime = settings.clock == ClockMode::Realtime;
     let window = if realtime {
@@ -138,7 +181,6 @@ pub fn serve_plant(
     let mut consecutive = 0u32;
     let mut last_command = KnifeCommand::default();
     let mut last: Option<Measurement> = None;
-    let mut last_sequence = 0u64;
     let started = Instant::now();
     // Start of the current window: the last command (lockstep) or the next
     // tick (realtime); None until the first command.
@@ -153,49 +195,39 @@ pub fn serve_plant(
                 return Ok(report);
             }
         }
-        let request = server.receive().map_err(|e| iceoryx("receive", e))?;
-        if let Some(request) = request {
-            let command: WireCommand = *request.payload();
+        if let Some(command) = ports.poll()? {
             consecutive = 0;
-            last_sequence = command.sequence;
-            let answer = |w: WireMeasurement| -> Result<(), ServiceError> {
-                request.send_copy(w).map_err(|e| iceoryx("send", e))?;
-                if settings.wait == WaitMode::Blocking {
-                    let _ = notifier.notify();
-                }
-                Ok(())
-            };
             if command.is_end_of_run() {
                 let m = last.unwrap_or_else(rest_measurement);
-                answer(
+                ports.answer(
                     WireMeasurement::new(command.sequence, &m, report.missed_commands).stopped(
                         WireStatus::Ended,
                         WireFault::None,
                         0.0,
                     ),
-                )?;
+                );
                 report.end = PlantEnd::Ended;
                 return Ok(report);
             }
             last_command = command.knife_command();
             match plant.exchange(&last_command) {
                 Ok(m) => {
-                    answer(WireMeasurement::new(
+                    ports.answer(WireMeasurement::new(
                         command.sequence,
                         &m,
                         report.missed_commands,
-                    ))?;
+                    ));
                     last = Some(m);
                 }
                 Err(e) => {
                     let m = last.unwrap_or_else(rest_measurement);
-                    answer(
+                    ports.answer(
                         WireMeasurement::new(command.sequence, &m, report.missed_commands).stopped(
                             WireStatus::ModelFailed,
                             WireFault::None,
                             0.0,
                         ),
-                    )?;
+                    );
                     report.end = PlantEnd::ModelFailed(e.to_string());
                     return Ok(report);
                 }
@@ -254,26 +286,17 @@ pub fn serve_plant(
             brake(plant, &mut report, &mut last);
             report.end = PlantEnd::Braked(consecutive);
             let m = last.unwrap_or_else(rest_measurement);
-            let braked = WireMeasurement::new(last_sequence + 1, &m, report.missed_commands)
-                .stopped(
+            // The answer a late controller's next command finds (the entry
+            // stays readable after this process exits while the controller
+            // holds the board open).
+            let next = ports.answered.map_or(0, |s| s.wrapping_add(1));
+            ports.answer(
+                WireMeasurement::new(next, &m, report.missed_commands).stopped(
                     WireStatus::Braked,
                     WireFault::MissedCommands,
                     f64::from(consecutive),
-                );
-            // Answer a late controller, if one turns up soon, with the fault.
-            let until = Instant::now() + Duration::from_millis(100);
-            while Instant::now() < until {
-                if let Some(request) = server.receive().map_err(|e| iceoryx("receive", e))? {
-                    let mut w = braked;
-                    w.sequence = request.payload().sequence;
-                    request.send_copy(w).map_err(|e| iceoryx("send", e))?;
-                    let _ = notifier.notify();
-                    break;
-                }
-                if services.node.wait(Duration::from_millis(1)).is_err() {
-                    break;
-                }
-            }
+                ),
+            );
             return Ok(report);
         }
         if realtime {

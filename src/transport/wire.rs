@@ -14,6 +14,10 @@ use shearcut_sim::plant::{KnifeCommand, LimitViolation, Measurement, PlantStatus
 /// answers with its last measurement and exits.
 pub const FLAG_END_OF_RUN: u32 = 1;
 
+/// The `sequence` of a board's initial entry: nothing written yet (no
+/// command or measurement carries it).
+pub const NO_SEQUENCE: u64 = u64::MAX;
+
 /// One servo command, controller → plant (48 bytes).
 #[derive(Debug, Clone, Copy, PartialEq, ZeroCopySend)]
 #[type_name("shearcut::WireCommand")]
@@ -51,6 +55,12 @@ impl WireCommand {
             flags: FLAG_END_OF_RUN,
             ..Self::new(sequence, time, &KnifeCommand::default())
         }
+    }
+
+    /// The command board's initial entry: sequence [`NO_SEQUENCE`], zero
+    /// velocity.
+    pub fn empty() -> Self {
+        Self::new(NO_SEQUENCE, 0.0, &KnifeCommand::default())
     }
 
     /// Whether this command ends the run.
@@ -197,6 +207,29 @@ impl WireMeasurement {
             status: status as u32,
             fault: fault as u32,
             missed_commands,
+            reserved: 0,
+        }
+    }
+
+    /// The measurement board's initial entry: sequence [`NO_SEQUENCE`],
+    /// every field 0 (status moving, no fault).
+    pub fn empty() -> Self {
+        Self {
+            sequence: NO_SEQUENCE,
+            time: 0.0,
+            position: [0.0; 3],
+            velocity: [0.0; 3],
+            wrench: [0.0; 6],
+            true_wrench: [0.0; 6],
+            crack_depth: 0.0,
+            contact_length: 0.0,
+            work: 0.0,
+            deformation: 0.0,
+            fault_value: 0.0,
+            fractured_sections: 0,
+            status: WireStatus::Moving as u32,
+            fault: WireFault::None as u32,
+            missed_commands: 0,
             reserved: 0,
         }
     }

@@ -42,16 +42,43 @@ impl BladeBudget {
         (self.budget - self.used).max(0.0)
     }
 
-    /// The tangential speed allowed now for a wish of `speed` (m/s, ≥ 0):
-    /// `speed` while the knife can still stop within the remaining blade
-    /// under `acceleration` and `jerk` limits, else 0.
+    /// Travel left in `direction` (+1 towards the tip, −1 back towards
+    /// where the cut started), m (≥ 0): a stroke back may return the arc to
+    /// its starting place on the blade, not beyond.
+    pub fn remaining_towards(&self, direction: f64) -> f64 {
+        if direction >= 0.0 {
+            self.remaining()
+        } else {
+            self.used.max(0.0)
+        }
+    }
+
+    /// The length of one full stroke, m: the whole budget.
+    pub fn stroke_length(&self) -> f64 {
+        self.budget
+    }
+
+    /// The tangential speed allowed now towards the tip for a wish of
+    /// `speed` (m/s, ≥ 0): `speed` while the knife can still stop within
+    /// the remaining blade under `acceleration` and `jerk` limits, else 0.
     pub fn allowed_speed(&self, speed: f64, acceleration: f64, jerk: f64) -> f64 {
+        self.allowed_speed_towards(1.0, speed, acceleration, jerk)
+    }
+
+    /// [`Self::allowed_speed`] in `direction` (+1 towards the tip, −1 back).
+    pub fn allowed_speed_towards(
+        &self,
+        direction: f64,
+        speed: f64,
+        acceleration: f64,
+        jerk: f64,
+    ) -> f64 {
         if speed <= 0.0 {
             return 0.0;
         }
         // One tick of travel at the current wish is spent before the shaper
         // reacts: keep a 1 % margin plus the stopping distance.
-        if stopping_distance(speed, acceleration, jerk) < 0.99 * self.remaining() {
+        if stopping_distance(speed, acceleration, jerk) < 0.99 * self.remaining_towards(direction) {
             speed
         } else {
             0.0
@@ -59,17 +86,23 @@ impl BladeBudget {
     }
 }
 
+/// Time to stop from `speed` (m/s) at rest acceleration under the
+/// `acceleration` and `jerk` limits, s (time-optimal: a constant-deceleration
+/// phase only when v·j ≥ a²).
+pub fn stopping_duration(speed: f64, acceleration: f64, jerk: f64) -> f64 {
+    let v = speed.abs();
+    if v * jerk >= acceleration * acceleration {
+        v / acceleration + acceleration / jerk
+    } else {
+        2.0 * (v / jerk).sqrt()
+    }
+}
+
 /// Distance to stop from `speed` (m/s) at rest acceleration under the
 /// `acceleration` and `jerk` limits, m: the time-optimal stop is symmetric,
 /// so the distance is speed × duration / 2.
 pub fn stopping_distance(speed: f64, acceleration: f64, jerk: f64) -> f64 {
-    let v = speed.abs();
-    let duration = if v * jerk >= acceleration * acceleration {
-        v / acceleration + acceleration / jerk
-    } else {
-        2.0 * (v / jerk).sqrt()
-    };
-    0.5 * v * duration
+    0.5 * speed.abs() * stopping_duration(speed, acceleration, jerk)
 }
 
 #[cfg(test)]

@@ -24,12 +24,14 @@ mod blade_budget;
 mod constant_slice;
 mod cut_task;
 mod force_feedback;
+mod sawing_stroke;
 mod velocity_shaper;
 
-pub use blade_budget::{BladeBudget, stopping_distance};
+pub use blade_budget::{BladeBudget, stopping_distance, stopping_duration};
 pub use constant_slice::ConstantSlice;
 pub use cut_task::{CutTask, MotionLimits};
 pub use force_feedback::{ForceFeedback, ForceFeedbackGains, INTEGRAL_BAND};
+pub use sawing_stroke::{SawingStroke, StrokePhase};
 pub use velocity_shaper::VelocityShaper;
 
 use shearcut_sim::plant::{KnifeCommand, Measurement};

@@ -10,7 +10,8 @@ use super::scale_estimator::ScaleEstimator;
 use super::settings::MpcSettings;
 use super::slice_model::{SliceModel, StageState};
 use crate::controller::{
-    BladeBudget, Controller, ControllerTelemetry, CutTask, VelocityShaper, stopping_distance,
+    BladeBudget, Controller, ControllerTelemetry, CutTask, SawingStroke, VelocityShaper,
+    stopping_distance, stopping_duration,
 };
 
 /// Counters of the MPC's plans.
@@ -18,6 +19,9 @@ use crate::controller::{
 pub struct MpcStats {
     /// Plans attempted.
     pub plans: u64,
+    /// Subproblems solved: one per plan, two while the blade budget binds
+    /// and sawing is considered.
+    pub solves: u64,
     /// Plans that fell back to the previous plan (not solved in budget).
     pub fallbacks: u64,
     /// Status of the last plan.
@@ -59,8 +63,14 @@ const ESTIMATOR_FORCE_NOISE: f64 = 1.0;
 /// unit length to a [`ScaleEstimator`] with the model's parts at the
 /// executed ξ, and each plan uses the latest scale factors.
 ///
-/// Tangential strokes back (sawing) are not planned: ξ ≥ 0 within the blade
-/// budget.
+/// Sawing: with `max_reversals` > 0, each plan is solved twice when the
+/// blade budget binds — within what is left of the current stroke, and with
+/// the reversals still allowed adding a full stroke each — and the second
+/// is taken if its objective plus the time the reversals it needs lose
+/// (each costs a stop and a restart, [`stopping_duration`] at
+/// `time_weight`) is lower. The knife then reverses at the stroke's end at
+/// constant ξ ([`SawingStroke`]). ξ is planned as a magnitude: seed 000's
+/// r(ξ, ν) (eq. 6) and the surrogate depend on |ξ| only.
 pub struct Mpc<M: SliceModel> {
     task: CutTask,
     settings: MpcSettings,
@@ -77,6 +87,13 @@ pub struct Mpc<M: SliceModel> {
     depth_at_fracture: Option<f64>,
     budget: BladeBudget,
     shaper: VelocityShaper,
+    stroke: SawingStroke,
+    /// Whether the plan in force needs more blade than the stroke has.
+    saw: bool,
+    /// The plan within the current stroke (ξ and τ per stage) while the
+    /// sawing plan is solved.
+    stroke_xi: Vec<f64>,
+    stroke_tau: Vec<f64>,
     stats: MpcStats,
     replanned: bool,
     estimator: Option<ScaleEstimator>,
@@ -141,6 +158,10 @@ impl<M: SliceModel> Mpc<M> {
             depth_at_fracture: None,
             budget: BladeBudget::new(task.blade_budget),
             shaper,
+            stroke: SawingStroke::new(settings.max_reversals),
+            saw: false,
+            stroke_xi: vec![0.0; n],
+            stroke_tau: vec![0.0; n],
             stats: MpcStats::default(),
             replanned: false,
             estimator: settings
@@ -159,6 +180,11 @@ impl<M: SliceModel> Mpc<M> {
     /// Whether the last tick planned (solved the subproblem).
     pub fn replanned(&self) -> bool {
         self.replanned
+    }
+
+    /// The sawing state: direction, reversals, the reversal under way.
+    pub fn stroke(&self) -> &SawingStroke {
+        &self.stroke
     }
 
     /// The current plan's ratios, stage by stage.
@@ -254,23 +280,42 @@ impl<M: SliceModel> Mpc<M> {
                 before_fracture: !fractured && k == 0,
             };
         }
-        let l = &self.task.limits;
+        let l = self.task.limits;
         // Keep what stopping at the current tangential speed needs.
         let reserve = stopping_distance(self.tangential_speed, l.acceleration, l.jerk);
-        let blade = (self.budget.remaining() - reserve).max(0.0);
+        let blade = (self.budget.remaining_towards(self.stroke.direction()) - reserve).max(0.0);
         let previous = self.plan_xi[0];
-        let status = self.qp.solve(&self.stages, &self.limits, previous, blade);
+        let mut status = self.qp.solve(&self.stages, &self.limits, previous, blade);
         self.stats.plans += 1;
-        self.stats.last_status = Some(status);
+        self.stats.solves += 1;
         self.stats.last_iterations = self.qp.iterations();
         self.stats.max_iterations = self.stats.max_iterations.max(self.qp.iterations());
+        let within = status == QpStatus::Solved;
+        if within {
+            self.stroke_xi.copy_from_slice(self.qp.xi());
+            self.stroke_tau.copy_from_slice(self.qp.tau());
+        }
+        self.saw = self.stroke.reversals_left() > 0 && self.sawing_pays(previous, blade, within);
+        if self.saw {
+            status = QpStatus::Solved;
+            self.stroke_xi.copy_from_slice(self.qp.xi());
+            self.stroke_tau.copy_from_slice(self.qp.tau());
+        }
+        self.stats.last_status = Some(status);
         if status == QpStatus::Solved {
-            self.plan_xi.copy_from_slice(self.qp.xi());
-            let tau = self.qp.tau()[0];
+            self.plan_xi.copy_from_slice(&self.stroke_xi);
+            let tau = self.stroke_tau[0];
             self.normal_speed = (1.0 / tau).min(l.normal_speed);
             self.tangential_speed = (self.plan_xi[0] * self.normal_speed).min(l.tangential_speed);
         } else {
             self.stats.fallbacks += 1;
+            // The trust region around a plan that no longer fits the blade
+            // (after the last allowed reversal, say) leaves the next
+            // subproblem infeasible too: linearise it around ratios that fit.
+            let cap = blade / remaining;
+            for x in &mut self.plan_xi {
+                *x = x.min(cap);
+            }
             if self.normal_speed == 0.0 {
                 // No plan yet: start at the initial plan's ratio, full speed.
                 self.normal_speed = l
@@ -279,6 +324,60 @@ impl<M: SliceModel> Mpc<M> {
                 self.tangential_speed = self.plan_xi[0] * self.normal_speed;
             }
         }
+    }
+
+    /// Whether sawing pays, after the plan within the stroke (`blade` m
+    /// left) was solved (`within`; its solution in `stroke_xi`/`stroke_tau`)
+    /// or not: if that plan's budget row binds, or it failed (the trust
+    /// region around a sawing plan can leave no ratio that fits the
+    /// stroke), solves again with every reversal still allowed adding a
+    /// stroke, and compares the objectives, charging the second the time
+    /// each reversal it needs loses. True leaves the sawing plan in the
+    /// solver.
+    fn sawing_pays(&mut self, previous: f64, blade: f64, within: bool) -> bool {
+        let demand = |stages: &[StageData], xi: &[f64]| -> f64 {
+            stages.iter().zip(xi).map(|(s, x)| s.depth_step * x).sum()
+        };
+        if within && demand(&self.stages, &self.stroke_xi) < blade * (1.0 - 1e-6) {
+            return false;
+        }
+        let stroke = 0.98 * self.budget.stroke_length();
+        let extra = f64::from(self.stroke.reversals_left()) * stroke;
+        self.stats.solves += 1;
+        if self
+            .qp
+            .solve(&self.stages, &self.limits, previous, blade + extra)
+            != QpStatus::Solved
+        {
+            return false;
+        }
+        self.stats.last_iterations = self.qp.iterations();
+        self.stats.max_iterations = self.stats.max_iterations.max(self.qp.iterations());
+        if !within {
+            return true;
+        }
+        let xi = self.qp.xi();
+        let needed = ((demand(&self.stages, xi) - blade) / stroke)
+            .ceil()
+            .max(0.0);
+        if needed < 1.0 {
+            return false;
+        }
+        let l = &self.task.limits;
+        let speed = self
+            .normal_speed
+            .hypot(self.tangential_speed)
+            .max(l.normal_speed);
+        let reversal = self.limits.time_weight * stopping_duration(speed, l.acceleration, l.jerk);
+        let within = DepthQp::objective(
+            &self.stages,
+            &self.limits,
+            previous,
+            &self.stroke_xi,
+            &self.stroke_tau,
+        );
+        let sawing = DepthQp::objective(&self.stages, &self.limits, previous, xi, self.qp.tau());
+        sawing + needed * reversal < within
     }
 }
 
@@ -303,14 +402,22 @@ impl<M: SliceModel> Controller for Mpc<M> {
             self.replanned = true;
         }
         self.ticks += 1;
-        let l = &self.task.limits;
-        let (v_n, v_t) = if done {
-            (0.0, 0.0)
+        let (command, v_n, v_t) = if done {
+            (self.shaper.command(0.0, 0.0), 0.0, 0.0)
         } else {
-            let v_t = self
-                .budget
-                .allowed_speed(self.tangential_speed, l.acceleration, l.jerk);
-            (self.normal_speed, v_t)
+            let command = self.stroke.command(
+                &mut self.shaper,
+                &self.budget,
+                &self.task,
+                self.normal_speed,
+                self.tangential_speed,
+                self.saw,
+            );
+            (
+                command,
+                self.normal_speed,
+                self.stroke.direction() * self.tangential_speed,
+            )
         };
         self.telemetry = ControllerTelemetry {
             planned: self.replanned,
@@ -318,7 +425,7 @@ impl<M: SliceModel> Controller for Mpc<M> {
             scale: self.scale(),
             ..ControllerTelemetry::moving(v_n, v_t, self.budget.used(), done)
         };
-        self.shaper.command(v_n, v_t)
+        command
     }
 
     fn telemetry(&self) -> ControllerTelemetry {

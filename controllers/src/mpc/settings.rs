@@ -36,11 +36,20 @@ pub struct MpcSettings {
     /// the deterministic time budget; a plan that is not solved within it
     /// falls back to the previous plan, shifted.
     pub max_iterations: u32,
-    /// Estimate the material's scale factors online (default true).
+    /// Estimate the material's scale factors online (default false: on the
+    /// shipped scenarios the estimator drives the factors to their bounds
+    /// in the transient after the first fracture — toughness and stiffness
+    /// are nearly collinear at a near-constant ξ — and the plans get worse
+    /// than with the nominal model; see docs/controllers.md).
     pub estimate: bool,
     /// Forgetting factor of the estimator per row, in (0, 1] (default
     /// 0.999: a memory of about 1000 rows, half a second at 1 kHz).
     pub forgetting: f64,
+    /// Sawing: the most reversals of the tangential direction the MPC may
+    /// make in one cut (default 16; 0 keeps the whole cut within one stroke
+    /// of the blade budget). A plan uses strokes only if their cost (the
+    /// time a reversal loses, at `time_weight`) is below the work they save.
+    pub max_reversals: u32,
 }
 
 impl Default for MpcSettings {
@@ -56,8 +65,9 @@ impl Default for MpcSettings {
             max_force: None,
             force_penalty: 10.0,
             max_iterations: 40,
-            estimate: true,
+            estimate: false,
             forgetting: 0.999,
+            max_reversals: 16,
         }
     }
 }

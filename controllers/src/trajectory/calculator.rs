@@ -25,7 +25,7 @@ use super::input::{
     TrajectorySettings, TrajectoryStatus,
 };
 use super::position_fixed_duration::fixed_duration;
-use super::position_time_optimal::{TimeOptimal, time_optimal};
+use super::position_time_optimal::{TimeOptimal, time_optimal, time_optimal_into};
 use super::profile::Profile;
 use super::trajectory::Trajectory;
 use super::velocity;
@@ -84,11 +84,13 @@ pub(crate) fn calculate<const N: usize>(
             None
         };
         let total = |w: &DofWork| w.brake_t + w.cands.duration[0];
-        let mut best = solve_dof(input, i, &l, &b.prefix, position);
+        solve_dof(input, i, &l, &b.prefix, position, &mut work[i]);
         // Alternative braking variants: braking to rest at the limit velocity, and holding the
-        // braking acceleration (both only when velocity braking is involved).
-        let held = if b.active && position {
-            brake_with(
+        // braking acceleration (both only when velocity braking is involved). They are kept for
+        // synchronisation: they may reach durations that the fastest one cannot (blocked
+        // intervals differ).
+        if b.active && position {
+            let held = brake_with(
                 input.current_position[i],
                 input.current_velocity[i],
                 input.current_acceleration[i],
@@ -97,31 +99,26 @@ pub(crate) fn calculate<const N: usize>(
                 true,
             )
             .filter(|h| h.prefix.end() != b.prefix.end())
-            .map(|h| h.prefix)
-        } else {
-            None
-        };
-        let mut others =
-            [alternative, held].map(|p| p.and_then(|p| solve_dof(input, i, &l, &p, position)));
-        for o in &mut others {
-            let better = match (&best, &*o) {
-                (Some(bw), Some(ow)) => total(ow) < total(bw),
-                (None, Some(_)) => true,
-                _ => false,
-            };
-            if better {
-                core::mem::swap(&mut best, o);
+            .map(|h| h.prefix);
+            for (k, p) in [alternative, held].into_iter().enumerate() {
+                if let Some(p) = p {
+                    solve_dof(input, i, &l, &p, position, &mut alt_work[i][k]);
+                }
+                let better = match (&work[i], &alt_work[i][k]) {
+                    (Some(bw), Some(ow)) => total(ow) < total(bw),
+                    (None, Some(_)) => true,
+                    _ => false,
+                };
+                if better {
+                    core::mem::swap(&mut work[i], &mut alt_work[i][k]);
+                }
             }
         }
-        let Some(best) = best else {
+        let Some(best) = &work[i] else {
             return Err(TrajectoryError::NoProfile { dof: i });
         };
-        traj.independent_min_durations[i] = total(&best);
-        t_min = t_min.max(total(&best));
-        work[i] = Some(best);
-        // The other braking variants are kept for synchronisation: they may reach durations that
-        // the fastest one cannot (blocked intervals differ).
-        alt_work[i] = others;
+        traj.independent_min_durations[i] = total(best);
+        t_min = t_min.max(total(best));
     }
     traj.braking = braking;
     let status = if braking {
@@ -134,7 +131,8 @@ pub(crate) fn calculate<const N: usize>(
     // Independent motion.
     if input.synchronization == Synchronization::None && !discrete {
         for i in 0..N {
-            traj.profiles[i] = w(i).cands.profile(&w(i).prefix, 0);
+            w(i).cands
+                .profile_into(&w(i).prefix, 0, &mut traj.profiles[i]);
         }
         traj.duration = t_min;
         return Ok(finished_if_zero(traj, status));
@@ -144,8 +142,9 @@ pub(crate) fn calculate<const N: usize>(
         for i in 0..N {
             let wi = w(i);
             let t = round_up(wi.brake_t + wi.cands.duration[0], dt);
-            traj.profiles[i] =
-                stretch(wi, t, position).ok_or(TrajectoryError::Synchronization { dof: i })?;
+            if !stretch(wi, t, position, &mut traj.profiles[i]) {
+                return Err(TrajectoryError::Synchronization { dof: i });
+            }
         }
         traj.duration = round_up(t_min, dt);
         return Ok(finished_if_zero(traj, status));
@@ -172,15 +171,13 @@ pub(crate) fn calculate<const N: usize>(
         };
         let mut ok = true;
         for (i, alt) in alt_work.iter().enumerate() {
-            let p = stretch(wk(&work, i), t, position)
-                .or_else(|| alt.iter().flatten().find_map(|a| stretch(a, t, position)));
-            match p {
-                Some(p) => traj.profiles[i] = p,
-                None => {
-                    ok = false;
-                    failed_dof = i;
-                    break;
-                }
+            let out = &mut traj.profiles[i];
+            if !(stretch(wk(&work, i), t, position, out)
+                || alt.iter().flatten().any(|a| stretch(a, t, position, out)))
+            {
+                ok = false;
+                failed_dof = i;
+                break;
             }
         }
         if ok {
@@ -222,14 +219,16 @@ fn wk<const N: usize>(work: &[Option<DofWork>; N], i: usize) -> &DofWork {
         .expect("every DoF is solved before synchronisation")
 }
 
-/// Step 1 of DoF `i` after the braking `prefix`; `None` if no profile exists.
+/// Step 1 of DoF `i` after the braking `prefix`, written to `out` (`None` if no profile exists).
+/// Filled in place: a [`DofWork`] is a few kilobytes.
 fn solve_dof<const N: usize>(
     input: &TrajectoryInput<N>,
     i: usize,
     l: &Limits,
     prefix: &Profile,
     position: bool,
-) -> Option<DofWork> {
+    out: &mut Option<DofWork>,
+) {
     let s = prefix.end();
     let dof = Dof {
         p0: s.position,
@@ -244,10 +243,27 @@ fn solve_dof<const N: usize>(
         a_min: l.a_min,
         j: l.j,
     };
-    let cands = if position {
-        time_optimal(&dof, prefix, 1)
+    let w = match out {
+        Some(w) => {
+            w.dof = dof;
+            w.limits = *l;
+            w.prefix = *prefix;
+            w.brake_t = prefix.duration();
+            w
+        }
+        None => out.insert(DofWork {
+            dof,
+            limits: *l,
+            prefix: *prefix,
+            brake_t: prefix.duration(),
+            cands: TimeOptimal::new(),
+        }),
+    };
+    let c = &mut w.cands;
+    if position {
+        time_optimal_into(&w.dof, &w.prefix, 1, c);
     } else {
-        let mut c = TimeOptimal::new();
+        c.n = 0;
         let mut found = velocity::candidates(prefix, dof.vf, dof.af, l);
         if let [Some(a), Some(b)] = &found
             && b.duration() < a.duration()
@@ -263,17 +279,13 @@ fn solve_dof<const N: usize>(
             }
             c.duration[c.n] = sg.duration();
             c.segs[c.n] = sg;
+            c.dir[c.n] = 1.0;
             c.n += 1;
         }
-        c
-    };
-    (cands.n > 0).then_some(DofWork {
-        dof,
-        limits: *l,
-        prefix: *prefix,
-        brake_t: prefix.duration(),
-        cands,
-    })
+    }
+    if c.n == 0 {
+        *out = None;
+    }
 }
 
 fn finished_if_zero<const N: usize>(
@@ -287,23 +299,34 @@ fn finished_if_zero<const N: usize>(
     }
 }
 
-/// Profile of one DoF lasting exactly `t` (braking included): its own candidate if one has that
-/// duration, otherwise a fixed-duration profile.
-fn stretch(w: &DofWork, t: f64, position: bool) -> Option<Profile> {
+/// Profile of one DoF lasting exactly `t` (braking included), written to `out`: its own
+/// candidate if one has that duration, otherwise a fixed-duration profile. `false` (and `out`
+/// unspecified) if there is none.
+fn stretch(w: &DofWork, t: f64, position: bool, out: &mut Profile) -> bool {
     let tm = t - w.brake_t;
     if tm < -1e-12 * (1.0 + t) {
-        return None;
+        return false;
     }
     let tm = tm.max(0.0);
     for k in 0..w.cands.n {
         if (w.cands.duration[k] - tm).abs() <= 1e-12 * (1.0 + tm) {
-            return Some(w.cands.profile(&w.prefix, k));
+            w.cands.profile_into(&w.prefix, k, out);
+            return true;
         }
     }
     if position {
-        fixed_duration(&w.dof, &w.prefix, tm)
+        match fixed_duration(&w.dof, &w.prefix, tm) {
+            Some((segs, dir)) => segs.append_to(&w.prefix, dir, out),
+            None => false,
+        }
     } else {
-        velocity::fixed_duration(&w.prefix, w.dof.vf, w.dof.af, &w.limits, tm)
+        match velocity::fixed_duration(&w.prefix, w.dof.vf, w.dof.af, &w.limits, tm) {
+            Some(p) => {
+                *out = p;
+                true
+            }
+            None => false,
+        }
     }
 }
 
@@ -385,11 +408,16 @@ fn phase_synchronize<const N: usize>(
     if cands.n == 0 {
         return false;
     }
-    let mut scalar = cands.profile(&prefix, 0);
+    let mut scalar = Profile::default();
+    cands.profile_into(&prefix, 0, &mut scalar);
     if discrete {
         let t = round_up(scalar.duration(), dt);
         match fixed_duration(&line, &prefix, t) {
-            Some(p) => scalar = p,
+            Some((segs, dir)) => {
+                if !segs.append_to(&prefix, dir, &mut scalar) {
+                    return false;
+                }
+            }
             None => return false,
         }
     }

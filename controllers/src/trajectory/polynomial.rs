@@ -1,10 +1,11 @@
 //! Low-degree polynomials on an interval: exact interpolation and all real roots.
 //!
 //! Inside one smooth window of a profile family the residual equations are polynomials in a
-//! suitable parameter (see [`super::family_window`]), of degree at most [`MAX_DEGREE`]. We do not
-//! transcribe their coefficients per family: the polynomial is *interpolated* from `n + 1`
-//! evaluations of the residual itself at Chebyshev points of the window, checked at one extra
-//! point, and its real roots are isolated by the critical points (the roots of the derivative,
+//! suitable parameter (see [`super::peak_window`]), of degree at most [`MAX_DEGREE`]. Their
+//! coefficients are closed forms ([`closed_form_roots`], from [`super::peak_polynomials`]) or,
+//! as a fallback, *interpolated* from `n + 1` evaluations of the residual at Chebyshev points
+//! of the window ([`polynomial_roots`]); either is checked against the residual at one more
+//! point. The real roots are isolated by the critical points (the roots of the derivative,
 //! recursively down to a closed-form quadratic) and refined by safeguarded Newton steps. Every
 //! step is closed form or a bracketed iteration on a polynomial: no sampling of the residual.
 //!
@@ -269,6 +270,17 @@ fn monotone_root(p: &Poly, mut a: f64, mut fa: f64, mut b: f64, fb: f64, tol: f6
             b = x;
         }
         let mut nx = x - f / df;
+        // Converged: test the Newton step before the bracket safeguard. Once x sits on the
+        // root, x is also a bracket end, and a tiny step beyond it must not trigger the
+        // bisection fallback (which restarted from the midpoint of a wide bracket and cost
+        // dozens of iterations).
+        if (nx - x).abs() <= tol * (1.0 + x.abs()) {
+            return if nx > a.min(b) && nx < a.max(b) {
+                nx
+            } else {
+                x
+            };
+        }
         if !(nx > a.min(b) && nx < a.max(b)) {
             nx = 0.5 * (a + b);
         }
@@ -291,6 +303,21 @@ pub(crate) fn closed_form_roots<F: FnMut(f64) -> f64>(
     f: &mut F,
     wl: f64,
     wr: f64,
+    out: &mut Roots,
+) -> bool {
+    closed_form_roots_checked(n, c, f, wl, wr, None, out)
+}
+
+/// [`closed_form_roots`] with the guard value supplied by the caller: `check = (w, f(w))` for
+/// some `w` inside `[wl, wr]` that the caller has already evaluated (saves one evaluation of
+/// the residual per window).
+pub(crate) fn closed_form_roots_checked<F: FnMut(f64) -> f64>(
+    n: usize,
+    c: &[f64; MAX_DEGREE + 1],
+    f: &mut F,
+    wl: f64,
+    wr: f64,
+    check: Option<(f64, f64)>,
     out: &mut Roots,
 ) -> bool {
     if !(wl.is_finite() && wr.is_finite() && wr >= wl) || n > MAX_DEGREE {
@@ -322,8 +349,11 @@ pub(crate) fn closed_form_roots<F: FnMut(f64) -> f64>(
     // it (a window whose shape differs from the expected one): the roots of a wrong polynomial
     // would silently miss profiles.
     const T_CHECK: f64 = 0.412_345;
-    let yc = f(w_of(T_CHECK));
-    if !yc.is_finite() || (yc - q.eval(T_CHECK)).abs() > 1e-9 * (scale + yc.abs()) + 1e-300 {
+    let (tc, yc) = match check {
+        Some((w, y)) if w >= wl && w <= wr => (if half > 0.0 { (w - mid) / half } else { 0.0 }, y),
+        _ => (T_CHECK, f(w_of(T_CHECK))),
+    };
+    if !yc.is_finite() || (yc - q.eval(tc)).abs() > 1e-9 * (scale + yc.abs()) + 1e-300 {
         return false;
     }
     let mut r = [0.0; MAX_DEGREE];

@@ -4,10 +4,10 @@
 //! Three families, tried in order, each reduced to one scalar equation in one parameter:
 //!
 //! * **Peak + cruise**: `(v0, a0) → (v_p, 0)`, cruise at `v_p` for `t_c`, `(v_p, 0) → (vf, af)`,
-//!   with both velocity changes time-optimal. The duration fixes `t_c = T − T₁(v_p) − T₂(v_p)`,
-//!   which must be ≥ 0: the admissible `v_p` form at most a few intervals whose ends are roots of
-//!   `T₁ + T₂ = T`. On each interval we solve the position equation
-//!   `D₁(v_p) + D₂(v_p) + v_p t_c(v_p) = Δp`.
+//!   with both velocity changes time-optimal. The duration fixes `t_c = T − T₁(v_p) − T₂(v_p)`.
+//!   On each smooth window of the peak family we solve the position equation
+//!   `D₁(v_p) + D₂(v_p) + v_p t_c(v_p) = Δp` (a polynomial, see [`super::peak_window`]) and
+//!   keep the roots with `t_c ≥ 0`.
 //! * **Held first peak**: `+J (a0→a1)`, hold `a1` for `t_h`, `−J (a1→a2)`, `+J (a2→af)`. The
 //!   duration fixes `t_h`; the velocity equation then reads `a2² − 2 a1 a2 − C(a1) = 0`, so
 //!   `a2 = a1 − √(a1² + C)`, and the position equation is solved for `a1`.
@@ -31,19 +31,20 @@ use super::roots::{Roots, scan};
 
 const ARC_SAMPLES: usize = 12;
 
-/// A profile of one DoF lasting exactly `t` seconds after the braking `prefix`, if one is found.
-pub(crate) fn fixed_duration(d: &Dof, prefix: &Profile, t: f64) -> Option<Profile> {
+/// A profile of one DoF lasting exactly `t` seconds after the braking `prefix`, if one is found:
+/// its (verified) segments and direction (`−1` for the mirror frame), to be appended to `prefix`
+/// (see [`Segments::append_to`]).
+pub(crate) fn fixed_duration(d: &Dof, prefix: &Profile, t: f64) -> Option<(Segments, f64)> {
     if t.is_nan() || t < 0.0 {
         return None;
     }
     if t == 0.0 {
-        return d.at_target().then_some(*prefix);
+        return d.at_target().then_some((Segments::default(), 1.0));
     }
     if d.at_target() && d.v0 == 0.0 && d.a0 == 0.0 {
         // Resting at the target: wait.
-        let mut p = *prefix;
-        p.push(t, 0.0);
-        return Some(p);
+        let mut s = Segments::default();
+        return s.push(t, 0.0, t).then_some((s, 1.0));
     }
     if d.j <= 0.0 {
         // Without jerk the state can only be held, which reaches the target only if the DoF
@@ -59,63 +60,48 @@ pub(crate) fn fixed_duration(d: &Dof, prefix: &Profile, t: f64) -> Option<Profil
     held(d, &d.mirrored(), prefix, t, -1.0)
 }
 
-fn peak_cruise(d: &Dof, prefix: &Profile, t: f64) -> Option<Profile> {
+fn peak_cruise(d: &Dof, prefix: &Profile, t: f64) -> Option<(Segments, f64)> {
     let dp = d.pf - d.p0;
-    let mut h = |vp: f64| peak_distance(d, vp).1 - t;
     let mut br = [0.0; 8];
     let nb = peak_breaks(d, &mut br);
-    let mut ends = Roots::new();
-    for w in br[..nb].windows(2) {
-        scan_peak_window(
-            d,
-            &mut h,
-            w[0],
-            w[1],
-            1,
-            PeakResidual::Duration { t },
-            &mut ends,
-        );
-    }
-    // Interval end points: domain ends and roots of T₁ + T₂ = T, sorted.
-    let mut pts = [0.0; 32];
-    let mut n = 0;
-    pts[n] = d.v_min;
-    n += 1;
-    // Break points too, so that every window is smooth.
-    for &r in ends.as_slice().iter().chain(&br[1..nb - 1]) {
-        if n < 31 {
-            pts[n] = r;
-            n += 1;
-        }
-    }
-    pts[n] = d.v_max;
-    n += 1;
-    let pts = &mut pts[..n];
-    pts.sort_unstable_by(f64::total_cmp);
-
+    // The cruise residual `D₁ + D₂ + v_p (T − T₁ − T₂) − Δp` is one polynomial per smooth window
+    // whatever the sign of the cruise time `T − T₁ − T₂`; roots with a negative cruise time are
+    // rejected when the segments are built (`Segments::push`). So every smooth window is solved
+    // once, without first locating the admissible set `T₁ + T₂ ≤ T`.
     let mut g = |vp: f64| {
         let (dist, tt) = peak_distance(d, vp);
         dist + vp * (t - tt) - dp
     };
-    let try_vp = |vp: f64| -> Option<Profile> {
+    let try_vp = |vp: f64| -> Option<(Segments, f64)> {
         let (c1, c2) = peak_parts(d, vp)?;
         let tc = t - c1.duration() - c2.duration();
         let s = peak_segments(&c1, tc, &c2, t)?;
-        d.accept(prefix, &s, 1.0)
+        d.check(prefix, &s, 1.0).then_some((s, 1.0))
     };
-    for w in pts.windows(2) {
-        let (l, r) = (w[0], w[1]);
-        let mid = 0.5 * (l + r);
-        let h_mid = h(mid);
-        if h_mid.is_nan() || h_mid > 0.0 {
+    // Any valid profile will do, so the windows are visited starting with the one that holds
+    // the mean velocity Δp/T (where a long cruise, the common case, has its peak), then
+    // alternately outwards; every window is still visited before giving up.
+    let nw = nb - 1;
+    let guess = dp / t;
+    let first = br[1..nb - 1].iter().take_while(|&&b| b < guess).count();
+    for k in 0..2 * nw {
+        // first, first + 1, first − 1, first + 2, …, skipping indices outside 0..nw (each
+        // window exactly once).
+        let step = k.div_ceil(2);
+        let idx = if k % 2 == 1 {
+            first + step
+        } else {
+            first.wrapping_sub(step)
+        };
+        let Some(w) = (idx < nw).then(|| [br[idx], br[idx + 1]]) else {
             continue;
-        }
+        };
         let mut roots = Roots::new();
         scan_peak_window(
             d,
             &mut g,
-            l,
-            r,
+            w[0],
+            w[1],
             1,
             PeakResidual::CruiseDistance { dp, t },
             &mut roots,
@@ -124,12 +110,6 @@ fn peak_cruise(d: &Dof, prefix: &Profile, t: f64) -> Option<Profile> {
             if let Some(p) = try_vp(vp) {
                 return Some(p);
             }
-        }
-    }
-    // Degenerate admissible sets (single points where T₁ + T₂ = T exactly).
-    for &vp in ends.as_slice() {
-        if let Some(p) = try_vp(vp) {
-            return Some(p);
         }
     }
     None
@@ -157,7 +137,7 @@ fn reach(v0: f64, a0: f64, segs: &[(f64, f64)]) -> f64 {
 }
 
 /// The two "held" families in the frame of `d` (`orig` is the problem to verify against).
-fn held(orig: &Dof, d: &Dof, prefix: &Profile, t: f64, dir: f64) -> Option<Profile> {
+fn held(orig: &Dof, d: &Dof, prefix: &Profile, t: f64, dir: f64) -> Option<(Segments, f64)> {
     let j = d.j;
     let dp = d.pf - d.p0;
     let dv = d.vf - d.v0;
@@ -280,10 +260,8 @@ fn held(orig: &Dof, d: &Dof, prefix: &Profile, t: f64, dir: f64) -> Option<Profi
         for &x in roots.as_slice() {
             let Some(s) = segs(x) else { continue };
             let mut sg = Segments::default();
-            if s.iter().all(|&(ti, ji)| sg.push(ti, ji, t))
-                && let Some(p) = orig.accept(prefix, &sg, dir)
-            {
-                return Some(p);
+            if s.iter().all(|&(ti, ji)| sg.push(ti, ji, t)) && orig.check(prefix, &sg, dir) {
+                return Some((sg, dir));
             }
         }
     }

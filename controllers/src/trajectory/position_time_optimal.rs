@@ -30,7 +30,7 @@
 //!
 //! Roots are found as polynomial roots on every smooth window ([`super::peak_window`]) or,
 //! where the family is not polynomial in one variable, by [`super::roots::scan`]; each candidate is integrated and verified
-//! ([`Dof::accept`]). The shortest valid one is time-optimal; the other valid durations are
+//! ([`Dof::check`]). The shortest valid one is time-optimal; the other valid durations are
 //! kept, since they bound the blocked intervals used by synchronisation.
 
 use super::dof::{Dof, Segments};
@@ -77,7 +77,7 @@ impl TimeOptimal {
         if self.n == MAX_CANDIDATES && d >= self.duration[self.n - 1] {
             return;
         }
-        if dof.accept(prefix, segs, dir).is_none() {
+        if !dof.check(prefix, segs, dir) {
             return;
         }
         self.insert(d, segs, dir);
@@ -117,14 +117,9 @@ impl TimeOptimal {
         self.dir[k] = dir;
     }
 
-    /// The candidate `k` as a full profile on top of `prefix`.
-    pub fn profile(&self, prefix: &Profile, k: usize) -> Profile {
-        let mut p = *prefix;
-        let s = &self.segs[k];
-        for i in 0..s.n {
-            p.push(s.t[i], self.dir[k] * s.j[i]);
-        }
-        p
+    /// The candidate `k` as a full profile on top of `prefix`, written to `out`.
+    pub fn profile_into(&self, prefix: &Profile, k: usize, out: &mut Profile) {
+        self.segs[k].append_to(prefix, self.dir[k], out);
     }
 }
 
@@ -413,15 +408,21 @@ fn three_arc_family(
 /// extremal profile missed between samples, see the calculator).
 pub(crate) fn time_optimal(d: &Dof, prefix: &Profile, density: usize) -> TimeOptimal {
     let mut out = TimeOptimal::new();
+    time_optimal_into(d, prefix, density, &mut out);
+    out
+}
+
+/// [`time_optimal`] written to `out` (which is cleared first), without moving the result.
+pub(crate) fn time_optimal_into(d: &Dof, prefix: &Profile, density: usize, out: &mut TimeOptimal) {
+    out.n = 0;
     if d.at_target() {
         out.offer(d, prefix, &Segments::default(), 1.0);
-        return out;
+        return;
     }
     if d.j <= 0.0 {
-        return out;
+        return;
     }
-    peak_family(d, prefix, density, &mut out);
-    three_arc_family(d, d, prefix, 1.0, density, &mut out);
-    three_arc_family(d, &d.mirrored(), prefix, -1.0, density, &mut out);
-    out
+    peak_family(d, prefix, density, out);
+    three_arc_family(d, d, prefix, 1.0, density, out);
+    three_arc_family(d, &d.mirrored(), prefix, -1.0, density, out);
 }

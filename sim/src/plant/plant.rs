@@ -233,11 +233,16 @@ struct SegmentSection {
 /// - if it cuts the same shape (a cuboid's interior), only the plane moves
 ///   and the section keeps its state;
 /// - otherwise a new [`CrossSection`] for the new shape takes over,
-///   restarted with the crack depth where the front crosses the new plane
-///   and the predecessor's fracture flag
-///   ([`CrossSection::restart_with_crack`]); the predecessor's knife work is
-///   kept, so the plant's cumulative work never drops. Only the crack is
-///   carried over, not the predecessor's elastic state.
+///   takes over the cut ([`CrossSection::take_over`]): the crack depth
+///   where the front crosses the new plane, the predecessor's fracture flag,
+///   and the edge's indentation below the crack tip and drag (the knife does
+///   not move when a plane is re-chosen), with the elastic state evaluated
+///   on the new shape; the predecessor's knife work is kept, so the plant's
+///   cumulative work never drops. (Restarting the edge at the crack tip
+///   instead threw away the indentation at every re-choice: a flank section
+///   under the eggplant's tough skin, re-chosen every few millimetres of
+///   travel, then never built up the indentation its first fracture needs
+///   and never fractured while the knife went on through.)
 ///
 /// Without a started section there is nothing to fit and no re-choice.
 ///
@@ -708,6 +713,8 @@ impl Plant {
                     continue;
                 };
                 let tip = tip_of(s);
+                let was_active = s.active;
+                let old_origin = s.plane.origin;
                 s.plane = plane;
                 s.slide_reference = signed_offset(&plane, &m);
                 match prepared {
@@ -720,18 +727,45 @@ impl Plant {
                         // The crack carried over: the front where it crosses
                         // the new plane (its trace in the knife plane is the
                         // line from the board point along the segment's up),
+                        // the front shifted to pass through the
+                        // predecessor's own tip, so that the least-squares
+                        // fit's residual at that tip (millimetres where
+                        // intact flank tips and deep middle ones share one
+                        // quadratic) neither heals nor deepens the crack;
                         // or, if it misses within the object's size, the
                         // height of the predecessor's tip.
                         let o = Vector2::new(plane.origin.z, plane.origin.y);
                         let up = Vector2::new(plane.v_axis.z, plane.v_axis.y);
-                        let along = front
+                        let mut through_tip = front;
+                        through_tip.coefficients[0] += tip.y - front.height_at(tip.x);
+                        let along = through_tip
                             .intersect_nearest(o, up)
                             .filter(|l| *l >= 0.0 && *l <= size)
                             .unwrap_or(tip.y / up.y);
                         let depth = (geometry.height_at_cut() - along).max(0.0);
+                        // The edge stays where it is: the predecessor's edge
+                        // height moved to the new plane's board point (both
+                        // planes are normal to the same segment, so heights
+                        // differ by the origins' offset along its up); for
+                        // a predecessor that had slid off the object (not
+                        // advanced), the midpoint's own height, less any
+                        // lift.
+                        let edge = if was_active {
+                            s.section.state().edge_height
+                                + (old_origin - plane.origin).dot(&plane.v_axis)
+                        } else {
+                            (m - plane.origin).dot(&plane.v_axis) - s.lift
+                        };
+                        // The successor takes over the cut: that crack, the
+                        // predecessor's first-fracture flag, and the knife
+                        // where it is (see `CrossSection::take_over`).
+                        let mut section = section;
+                        section.take_over(&s.section, depth, edge);
+                        // An edge above the new section's top (a lower shape
+                        // towards the flank) has that gap to travel first.
+                        s.gap = (edge - geometry.height_at_cut()).max(0.0);
                         let old = *s.section.state();
                         s.section = section;
-                        s.section.restart_with_crack(depth, old.fractured);
                         s.work_offset += old.work.knife;
                         s.geometry = geometry;
                         s.active = true;

@@ -53,6 +53,13 @@ impl SectionFactory {
             // Lower than the rim everywhere: no material worth a section.
             return Preparation::NoMaterial;
         };
+        if geometry.half_width() <= self.blade.edge_width {
+            // A sliver grazed at the object's flank, no wider across the cut
+            // than twice the edge flat: the flat covers it, no mesh resolves
+            // it, and its material is negligible. Like a section lower than
+            // the rim, no material worth a section.
+            return Preparation::NoMaterial;
+        }
         if current.is_some_and(|c| same_geometry(&geometry, c)) {
             return Preparation::SameShape;
         }
@@ -69,7 +76,8 @@ impl SectionFactory {
 /// A successor the worker prepared.
 #[derive(Debug)]
 pub(crate) enum Preparation {
-    /// The plane misses the object, or its section is lower than the rim.
+    /// The plane misses the object, or its section is lower than the rim or
+    /// no wider than twice the knife's edge flat (a sliver at the flank).
     NoMaterial,
     /// The plane cuts the same shape as the current section (a prism's
     /// interior): only the plane moves.

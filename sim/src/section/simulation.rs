@@ -30,8 +30,9 @@ pub enum StepStatus {
 
 /// Cumulative energies of a section, per unit length of edge, J/m (= N).
 ///
-/// Balance (seed 000 eq. 1 with friction): `knife = fracture + strain_energy
-/// + friction + unstable` after every step.
+/// Balance (seed 000 eq. 1 with friction): `knife + inherited = fracture +
+/// strain_energy + friction + unstable` after every step (`inherited` is 0
+/// unless the section took over a predecessor's cut).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct WorkSplit {
     /// Work done by the knife: ∫ F_n dn + F_t dt (trapezoidal per step), J/m.
@@ -48,6 +49,11 @@ pub struct WorkSplit {
     /// Energy released in excess of R_c^s by a crack running unstably through
     /// the section (status `CutThrough` or `Unbracketed`), J/m.
     pub unstable: f64,
+    /// Strain energy the section started with when it took over a
+    /// predecessor's cut ([`CrossSection::take_over`]): the predecessor's
+    /// elastic state, paid for by the predecessor's knife work, J/m (0 for a
+    /// section cut from its intact state).
+    pub inherited: f64,
 }
 
 /// The state of a section after a knife step. Forces are those the material
@@ -348,6 +354,72 @@ impl CrossSection {
         st.step.crack_tip_height = y;
         st.step.crack_depth = depth;
         st.step.fractured = fractured;
+    }
+
+    /// Takes over the cut of `predecessor`, the section this one succeeds as
+    /// a moving cross section (seed 000 §IV, Fig. 4(b)): the crack cut
+    /// `crack_depth` (m) below this section's top with the predecessor's
+    /// first-fracture flag, as [`Self::restart_with_crack`], *and the knife
+    /// where it is*: the edge at `edge_height` (m above the board on this
+    /// section's cut line, kept between the board and the top), with the
+    /// predecessor's drag along the edge if the edge presses below the tip.
+    ///
+    /// Re-choosing a section moves the plane that models the material around
+    /// a segment, not the knife: an edge pressing d below an intact skin
+    /// (R(δ₀) < r·R'_c, seed 000 eqs. 1 and 6) keeps pressing there on the
+    /// successor, so the indentation builds up to the first fracture across
+    /// re-choices instead of restarting from zero at each.
+    ///
+    /// The elastic state (forces, surface deflection, strain energy) is
+    /// evaluated on this section's geometry for that configuration. The
+    /// energies restart at zero except the strain energy, which is the
+    /// predecessor's elastic state re-established here and is booked as
+    /// [`WorkSplit::inherited`], so the balance reads knife + inherited =
+    /// fracture + strain energy + friction + unstable. (The caller keeps the
+    /// predecessor's knife work, which paid for it.) Allocates nothing.
+    pub fn take_over(&mut self, predecessor: &CrossSection, crack_depth: f64, edge_height: f64) {
+        let pred = predecessor.state;
+        self.restart_with_crack(crack_depth, pred.fractured);
+        let model = &self.model;
+        let y_tip = self.state.y_tip;
+        let y_edge = if edge_height.is_finite() {
+            edge_height.clamp(0.0, model.height)
+        } else {
+            y_tip
+        };
+        let drag = if y_tip > y_edge && pred.y_tip > pred.y_edge {
+            pred.drag
+        } else {
+            0.0
+        };
+        let e = evaluate(model, &mut self.ws, y_tip, y_edge, drag, 0.0, 0.0);
+        let strip = strip_of(model, y_tip, y_edge);
+        let surface = -model
+            .line
+            .line_uy(model.n, &self.ws.g, Some(&strip), &self.ws.lambda);
+        let st = &mut self.state;
+        st.y_edge = y_edge;
+        st.drag = drag;
+        let step = &mut st.step;
+        step.knife_displacement = model.height - y_edge;
+        step.edge_height = y_edge;
+        step.indentation = (y_tip - y_edge).max(0.0);
+        step.surface_deflection = surface;
+        step.force_vertical = e.f_elastic_n();
+        step.force_tangential = e.f_t;
+        step.force_vertical_wedge = e.f_wedge;
+        step.tensile_contacts = e.tensile;
+        step.status = if y_tip > y_edge {
+            StepStatus::Indenting
+        } else {
+            StepStatus::NoContact
+        };
+        step.work.strain_energy = e.energy;
+        step.work.strain_energy_antiplane = e.energy_anti;
+        step.work.inherited = e.energy;
+        // The next step evaluates its start afresh (friction for its own
+        // increments).
+        self.ws.end = None;
     }
 
     /// The state after the last step (or the initial state).
@@ -1024,5 +1096,80 @@ mod tests {
                 .unwrap()
                 .state()
         );
+    }
+
+    #[test]
+    fn take_over_on_the_same_shape_continues_the_cut_unchanged() {
+        // Eggplant with skin (R'_c = 650 N/m): an edge pressing 2 mm into
+        // the intact skin, then handed over to a successor of the same shape
+        // with the knife where it is. Nothing physical changes: the same
+        // elastic state, the first fracture at the same knife travel as
+        // without the hand-over, and the balance closes with the inherited
+        // strain energy. (A restart at the crack tip would need the whole
+        // indentation again.)
+        let material = MaterialPreset::EggplantWhole.material();
+        let geometry = SectionGeometry::rectangle(0.03, 0.02).unwrap();
+        let settings = SectionSettings {
+            row_spacing: 5e-4,
+            ..SectionSettings::default()
+        };
+        let new = || {
+            CrossSection::new(&geometry, &material, &BladeSection::default(), &settings).unwrap()
+        };
+        let (step, xi) = (2e-5, 0.3);
+        let mut reference = new();
+        let mut pred = new();
+        for _ in 0..100 {
+            reference.advance(step, xi * step).unwrap();
+            pred.advance(step, xi * step).unwrap();
+        }
+        let p = *pred.state();
+        assert!(!p.fractured && p.indentation > 1.9e-3, "{p:?}");
+        let mut succ = new();
+        succ.take_over(&pred, p.crack_depth, p.edge_height);
+        let s = *succ.state();
+        assert_eq!(s.edge_height, p.edge_height);
+        assert_eq!(s.crack_tip_height, p.crack_tip_height);
+        assert_eq!(s.indentation, p.indentation);
+        assert!(!s.fractured);
+        let close = |a: f64, b: f64| (a - b).abs() <= 1e-9 * a.abs().max(b.abs());
+        // The elastic parts (the predecessor's forces include its last
+        // step's friction; a hand-over moves nothing).
+        assert!(close(
+            s.force_vertical,
+            p.force_vertical - p.force_vertical_friction
+        ));
+        assert!(close(s.surface_deflection, p.surface_deflection));
+        assert!(close(s.work.strain_energy, p.work.strain_energy));
+        assert_eq!(s.work.inherited, s.work.strain_energy);
+        assert_eq!(s.work.knife, 0.0);
+        // On to the first fracture: at the same travel as the uninterrupted
+        // reference.
+        let first = |c: &mut CrossSection| -> usize {
+            for k in 0..2000 {
+                if c.advance(step, xi * step).unwrap().fractured {
+                    return k;
+                }
+            }
+            panic!("never fractured");
+        };
+        let k_ref = first(&mut reference);
+        let k_succ = first(&mut succ);
+        assert!(k_ref.abs_diff(k_succ) <= 1, "{k_ref} vs {k_succ}");
+        for _ in 0..200 {
+            succ.advance(step, xi * step).unwrap();
+        }
+        let w = succ.state().work;
+        let closure =
+            w.knife + w.inherited - (w.fracture + w.strain_energy + w.friction + w.unstable);
+        assert!(
+            closure.abs() <= 1e-6 * (w.knife + w.inherited),
+            "balance off by {closure}"
+        );
+        // The old hand-over (edge restarted at the tip) indents from zero.
+        let mut restarted = new();
+        restarted.restart_with_crack(p.crack_depth, p.fractured);
+        let k_restart = first(&mut restarted);
+        assert!(k_restart > k_ref + 50, "{k_restart} vs {k_ref}");
     }
 }

@@ -1,0 +1,96 @@
+//! Cost of building a cross section (`CrossSection::new`: mesh, assembly,
+//! sparse factorisation and static condensation onto the cut line, the
+//! last being nearly all of it) for the sections the closed loop
+//! `loop-potato-whole` builds: the half potato (90 × 60 × 35 mm) cut by the
+//! chef's knife, default section mesh (rows every 0.2 mm). The plant builds
+//! one section per edge segment at start and one on its worker thread for
+//! every re-choice of a segment's section, so this is the cost of a plant
+//! build divided by its segments and of every rebuild.
+//!
+//! Prints median and worst of repeated builds for sections across the potato
+//! at several positions along its length (vertical planes), and a 30 × 30 mm
+//! rectangle (the `section` bench's naive-step lower bound).
+//!
+//! Run: `cargo bench -p shearcut-sim --bench section_condense`.
+//!
+//! Figures (median of 15 builds, wall clock, 2 shared cores under a load
+//! of 10–14, so several times slower than on a quiet machine; the ratios
+//! are the point):
+//!
+//! | section (rows)              | unit solves (cf8fe01) | partial factorisation |
+//! |-----------------------------|-----------------------|-----------------------|
+//! | potato, z = 45 mm (175)     | 700 ms                | 113 ms                |
+//! | potato, z = 20 mm (146)     | 389 ms                | 71 ms                 |
+//! | potato, z = 10 mm (110)     | 210 ms                | 39 ms                 |
+//! | 30 × 30 mm rectangle (150)  | 321 ms                | 59 ms                 |
+//!
+//! CPU time of the whole bench (60 builds) with the partial factorisation:
+//! 1.40 s, i.e. 23 ms per build on average.
+
+// A benchmark measures wall time by design.
+#![allow(clippy::disallowed_methods)]
+
+use std::hint::black_box;
+use std::time::Instant;
+
+use nalgebra::Vector3;
+use shearcut_sim::geometry::SectionPlane;
+use shearcut_sim::plant::section_shape::section_geometry;
+use shearcut_sim::{
+    CrossSection, Knife, KnifePreset, MaterialPreset, ObjectShape, SectionGeometry, SectionSettings,
+};
+
+const REPEATS: usize = 15;
+
+fn main() {
+    let material = MaterialPreset::PotatoWhole.material();
+    let knife = Knife::new(&KnifePreset::Chef.settings()).unwrap();
+    let settings = SectionSettings::default();
+    let object = ObjectShape::HalfPotato {
+        length: 0.09,
+        width: 0.06,
+        height: 0.035,
+    }
+    .mesh()
+    .unwrap();
+    let mut cases: Vec<(String, SectionGeometry)> = Vec::new();
+    // Vertical section planes at z along the potato's length (0..0.09 m).
+    for z in [0.045, 0.02, 0.01] {
+        let plane = SectionPlane::normal_to_segment(Vector3::new(0.0, 0.01, z), Vector3::y());
+        let polygon = plane.section(&object).expect("the plane cuts the potato");
+        let height = polygon.bounds().1.y;
+        // The plant's default rim fraction (PlantSettings::rim_fraction).
+        let geometry = section_geometry(&polygon, 0.05 * height).unwrap();
+        cases.push((
+            format!(
+                "half potato at z = {:.0} mm ({:.1} mm high, {:.1} mm half width)",
+                z * 1e3,
+                geometry.height_at_cut() * 1e3,
+                geometry.half_width() * 1e3
+            ),
+            geometry,
+        ));
+    }
+    cases.push((
+        "30 x 30 mm rectangle".to_string(),
+        SectionGeometry::rectangle(0.03, 0.03).unwrap(),
+    ));
+    for (name, geometry) in &cases {
+        let rows = (geometry.height_at_cut() / settings.row_spacing).round();
+        let mut times: Vec<f64> = (0..REPEATS)
+            .map(|_| {
+                let t = Instant::now();
+                black_box(
+                    CrossSection::new(geometry, &material, knife.blade(), &settings).unwrap(),
+                );
+                t.elapsed().as_secs_f64() * 1e3
+            })
+            .collect();
+        times.sort_by(f64::total_cmp);
+        println!(
+            "CrossSection::new, {name}, {rows} rows: median {:.2} ms, worst {:.2} ms ({REPEATS} builds)",
+            times[REPEATS / 2],
+            times[REPEATS - 1]
+        );
+    }
+}

@@ -1,0 +1,113 @@
+//! The controller's iceoryx2 link against a plant served from a thread of
+//! this process: answers are matched to their commands by sequence number,
+//! a late answer to a command given up on is discarded, and the run still
+//! ends cleanly; a second plant for a served run is refused.
+
+#[path = "support/echo_plant.rs"]
+mod echo_plant;
+
+use std::time::Duration;
+
+use echo_plant::{EchoPlant, remove_shm_files};
+use nalgebra::Vector3;
+use shearcut::closed_loop::{LinkError, PlantLink};
+use shearcut::scenario::ClockMode;
+use shearcut::transport::{
+    Iceoryx2PlantLink, LinkTimeouts, LoopServices, PlantEnd, PlantServerSettings, Role, WaitMode,
+    serve_plant,
+};
+use shearcut_sim::plant::{KnifeCommand, Measurement};
+
+/// The echo plant, stalling `stall` on its command number `slow`.
+struct Stalling {
+    echo: EchoPlant,
+    count: usize,
+    slow: usize,
+    stall: Duration,
+}
+
+impl PlantLink for Stalling {
+    fn period(&self) -> f64 {
+        self.echo.period()
+    }
+
+    fn exchange(&mut self, command: &KnifeCommand) -> Result<Measurement, LinkError> {
+        if self.count == self.slow {
+            std::thread::sleep(self.stall);
+        }
+        self.count += 1;
+        self.echo.exchange(command)
+    }
+}
+
+#[test]
+fn a_late_answer_is_discarded_and_the_run_still_ends_cleanly() {
+    for wait in [WaitMode::Blocking, WaitMode::BusyPoll] {
+        let prefix = format!("scl{}{wait:?}_", std::process::id());
+        let plant_prefix = prefix.clone();
+        let server = std::thread::spawn(move || {
+            let services = LoopServices::open(Role::Plant, "late", &plant_prefix).unwrap();
+            let mut settings = PlantServerSettings::new(ClockMode::Lockstep, 20);
+            settings.wait = wait;
+            let mut plant = Stalling {
+                echo: EchoPlant::new(),
+                count: 0,
+                slow: 2,
+                stall: Duration::from_millis(300),
+            };
+            serve_plant(&services, &mut plant, &settings).unwrap()
+        });
+        let services = LoopServices::open(Role::Controller, "late", &prefix).unwrap();
+        let timeouts = LinkTimeouts {
+            response: Duration::from_millis(50),
+            check_every: Duration::from_millis(10),
+            ..LinkTimeouts::default()
+        };
+        let mut link = Iceoryx2PlantLink::new(services, 1e-3, timeouts, wait, 16).unwrap();
+        link.wait_for_plant().unwrap();
+        let command = KnifeCommand {
+            velocity: Vector3::new(0.0, -0.005, 0.004),
+        };
+        for tick in 1..=2 {
+            let m = link.exchange(&command).unwrap();
+            assert!((m.time - tick as f64 * 1e-3).abs() < 1e-12, "{wait:?}");
+            assert_eq!(m.velocity, command.velocity);
+        }
+        // Command 2 stalls past the response timeout.
+        match link.exchange(&command) {
+            Err(LinkError::Lost(why)) => assert!(
+                why.contains("plant/late") && why.contains("did not answer command 2"),
+                "{wait:?}: {why}"
+            ),
+            other => panic!("{wait:?}: {other:?}"),
+        }
+        // Let the late answer to command 2 arrive: it is not taken for the
+        // answer to the end of the run (command 3).
+        std::thread::sleep(Duration::from_millis(500));
+        link.finish().unwrap();
+        let report = server.join().unwrap();
+        remove_shm_files(&prefix);
+        assert_eq!(report.end, PlantEnd::Ended, "{wait:?}");
+        assert_eq!(report.commands, 3, "{wait:?}");
+    }
+}
+
+#[test]
+fn a_second_plant_for_the_same_run_is_refused() {
+    let prefix = format!("scd{}_", std::process::id());
+    let first = LoopServices::open(Role::Plant, "twice", &prefix).unwrap();
+    let second = LoopServices::open(Role::Plant, "twice", &prefix);
+    match second {
+        Err(e) => assert!(
+            e.to_string()
+                .contains("is another plant serving this run id"),
+            "{e}"
+        ),
+        Ok(_) => panic!("two plants serve run 'twice'"),
+    }
+    // The first still serves: a controller finds its board.
+    let controller = LoopServices::open(Role::Controller, "twice", &prefix).unwrap();
+    assert!(controller.open_peer_board().unwrap().is_some());
+    drop((controller, first));
+    remove_shm_files(&prefix);
+}
