@@ -1,6 +1,6 @@
 //! `shearcut fit`: bad names exit 2 with one line; the full fit reproduces
-//! the shipped surrogate file byte for byte (ignored by default: about a
-//! minute on two cores; run with `cargo test --test fit -- --ignored`).
+//! the shipped surrogate file byte for byte (ignored by default: 1.5–3
+//! minutes on two cores; run with `cargo test --test fit -- --ignored`).
 
 use std::process::{Command, Output};
 
@@ -48,7 +48,7 @@ fn wire_is_refused_with_exit_2() {
 }
 
 #[test]
-#[ignore = "runs the full fit (about a minute on two cores)"]
+#[ignore = "runs the full fit (1.5–3 minutes on two cores)"]
 fn fit_reproduces_the_shipped_potato_file() {
     let dir = std::env::temp_dir().join(format!("shearcut-fit-{}", std::process::id()));
     let out = dir.join("potato-cuboid-straight.toml");

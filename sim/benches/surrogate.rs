@@ -35,6 +35,20 @@ fn bench(c: &mut Criterion) {
     c.bench_function("surrogate evaluate, before fracture", |b| {
         b.iter(|| s.evaluate(black_box(0.75), black_box(&before), black_box(&scale)))
     });
+    // Whole eggplant in its catch-up after the crack's jump (the knee gate
+    // and the catch-up terms active, with their ξ-jets).
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("../config/surrogates/eggplant-whole-straight.toml");
+    let e = Surrogate::from_path(&path).expect("shipped surrogate");
+    let catching_up = CutState {
+        depth: 0.009,
+        travel_since_fracture: 0.0045,
+        ..after
+    };
+    c.bench_function(
+        "surrogate evaluate, after fracture, catch-up (eggplant)",
+        |b| b.iter(|| e.evaluate(black_box(0.75), black_box(&catching_up), black_box(&scale))),
+    );
 }
 
 #[allow(missing_docs)]

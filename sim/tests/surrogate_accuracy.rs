@@ -1,15 +1,18 @@
-//! The shipped potato surrogate against held-out full-model runs recomputed
-//! here (issue #6: RMS error of F_n, F_t and total work below 5 % of their
-//! range, peak force and fracture-onset depth within 10 %).
+//! The shipped surrogates against held-out full-model runs recomputed here
+//! (issue #6: RMS error of F_n, F_t and total work below 5 % of their range,
+//! peak force and fracture-onset depth within 10 %).
 //!
 //! Held out: ξ = 0.6, 1.2, 2.1 (the fit used 0, 0.25, 0.5, 0.75, 1, 1.4, 1.8,
 //! 2.4) on a 25 mm high, 40 mm wide section (the fit's sizes are listed in
-//! `FIT_SECTION_SIZES`; this one is not among them). Forces are compared with
-//! the full model's window means after fracture (the sawtooth; see
-//! `shearcut_sim::surrogate::accuracy`). `shearcut fit` also reports a second
-//! held-out size, 40 mm × 24 mm (tall and narrow), where the F_t error is
-//! 5–6 % of range for potato: that case is not asserted here and is listed as
-//! open in docs/surrogates.md.
+//! `FIT_SECTION_SIZES`; this one is not among them), for potato (no crack
+//! jump at the onset) and cuboid eggplant (R'_c/R_c ≈ 2: the first crack
+//! jumps 0.5–2 mm ahead of the edge and the surrogate's catch-up carries the
+//! forces to the knee). Forces are compared with the full model's window
+//! means after fracture (the sawtooth; see
+//! `shearcut_sim::surrogate::accuracy`). `shearcut fit` also reports the
+//! second held-out size, 40 mm × 24 mm (tall and narrow), and whole
+//! eggplant: the figures are in docs/surrogates.md, with the cases that miss
+//! a target; those are not asserted here.
 
 use std::path::PathBuf;
 
@@ -18,12 +21,12 @@ use shearcut_sim::surrogate::{
 };
 use shearcut_sim::{KnifePreset, MaterialPreset};
 
-#[test]
-fn potato_surrogate_meets_the_issue_tolerances_on_held_out_runs() {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../config/surrogates/potato-cuboid-straight.toml");
+fn meets_the_issue_tolerances(material: MaterialPreset) {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!(
+        "../config/surrogates/{}-straight.toml",
+        material.name()
+    ));
     let s = Surrogate::from_path(&path).unwrap();
-    let material = MaterialPreset::PotatoCuboid.material();
     let blade = KnifePreset::Straight.settings().blade;
     let cases: Vec<SweepCase> = HELD_OUT_SLICE_PUSH_RATIOS
         .iter()
@@ -34,7 +37,7 @@ fn potato_surrogate_meets_the_issue_tolerances_on_held_out_runs() {
         })
         .collect();
     let runs = run_sweep(
-        &material,
+        &material.material(),
         &blade,
         &cases,
         &SweepSettings::default(),
@@ -44,7 +47,7 @@ fn potato_surrogate_meets_the_issue_tolerances_on_held_out_runs() {
     .unwrap();
     for run in &runs {
         let a = compare_run(&s, run).accuracy;
-        eprintln!("{a:?}");
+        eprintln!("{}: {a:?}", material.name());
         let xi = a.xi;
         assert!(a.force_normal_rms_pct < 5.0, "xi {xi}: F_n {a:?}");
         assert!(a.force_tangential_rms_pct < 5.0, "xi {xi}: F_t {a:?}");
@@ -52,4 +55,14 @@ fn potato_surrogate_meets_the_issue_tolerances_on_held_out_runs() {
         assert!(a.peak_force_error_pct.abs() < 10.0, "xi {xi}: peak {a:?}");
         assert!(a.onset_depth_error_pct.abs() < 10.0, "xi {xi}: onset {a:?}");
     }
+}
+
+#[test]
+fn potato_surrogate_meets_the_issue_tolerances_on_held_out_runs() {
+    meets_the_issue_tolerances(MaterialPreset::PotatoCuboid);
+}
+
+#[test]
+fn eggplant_surrogate_meets_the_issue_tolerances_on_held_out_runs() {
+    meets_the_issue_tolerances(MaterialPreset::EggplantCuboid);
 }

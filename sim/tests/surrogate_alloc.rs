@@ -35,9 +35,13 @@ static GLOBAL: Counting = Counting;
 
 #[test]
 fn evaluate_allocates_nothing() {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../config/surrogates/potato-cuboid-straight.toml");
-    let s = Surrogate::from_path(&path).unwrap();
+    // Potato (no catch-up) and whole eggplant (catch-up and knee active).
+    let load = |name: &str| {
+        let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+            .join(format!("../config/surrogates/{name}-straight.toml"));
+        Surrogate::from_path(&path).unwrap()
+    };
+    let surrogates = [load("potato-cuboid"), load("eggplant-whole")];
     let scale = ScaleFactors {
         toughness: 1.1,
         stiffness: 0.9,
@@ -45,14 +49,14 @@ fn evaluate_allocates_nothing() {
     };
     let mut sum = 0.0;
     let before = ALLOCATIONS.load(Ordering::SeqCst);
-    for i in 0..2000 {
-        let xi = 0.0015 * i as f64;
+    for (i, s) in (0..4000).zip(surrogates.iter().cycle()) {
+        let xi = 0.0015 * (i / 2) as f64;
         let state = CutState {
-            depth: 1e-5 * i as f64,
+            depth: 1e-5 * (i / 2) as f64,
             height: 0.03,
             half_width: 0.015,
-            fractured: i % 2 == 0,
-            travel_since_fracture: 5e-6 * i as f64,
+            fractured: i % 4 < 2,
+            travel_since_fracture: 5e-6 * (i / 2) as f64,
         };
         let o = s.evaluate(xi, &state, &scale);
         let q = s.work_quadratic(xi, &state, &scale);

@@ -140,3 +140,29 @@ fn unreadable_file_names_the_path() {
     let e = Surrogate::from_path(std::path::Path::new("/nonexistent/s.toml")).unwrap_err();
     assert!(e.to_string().contains("/nonexistent/s.toml"), "{e}");
 }
+
+#[test]
+fn negative_knee_width_is_refused_and_named() {
+    let text = potato_text();
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("knee_width = ["))
+        .unwrap();
+    let t = text.replace(line, "knee_width = [-0.5, 1.0]");
+    let e = Surrogate::from_toml_str(&t).unwrap_err();
+    assert!(e.to_string().contains("post_fracture.knee_width[0]"), "{e}");
+    let t = text.replace(line, "knee_width = [0.0, 0.0]");
+    let e = Surrogate::from_toml_str(&t).unwrap_err();
+    assert!(e.to_string().contains("knee_width"), "{e}");
+}
+
+#[test]
+fn version_1_files_are_refused_with_a_refit_hint() {
+    // Version 1 had no catch-up: its coefficients mean something else.
+    let text = potato_text().replace(
+        &format!("version = {SURROGATE_FORMAT_VERSION}"),
+        "version = 1",
+    );
+    let e = Surrogate::from_toml_str(&text).unwrap_err();
+    assert!(e.to_string().contains("shearcut fit"), "{e}");
+}

@@ -1,6 +1,6 @@
 //! The fit is deterministic: the same sweeps give bit-identical surrogates
 //! whatever the number of sweep threads, so `shearcut fit` reproduces the
-//! shipped files (a small grid here; the full fit takes about a minute, see
+//! shipped files (a small grid here; the full fit takes a few minutes, see
 //! `tests/fit.rs` at the workspace root).
 
 use shearcut_sim::surrogate::{SweepSettings, fit_surrogate, grid, run_sweep};

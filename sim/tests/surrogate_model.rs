@@ -7,10 +7,36 @@ use std::path::PathBuf;
 use shearcut_sim::mechanics::toughness_ratio;
 use shearcut_sim::surrogate::{CutState, ScaleFactors, Surrogate, SurrogateOutput};
 
-fn potato() -> Surrogate {
+fn shipped(name: &str) -> Surrogate {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../config/surrogates/potato-cuboid-straight.toml");
+        .join(format!("../config/surrogates/{name}-straight.toml"));
     Surrogate::from_path(&path).unwrap()
+}
+
+fn potato() -> Surrogate {
+    shipped("potato-cuboid")
+}
+
+/// Whole eggplant (R'_c/R_c = 2.5): its first crack jumps millimetres ahead
+/// of the edge, so after fracture the catch-up and the knee gate depend on ξ
+/// through the onset depth.
+fn eggplant() -> Surrogate {
+    shipped("eggplant-whole")
+}
+
+/// Fractured states of whole eggplant in a 30 × 30 mm section during the
+/// catch-up, across the knee and beyond (the catch-up is 2–13 mm over ξ).
+fn eggplant_states() -> Vec<CutState> {
+    [0.3e-3, 1.5e-3, 2.5e-3, 4e-3, 6.5e-3, 9e-3, 14e-3]
+        .into_iter()
+        .map(|s| CutState {
+            depth: 4e-3 + s,
+            height: 0.03,
+            half_width: 0.015,
+            fractured: true,
+            travel_since_fracture: s,
+        })
+        .collect()
 }
 
 fn states() -> [CutState; 4] {
@@ -72,8 +98,11 @@ fn check(name: &str, xi: f64, analytic: f64, f: impl Fn(f64) -> f64) {
 
 #[test]
 fn derivatives_match_finite_differences() {
-    let s = potato();
-    for state in states() {
+    let cases = states()
+        .into_iter()
+        .map(|st| (potato(), st))
+        .chain(eggplant_states().into_iter().map(|st| (eggplant(), st)));
+    for (s, state) in cases {
         for scale in SCALES {
             for xi in [0.05, 0.3, 0.75, 1.1, 1.7, 2.3, 2.9] {
                 let o = s.evaluate(xi, &state, &scale);
@@ -107,22 +136,8 @@ fn outputs_are_consistent_and_linear_in_the_scale_factors() {
         for scale in SCALES {
             for xi in [0.0, 0.4, 1.2, 2.4] {
                 let o: SurrogateOutput = s.evaluate(xi, &state, &scale);
-                let (t, k, f) = (scale.toughness, scale.stiffness, scale.friction);
-                // Work per depth is the knife's power per normal speed.
-                assert!(close(
-                    o.work_per_depth,
-                    o.force_normal + xi * o.force_tangential
-                ));
-                assert!(close(o.work_per_depth, o.fracture + o.strain + o.friction));
-                assert!(close(o.force_normal, o.force_normal_parts.combine(t, k, f)));
-                assert!(close(
-                    o.force_tangential,
-                    o.force_tangential_parts.combine(t, k, f)
-                ));
-                assert!(close(
-                    o.work_per_depth,
-                    o.work_per_depth_parts.combine(t, k, f)
-                ));
+                assert_linear(&o, xi, &scale);
+                let t = scale.toughness;
                 // The parts do not depend on the factors after fracture
                 // (linearity), and r is exact.
                 if state.fractured {
@@ -140,6 +155,100 @@ fn outputs_are_consistent_and_linear_in_the_scale_factors() {
                     assert_eq!(o.fracture, 0.0);
                 }
                 assert!(close(o.toughness_ratio, toughness_ratio(xi, 0.4)));
+            }
+        }
+    }
+}
+
+/// Work per depth = F_n + ξF_t = fracture + strain + friction, and every
+/// force and the work are their parts combined with the factors.
+fn assert_linear(o: &SurrogateOutput, xi: f64, scale: &ScaleFactors) {
+    let (t, k, f) = (scale.toughness, scale.stiffness, scale.friction);
+    assert!(close(
+        o.work_per_depth,
+        o.force_normal + xi * o.force_tangential
+    ));
+    assert!(close(o.work_per_depth, o.fracture + o.strain + o.friction));
+    assert!(close(o.force_normal, o.force_normal_parts.combine(t, k, f)));
+    assert!(close(
+        o.force_tangential,
+        o.force_tangential_parts.combine(t, k, f)
+    ));
+    assert!(close(
+        o.work_per_depth,
+        o.work_per_depth_parts.combine(t, k, f)
+    ));
+}
+
+/// The catch-up (seed 000 eq. 1 at the first fracture: the released strain
+/// energy drives the crack ahead of the edge at R_c < R'_c): right after the
+/// onset the crack hardly grows, so the fracture work is well below
+/// r(ξ,ν)·R_c and F_n falls far below its value at the onset; once the edge
+/// has caught up the fracture work is r(ξ,ν)·R_c. The parts stay linear in
+/// the factors throughout.
+#[test]
+fn eggplant_catches_up_with_its_crack_before_cutting_again() {
+    let s = eggplant();
+    let rc = s.material.fracture_toughness;
+    let nu = s.material.poisson_ratio;
+    for xi in [0.3, 1.0, 2.0] {
+        let before = CutState {
+            depth: 0.0,
+            height: 0.03,
+            half_width: 0.015,
+            fractured: false,
+            travel_since_fracture: 0.0,
+        };
+        let d_star = s
+            .evaluate(xi, &before, &ScaleFactors::default())
+            .fracture_onset_depth;
+        let at_onset = s.evaluate(
+            xi,
+            &CutState {
+                depth: d_star,
+                ..before
+            },
+            &ScaleFactors::default(),
+        );
+        let after = |travel: f64| {
+            s.evaluate(
+                xi,
+                &CutState {
+                    depth: d_star + travel,
+                    fractured: true,
+                    travel_since_fracture: travel,
+                    ..before
+                },
+                &ScaleFactors::default(),
+            )
+        };
+        // The knee gate is centred on the catch-up length L with a width of
+        // a few bevel heights, so for short catch-ups (large ξ) it has begun
+        // to open at the onset; the crack still grows at well under its
+        // steady rate there.
+        let steady = toughness_ratio(xi, nu) * rc;
+        let just_after = after(1e-5);
+        assert!(
+            just_after.fracture < 0.5 * steady,
+            "xi {xi}: {} vs r R_c {steady}",
+            just_after.fracture
+        );
+        assert!(
+            just_after.force_normal < 0.5 * at_onset.force_normal,
+            "xi {xi}: {} vs {} at the onset",
+            just_after.force_normal,
+            at_onset.force_normal
+        );
+        // 30 mm further the edge cuts (the catch-up is at most ~13 mm).
+        let cutting = after(0.03);
+        assert!(
+            close(cutting.fracture, steady),
+            "xi {xi}: {} vs r R_c {steady}",
+            cutting.fracture
+        );
+        for state in eggplant_states() {
+            for scale in SCALES {
+                assert_linear(&s.evaluate(xi, &state, &scale), xi, &scale);
             }
         }
     }

@@ -5,7 +5,7 @@
 //! README's "Known limitations"), which no smooth function of the state can
 //! follow. The surrogate predicts the mean: forces are compared with the full
 //! model's post-fracture forces averaged over a centred window of knife travel
-//! (default 1 mm, five rows of the default mesh); pre-fracture forces, which
+//! ([`SMOOTHING_WINDOW`], 2 mm, ten rows of the default mesh); pre-fracture forces, which
 //! rise smoothly, are compared sample by sample. Work is cumulative, so it is
 //! compared directly. The surrogate runs on its own prediction of the onset
 //! (fractured once the depth passes its own d*), as the MPC would.

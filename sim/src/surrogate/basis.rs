@@ -52,13 +52,6 @@ pub fn onset_basis(xi: f64, lh: f64, lw: f64) -> [f64; ONSET_TERMS] {
     [1.0, lh, lw, x2, x2 * lh, x2 * lw]
 }
 
-/// ∂/∂ξ of [`onset_basis`].
-#[inline]
-pub fn onset_basis_slope(xi: f64, lh: f64, lw: f64) -> [f64; ONSET_TERMS] {
-    let d = 2.0 * xi;
-    [0.0, 0.0, 0.0, d, d * lh, d * lw]
-}
-
 /// The ramps ρ_k(s) and their slopes ρ_k'(s), for bevel height `h_b`.
 #[inline]
 pub fn ramps(s: f64, bevel_height: f64) -> ([f64; RAMPS], [f64; RAMPS]) {
@@ -75,21 +68,33 @@ pub fn ramps(s: f64, bevel_height: f64) -> ([f64; RAMPS], [f64; RAMPS]) {
     (v, d)
 }
 
-/// Number of terms of [`friction_basis`] and [`strain_basis_rate`].
-pub const POST_TERMS: usize = 3 + 3 * RAMPS + 2;
+use super::catch_up::KNEE_TERMS;
+use super::jet::Jet;
 
-/// Terms shared by the post-fracture bases: [1, λ_H, λ_w] followed by
-/// [v_k, v_kλ_H, v_kλ_w] for each ramp value (or slope) v_k, then the two
-/// depth terms given.
+/// Number of leading terms the post-fracture bases share: [1, λ_H, λ_w] and
+/// [ρ_k, ρ_kλ_H, ρ_kλ_w] for each ramp.
+const SHARED_TERMS: usize = 3 + 3 * RAMPS;
+
+/// Number of terms of [`friction_basis`].
+pub const FRICTION_TERMS: usize = SHARED_TERMS + 4 + KNEE_TERMS;
+
+/// Index of the first catch-up term in [`friction_basis`].
+pub const KNEE_START: usize = FRICTION_TERMS - KNEE_TERMS;
+
+/// Number of terms of [`strain_basis_rate`].
+pub const STRAIN_TERMS: usize = SHARED_TERMS + 2;
+
+/// The post-fracture basis [c, cλ_H, cλ_w] (c = `constant`), then
+/// [v_k, v_kλ_H, v_kλ_w] for each ramp value (or slope) v_k, then `tail`.
 #[inline]
-fn post_basis(
+fn post_basis<const N: usize>(
     constant: f64,
     ramp: &[f64; RAMPS],
-    depth_terms: [f64; 2],
+    tail: &[f64],
     lh: f64,
     lw: f64,
-) -> [f64; POST_TERMS] {
-    let mut b = [0.0; POST_TERMS];
+) -> [f64; N] {
+    let mut b = [0.0; N];
     b[0] = constant;
     b[1] = constant * lh;
     b[2] = constant * lw;
@@ -98,30 +103,45 @@ fn post_basis(
         b[4 + 3 * k] = ramp[k] * lh;
         b[5 + 3 * k] = ramp[k] * lw;
     }
-    b[3 + 3 * RAMPS] = depth_terms[0];
-    b[4 + 3 * RAMPS] = depth_terms[1];
+    b[SHARED_TERMS..].copy_from_slice(tail);
     b
+}
+
+/// The ξ-derivatives of the face reaction with coefficients `c`: only its
+/// catch-up terms (jets `knee`) depend on ξ.
+#[inline]
+pub fn knee_derivatives(c: &[f64; FRICTION_TERMS], knee: &[Jet; KNEE_TERMS]) -> (f64, f64) {
+    c[KNEE_START..]
+        .iter()
+        .zip(knee)
+        .fold((0.0, 0.0), |(d, dd), (c, k)| (d + c * k.d, dd + c * k.dd))
 }
 
 /// Basis of the wedge faces' normal reaction N/(E·Δ) (Δ the blade's
 /// half-thickness): [1, λ_H, λ_w, (ρ_k, ρ_kλ_H, ρ_kλ_w) for k < 4, d/H,
-/// (d/H)³]. The faces are pushed open by Δ, so N scales with E·Δ; it builds
-/// up as the crack passes the bevel (ramps), depends on how stiff the halves
-/// are (λ_H, λ_w), and grows as the tip nears the board.
+/// (d/H)³, (g, gλ_H, gλ_w, gξ², v², v⁴)] with the catch-up terms of
+/// `catch_up::knee_terms`. The faces are pushed open by Δ, so N scales with
+/// E·Δ; it builds up as the crack passes the bevel (ramps), depends on how
+/// stiff the halves are (λ_H, λ_w), grows as the tip nears the board (d/H),
+/// grows during the catch-up (v) and steps up at the knee g, where the edge
+/// presses on the crack tip again and squeezes the faces onto the wedge.
 #[inline]
 pub fn friction_basis(
     ramp: &[f64; RAMPS],
     depth_ratio: f64,
+    knee: &[f64; KNEE_TERMS],
     lh: f64,
     lw: f64,
-) -> [f64; POST_TERMS] {
-    post_basis(
-        1.0,
-        ramp,
-        [depth_ratio, depth_ratio * depth_ratio * depth_ratio],
-        lh,
-        lw,
-    )
+) -> [f64; FRICTION_TERMS] {
+    let mut tail = [0.0; FRICTION_TERMS - SHARED_TERMS];
+    tail[..4].copy_from_slice(&[
+        depth_ratio,
+        depth_ratio * depth_ratio * depth_ratio,
+        depth_ratio * lh,
+        depth_ratio * lw,
+    ]);
+    tail[4..].copy_from_slice(knee);
+    post_basis(1.0, ramp, &tail, lh, lw)
 }
 
 /// Basis of the strain-energy rate (N/m) over E·Δ²: the slopes d/dd of the
@@ -137,12 +157,12 @@ pub fn strain_basis_rate(
     height: f64,
     lh: f64,
     lw: f64,
-) -> [f64; POST_TERMS] {
+) -> [f64; STRAIN_TERMS] {
     let q2 = depth_ratio * depth_ratio;
     post_basis(
         0.0,
         ramp_slope,
-        [3.0 * q2 / height, 4.0 * q2 * depth_ratio / height],
+        &[3.0 * q2 / height, 4.0 * q2 * depth_ratio / height],
         lh,
         lw,
     )
@@ -157,19 +177,21 @@ pub fn deflection_basis(ramp: &[f64; RAMPS], lw: f64) -> [f64; DEFLECTION_TERMS]
     [1.0, ramp[0], lw]
 }
 
-/// Number of terms of the force split σ(ξ) = F_t/F_n of the non-friction force.
-pub const SPLIT_TERMS: usize = 2;
+/// Number of terms of the force split σ = F_t/F_n of the non-friction force.
+pub const SPLIT_TERMS: usize = 4;
 
-/// [ξ, ξ²]: σ vanishes at pressing.
+/// [ξ, ξλ_H, ξλ_w, ξ²]: σ vanishes at pressing; its slope depends on the
+/// section, whose antiplane and plane compliances scale differently with
+/// its size (as C_t and C_n do before fracture).
 #[inline]
-pub fn split_basis(xi: f64) -> [f64; SPLIT_TERMS] {
-    [xi, xi * xi]
+pub fn split_basis(xi: f64, lh: f64, lw: f64) -> [f64; SPLIT_TERMS] {
+    [xi, xi * lh, xi * lw, xi * xi]
 }
 
 /// ∂/∂ξ of [`split_basis`].
 #[inline]
-pub fn split_basis_slope(xi: f64) -> [f64; SPLIT_TERMS] {
-    [1.0, 2.0 * xi]
+pub fn split_basis_slope(xi: f64, lh: f64, lw: f64) -> [f64; SPLIT_TERMS] {
+    [1.0, lh, lw, 2.0 * xi]
 }
 
 /// The decays 1 − ρ_k(s) of the antiplane drag held by the edge at the

@@ -129,6 +129,8 @@ impl Surrogate {
         arr("pre_fracture.deflection", &pre.deflection);
         arr("pre_fracture.onset", &pre.onset);
         let post = &self.post_fracture;
+        arr("post_fracture.catch_up", &post.catch_up);
+        arr("post_fracture.knee_width", &post.knee_width);
         arr("post_fracture.split", &post.split);
         arr("post_fracture.drag", &post.drag);
         arr("post_fracture.face_reaction", &post.face_reaction);
@@ -147,6 +149,23 @@ impl Surrogate {
                     allowed: "must be a finite number",
                 });
             }
+        }
+        let [kappa, beta] = self.post_fracture.knee_width;
+        for (i, w) in [kappa, beta].into_iter().enumerate() {
+            if w < 0.0 {
+                return Err(SurrogateFileError::BadValue {
+                    key: format!("post_fracture.knee_width[{i}]"),
+                    value: w,
+                    allowed: "must be non-negative",
+                });
+            }
+        }
+        if kappa + beta <= 0.0 {
+            return Err(SurrogateFileError::BadValue {
+                key: "post_fracture.knee_width[0]".to_string(),
+                value: kappa,
+                allowed: "must be positive when knee_width[1] is 0 (the knee needs a width)",
+            });
         }
         self.material
             .validate()

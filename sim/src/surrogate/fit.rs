@@ -2,10 +2,13 @@
 
 use nalgebra::{DMatrix, DVector};
 
+use super::accuracy::compare_run;
 use super::basis::{
-    deflection_basis, dot, drag_basis, friction_basis, onset_basis, ramps, size_basis,
-    size_features, split_basis, strain_basis_rate,
+    DEFLECTION_TERMS, FRICTION_TERMS, RAMPS, SPLIT_TERMS, STRAIN_TERMS, deflection_basis, dot,
+    drag_basis, friction_basis, onset_basis, ramps, size_basis, size_features, split_basis,
+    strain_basis_rate,
 };
+use super::catch_up::{catch_up_values, knee_values};
 use super::model::{
     FitRange, FittedBlade, PostFracture, PreFracture, SURROGATE_FORMAT_VERSION, Surrogate,
 };
@@ -93,13 +96,18 @@ impl<const N: usize> Rows<N> {
 ///   C_n = E·d/F_n, C_t = G·ξ·d/F_t (ξ > 0), deflection/d on [1, λ_H, λ_w];
 /// - per run, the onset r(ξ,ν)·R'_c/(E·d*) on [1, λ_H, λ_w, ξ², ξ²λ_H, ξ²λ_w],
 ///   d* the middle of the step that first fractured;
-/// - after fracture: the faces' normal reaction N = (F_n^f + ξF_t^f)/(μ√(1+ξ²))
-///   (the friction work per depth over μ√(1+ξ²)) over E·Δ; the knife's
-///   non-friction work per depth beyond r(ξ,ν)·R_c, F_n^c + ξF_t^c − r·R_c,
-///   over E·Δ², on the rates of the strain-energy basis (so the fit targets
-///   the force the knife feels, sawtooth averaged by least squares); the
-///   non-friction F_t^c = σ(ξ)·F_n^c + Q(ξ)·h(s) (split and released drag,
-///   jointly); the deflection over Δ.
+/// - the catch-up ℓ = L/d*₀ on [1, λ_H, λ_w, ξ, ξ²] from the knee each run
+///   shows (`catch_up`), 0 where the crack did not jump ahead of the edge;
+/// - after fracture, for each knee width [κ, β] of a grid (`KNEE_WIDTHS` ×
+///   `KNEE_BEVEL_WIDTHS`, with each run's own catch-up length): the faces'
+///   normal reaction N = (F_n^f + ξF_t^f)/(μ√(1+ξ²)) (the friction work per
+///   depth over μ√(1+ξ²)) over E·Δ; the knife's non-friction work per depth
+///   beyond r(ξ,ν)·R_c·g, F_n^c + ξF_t^c − r·R_c·g, over E·Δ², on the rates
+///   of the strain-energy basis (so the fit targets the force the knife
+///   feels, sawtooth averaged by least squares); then, with the wedge's
+///   S·U̇ taken off F_n^c, the edge's F_t^c = σ·F_n^e + Q(ξ)·h(s) (split and
+///   released drag, jointly); the deflection over Δ. The width kept is the
+///   one whose surrogate follows the fit's own runs best (`compare_run`).
 ///
 /// With μ = 0 the face reaction cannot be observed and is fitted as 0.
 pub fn fit_surrogate(
@@ -112,18 +120,11 @@ pub fn fit_surrogate(
     let e0 = material.youngs_modulus;
     let nu = material.poisson_ratio;
     let g0 = material.shear_modulus();
-    let mu0 = material.friction_coefficient;
     let b = blade.edge_width;
-    let delta = 0.5 * blade.thickness;
-    let h_b = blade.bevel_height();
     let mut c_n = Rows::new("pre_fracture.normal_compliance");
     let mut c_t = Rows::new("pre_fracture.tangential_compliance");
     let mut defl_pre = Rows::new("pre_fracture.deflection");
     let mut onset = Rows::new("pre_fracture.onset");
-    let mut face = Rows::new("post_fracture.face_reaction");
-    let mut strain = Rows::new("post_fracture.strain_energy_rate");
-    let mut split = Rows::new("post_fracture.split");
-    let mut defl_post = Rows::new("post_fracture.deflection");
     let mut range = FitRange {
         xi_max: 0.0,
         height: [f64::INFINITY, 0.0],
@@ -170,6 +171,166 @@ pub fn fit_surrogate(
         deflection: defl_pre.solve()?,
         onset: onset.solve()?,
     };
+    // The catch-up: ℓ = L/d*₀ from each run's knee, with d*₀ the fitted
+    // nominal onset depth (as `Surrogate::evaluate` computes it).
+    let nominal_onset = |run: &SweepRun| {
+        let c = run.case;
+        let (lh, lw) = size_features(c.height, c.half_width, b);
+        let r = ToughnessRatio::at(c.xi, nu).value;
+        let y = dot(&pre_fracture.onset, &onset_basis(c.xi, lh, lw));
+        r * material.initial_fracture_toughness / (e0 * y)
+    };
+    let mut catch_up_rows = Rows::new("post_fracture.catch_up");
+    let observed: Vec<Option<f64>> = runs.iter().map(observed_catch_up).collect();
+    for (run, l) in runs.iter().zip(&observed) {
+        if let Some(l) = l {
+            let c = run.case;
+            let (lh, lw) = size_features(c.height, c.half_width, b);
+            catch_up_rows.push(catch_up_values(c.xi, lh, lw), l / nominal_onset(run));
+        }
+    }
+    let catch_up = catch_up_rows.solve()?;
+    // Each run's catch-up length for the post-fracture rows: the knee it
+    // shows, else (the crack ran to the run's end) the fitted one.
+    let lengths: Vec<f64> = runs
+        .iter()
+        .zip(&observed)
+        .map(|(run, l)| {
+            l.unwrap_or_else(|| {
+                let c = run.case;
+                let (lh, lw) = size_features(c.height, c.half_width, b);
+                nominal_onset(run) * dot(&catch_up, &catch_up_values(c.xi, lh, lw))
+            })
+        })
+        .collect();
+    let base = Surrogate {
+        version: SURROGATE_FORMAT_VERSION,
+        material_name: material_name.to_string(),
+        knife_name: knife_name.to_string(),
+        material: *material,
+        blade: FittedBlade::from(*blade),
+        range,
+        pre_fracture,
+        post_fracture: PostFracture {
+            catch_up,
+            knee_width: [KNEE_WIDTHS[0], KNEE_BEVEL_WIDTHS[0]],
+            split: [0.0; SPLIT_TERMS],
+            drag: [0.0; RAMPS],
+            face_reaction: [0.0; FRICTION_TERMS],
+            strain_energy_rate: [0.0; STRAIN_TERMS],
+            deflection: [0.0; DEFLECTION_TERMS],
+        },
+    };
+    // The knee's width [κ, β]: the candidates whose fit follows the fit's
+    // own runs best (sum of the F_n and F_t RMS errors over the runs, as
+    // `fit` reports them); the first of equals, so the choice is
+    // deterministic.
+    let mut best: Option<(f64, Surrogate)> = None;
+    let widths = KNEE_WIDTHS
+        .iter()
+        .flat_map(|&k| KNEE_BEVEL_WIDTHS.iter().map(move |&b| [k, b]));
+    for width in widths {
+        let post = fit_post_fracture(material, blade, runs, &lengths, &base, width)?;
+        let s = Surrogate {
+            post_fracture: post,
+            ..base.clone()
+        };
+        let score: f64 = runs
+            .iter()
+            .map(|r| {
+                let a = compare_run(&s, r).accuracy;
+                a.force_normal_rms_pct + a.force_tangential_rms_pct
+            })
+            .sum();
+        if best.as_ref().is_none_or(|(b, _)| score < *b) {
+            best = Some((score, s));
+        }
+    }
+    // KNEE_WIDTHS is not empty.
+    Ok(best.map(|(_, s)| s).unwrap_or(base))
+}
+
+/// Candidate widths κ of the knee gate, relative to the catch-up length.
+pub const KNEE_WIDTHS: [f64; 6] = [0.05, 0.2, 0.4, 0.7, 1.0, 1.3];
+
+/// Candidate widths β of the knee gate, in bevel heights.
+pub const KNEE_BEVEL_WIDTHS: [f64; 6] = [0.0, 0.5, 1.0, 2.0, 3.0, 4.0];
+
+/// Crack growth after the first jump that marks the knee, m (2.5 steps of
+/// the default sweep after fracture).
+const KNEE_CRACK_GROWTH: f64 = 5e-5;
+
+/// The catch-up travel a run shows: 0 if the first fracture did not put the
+/// crack tip below the edge (no jump ahead: the crack grows with the knife
+/// from the start), else from the first fractured step to the first step
+/// whose crack is [`KNEE_CRACK_GROWTH`] deeper than right after the jump
+/// (the edge has caught up with the tip and cuts again). None if the crack
+/// does not grow again before the run ends.
+fn observed_catch_up(run: &SweepRun) -> Option<f64> {
+    let first = run.samples.iter().position(|s| s.fractured)?;
+    let jumped = run.samples[first].crack_depth;
+    if jumped <= run.samples[first].depth {
+        return Some(0.0);
+    }
+    run.samples[first..]
+        .iter()
+        .find(|s| s.crack_depth > jumped + KNEE_CRACK_GROWTH)
+        .map(|s| s.travel_since_fracture)
+}
+
+/// The post-fracture least squares for a knee width `width` = [κ, β], given the
+/// fitted pre-fracture part and catch-up in `base` and each run's catch-up
+/// length.
+fn fit_post_fracture(
+    material: &Material,
+    blade: &BladeSection,
+    runs: &[SweepRun],
+    lengths: &[f64],
+    base: &Surrogate,
+    width: [f64; 2],
+) -> Result<PostFracture, FitError> {
+    let e0 = material.youngs_modulus;
+    let nu = material.poisson_ratio;
+    let g0 = material.shear_modulus();
+    let mu0 = material.friction_coefficient;
+    let b = blade.edge_width;
+    let delta = 0.5 * blade.thickness;
+    let h_b = blade.bevel_height();
+    let kappa = [width[0], width[1] * h_b];
+    let pre_fracture = &base.pre_fracture;
+    let mut face = Rows::new("post_fracture.face_reaction");
+    let mut strain = Rows::new("post_fracture.strain_energy_rate");
+    let mut split = Rows::new("post_fracture.split");
+    let mut defl_post = Rows::new("post_fracture.deflection");
+    for (run, &length) in runs.iter().zip(lengths) {
+        let c = run.case;
+        let xi = c.xi;
+        let (lh, lw) = size_features(c.height, c.half_width, b);
+        let r = ToughnessRatio::at(xi, nu).value;
+        for s in run.samples.iter().filter(|s| s.fractured) {
+            let (ramp, ramp_slope) = ramps(s.travel_since_fracture, h_b);
+            let knee = knee_values(s.travel_since_fracture, xi, length, kappa, lh, lw);
+            let depth_ratio = (s.depth / c.height).clamp(0.0, 1.0);
+            let root = (1.0 + xi * xi).sqrt();
+            if mu0 > 0.0 {
+                let n = (s.force_normal_friction + xi * s.force_tangential_friction) / (mu0 * root);
+                face.push(
+                    friction_basis(&ramp, depth_ratio, &knee, lh, lw),
+                    n / (e0 * delta),
+                );
+            }
+            let f_n = s.force_normal - s.force_normal_friction;
+            let f_t = s.force_tangential - s.force_tangential_friction;
+            strain.push(
+                strain_basis_rate(&ramp_slope, depth_ratio, c.height, lh, lw),
+                (f_n + xi * f_t - r * material.fracture_toughness * knee[0]) / (e0 * delta * delta),
+            );
+            defl_post.push(deflection_basis(&ramp, lw), s.deflection / delta);
+        }
+    }
+    let strain_energy_rate = strain.solve()?;
+    // The split and the drag from the edge's share of F_n^c (beyond the
+    // wedge's S·U̇₀, vertical) and F_t^c.
     for run in runs {
         let c = run.case;
         let xi = c.xi;
@@ -184,23 +345,23 @@ pub fn fit_surrogate(
         for s in run.samples.iter().filter(|s| s.fractured) {
             let (ramp, ramp_slope) = ramps(s.travel_since_fracture, h_b);
             let depth_ratio = (s.depth / c.height).clamp(0.0, 1.0);
-            let root = (1.0 + xi * xi).sqrt();
-            if mu0 > 0.0 {
-                let n = (s.force_normal_friction + xi * s.force_tangential_friction) / (mu0 * root);
-                face.push(friction_basis(&ramp, depth_ratio, lh, lw), n / (e0 * delta));
-            }
-            let f_n = s.force_normal - s.force_normal_friction;
+            let wedge = e0
+                * delta
+                * delta
+                * dot(
+                    &strain_energy_rate,
+                    &strain_basis_rate(&ramp_slope, depth_ratio, c.height, lh, lw),
+                );
+            let f_n = s.force_normal - s.force_normal_friction - wedge;
             let f_t = s.force_tangential - s.force_tangential_friction;
-            strain.push(
-                strain_basis_rate(&ramp_slope, depth_ratio, c.height, lh, lw),
-                (f_n + xi * f_t - r * material.fracture_toughness) / (e0 * delta * delta),
-            );
-            let sb = split_basis(xi);
+            let sb = split_basis(xi, lh, lw);
             let db = drag_basis(&ramp);
             split.push(
                 [
                     sb[0] * f_n,
                     sb[1] * f_n,
+                    sb[2] * f_n,
+                    sb[3] * f_n,
                     q * db[0],
                     q * db[1],
                     q * db[2],
@@ -208,29 +369,21 @@ pub fn fit_surrogate(
                 ],
                 f_t,
             );
-            defl_post.push(deflection_basis(&ramp, lw), s.deflection / delta);
         }
     }
     let split_drag = split.solve()?;
     let face_reaction = if mu0 > 0.0 {
         face.solve()?
     } else {
-        [0.0; super::basis::POST_TERMS]
+        [0.0; FRICTION_TERMS]
     };
-    Ok(Surrogate {
-        version: SURROGATE_FORMAT_VERSION,
-        material_name: material_name.to_string(),
-        knife_name: knife_name.to_string(),
-        material: *material,
-        blade: FittedBlade::from(*blade),
-        range,
-        pre_fracture,
-        post_fracture: PostFracture {
-            split: [split_drag[0], split_drag[1]],
-            drag: [split_drag[2], split_drag[3], split_drag[4], split_drag[5]],
-            face_reaction,
-            strain_energy_rate: strain.solve()?,
-            deflection: defl_post.solve()?,
-        },
+    Ok(PostFracture {
+        catch_up: base.post_fracture.catch_up,
+        knee_width: width,
+        split: [split_drag[0], split_drag[1], split_drag[2], split_drag[3]],
+        drag: [split_drag[4], split_drag[5], split_drag[6], split_drag[7]],
+        face_reaction,
+        strain_energy_rate,
+        deflection: defl_post.solve()?,
     })
 }

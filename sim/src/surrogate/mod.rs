@@ -4,7 +4,8 @@
 //!
 //! Files: `state` ([`CutState`], [`ScaleFactors`]), `output`
 //! ([`SurrogateOutput`] and its parts), `toughness` (eq. 6 with two
-//! derivatives, exact), `basis` (the fitted functions' bases), `model`
+//! derivatives, exact), `basis` (the fitted functions' bases), `catch_up`
+//! (the crack's jump at the first fracture and the knee), `jet` (ξ-jets), `model`
 //! ([`Surrogate`] and its evaluation), `file` (TOML, versioned), `sweep`
 //! (full-model runs), `fit` (least squares), `accuracy` (the report against
 //! held-out runs). The structure and its equations are in
@@ -12,8 +13,10 @@
 
 mod accuracy;
 mod basis;
+mod catch_up;
 mod file;
 mod fit;
+mod jet;
 mod model;
 mod output;
 mod state;
@@ -24,6 +27,7 @@ pub use accuracy::{
     AccuracyReport, ComparisonPoint, RunAccuracy, RunComparison, SMOOTHING_WINDOW, compare_run,
 };
 pub use basis::RAMP_LENGTHS;
+pub use catch_up::CATCH_UP_TERMS;
 pub use file::SurrogateFileError;
 pub use fit::{FitError, fit_surrogate};
 pub use model::{

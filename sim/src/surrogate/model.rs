@@ -3,10 +3,12 @@
 use serde::{Deserialize, Serialize};
 
 use super::basis::{
-    DEFLECTION_TERMS, ONSET_TERMS, POST_TERMS, RAMPS, SIZE_TERMS, SPLIT_TERMS, deflection_basis,
-    dot, drag_basis, friction_basis, onset_basis, onset_basis_slope, ramps, size_basis,
-    size_features, split_basis, split_basis_slope, strain_basis_rate,
+    DEFLECTION_TERMS, FRICTION_TERMS, ONSET_TERMS, RAMPS, SIZE_TERMS, SPLIT_TERMS, STRAIN_TERMS,
+    deflection_basis, dot, drag_basis, friction_basis, knee_derivatives, onset_basis, ramps,
+    size_basis, size_features, split_basis, split_basis_slope, strain_basis_rate,
 };
+use super::catch_up::{CATCH_UP_TERMS, catch_up_basis, dot_jet, knee_terms};
+use super::jet::Jet;
 use super::output::{QuadraticModel, ScaledParts, SurrogateOutput};
 use super::state::{CutState, ScaleFactors};
 use super::toughness::ToughnessRatio;
@@ -14,7 +16,7 @@ use crate::blade::BladeSection;
 use crate::material::Material;
 
 /// Version of the surrogate file format this build reads and writes.
-pub const SURROGATE_FORMAT_VERSION: u32 = 1;
+pub const SURROGATE_FORMAT_VERSION: u32 = 2;
 
 /// The blade section a surrogate was fitted for (all fields required in a file).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -80,18 +82,26 @@ pub struct PreFracture {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PostFracture {
-    /// σ(ξ) = F_t/F_n of the non-friction force (beyond the drag) on [ξ, ξ²].
+    /// ℓ = L/d*₀, the catch-up travel after the crack's first jump over the
+    /// nominal onset depth, on [1, λ_H, λ_w, ξ, ξ²] (`catch_up` module).
+    pub catch_up: [f64; CATCH_UP_TERMS],
+    /// [κ, β]: the knee gate g(s) rises over W = κ·L + β·h_b around the
+    /// catch-up length L (h_b the bevel height; both ≥ 0, not both 0).
+    pub knee_width: [f64; 2],
+    /// σ = F_t/F_n of the non-friction force (beyond the drag) on
+    /// [ξ, ξλ_H, ξλ_w, ξ²].
     pub split: [f64; SPLIT_TERMS],
     /// Share h(s) of the antiplane drag at onset still held after a travel
     /// s, on the decays [1 − ρ_k(s)] for k < 4.
     pub drag: [f64; RAMPS],
     /// N/(E·Δ), the wedge faces' normal reaction, on the friction basis
-    /// [1, λ_H, λ_w, (ρ_k, ρ_kλ_H, ρ_kλ_w) for k < 4, d/H, (d/H)³].
-    pub face_reaction: [f64; POST_TERMS],
+    /// [1, λ_H, λ_w, (ρ_k, ρ_kλ_H, ρ_kλ_w) for k < 4, d/H, (d/H)³,
+    /// (g, gλ_H, gλ_w, gξ², v², v⁴)] (`basis::friction_basis`).
+    pub face_reaction: [f64; FRICTION_TERMS],
     /// The strain-energy rate U̇/(E·Δ²) (1/m) on the slopes of
-    /// [1, λ_H, λ_w, (ρ_k, ρ_kλ_H, ρ_kλ_w) for k < 4, (d/H)³, (d/H)⁴]: fitted
-    /// to the knife's non-friction work per depth beyond r·R_c.
-    pub strain_energy_rate: [f64; POST_TERMS],
+    /// [1, λ_H, λ_w, (ρ_k, ρ_kλ_H, ρ_kλ_w) for k < 4, (d/H)³, (d/H)⁴]:
+    /// fitted to the knife's non-friction work per depth beyond r·R_c·g.
+    pub strain_energy_rate: [f64; STRAIN_TERMS],
     /// Surface deflection over Δ on [1, ρ₀, λ_w].
     pub deflection: [f64; DEFLECTION_TERMS],
 }
@@ -183,75 +193,108 @@ impl Surrogate {
         let delta = self.half_thickness();
         let travel = state.travel_since_fracture.max(0.0);
         let (ramp, ramp_slope) = ramps(travel, self.bevel_height());
-        let depth_ratio = (state.depth / state.height.max(b)).clamp(0.0, 1.0);
-        // Nominal face reaction N₀ and strain-energy rate U̇₀ (per unit travel).
-        let n0 = e0
-            * delta
-            * dot(
+        let height = state.height.max(b);
+        let depth_ratio = (state.depth / height).clamp(0.0, 1.0);
+        // Catch-up after the crack's jump (`catch_up`): L = d*₀(ξ)·ℓ(ξ) at
+        // nominal material (so the parts stay linear in the factors), with
+        // d*₀ = r·R'_c₀/(E₀·y), y = A + ξ²B; the knee gate g(s) and the
+        // catch-up terms of the face reaction, as jets in ξ.
+        let r_jet = Jet::new(r.value, r.slope, r.curvature);
+        let o = &self.pre_fracture.onset;
+        let onset_b = o[3] + o[4] * lh + o[5] * lw;
+        let y_jet = Jet::new(
+            onset_stiffness.max(f64::MIN_POSITIVE),
+            2.0 * xi * onset_b,
+            2.0 * onset_b,
+        );
+        let onset0 = r_jet
+            .mul(y_jet.recip())
+            .scale(m.initial_fracture_toughness / e0);
+        let length = onset0.mul(dot_jet(&p.catch_up, &catch_up_basis(xi, lh, lw)));
+        let knee_width = [p.knee_width[0], p.knee_width[1] * self.bevel_height()];
+        let knee = knee_terms(travel, xi, length, knee_width, lh, lw);
+        let knee_v = knee.map(|j| j.v);
+        // Nominal face reaction N₀ (a jet: only its catch-up terms depend
+        // on ξ) and strain-energy rate U̇₀ per unit travel.
+        let (nd, ndd) = knee_derivatives(&p.face_reaction, &knee);
+        let n_scale = e0 * delta;
+        let n0 = Jet::new(
+            dot(
                 &p.face_reaction,
-                &friction_basis(&ramp, depth_ratio, lh, lw),
-            );
-        let n0 = n0.max(0.0);
+                &friction_basis(&ramp, depth_ratio, &knee_v, lh, lw),
+            ),
+            nd,
+            ndd,
+        )
+        .scale(n_scale);
+        let n0 = if n0.v > 0.0 { n0 } else { Jet::default() };
         let u_rate0 = e0
             * delta
             * delta
             * dot(
                 &p.strain_energy_rate,
-                &strain_basis_rate(&ramp_slope, depth_ratio, state.height.max(b), lh, lw),
+                &strain_basis_rate(&ramp_slope, depth_ratio, height, lh, lw),
             );
-        let fracture0 = r.value * m.fracture_toughness;
+        // Crack growth only once the edge has caught up: r·R_c₀·g.
+        let fracture0 = r_jet.mul(knee[0]).scale(m.fracture_toughness);
         let mu0 = m.friction_coefficient;
         // Drag held at the onset, released over the first few h_b: per unit
         // toughness factor Q(ξ)·h(s), Q = G₀ξ·r·R'_c₀/(C_t·E₀·y(ξ)).
         let c_t = dot(&self.pre_fracture.tangential_compliance, &sizes);
-        let y = onset_stiffness.max(f64::MIN_POSITIVE);
-        let dy = dot(&self.pre_fracture.onset, &onset_basis_slope(xi, lh, lw));
+        let y = y_jet.v;
+        let dy = y_jet.d;
         let k = g0 * m.initial_fracture_toughness / (c_t * e0);
         let q = k * xi * r.value / y;
         let dq = k * ((r.value + xi * r.slope) / y - xi * r.value * dy / (y * y));
         let h = dot(&p.drag, &drag_basis(&ramp));
         let drag0 = q * h;
         let ddrag0 = dq * h;
-        // Non-friction force: F_n^c + ξF_t^c = P = T·r·R_c + S·U̇₀ and
-        // F_t^c = σ(ξ)·F_n^c + drag, so F_n^c = (P − ξ·drag)/(1 + ξσ).
-        let sigma = dot(&p.split, &split_basis(xi));
-        let dsigma = dot(&p.split, &split_basis_slope(xi));
+        // Non-friction force: the edge at the crack tip takes the fracture
+        // work, F_n^e + ξF_t^e = T·r·R_c·g, split F_t^e = σ·F_n^e + drag, so
+        // F_n^e = (T·r·R_c·g − ξ·drag)/(1 + ξσ); the wedge opening the faces
+        // stores S·U̇₀ and pushes only vertically (tangential travel does
+        // not open the faces): F_n^c = F_n^e + S·U̇₀, F_t^c = F_t^e.
+        let sigma = dot(&p.split, &split_basis(xi, lh, lw));
+        let dsigma = dot(&p.split, &split_basis_slope(xi, lh, lw));
         let den = 1.0 + xi * sigma;
         let dden = sigma + xi * dsigma;
-        let pv = t * fracture0 + s * u_rate0;
-        let dpv = t * r.slope * m.fracture_toughness;
+        let tip = fracture0.scale(t);
+        let pj = tip.add(Jet::constant(s * u_rate0));
         let drag = t * drag0;
         let ddrag = t * ddrag0;
-        let fn_c = (pv - xi * drag) / den;
-        let dfn_c = (dpv - drag - xi * ddrag) / den - fn_c * dden / den;
-        let ft_c = sigma * fn_c + drag;
-        let dft_c = dsigma * fn_c + sigma * dfn_c + ddrag;
+        let fn_e = (tip.v - xi * drag) / den;
+        let dfn_e = (tip.d - drag - xi * ddrag) / den - fn_e * dden / den;
+        let fn_c = fn_e + s * u_rate0;
+        let dfn_c = dfn_e;
+        let ft_c = sigma * fn_e + drag;
+        let dft_c = dsigma * fn_e + sigma * dfn_e + ddrag;
         // Friction: μN against the sliding direction (1, ξ)/√(1+ξ²).
         let root = (1.0 + xi * xi).sqrt();
         let root3 = root * root * root;
-        let fr0 = mu0 * n0;
+        let fr0 = n0.scale(mu0);
         let fs = f * s;
-        out.fracture = t * fracture0;
+        out.fracture = t * fracture0.v;
         out.strain = s * u_rate0;
-        out.friction = fs * fr0 * root;
-        out.force_normal = fn_c + fs * fr0 / root;
-        out.force_tangential = ft_c + fs * fr0 * xi / root;
-        out.work_per_depth = pv + fs * fr0 * root;
-        out.force_normal_slope = dfn_c - fs * fr0 * xi / root3;
-        out.force_tangential_slope = dft_c + fs * fr0 / root3;
-        out.work_per_depth_slope = dpv + fs * fr0 * xi / root;
-        out.work_per_depth_curvature = t * r.curvature * m.fracture_toughness + fs * fr0 / root3;
+        out.friction = fs * fr0.v * root;
+        out.force_normal = fn_c + fs * fr0.v / root;
+        out.force_tangential = ft_c + fs * fr0.v * xi / root;
+        out.work_per_depth = pj.v + fs * fr0.v * root;
+        out.force_normal_slope = dfn_c + fs * (fr0.d / root - fr0.v * xi / root3);
+        out.force_tangential_slope = dft_c + fs * (fr0.d * xi / root + fr0.v / root3);
+        out.work_per_depth_slope = pj.d + fs * (fr0.d * root + fr0.v * xi / root);
+        out.work_per_depth_curvature =
+            pj.dd + fs * (fr0.dd * root + 2.0 * fr0.d * xi / root + fr0.v / root3);
         out.deformation = delta * dot(&p.deflection, &deflection_basis(&ramp, lw));
+        let (fracture0, fr0) = (fracture0.v, fr0.v);
         let fn_t = (fracture0 - xi * drag0) / den;
-        let fn_s = u_rate0 / den;
         out.force_normal_parts = ScaledParts {
             by_toughness: fn_t,
-            by_stiffness: fn_s,
+            by_stiffness: u_rate0,
             by_friction_stiffness: fr0 / root,
         };
         out.force_tangential_parts = ScaledParts {
             by_toughness: sigma * fn_t + drag0,
-            by_stiffness: sigma * fn_s,
+            by_stiffness: 0.0,
             by_friction_stiffness: fr0 * xi / root,
         };
         out.work_per_depth_parts = ScaledParts {

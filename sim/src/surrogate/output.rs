@@ -50,13 +50,16 @@ pub struct QuadraticModel {
 /// Before the first fracture (T, S, F the scale factors, E₀ … nominal):
 /// F_n = S·E₀·d/C_n, F_t = S·G₀·ξ·d/C_t (antiplane drag ξ·d at constant ξ),
 /// work per depth = F_n + ξF_t, all of it strain energy. After it, with
-/// P = T·r(ξ,ν)·R_c₀ + S·U̇ (fracture plus strain-energy rate) and D the drag
-/// still held from the onset (∝ T):
-/// F_n = (P − ξD)/(1+ξσ(ξ)) + F·S·μ₀N₀/√(1+ξ²),
-/// F_t = σ(ξ)(P − ξD)/(1+ξσ(ξ)) + D + F·S·μ₀N₀ξ/√(1+ξ²),
-/// work per depth = F_n + ξF_t = P + F·S·μ₀N₀√(1+ξ²) (N₀ the wedge faces'
-/// normal reaction at nominal E). See `docs/surrogates.md` for the fitted
-/// functions C_n, C_t, U̇, N₀, σ and D.
+/// g(s) the knee gate of the catch-up (0 while the edge catches up with a
+/// crack that jumped ahead of it, 1 once it cuts), K = T·r(ξ,ν)·R_c₀·g the
+/// fracture work, U̇ the wedge's strain-energy rate, D the drag still held
+/// from the onset (∝ T) and σ the split:
+/// F_n = (K − ξD)/(1+ξσ) + S·U̇ + F·S·μ₀N₀/√(1+ξ²),
+/// F_t = σ(K − ξD)/(1+ξσ) + D + F·S·μ₀N₀ξ/√(1+ξ²),
+/// work per depth = F_n + ξF_t = K + S·U̇ + F·S·μ₀N₀√(1+ξ²) (N₀ the wedge
+/// faces' normal reaction at nominal E; the wedge opens the faces by moving
+/// down, so U̇ acts on F_n only). See `docs/surrogates.md` for the fitted
+/// functions C_n, C_t, U̇, N₀, σ, D and g.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct SurrogateOutput {
     /// Vertical (normal) force F_n, N/m.
@@ -65,11 +68,12 @@ pub struct SurrogateOutput {
     pub force_tangential: f64,
     /// Knife work per unit of normal travel, J/m per m = N/m: F_n + ξF_t.
     pub work_per_depth: f64,
-    /// Of which crack growth: r(ξ,ν)·R_c after the first fracture, 0 before, N/m.
+    /// Of which crack growth: r(ξ,ν)·R_c·g after the first fracture (g the
+    /// knee gate of the catch-up), 0 before, N/m.
     pub fracture: f64,
     /// Of which strain energy stored, N/m (after fracture fitted as the
-    /// knife's non-friction work beyond r·R_c: the energy the wedge stores
-    /// opening the faces, plus the crack's catch-up after its first jump).
+    /// knife's non-friction work beyond r·R_c·g: the energy the wedge stores
+    /// opening the faces and the stiffening near the board).
     pub strain: f64,
     /// Of which friction on the wedge faces, N/m.
     pub friction: f64,

@@ -3,12 +3,14 @@
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 
+use serde::{Deserialize, Serialize};
+
 use crate::blade::BladeSection;
 use crate::material::Material;
 use crate::section::{CrossSection, SectionError, SectionGeometry, SectionSettings};
 
 /// One full-model run: a rectangular section cut at constant ξ.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct SweepCase {
     /// Slice-push ratio ξ ≥ 0.
     pub xi: f64,
@@ -85,7 +87,7 @@ impl SweepSettings {
 }
 
 /// One step of a run, per unit length of edge.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub struct SweepSample {
     /// Knife depth below the top surface, m.
     pub depth: f64,
@@ -116,7 +118,7 @@ pub struct SweepSample {
 }
 
 /// The record of one run.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct SweepRun {
     /// What was run.
     pub case: SweepCase,
