@@ -19,7 +19,9 @@ pub fn draw_control_trace<DB: DrawingBackend>(
     let root = root.titled(title, ("sans-serif", 22))?;
     let panels = root.split_evenly((1, 2));
     let t_max = trace.last().map_or(1e-3, |s| s.time_s.max(1e-3));
-    let xi_max = trace.iter().map(|s| s.xi_plan).fold(0.1, f64::max) * 1.1;
+    // The magnitude: the tangential direction (sawing strokes back) shows
+    // in the speeds panel.
+    let xi_max = trace.iter().map(|s| s.xi_plan.abs()).fold(0.1, f64::max) * 1.1;
     let mut chart = ChartBuilder::on(&panels[0])
         .caption("slice-push ratio planned", ("sans-serif", 18))
         .margin(10)
@@ -29,10 +31,10 @@ pub fn draw_control_trace<DB: DrawingBackend>(
     chart
         .configure_mesh()
         .x_desc("time (s)")
-        .y_desc("ξ = v_t / v_n")
+        .y_desc("|ξ| = |v_t| / v_n")
         .draw()?;
     chart.draw_series(LineSeries::new(
-        trace.iter().map(|s| (s.time_s, s.xi_plan)),
+        trace.iter().map(|s| (s.time_s, s.xi_plan.abs())),
         BLUE.stroke_width(2),
     ))?;
     let speeds: [SpeedCurve; 4] = [
