@@ -393,6 +393,11 @@ impl<M: SliceModel> Controller for Mpc<M> {
         self.budget.observe(m);
         if m.fractured_sections > 0 && self.depth_at_fracture.is_none() {
             self.depth_at_fracture = Some(m.crack_depth.max(0.0));
+            // E is identified by the indentation before the first fracture;
+            // after it, toughness and stiffness are nearly collinear.
+            if let Some(estimator) = self.estimator.as_mut() {
+                estimator.freeze_stiffness();
+            }
         }
         self.estimate(m);
         let done = m.crack_depth >= self.task.target_depth;

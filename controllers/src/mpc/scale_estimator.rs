@@ -65,6 +65,19 @@ impl ScaleEstimator {
         self.updates += 1;
     }
 
+    /// Holds the stiffness factor where it is from now on: its row and
+    /// column of the covariance are zeroed, so no later row moves it (a
+    /// parameter fixed in recursive least squares). Used after the first
+    /// fracture, when the toughness and stiffness parts of the forces are
+    /// nearly collinear at a near-constant ξ and only the indentation before
+    /// it has identified E.
+    pub fn freeze_stiffness(&mut self) {
+        for k in 0..3 {
+            self.covariance[(1, k)] = 0.0;
+            self.covariance[(k, 1)] = 0.0;
+        }
+    }
+
     /// Toughness factor (multiplies R_c and R'_c).
     pub fn toughness(&self) -> f64 {
         self.theta[0]
@@ -110,6 +123,34 @@ mod tests {
         assert!((e.toughness() - 1.3).abs() < 1e-4, "{}", e.toughness());
         assert!((e.stiffness() - 0.7).abs() < 1e-4, "{}", e.stiffness());
         assert!((e.friction() - 1.25).abs() < 1e-4, "{}", e.friction());
+    }
+
+    #[test]
+    fn a_frozen_stiffness_stays_while_the_others_are_identified() {
+        let truth = [1.3, 0.7, 0.7 * 1.25];
+        let mut e = ScaleEstimator::new(1.0, 1.0);
+        // Rows with only the stiffness part (an indentation) identify it.
+        for k in 0..200 {
+            let b = 40.0 + k as f64 * 0.1;
+            e.update([0.0, b, 0.0], truth[1] * b, 1.0);
+        }
+        assert!((e.stiffness() - 0.7).abs() < 1e-3, "{}", e.stiffness());
+        let held = e.stiffness();
+        e.freeze_stiffness();
+        // Then rows with all three parts: θ₂ is held, θ₁ and θ₃ converge.
+        for k in 0..400 {
+            let t = k as f64 * 0.1;
+            let parts = [
+                100.0 + 20.0 * t.sin(),
+                40.0 + 30.0 * (0.7 * t).cos(),
+                15.0 + 10.0 * (1.3 * t).sin(),
+            ];
+            let f: f64 = parts.iter().zip(truth).map(|(p, q)| p * q).sum();
+            e.update(parts, f, 1.0);
+        }
+        assert_eq!(e.stiffness(), held);
+        assert!((e.toughness() - 1.3).abs() < 2e-3, "{}", e.toughness());
+        assert!((e.friction() - 1.25).abs() < 5e-3, "{}", e.friction());
     }
 
     #[test]
