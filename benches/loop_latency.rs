@@ -94,7 +94,7 @@ fn closed_loop(scenario: &str, choice: &str, transport: Option<WaitMode>, tag: &
     let setup = LoopSetup::new(&s, choice).unwrap();
     let period = setup.task.period;
     let plant = setup.plant(&s).unwrap();
-    let cut = setup.cut(&s, &plant);
+    let cut = setup.cut(&s);
     let mut controller = setup.controller(&s, choice).unwrap();
     let what = format!(
         "{} {choice} lockstep, {}",

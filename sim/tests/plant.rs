@@ -664,3 +664,36 @@ fn a_clone_with_pending_successors_runs_on_bit_identically() {
     );
     assert_eq!(a.rebuilds(), b.rebuilds());
 }
+
+#[test]
+fn start_position_is_where_the_plant_puts_the_knife() {
+    // The loop's controller process takes the start from
+    // `Plant::start_position` without building a plant: it must be the
+    // plant's own start exactly (the iceoryx2 loop is bit-identical).
+    let material = MaterialPreset::PotatoCuboid.material();
+    for (preset, z0, gap) in [
+        (KnifePreset::Chef, 0.0765, 0.002),
+        (KnifePreset::Straight, 0.02, 0.0),
+    ] {
+        let knife = Knife::new(&preset.settings()).unwrap();
+        let object = cuboid(0.03, 0.025, 0.03);
+        let s = PlantSettings {
+            start_gap: gap,
+            ..settings(4)
+        };
+        let p = plant(
+            &material,
+            &knife,
+            &object,
+            z0,
+            Vector2::new(0.0, -1.0),
+            &s,
+            &LOOSE,
+            0,
+        );
+        assert_eq!(
+            Plant::start_position(&knife, &object, z0, gap),
+            p.position()
+        );
+    }
+}

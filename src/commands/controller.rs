@@ -76,7 +76,7 @@ pub fn run(
     let mut ctl = setup.controller(&s, choice)?;
     // The knife's start, as the plant process builds it (same scenario and
     // direction), labels the samples exactly as the in-process loop does.
-    let cut = setup.cut(&s, &setup.plant(&s)?);
+    let cut = setup.cut(&s);
     let services = LoopServices::open(Role::Controller, run_id, &prefix())
         .map_err(|e| RunError::Loop(format!("controller/{run_id}: {e}")))?;
     let max_ticks = (cut.max_duration / task.period).ceil() as usize + 2;

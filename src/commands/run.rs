@@ -187,7 +187,7 @@ pub fn run_closed_loop(s: &Scenario, choice: ControllerChoice) -> Result<RunOutp
     let setup = LoopSetup::new(s, choice)?;
     let mut controller = setup.controller(s, choice)?;
     let plant = setup.plant(s)?;
-    let cut = setup.cut(s, &plant);
+    let cut = setup.cut(s);
     let mut link = InProcessPlant::new(plant, setup.task.period);
     let output = run_loop(&mut link, controller.as_mut(), &cut);
     let summary = CutSummary::from_samples(&output.samples, setup.task.target_depth);
@@ -247,13 +247,15 @@ impl LoopSetup {
         make_controller(s, choice, &self.task, &self.mesh)
     }
 
-    /// The loop's labels and stop conditions, for the knife's start as
-    /// `plant` has it.
-    pub fn cut(&self, s: &Scenario, plant: &Plant) -> LoopCut {
+    /// The loop's labels and stop conditions, with the knife's start where
+    /// the plant puts it ([`Plant::start_position`]: no plant is built, so
+    /// a controller process does not build one of its own).
+    pub fn cut(&self, s: &Scenario) -> LoopCut {
+        let z0 = s.motion.z0.first().copied().unwrap_or(0.0);
         LoopCut {
             xi_label: self.xi,
-            z0: s.motion.z0.first().copied().unwrap_or(0.0),
-            start: plant.position(),
+            z0,
+            start: Plant::start_position(&self.knife, &self.mesh, z0, s.plant.start_gap),
             gap: s.plant.start_gap,
             target_depth: self.task.target_depth,
             max_duration: s.controller.max_duration,

@@ -343,22 +343,9 @@ impl Plant {
                 )
             })?;
         let silhouette = knife_plane_silhouette(object).ok_or(PlantError::NoContact)?;
-        let (lo, hi) = object.bounds();
-        // Knife origin: z from z₀, y so that the lowest point of the edge over
-        // the object is start_gap above its top.
-        let origin_z = lo.z - z0;
+        let start = Self::start_position(knife, object, z0, settings.start_gap);
+        let origin = Vector2::new(start.z, start.y);
         let edge = knife.edge();
-        let mut lowest_over = f64::INFINITY;
-        for k in 0..=2000 {
-            let p = edge.point_at(edge.length() * k as f64 / 2000.0);
-            if p.x + origin_z >= lo.z && p.x + origin_z <= hi.z {
-                lowest_over = lowest_over.min(p.y);
-            }
-        }
-        if !lowest_over.is_finite() {
-            lowest_over = edge.lowest_point().1.y;
-        }
-        let origin = Vector2::new(origin_z, hi.y + settings.start_gap - lowest_over);
         let arc = contact_arc(edge, origin, d, &silhouette).ok_or(PlantError::NoContact)?;
         let mut sections = Vec::with_capacity(settings.segments);
         let mut dormant = Vec::with_capacity(settings.segments);
@@ -447,6 +434,33 @@ impl Plant {
             time: 0.0,
             work: 0.0,
         })
+    }
+
+    /// Where [`Plant::new`] puts the knife frame's origin (world frame, m):
+    /// z so that the piece is `z0` from the heel along the edge, y so that
+    /// the lowest point of the edge over the object is `start_gap` above its
+    /// top. Cheap (no section is built): a controller process that needs
+    /// the start without a plant of its own computes it here.
+    pub fn start_position(
+        knife: &Knife,
+        object: &TriangleMesh,
+        z0: f64,
+        start_gap: f64,
+    ) -> Vector3<f64> {
+        let (lo, hi) = object.bounds();
+        let origin_z = lo.z - z0;
+        let edge = knife.edge();
+        let mut lowest_over = f64::INFINITY;
+        for k in 0..=2000 {
+            let p = edge.point_at(edge.length() * k as f64 / 2000.0);
+            if p.x + origin_z >= lo.z && p.x + origin_z <= hi.z {
+                lowest_over = lowest_over.min(p.y);
+            }
+        }
+        if !lowest_over.is_finite() {
+            lowest_over = edge.lowest_point().1.y;
+        }
+        Vector3::new(0.0, hi.y + start_gap - lowest_over, origin_z)
     }
 
     /// Knife frame origin in the world frame, m.
