@@ -36,7 +36,7 @@
 use super::dof::{Dof, Segments};
 use super::peak_polynomials as pp;
 use super::peak_window::{PeakResidual, scan_peak_window};
-use super::polynomial::{closed_form_roots, polynomial_roots};
+use super::polynomial::{RootSet, closed_form_roots, polynomial_roots};
 use super::profile::{Profile, integrate};
 use super::roots::{Roots, scan};
 use super::vel_change::{VelChange, vel_change};
@@ -208,6 +208,7 @@ fn peak_family(d: &Dof, prefix: &Profile, density: usize, out: &mut TimeOptimal)
             w[1],
             density,
             PeakResidual::Distance { dp },
+            RootSet::All,
             &mut roots,
         );
     }
