@@ -460,8 +460,9 @@ pub(crate) enum RootSet {
     All,
     /// Any one root, if the polynomial changes sign over the window; otherwise every root.
     /// For callers to which any verified profile will do (fixed-duration profiles): the root
-    /// is bracketed by the window's end points and found without isolating the others. A
-    /// caller whose single root does not give a valid profile asks again with [`Self::All`].
+    /// is bracketed by the window's end points and found without isolating the others, and
+    /// it is a root of the polynomial, not polished on the residual. A caller whose single
+    /// root does not give a valid profile asks again with [`Self::All`].
     AnyOne,
 }
 
@@ -546,14 +547,20 @@ pub(crate) fn closed_form_roots_checked<F: FnMut(f64) -> f64>(
     };
     if set == RootSet::AnyOne && half > 0.0 {
         // A sign change over the window brackets a root: refine it inside the bracket (the
-        // bracket shrinks at every step whether or not q is monotone there).
+        // bracket shrinks at every step whether or not q is monotone there). It is not
+        // polished on f: the caller verifies the profile it gives and asks for every
+        // (polished) root if that fails.
         let (fl, fr) = (q.eval(-1.0), q.eval(1.0));
         if fl != 0.0 && fr != 0.0 && (fl > 0.0) != (fr > 0.0) {
-            let tr = monotone_root(&q, -1.0, fl, 1.0, fr, 4.0 * f64::EPSILON);
-            if let Some(w) = polish(tr) {
-                out.push(w);
-                return true;
-            }
+            out.push(w_of(monotone_root(
+                &q,
+                -1.0,
+                fl,
+                1.0,
+                fr,
+                4.0 * f64::EPSILON,
+            )));
+            return true;
         }
     }
     let mut r = [0.0; MAX_DEGREE];

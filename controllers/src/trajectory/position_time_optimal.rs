@@ -336,7 +336,24 @@ fn three_arc_family(
     }
 
     // (2) phase 2 at a_max: +J (a0→amax), hold t2, −J (amax→a2), +J (a2→af).
-    if amax > 0.0 && af > 0.0 {
+    // The hold t2(a2) = (Δv − (2 a+² − a0² − 2 a2² + af²)/(2J))/a+ grows with a2², so its
+    // largest value on the range is at the largest a2²; if even that is negative (beyond the
+    // rounding of the formula), every root would be rejected by `Segments::push`: skip.
+    let hold_max_range = |lo: f64, hi: f64| lo.abs().max(hi.abs()).powi(2);
+    let feasible_hold = |num: f64, terms: f64, hold: f64| {
+        let t = num / hold;
+        t >= -1e-9 * (1.0 + terms / hold.abs())
+    };
+    let (lo2, hi2) = (-1e-12 * amax, af.min(amax));
+    let x2 = hold_max_range(lo2, hi2);
+    if amax > 0.0
+        && af > 0.0
+        && feasible_hold(
+            dv - (2.0 * amax * amax - a0 * a0 - 2.0 * x2 + af * af) / (2.0 * j),
+            dv.abs() + (2.0 * amax * amax + a0 * a0 + 2.0 * x2 + af * af) / (2.0 * j),
+            amax,
+        )
+    {
         let times = |a2: f64| {
             let t2 =
                 (dv - (2.0 * amax * amax - a0 * a0 - 2.0 * a2 * a2 + af * af) / (2.0 * j)) / amax;
@@ -348,7 +365,7 @@ fn three_arc_family(
         };
         let mut roots = Roots::new();
         // A quartic in a2 (the hold is quadratic in a2, the ramps linear).
-        let (lo, hi) = (-1e-12 * amax, af.min(amax));
+        let (lo, hi) = (lo2, hi2);
         let (n, c) = pp::arc_hold_max(&q);
         if density > 1
             || !(closed_form_roots(n, &c, &mut f, lo, hi, &mut roots)
@@ -370,7 +387,17 @@ fn three_arc_family(
     }
 
     // (3) phase 6 at a_min: +J (a0→a1), −J (a1→amin), hold t6, +J (amin→af).
-    if amin < 0.0 && a0 < 0.0 {
+    // Likewise t6(a1) = (Δv − (2 a1² − a0² − 2 a−² + af²)/(2J))/a− (a− < 0) grows with a1².
+    let (lo3, hi3) = (a0.max(amin), -1e-12 * amin);
+    let x3 = hold_max_range(lo3, hi3);
+    if amin < 0.0
+        && a0 < 0.0
+        && feasible_hold(
+            dv - (2.0 * x3 - a0 * a0 - 2.0 * amin * amin + af * af) / (2.0 * j),
+            dv.abs() + (2.0 * x3 + a0 * a0 + 2.0 * amin * amin + af * af) / (2.0 * j),
+            amin,
+        )
+    {
         let times = |a1: f64| {
             let t6 =
                 (dv - (2.0 * a1 * a1 - a0 * a0 - 2.0 * amin * amin + af * af) / (2.0 * j)) / amin;
@@ -381,7 +408,7 @@ fn three_arc_family(
             reach(d.v0, a0, &[(t1, j), (t2, -j), (t3, 0.0), (t4, j)]) - dp
         };
         let mut roots = Roots::new();
-        let (lo, hi) = (a0.max(amin), -1e-12 * amin);
+        let (lo, hi) = (lo3, hi3);
         let (n, c) = pp::arc_hold_min(&q);
         if density > 1
             || !(closed_form_roots(n, &c, &mut f, lo, hi, &mut roots)
