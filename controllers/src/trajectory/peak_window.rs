@@ -136,6 +136,7 @@ pub(crate) struct PeakInputs {
 
 /// Shape of both velocity changes at `vp` (first holds, first jerk sign, second holds, second
 /// jerk sign) and the residual `kind` there (the guard value of the window's polynomial).
+#[inline(always)]
 fn shape(d: &Dof, vp: f64, kind: PeakResidual) -> Option<(bool, f64, bool, f64, f64)> {
     let (c1, c2) = peak_parts(d, vp)?;
     // Exactly the arithmetic of `peak_distance`.

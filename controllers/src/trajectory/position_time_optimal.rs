@@ -129,7 +129,7 @@ fn push_change(s: &mut Segments, c: &VelChange, scale: f64) -> bool {
 }
 
 /// The two velocity changes of the peak family at peak velocity `vp`.
-#[inline]
+#[inline(always)]
 pub(crate) fn peak_parts(d: &Dof, vp: f64) -> Option<(VelChange, VelChange)> {
     let c1 = vel_change(d.v0, d.a0, vp, 0.0, d.a_max, d.a_min, d.j)?;
     let c2 = vel_change(vp, 0.0, d.vf, d.af, d.a_max, d.a_min, d.j)?;
@@ -137,7 +137,7 @@ pub(crate) fn peak_parts(d: &Dof, vp: f64) -> Option<(VelChange, VelChange)> {
 }
 
 /// Distance covered by the two parts at peak velocity `vp` (NaN if a part is impossible).
-#[inline]
+#[inline(always)]
 pub(crate) fn peak_distance(d: &Dof, vp: f64) -> (f64, f64) {
     match peak_parts(d, vp) {
         Some((c1, c2)) => (
