@@ -42,8 +42,11 @@ pub struct MpcSettings {
     /// are nearly collinear at a near-constant ξ — and the plans get worse
     /// than with the nominal model; see docs/controllers.md).
     pub estimate: bool,
-    /// Forgetting factor of the estimator per row, in (0, 1] (default
-    /// 0.999: a memory of about 1000 rows, half a second at 1 kHz).
+    /// Forgetting factor of the estimator per row (two rows per tick), in
+    /// (0, 1] (default 1: none — the material of a cut is one, and
+    /// forgetting lets the crack-jump sawtooth of the last few hundred
+    /// ticks into the factors; 0.999 remembers about half a second at
+    /// 1 kHz).
     pub forgetting: f64,
     /// Sawing: the most reversals of the tangential direction the MPC may
     /// make in one cut (default 16; 0 keeps the whole cut within one stroke
@@ -66,7 +69,7 @@ impl Default for MpcSettings {
             force_penalty: 10.0,
             max_iterations: 40,
             estimate: false,
-            forgetting: 0.999,
+            forgetting: 1.0,
             max_reversals: 16,
         }
     }
