@@ -10,13 +10,16 @@ use nalgebra::{Matrix3, Vector3};
 /// where (a, b, c) are the model's parts of a force per unit length at the
 /// current state (the surrogate's `ScaledParts`: what multiplies R_c, E and
 /// μ·E) and F the measured force per unit length. Each tick brings two such
-/// rows (normal and tangential force); recursive least squares with a
-/// forgetting factor λ tracks slow changes (skin, then flesh), and each
+/// rows (normal and tangential force): during the indentation before the
+/// first fracture as changes from the previous tick
+/// ([`Self::observe_indentation`]; only the stiffness part is non-zero, so
+/// only θ₂ moves), after it as they are, weighed by the model's relative
+/// error ([`Self::observe_cut`]). Recursive least squares, with an optional
+/// forgetting factor λ per row for slow changes (skin, then flesh); each
 /// factor is kept within [`ScaleEstimator::BOUNDS`].
 ///
 /// Rows whose parts are all tiny carry no information and are skipped (no
-/// contact, or pressing with no tangential force). Before the first fracture
-/// only the stiffness part is non-zero, so only θ₂ moves. Allocation-free.
+/// contact, or pressing with no tangential force). Allocation-free.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ScaleEstimator {
     theta: Vector3<f64>,
