@@ -39,9 +39,10 @@ const ESTIMATOR_PRIOR_VARIANCE: f64 = 1.0;
 /// drag held at onset being released over a few bevel heights) is in
 /// neither the pre- nor the post-fracture model.
 const ESTIMATOR_SETTLE_DEPTH: f64 = 2e-3;
-/// Standard deviation of a force per unit length row, N/m (weights only:
-/// the same for both rows).
-const ESTIMATOR_FORCE_NOISE: f64 = 1.0;
+/// The surrogate's force error as a fraction of the force: its held-out
+/// force RMS errors are 4–6 % (`config/surrogates/*.accuracy.toml`). Sets
+/// the rows' weights (relative, the same for both rows) against the prior.
+const ESTIMATOR_RELATIVE_ERROR: f64 = 0.05;
 
 /// Model-predictive control of the slice (DESIGN §4).
 ///
@@ -164,9 +165,13 @@ impl<M: SliceModel> Mpc<M> {
             stroke_tau: vec![0.0; n],
             stats: MpcStats::default(),
             replanned: false,
-            estimator: settings
-                .estimate
-                .then(|| ScaleEstimator::new(ESTIMATOR_PRIOR_VARIANCE, settings.forgetting)),
+            estimator: settings.estimate.then(|| {
+                ScaleEstimator::new(
+                    ESTIMATOR_PRIOR_VARIANCE,
+                    settings.forgetting,
+                    ESTIMATOR_RELATIVE_ERROR,
+                )
+            }),
             touch_height: None,
             telemetry: ControllerTelemetry::default(),
         })
@@ -206,7 +211,8 @@ impl<M: SliceModel> Mpc<M> {
 
     /// Feeds the measured forces per unit length of edge in contact to the
     /// estimator, with the model's parts at the executed ξ and the current
-    /// state.
+    /// state: as changes from tick to tick during the indentation (which
+    /// identifies the stiffness), as they are after the first fracture.
     fn estimate(&mut self, m: &Measurement) {
         let Some(estimator) = self.estimator.as_mut() else {
             return;
@@ -240,16 +246,19 @@ impl<M: SliceModel> Mpc<M> {
             fractured,
             travel_since_fracture: since,
         };
-        let Some((normal, tangential)) = self.model.force_parts(xi, &state) else {
+        let Some(parts) = self.model.force_parts(xi, &state) else {
             return;
         };
-        // Measured resistance per unit length: up, and against the
-        // tangential motion.
-        let f_n = m.wrench[1] / l;
-        let f_t = -m.wrench[2] * m.velocity.z.signum() / l;
-        estimator.update(normal, f_n, ESTIMATOR_FORCE_NOISE);
-        if m.velocity.z != 0.0 {
-            estimator.update(tangential, f_t, ESTIMATOR_FORCE_NOISE);
+        // Measured resistance: up, and against the tangential motion.
+        let force = [m.wrench[1], -m.wrench[2] * m.velocity.z.signum()];
+        if fractured {
+            let per_length = [
+                Some(force[0] / l),
+                (m.velocity.z != 0.0).then(|| force[1] / l),
+            ];
+            estimator.observe_cut(per_length, parts);
+        } else {
+            estimator.observe_indentation(l, force.map(|f| f / l), parts);
         }
     }
 
