@@ -23,15 +23,17 @@
 //! depend on which thread built what before (tests in `condensed.rs`).
 //!
 //! # Memory
-//! A cached pattern of the default potato mesh (175 rows × 27 columns)
-//! takes about 3 MB for the in-plane problem and 1 MB for the antiplane one;
-//! at most [`CAPACITY`] are kept (least recently used dropped). The scratch
-//! memory ([`FactorMemory`]: the factor's values, a few tens of MB for the
-//! largest sections, and faer's stack) is kept for the next build, one set
-//! per concurrent build.
+//! A cached pattern of the default potato mesh (175 rows × 27 node columns)
+//! takes about 2.5 MB for the in-plane problem and 0.8 MB for the antiplane
+//! one; at most [`CAPACITY`] are kept (least recently used dropped), so at
+//! most about 50 MB. In the default closed-loop run (`loop-potato-whole`)
+//! about a third of the builds find their topology cached. The scratch
+//! memory ([`FactorMemory`]: the factor's values, 13 MB for that mesh, and
+//! faer's stack) is kept for the next build, at most [`SPARE_MEMORY`] sets.
 
 use std::sync::{Arc, Mutex, MutexGuard};
 
+use faer::Par;
 use faer::dyn_stack::{MemBuffer, StackReq};
 use faer::perm::PermRef;
 use faer::sparse::linalg::SupernodalThreshold;
@@ -43,8 +45,9 @@ use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use super::error::SectionError;
 use super::mesh::SectionMesh;
 
-/// Most patterns kept (in-plane and antiplane counted separately).
-pub(crate) const CAPACITY: usize = 24;
+/// Most patterns kept (in-plane and antiplane counted separately: 16 mesh
+/// topologies).
+pub(crate) const CAPACITY: usize = 32;
 
 /// Which stiffness of the section.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -85,17 +88,25 @@ pub(crate) struct StiffnessPattern {
     pub ni: usize,
     /// Kept DOFs, numbered last.
     pub nb: usize,
-    /// The lower triangle's pattern (compressed columns, rows sorted).
-    lower: SymbolicSparseColMat<usize>,
+    /// The lower triangle's pattern in the factorisation's order, P K Pᵀ
+    /// (compressed columns, rows unsorted: laid out as faer's
+    /// `permute_self_adjoint_to_unsorted` lays them out).
+    permuted: SymbolicSparseColMat<usize>,
     /// Indices of the assembled lower-triangle contributions (in assembly
-    /// order) in the order they are summed, entry after entry.
+    /// order) in the order they are summed, entry after entry (entries in
+    /// the column order of K's lower triangle, rows sorted).
     order: Vec<u32>,
     /// Where each entry's contributions start in `order` (one more than the
     /// entries, the last being `order.len()`).
     entry_start: Vec<u32>,
+    /// Where each entry goes in `permuted`.
+    target: Vec<u32>,
     /// The symbolic partial Cholesky factorisation (supernodal, fill-reducing
     /// order of the interior, kept DOFs last).
     pub symbolic: SymbolicCholesky<usize>,
+    /// The stack the numeric factorisation needs (sequential, default
+    /// parameters).
+    pub stack: StackReq,
 }
 
 impl StiffnessPattern {
@@ -166,13 +177,46 @@ impl StiffnessPattern {
             },
         )
         .map_err(|_| SectionError::Factorisation("symbolic Cholesky failed"))?;
+        let stack = symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default());
+        // P K Pᵀ's lower triangle, laid out as faer's numeric factorisation
+        // lays it out from K (counts per new column, then entries in K's
+        // column order): the factorisation then starts from it directly.
+        let mut count = vec![0usize; nt + 1];
+        let mut dest = Vec::with_capacity(lower.row_idx().len());
+        for old_j in 0..nt {
+            let new_j = inv[old_j];
+            for old_i in lower.row_idx_of_col(old_j) {
+                let new_i = inv[old_i];
+                let (col, row) = if new_i >= new_j {
+                    (new_j, new_i)
+                } else {
+                    (new_i, new_j)
+                };
+                count[col + 1] += 1;
+                dest.push((col, row));
+            }
+        }
+        for j in 0..nt {
+            count[j + 1] += count[j];
+        }
+        let col_ptr = count.clone();
+        let mut row_idx = vec![0usize; dest.len()];
+        let mut target = Vec::with_capacity(dest.len());
+        for &(col, row) in &dest {
+            row_idx[count[col]] = row;
+            target.push(count[col] as u32);
+            count[col] += 1;
+        }
+        let permuted = SymbolicSparseColMat::new_unsorted_checked(nt, nt, col_ptr, None, row_idx);
         Ok(Self {
             ni,
             nb,
-            lower,
+            permuted,
             order,
             entry_start,
+            target,
             symbolic,
+            stack,
         })
     }
 
@@ -181,17 +225,19 @@ impl StiffnessPattern {
         self.order.len()
     }
 
-    /// The lower triangle with the entries summed from `contributions` (in
-    /// assembly order, as for [`Self::new`]) into `values`.
+    /// P K Pᵀ's lower triangle (see `permuted`) with the entries summed
+    /// from `contributions` (in assembly order, as for [`Self::new`]) into
+    /// `values`.
     pub fn sum<'a>(
         &'a self,
         contributions: &[f64],
         values: &'a mut Vec<f64>,
     ) -> SparseColMatRef<'a, usize, f64> {
         debug_assert_eq!(contributions.len(), self.order.len());
-        let entries = self.entry_start.len() - 1;
+        let entries = self.target.len();
         values.clear();
-        values.extend((0..entries).map(|e| {
+        values.resize(entries, 0.0);
+        for (e, &to) in self.target.iter().enumerate() {
             let (a, b) = (
                 self.entry_start[e] as usize,
                 self.entry_start[e + 1] as usize,
@@ -200,9 +246,9 @@ impl StiffnessPattern {
             for &t in &self.order[a + 1..b] {
                 v += contributions[t as usize];
             }
-            v
-        }));
-        SparseColMatRef::new(self.lower.as_ref(), values)
+            values[to as usize] = v;
+        }
+        SparseColMatRef::new(self.permuted.as_ref(), values)
     }
 }
 
