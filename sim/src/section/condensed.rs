@@ -38,22 +38,24 @@
 
 #![allow(non_snake_case, clippy::needless_range_loop)]
 
-use faer::dyn_stack::{MemBuffer, MemStack};
+use std::sync::Arc;
+
+use faer::dyn_stack::MemStack;
 use faer::linalg::matmul::matmul;
 use faer::linalg::matmul::triangular::{self, BlockStructure};
 use faer::linalg::{triangular_inverse, triangular_solve};
-use faer::perm::PermRef;
-use faer::sparse::linalg::SupernodalThreshold;
-use faer::sparse::linalg::cholesky::supernodal::SupernodalLltRef;
-use faer::sparse::linalg::cholesky::{
-    CholeskySymbolicParams, SymbolicCholeskyRaw, SymmetricOrdering, factorize_symbolic_cholesky,
+use faer::sparse::linalg::cholesky::SymbolicCholeskyRaw;
+use faer::sparse::linalg::cholesky::supernodal::{
+    SupernodalLltRef, factorize_supernodal_numeric_llt,
 };
 #[cfg(test)]
 use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
+#[cfg(test)]
 use faer::sparse::{SparseColMat, SymbolicSparseColMat, Triplet};
-use faer::{Accum, Mat, MatRef, Par, Side};
+use faer::{Accum, Mat, MatRef, Par};
 
 use super::error::SectionError;
+use super::factor_cache::{self, FactorMemory, Problem, StiffnessPattern, Topology};
 use super::mesh::SectionMesh;
 use super::{antiplane, plane_strain};
 
@@ -111,9 +113,9 @@ pub(crate) fn sparse_llt(
 ) -> Result<Llt<usize, f64>, SectionError> {
     let K = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, triplets)
         .map_err(|_| SectionError::Factorisation("sparse assembly failed"))?;
-    let symbolic = SymbolicLlt::try_new(K.symbolic(), Side::Lower)
+    let symbolic = SymbolicLlt::try_new(K.symbolic(), faer::Side::Lower)
         .map_err(|_| SectionError::Factorisation("symbolic Cholesky failed"))?;
-    Llt::try_new_with_symbolic(symbolic, K.as_ref(), Side::Lower)
+    Llt::try_new_with_symbolic(symbolic, K.as_ref(), faer::Side::Lower)
         .map_err(|_| SectionError::Factorisation("stiffness is not positive definite"))
 }
 
@@ -147,13 +149,21 @@ impl CondensedLine {
             index[2 * mesh.node(0, r)] = KEPT + ny + r - 1;
         }
         let (ni, rows) = number_interior(&mut index, 2 * bottom);
-        let mut triplets = Vec::new();
-        plane_strain::assemble(mesh, e_mod, nu, |i, j, v| {
-            if let (Some(a), Some(b)) = (position(index[i], ni), position(index[j], ni)) {
-                triplets.push(Triplet::new(a, b, v));
-            }
-        });
-        let l = schur_factor(ni, ny + n, &triplets, &rows)?;
+        let mut memory = factor_cache::take_memory();
+        let l = schur_factor(
+            Topology::of(mesh, Problem::InPlane),
+            ni,
+            ny + n,
+            &rows,
+            &mut memory,
+            |add| {
+                plane_strain::assemble(mesh, e_mod, nu, |i, j, v| {
+                    if let (Some(a), Some(b)) = (position(index[i], ni), position(index[j], ni)) {
+                        add(a, b, v);
+                    }
+                });
+            },
+        )?;
         let l_yy = l.as_ref().submatrix(0, 0, ny, ny);
         let l_xy = l.as_ref().submatrix(ny, 0, n, ny);
         let l_xx = l.as_ref().submatrix(ny, ny, n, n);
@@ -180,13 +190,22 @@ impl CondensedLine {
             }
         }
         let (nzi, zrows) = number_interior(&mut zindex, bottom);
-        let mut ztriplets = Vec::new();
-        antiplane::assemble(mesh, e_mod / (2.0 * (1.0 + nu)), |i, j, v| {
-            if let (Some(a), Some(b)) = (position(zindex[i], nzi), position(zindex[j], nzi)) {
-                ztriplets.push(Triplet::new(a, b, v));
-            }
-        });
-        let lz = schur_factor(nzi, ny, &ztriplets, &zrows)?;
+        let lz = schur_factor(
+            Topology::of(mesh, Problem::Antiplane),
+            nzi,
+            ny,
+            &zrows,
+            &mut memory,
+            |add| {
+                antiplane::assemble(mesh, e_mod / (2.0 * (1.0 + nu)), |i, j, v| {
+                    if let (Some(a), Some(b)) = (position(zindex[i], nzi), position(zindex[j], nzi))
+                    {
+                        add(a, b, v);
+                    }
+                });
+            },
+        )?;
+        factor_cache::give_back(memory);
         let Cz = inverse_from_factor(lz.as_ref());
         Ok(Self { n, k, C, Et, A, Cz })
     }
@@ -565,9 +584,11 @@ fn position(index: usize, ni: usize) -> Option<usize> {
 }
 
 /// The lower Cholesky factor L_bb (dense, `nb`×`nb`) of the Schur complement
-/// S = K_bb − K_bi K_ii⁻¹ K_ib of the SPD matrix K (`triplets`, both
-/// triangles, duplicates summed) onto its last `nb` rows and columns, after
-/// the `ni` interior ones: S = L_bb L_bbᵀ.
+/// S = K_bb − K_bi K_ii⁻¹ K_ib of the SPD matrix K onto its last `nb` rows
+/// and columns, after the `ni` interior ones: S = L_bb L_bbᵀ. K is given by
+/// `assemble`, which calls its argument `add(i, j, k_ij)` for every
+/// contribution (both triangles, duplicates summed; the upper ones are
+/// skipped).
 ///
 /// K is factorised once by faer's supernodal sparse Cholesky with the kept
 /// DOFs ordered last, so the trailing block of the factor is L_bb: a partial
@@ -578,60 +599,91 @@ fn position(index: usize, ni: usize) -> Option<usize> {
 /// fill than approximate minimum degree but larger, denser supernodes and
 /// no ordering cost, and built the `section_condense` bench's sections
 /// about 10 % faster.
+///
+/// K's pattern, the order in which its contributions are summed and the
+/// symbolic factorisation depend only on the mesh's `topology`: they are
+/// taken from the [`factor_cache`] when a section of the same topology was
+/// built before (bit-identical either way), and the scratch memory comes
+/// from `memory`.
 fn schur_factor(
+    topology: Topology,
     ni: usize,
     nb: usize,
-    triplets: &[Triplet<usize, usize, f64>],
     rows: &[usize],
+    memory: &mut FactorMemory,
+    assemble: impl FnOnce(&mut dyn FnMut(usize, usize, f64)),
 ) -> Result<Mat<f64>, SectionError> {
-    let nt = ni + nb;
-    let K = lower_csc(nt, triplets);
-    // Fill-reducing order of the interior: nested dissection by node rows;
-    // the kept DOFs last, in place.
-    let mut fwd: Vec<usize> = Vec::with_capacity(nt);
-    dissect(rows, 0, rows.len() - 1, &mut fwd);
-    fwd.extend(ni..nt);
-    let mut inv = vec![0; nt];
-    for (new, &old) in fwd.iter().enumerate() {
-        inv[old] = new;
-    }
-    let perm = PermRef::new_checked(&fwd, &inv, nt);
-    let symbolic = factorize_symbolic_cholesky(
-        K.symbolic(),
-        Side::Lower,
-        SymmetricOrdering::Custom(perm),
-        CholeskySymbolicParams {
-            supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
-            ..Default::default()
-        },
-    )
-    .map_err(|_| SectionError::Factorisation("symbolic Cholesky failed"))?;
+    let cached = factor_cache::lookup(&topology).filter(|p| p.ni == ni && p.nb == nb);
+    let FactorMemory {
+        contributions,
+        pairs,
+        ..
+    } = memory;
+    contributions.clear();
+    pairs.clear();
+    let record = cached.is_none();
+    assemble(&mut |a, b, v| {
+        if a >= b {
+            contributions.push(v);
+            if record {
+                pairs.push((a, b));
+            }
+        }
+    });
+    let pattern = match cached {
+        Some(p) if p.contributions() == contributions.len() => p,
+        Some(_) => {
+            return Err(SectionError::Factorisation(
+                "the cached stiffness pattern does not match the mesh",
+            ));
+        }
+        None => {
+            // Fill-reducing order of the interior: nested dissection by node
+            // rows; the kept DOFs last, in place.
+            let nt = ni + nb;
+            let mut fwd: Vec<usize> = Vec::with_capacity(nt);
+            dissect(rows, 0, rows.len() - 1, &mut fwd);
+            fwd.extend(ni..nt);
+            let p = Arc::new(StiffnessPattern::new(ni, nb, pairs, &fwd)?);
+            factor_cache::insert(topology, Arc::clone(&p));
+            p
+        }
+    };
+    let symbolic = &pattern.symbolic;
     let SymbolicCholeskyRaw::Supernodal(supernodal) = symbolic.raw() else {
         return Err(SectionError::Factorisation(
             "the Cholesky factor is not supernodal",
         ));
     };
-    let mut values = vec![0.0; symbolic.len_val()];
-    {
-        let mut mem = MemBuffer::try_new(
-            symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
-        )
-        .map_err(|_| SectionError::Factorisation("out of memory for the factor"))?;
-        symbolic
-            .factorize_numeric_llt(
-                &mut values,
-                K.as_ref(),
-                Side::Lower,
-                Default::default(),
-                Par::Seq,
-                MemStack::new(&mut mem),
-                Default::default(),
-            )
-            .map_err(|_| SectionError::Factorisation("stiffness is not positive definite"))?;
+    let FactorMemory {
+        contributions,
+        lower,
+        factor,
+        stack,
+        ..
+    } = memory;
+    let stack = factor_cache::grow_stack(stack, pattern.stack)?;
+    let K = pattern.sum(contributions, lower);
+    let len = symbolic.len_val();
+    if factor.len() < len {
+        factor.resize(len, 0.0);
     }
+    let values = &mut factor[..len];
+    // K is already in the factorisation's order (as faer's
+    // `SymbolicCholesky::factorize_numeric_llt` would permute it).
+    factorize_supernodal_numeric_llt(
+        values,
+        K,
+        Default::default(),
+        supernodal,
+        Par::Seq,
+        MemStack::new(stack),
+        Default::default(),
+    )
+    .map_err(|_| SectionError::Factorisation("stiffness is not positive definite"))?;
     // Read L_bb off the supernodes holding columns ni.. (their rows are all
     // kept DOFs too: the kept ones come last).
-    let factor = SupernodalLltRef::new(supernodal, &values);
+    let factor = SupernodalLltRef::new(supernodal, &factor[..len]);
     let mut L = Mat::<f64>::zeros(nb, nb);
     for s in 0..supernodal.n_supernodes() {
         let node = factor.supernode(s);
@@ -661,8 +713,9 @@ fn schur_factor(
 /// The lower triangle of the symmetric matrix given by `triplets` (both
 /// triangles, duplicates summed; the upper ones are skipped) in compressed
 /// sparse columns: a counting sort on the columns, then a sort of each
-/// column's few entries by row (a global sort of the element assembly's
-/// triplets cost as much as the factorisation).
+/// column's few entries by row. The assembly of the section builds before
+/// the [`factor_cache`]; kept as the reference of its summation order.
+#[cfg(test)]
 fn lower_csc(nt: usize, triplets: &[Triplet<usize, usize, f64>]) -> SparseColMat<usize, f64> {
     let mut start = vec![0usize; nt + 1];
     for t in triplets.iter().filter(|t| t.row >= t.col) {
@@ -949,6 +1002,93 @@ mod tests {
             ..SectionSettings::default()
         };
         assert_same(&dome(0.006, 0.009), &settings);
+    }
+
+    /// The factor cache's assembly (contributions summed in a recorded
+    /// order, placed in the factorisation's order) gives the same bits as
+    /// the triplet assembly it replaced.
+    #[test]
+    fn cached_assembly_sums_in_the_order_of_the_triplets() {
+        let settings = SectionSettings {
+            row_spacing: 5e-4,
+            ..SectionSettings::default()
+        };
+        let mesh = SectionMesh::new(&dome(0.006, 0.009), 1e-4, &settings).unwrap();
+        let (n, k, nn) = (mesh.rows, mesh.strip + 1, mesh.node_count());
+        let mut index = vec![FIXED; 2 * nn];
+        for c in 0..k {
+            for r in 1..=n {
+                index[2 * mesh.node(c, r) + 1] = KEPT + c * n + r - 1;
+            }
+        }
+        for r in 1..=n {
+            index[2 * mesh.node(0, r)] = KEPT + k * n + r - 1;
+        }
+        let (ni, rows) = number_interior(&mut index, 2 * mesh.columns());
+        let nb = (k + 1) * n;
+        let (mut triplets, mut pairs, mut contributions) = (Vec::new(), Vec::new(), Vec::new());
+        plane_strain::assemble(&mesh, 2.0e6, 0.4, |i, j, v| {
+            if let (Some(a), Some(b)) = (position(index[i], ni), position(index[j], ni)) {
+                triplets.push(Triplet::new(a, b, v));
+                if a >= b {
+                    pairs.push((a, b));
+                    contributions.push(v);
+                }
+            }
+        });
+        let mut fwd = Vec::new();
+        dissect(&rows, 0, rows.len() - 1, &mut fwd);
+        fwd.extend(ni..ni + nb);
+        let pattern = StiffnessPattern::new(ni, nb, &pairs, &fwd).unwrap();
+        let mut values = Vec::new();
+        // P K Pᵀ: entry (r, c) is K's (fwd[r], fwd[c]).
+        let cached = pattern.sum(&contributions, &mut values);
+        let reference = lower_csc(ni + nb, &triplets);
+        assert_eq!(cached.compute_nnz(), reference.compute_nnz());
+        for c in 0..ni + nb {
+            for (r, v) in cached.row_idx_of_col(c).zip(cached.val_of_col(c)) {
+                let (i, j) = (fwd[r].max(fwd[c]), fwd[r].min(fwd[c]));
+                let k = reference.row_idx_of_col(j).position(|x| x == i);
+                let k = k.expect("the entry is in K's pattern");
+                assert_eq!(v.to_bits(), reference.val_of_col(j)[k].to_bits());
+            }
+        }
+    }
+
+    /// A build whose pattern comes from the cache gives the same bits as the
+    /// build that computed it, also for another shape of the same topology
+    /// (same rows and columns, other coordinates).
+    #[test]
+    fn builds_from_the_factor_cache_are_bit_identical() {
+        let settings = SectionSettings {
+            row_spacing: 5e-4,
+            ..SectionSettings::default()
+        };
+        let (e_mod, nu) = (2.0e6, 0.4);
+        let bits = |line: &CondensedLine| {
+            [&line.C, &line.Et, &line.A, &line.Cz].map(|m| {
+                (0..m.ncols())
+                    .flat_map(|j| m.col_as_slice(j).iter().map(|x| x.to_bits()))
+                    .collect::<Vec<_>>()
+            })
+        };
+        let a = SectionMesh::new(&dome(0.006, 0.009), 1e-4, &settings).unwrap();
+        let b = SectionMesh::new(&dome(0.0061, 0.0091), 1e-4, &settings).unwrap();
+        assert_eq!((a.rows, a.columns()), (b.rows, b.columns()));
+        assert_ne!(a.nodes, b.nodes);
+        let cold = |mesh: &SectionMesh| {
+            for problem in [Problem::InPlane, Problem::Antiplane] {
+                factor_cache::forget(&Topology::of(mesh, problem));
+            }
+            CondensedLine::new(mesh, e_mod, nu).unwrap()
+        };
+        let a_cold = bits(&cold(&a));
+        let a_cached = bits(&CondensedLine::new(&a, e_mod, nu).unwrap());
+        assert!(a_cold == a_cached, "a cached build differs");
+        let b_cached = bits(&CondensedLine::new(&b, e_mod, nu).unwrap());
+        let b_cold = bits(&cold(&b));
+        assert!(b_cold == b_cached, "a build on a cached topology differs");
+        assert!(a_cold != b_cold, "the two shapes differ");
     }
 
     /// The default mesh of the loop's half potato (≈ 5 s in release, minutes
