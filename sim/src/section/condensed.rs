@@ -245,9 +245,12 @@ impl CondensedLine {
     }
 
     /// In-plane solve with every X DOF prescribed to `g` (gaps, m) and, if
-    /// `strip` is given, the strip constraint. Writes the X reactions into `p`
-    /// (N/m, +x on the material) and the strip forces into `lambda` (N/m, +y on
-    /// the material). Allocation-free.
+    /// `strip` is given, the strip constraint. Writes the X reactions of the
+    /// rows from `first_nonzero` on into `p` (N/m, +x on the material; the
+    /// rows below, which carry no gap, are set to 0, not computed) and the
+    /// strip forces into `lambda` (N/m, +y on the material). `g` must be 0
+    /// below `first_nonzero`. Allocation-free.
+    #[inline(always)]
     pub fn solve(
         &self,
         g: &[f64],
@@ -278,23 +281,32 @@ impl CondensedLine {
             lambda[..self.k].copy_from_slice(&rhs[..self.k]);
             energy_strip = s.value * rhs[..self.k].iter().sum::<f64>();
         }
-        p[..n].fill(0.0);
-        for (i, &gi) in g.iter().enumerate().skip(first_nonzero) {
+        // Only the rows at and above `first_nonzero` are needed (the rows
+        // below carry no gap): A_FC g_C restricted to them, the symmetric
+        // block of A that the gaps touch. Element by element the sums are
+        // the same as over the whole columns.
+        let f0 = first_nonzero.min(n);
+        p[..f0].fill(0.0);
+        p[f0..n].fill(0.0);
+        for (i, &gi) in g.iter().enumerate().take(n).skip(f0) {
             if gi != 0.0 {
-                axpy(gi, self.A.col_as_slice(i), p);
+                axpy(gi, &self.A.col_as_slice(i)[f0..], &mut p[f0..n]);
             }
         }
         if let Some(s) = strip {
             for a in 0..self.k {
                 for (q, w) in self.taps(a, s) {
                     if w != 0.0 {
-                        axpy(w * lambda[a], self.Et.col_as_slice(q), p);
+                        axpy(w * lambda[a], &self.Et.col_as_slice(q)[f0..], &mut p[f0..n]);
                     }
                 }
             }
         }
+        // g is 0 below `first_nonzero`: the dot from the 4-aligned row at or
+        // below it has the same partial sums as the full one.
+        let f4 = f0 & !3;
         InPlane {
-            energy: 0.5 * (dot(g, p) + energy_strip),
+            energy: 0.5 * (dot(&g[f4..n], &p[f4..n]) + energy_strip),
             strip_force: lambda[..self.k].iter().sum(),
         }
     }
@@ -363,27 +375,118 @@ impl CondensedLine {
     }
 }
 
+/// Released sets whose factors [`ReleasedWorkspace`] keeps. The trial
+/// extensions of a step and the passes of the contact active set move
+/// between a few released sets (a face row near the tip or near the end of
+/// the bevel in or out), so their factors are kept rather than recomputed.
+const FACTOR_SLOTS: usize = 4;
+
+/// The dense Cholesky factor of A_FF for one released set F: the rows of the
+/// lower factor packed one after the other (row a, of length a + 1, from
+/// a·(a+1)/2), so a factor of F is also the factor of any leading part of F.
+#[derive(Debug, Clone)]
+struct ReleasedFactor {
+    /// The released rows F (ascending) whose factor is in `l`.
+    rows: Vec<usize>,
+    /// Packed lower factor, capacity R·(R+1)/2.
+    l: Vec<f64>,
+    /// When the factor was last used (the workspace's call counter).
+    used: u64,
+}
+
+/// Offset of row a of a packed lower triangle.
+#[inline(always)]
+fn packed_row(a: usize) -> usize {
+    a * (a + 1) / 2
+}
+
 /// Preallocated memory of [`CondensedLine::solve_released`]: the released
-/// rows, a dense Cholesky factor of A_FF and its right-hand sides.
+/// rows, dense Cholesky factors of A_FF for the last few released sets and
+/// the right-hand sides.
 #[derive(Debug, Clone)]
 pub(crate) struct ReleasedWorkspace {
     idx: Vec<usize>,
-    /// The released rows whose A_FF is factorised in `l` (the factor is
-    /// reused while the active set does not change, which is most calls).
-    factored: Vec<usize>,
-    l: Vec<f64>,
+    /// Factors of the last `FACTOR_SLOTS` released sets (least recently
+    /// used replaced first).
+    factors: [ReleasedFactor; FACTOR_SLOTS],
+    /// Calls so far (the factors' use clock).
+    calls: u64,
     z: Vec<f64>,
 }
 
 impl ReleasedWorkspace {
-    /// Memory for a line of `n` rows (n² + n·(MAX_STRIP + 2) doubles).
+    /// Memory for a line of `n` rows (`FACTOR_SLOTS`·n·(n+1)/2 +
+    /// n·(MAX_STRIP + 2) doubles; a factor's pages are touched only as far
+    /// as its released sets reach).
     pub fn new(n: usize) -> Self {
         Self {
             idx: Vec::with_capacity(n),
-            factored: Vec::with_capacity(n),
-            l: vec![0.0; n * n],
+            factors: std::array::from_fn(|_| ReleasedFactor {
+                rows: Vec::with_capacity(n),
+                l: vec![0.0; packed_row(n)],
+                used: 0,
+            }),
+            calls: 0,
             z: vec![0.0; n * (MAX_STRIP + 1)],
         }
+    }
+
+    /// The slot holding the factor of the released set `idx`, computing it
+    /// (Cholesky–Crout, row by row) if no slot holds it: into the least
+    /// recently used slot, starting from the longest leading part of `idx`
+    /// that some slot has factorised already (those rows of the factor are
+    /// the same). Every row is computed with the same operations as a
+    /// factorisation from scratch. Allocation-free.
+    #[inline(always)]
+    fn factor(&mut self, A: &Mat<f64>) -> usize {
+        self.calls += 1;
+        let idx = &self.idx;
+        let m = idx.len();
+        if let Some(hit) = self.factors.iter().position(|f| f.rows == *idx) {
+            self.factors[hit].used = self.calls;
+            return hit;
+        }
+        let prefix =
+            |f: &ReleasedFactor| f.rows.iter().zip(idx).take_while(|(a, b)| a == b).count();
+        let victim = (0..FACTOR_SLOTS)
+            .min_by_key(|&s| self.factors[s].used)
+            .unwrap_or(0);
+        let (best, keep) = (0..FACTOR_SLOTS)
+            .map(|s| (s, prefix(&self.factors[s])))
+            .max_by_key(|&(s, p)| (p, s == victim))
+            .unwrap_or((victim, 0));
+        if best != victim && keep > 0 {
+            let len = packed_row(keep);
+            let (src, dst) = if best < victim {
+                let (lo, hi) = self.factors.split_at_mut(victim);
+                (&lo[best], &mut hi[0])
+            } else {
+                let (lo, hi) = self.factors.split_at_mut(best);
+                (&hi[0], &mut lo[victim])
+            };
+            dst.l[..len].copy_from_slice(&src.l[..len]);
+        }
+        let f = &mut self.factors[victim];
+        let l = &mut f.l[..packed_row(m)];
+        // Row-oriented (Cholesky–Crout): contiguous dot products.
+        for a in keep..m {
+            let (before, rest) = l.split_at_mut(packed_row(a));
+            let ra = &mut rest[..a + 1];
+            let col = A.col_as_slice(idx[a]);
+            for (b, &j) in idx.iter().enumerate().take(a + 1) {
+                ra[b] = col[j];
+            }
+            for b in 0..a {
+                let rb = &before[packed_row(b)..packed_row(b) + b + 1];
+                ra[b] = (ra[b] - dot(&ra[..b], &rb[..b])) / rb[b];
+            }
+            let d = ra[a] - dot(&ra[..a], &ra[..a]);
+            ra[a] = d.max(f64::MIN_POSITIVE).sqrt();
+        }
+        f.rows.clear();
+        f.rows.extend_from_slice(idx);
+        f.used = self.calls;
+        victim
     }
 }
 
@@ -391,7 +494,8 @@ impl CondensedLine {
     /// In-plane solve with the X DOFs of the rows flagged in `released` free
     /// (loaded by `f_ext`, N/m, +x on the material; zero if `None`) and all
     /// others prescribed to `g`. On return `g` holds the solved displacements
-    /// of the released rows, `p` the reactions (p = f_ext on released rows)
+    /// of the released rows, `p` the reactions from `first_nonzero` on (p =
+    /// f_ext on released rows; 0 below `first_nonzero`, as [`Self::solve`])
     /// and `lambda` the strip forces, as in [`Self::solve`]. Released rows
     /// must lie at or above `first_nonzero`. Allocation-free.
     ///
@@ -403,6 +507,39 @@ impl CondensedLine {
     /// Schur system (M + B_Fᵀ A_FF⁻¹ B_F) λ = value + B_Cᵀ g_C + B_Fᵀ A_FF⁻¹ r_F.
     #[allow(clippy::too_many_arguments)]
     pub fn solve_released(
+        &self,
+        g: &mut [f64],
+        first_nonzero: usize,
+        released: &[bool],
+        f_ext: Option<&[f64]>,
+        strip: Option<&StripConstraint>,
+        p: &mut [f64],
+        lambda: &mut [f64; MAX_STRIP],
+        ws: &mut ReleasedWorkspace,
+    ) -> InPlane {
+        // The same code compiled for the widest vector instructions the CPU
+        // has (pulp's runtime dispatch, through faer). The arithmetic is the
+        // same operation by operation (Rust never fuses a multiply and an
+        // add, and the sums keep their order), so the results are the same
+        // to the bit on any CPU; only the loops run wider.
+        faer::traits::pulp::Arch::new().dispatch(ReleasedSolve {
+            line: self,
+            g,
+            first_nonzero,
+            released,
+            f_ext,
+            strip,
+            p,
+            lambda,
+            ws,
+        })
+    }
+
+    /// [`Self::solve_released`]'s body, inlined into each instruction set's
+    /// version.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn solve_released_body(
         &self,
         g: &mut [f64],
         first_nonzero: usize,
@@ -425,47 +562,15 @@ impl CondensedLine {
             g[i] = 0.0;
         }
         // r_F = f_F − A_FC g_C (A symmetric: row i is column i).
-        let (rf, zb) = ws.z.split_at_mut(n);
         for (a, &i) in ws.idx.iter().enumerate() {
             let f = f_ext.map_or(0.0, |f| f[i]);
-            rf[a] = f - dot(&self.A.col_as_slice(i)[first..], &g[first..]);
+            ws.z[a] = f - dot(&self.A.col_as_slice(i)[first..], &g[first..]);
         }
-        // Dense Cholesky of A_FF (lower, row-major m×m in ws.l), unless the
-        // factor of this released set is already there.
-        let l = &mut ws.l[..m * m];
-        if ws.factored != ws.idx {
-            for (a, &i) in ws.idx.iter().enumerate() {
-                let col = self.A.col_as_slice(i);
-                for (b, &j) in ws.idx.iter().enumerate().take(a + 1) {
-                    l[a * m + b] = col[j];
-                }
-            }
-            // Row-oriented (Cholesky–Crout): contiguous dot products.
-            for a in 0..m {
-                let (before, rest) = l.split_at_mut(a * m);
-                let ra = &mut rest[..m];
-                for b in 0..a {
-                    let rb = &before[b * m..b * m + b + 1];
-                    ra[b] = (ra[b] - dot(&ra[..b], &rb[..b])) / rb[b];
-                }
-                let d = ra[a] - dot(&ra[..a], &ra[..a]);
-                ra[a] = d.max(f64::MIN_POSITIVE).sqrt();
-            }
-            ws.factored.clear();
-            ws.factored.extend_from_slice(&ws.idx);
-        }
-        let chol_solve = |l: &[f64], x: &mut [f64]| {
-            // L y = x (rows of L contiguous), then Lᵀ z = y (column sweep
-            // along the rows of L).
-            for a in 0..m {
-                x[a] = (x[a] - dot(&l[a * m..a * m + a], &x[..a])) / l[a * m + a];
-            }
-            for a in (0..m).rev() {
-                x[a] /= l[a * m + a];
-                let xa = x[a];
-                axpy(-xa, &l[a * m..a * m + a], &mut x[..a]);
-            }
-        };
+        // Dense Cholesky of A_FF (lower, packed rows), unless the factor of
+        // this released set is kept already.
+        let slot = ws.factor(&self.A);
+        let l = &ws.factors[slot].l[..packed_row(m)];
+        let (rf, zb) = ws.z.split_at_mut(n);
         chol_solve(l, &mut rf[..m]);
         if let Some(s) = strip {
             // Z_B = A_FF⁻¹ B_F, column a in zb[a·n..].
@@ -521,6 +626,56 @@ impl CondensedLine {
         // plain solve recovers the same λ, the reactions and the energy; the
         // external forces' work is part of ½ g·p (p_F = f_F).
         self.solve(g, first, strip, p, lambda)
+    }
+}
+
+/// The arguments of [`CondensedLine::solve_released`], run by pulp's
+/// dispatch with the CPU's vector instructions enabled.
+struct ReleasedSolve<'a> {
+    line: &'a CondensedLine,
+    g: &'a mut [f64],
+    first_nonzero: usize,
+    released: &'a [bool],
+    f_ext: Option<&'a [f64]>,
+    strip: Option<&'a StripConstraint>,
+    p: &'a mut [f64],
+    lambda: &'a mut [f64; MAX_STRIP],
+    ws: &'a mut ReleasedWorkspace,
+}
+
+impl faer::traits::pulp::WithSimd for ReleasedSolve<'_> {
+    type Output = InPlane;
+
+    #[inline(always)]
+    fn with_simd<S: faer::traits::pulp::Simd>(self, _simd: S) -> InPlane {
+        self.line.solve_released_body(
+            self.g,
+            self.first_nonzero,
+            self.released,
+            self.f_ext,
+            self.strip,
+            self.p,
+            self.lambda,
+            self.ws,
+        )
+    }
+}
+
+/// Solves L Lᵀ x = b in place (x ← b on entry) for the packed lower factor
+/// `l` of order `x.len()`: L y = b (rows of L contiguous), then Lᵀ x = y
+/// (column sweep along the rows of L).
+#[inline(always)]
+fn chol_solve(l: &[f64], x: &mut [f64]) {
+    let m = x.len();
+    for a in 0..m {
+        let r = packed_row(a);
+        x[a] = (x[a] - dot(&l[r..r + a], &x[..a])) / l[r + a];
+    }
+    for a in (0..m).rev() {
+        let r = packed_row(a);
+        x[a] /= l[r + a];
+        let xa = x[a];
+        axpy(-xa, &l[r..r + a], &mut x[..a]);
     }
 }
 
@@ -787,7 +942,7 @@ fn symmetrise_from_lower(M: &mut Mat<f64>) {
 }
 
 /// Dot product with four partial sums (lets the compiler vectorise).
-#[inline]
+#[inline(always)]
 fn dot(a: &[f64], b: &[f64]) -> f64 {
     let n = a.len().min(b.len());
     let (a, b) = (&a[..n], &b[..n]);
@@ -803,7 +958,7 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
     (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
 }
 
-#[inline]
+#[inline(always)]
 fn axpy(alpha: f64, x: &[f64], y: &mut [f64]) {
     for (yi, xi) in y.iter_mut().zip(x) {
         *yi += alpha * xi;
