@@ -7,9 +7,15 @@
 //! every re-choice of a segment's section, so this is the cost of a plant
 //! build divided by its segments and of every rebuild.
 //!
-//! Prints median and worst of repeated builds for sections across the potato
-//! at several positions along its length (vertical planes), and a 30 × 30 mm
-//! rectangle (the `section` bench's naive-step lower bound).
+//! Prints, for sections across the potato at several positions along its
+//! length (vertical planes) and a 30 × 30 mm rectangle (the `section`
+//! bench's naive-step lower bound), the first build (cold: the mesh
+//! topology's stiffness pattern and symbolic factorisation are computed)
+//! and the median and worst of the repeated ones (warm: taken from the
+//! section's factor cache, bit-identical), then cold builds of rectangles
+//! of distinct heights (a new topology each); with each series the
+//! process's CPU time per build (from `/proc/self/stat`, 10 ms ticks), which
+//! the load of a shared machine inflates much less than the wall time.
 //!
 //! Run: `cargo bench -p shearcut-sim --bench section_condense`.
 //!
@@ -26,6 +32,25 @@
 //!
 //! CPU time of the whole bench (60 builds) with the partial factorisation:
 //! 1.40 s, i.e. 23 ms per build on average.
+//!
+//! With the factor cache (pattern, summation order and symbolic
+//! factorisation reused per topology, assembly straight into the
+//! factorisation's order, scratch memory kept), CPU ms per build, range
+//! of 3 runs each of this bench on the code before (a47ccc0) and after,
+//! interleaved, load 11–14:
+//!
+//! | series (rows)                        | before    | after, warm | after, cold |
+//! |--------------------------------------|-----------|-------------|-------------|
+//! | potato, z = 45 mm (175)              | 36–43     | 29–30       |             |
+//! | potato, z = 20 mm (146)              | 24–27     | 18–20       |             |
+//! | potato, z = 10 mm (110)              | 14–15     | 10–11       |             |
+//! | 30 × 30 mm rectangle (150)           | 20–21     | 15–16       |             |
+//! | 30 mm rectangles, 130–144 rows       | 18–25     |             | 19–20       |
+//!
+//! A warm build is about 1.3× cheaper, a cold one about the same as before
+//! (the numeric factorisation, unchanged to keep results bit-identical, is
+//! most of it). Whole bench (75 builds): 1.66–1.90 s CPU before, 1.39–1.48 s
+//! after.
 
 // A benchmark measures wall time by design.
 #![allow(clippy::disallowed_methods)]
@@ -75,22 +100,67 @@ fn main() {
         "30 x 30 mm rectangle".to_string(),
         SectionGeometry::rectangle(0.03, 0.03).unwrap(),
     ));
+    let build = |geometry: &SectionGeometry| {
+        let t = Instant::now();
+        black_box(CrossSection::new(geometry, &material, knife.blade(), &settings).unwrap());
+        t.elapsed().as_secs_f64() * 1e3
+    };
+    let median = |mut v: Vec<f64>| {
+        v.sort_by(f64::total_cmp);
+        (v[v.len() / 2], v[v.len() - 1])
+    };
+    // The first build of a mesh topology computes the stiffness pattern and
+    // the symbolic factorisation (cold); the others take them from the
+    // factor cache (warm), as the plant's rebuilds of a topology built
+    // before do. Results are bit-identical either way. Wall time suffers
+    // from the load of a shared machine; the process's CPU time per build
+    // (mean over the series) much less.
     for (name, geometry) in &cases {
         let rows = (geometry.height_at_cut() / settings.row_spacing).round();
-        let mut times: Vec<f64> = (0..REPEATS)
-            .map(|_| {
-                let t = Instant::now();
-                black_box(
-                    CrossSection::new(geometry, &material, knife.blade(), &settings).unwrap(),
-                );
-                t.elapsed().as_secs_f64() * 1e3
-            })
-            .collect();
-        times.sort_by(f64::total_cmp);
+        let cold = build(geometry);
+        let cpu = cpu_seconds();
+        let (warm, worst) = median((1..REPEATS).map(|_| build(geometry)).collect());
+        let cpu = per_build(cpu, REPEATS - 1);
         println!(
-            "CrossSection::new, {name}, {rows} rows: median {:.2} ms, worst {:.2} ms ({REPEATS} builds)",
-            times[REPEATS / 2],
-            times[REPEATS - 1]
+            "CrossSection::new, {name}, {rows} rows: first (cold) {cold:.2} ms, then median {warm:.2} ms, worst {worst:.2} ms, CPU {cpu} ({} builds)",
+            REPEATS - 1
         );
+    }
+    // Cold builds: rectangles of distinct heights, so distinct topologies.
+    let cpu = cpu_seconds();
+    let (cold, worst) = median(
+        (0..REPEATS)
+            .map(|i| {
+                let rows = 130 + i;
+                let height = rows as f64 * settings.row_spacing;
+                build(&SectionGeometry::rectangle(0.03, height).unwrap())
+            })
+            .collect(),
+    );
+    let cpu = per_build(cpu, REPEATS);
+    println!(
+        "CrossSection::new, 30 mm wide rectangles of 130..{} rows, each a new topology (cold): median {cold:.2} ms, worst {worst:.2} ms, CPU {cpu} ({REPEATS} builds)",
+        130 + REPEATS - 1
+    );
+}
+
+/// CPU time (user + system) of this process so far, s, from `/proc/self/stat`
+/// (Linux; ticks of 1/100 s, the fixed USER_HZ of /proc), if readable.
+fn cpu_seconds() -> Option<f64> {
+    let stat = std::fs::read_to_string("/proc/self/stat").ok()?;
+    // Fields after the command name (which ends with the last ')'):
+    // state is field 3, utime and stime fields 14 and 15.
+    let rest = &stat[stat.rfind(')')? + 2..];
+    let fields: Vec<&str> = rest.split_whitespace().collect();
+    let utime: f64 = fields.get(11)?.parse().ok()?;
+    let stime: f64 = fields.get(12)?.parse().ok()?;
+    Some((utime + stime) / 100.0)
+}
+
+/// Mean CPU time per build since `start` over `builds` builds, formatted.
+fn per_build(start: Option<f64>, builds: usize) -> String {
+    match (start, cpu_seconds()) {
+        (Some(a), Some(b)) => format!("{:.1} ms/build", (b - a) * 1e3 / builds as f64),
+        _ => "n/a".to_string(),
     }
 }

@@ -115,6 +115,31 @@ pub fn mpc_start(task: &CutTask) -> f64 {
     (task.blade_budget / task.target_depth).min(1.0)
 }
 
+/// The ratio the MPC is going to cut along: the mean ratio of its first
+/// plan from the intact object ([`Mpc::planned_ratio_from_rest`], on a
+/// controller built for it and dropped). The plant plans its contact arc
+/// and first sections for it: a plant planned for another direction puts
+/// its sections where the knife does not go (pressing the whole eggplant
+/// with the arc planned for ξ = 0.5 or 1 took 15 % or 25 % less work than
+/// with it planned for pressing).
+pub fn mpc_cutting_ratio(
+    s: &Scenario,
+    task: &CutTask,
+    mesh: &TriangleMesh,
+) -> Result<f64, RunError> {
+    let surrogate = surrogate_for(s).map_err(|e| invalid(s, e))?;
+    let profile = depth_profile(mesh).map_err(|e| invalid(s, e))?;
+    let mut mpc = Mpc::new(
+        task,
+        &s.controller.mpc,
+        SurrogateModel::new(surrogate),
+        profile,
+        mpc_start(task),
+    )
+    .map_err(|e| invalid(s, e.prefixed("controller")))?;
+    Ok(mpc.planned_ratio_from_rest())
+}
+
 /// The controller a choice names, for a scenario's task and object.
 pub fn make_controller(
     s: &Scenario,
@@ -224,7 +249,10 @@ impl LoopSetup {
             .mesh()
             .map_err(|e| invalid(s, InvalidSetting::new("object", "mesh", e.to_string())))?;
         let task = cut_task(s, &knife, &mesh);
-        let xi = choice.nominal_slice_push_ratio(mpc_start(&task));
+        let xi = match choice {
+            ControllerChoice::Mpc => mpc_cutting_ratio(s, &task, &mesh)?,
+            _ => choice.nominal_slice_push_ratio(mpc_start(&task)),
+        };
         Ok(Self {
             knife,
             mesh,

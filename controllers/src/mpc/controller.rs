@@ -39,9 +39,13 @@ const ESTIMATOR_PRIOR_VARIANCE: f64 = 1.0;
 /// drag held at onset being released over a few bevel heights) is in
 /// neither the pre- nor the post-fracture model.
 const ESTIMATOR_SETTLE_DEPTH: f64 = 2e-3;
-/// Standard deviation of a force per unit length row, N/m (weights only:
-/// the same for both rows).
-const ESTIMATOR_FORCE_NOISE: f64 = 1.0;
+/// The surrogate's force error as a fraction of the force: its held-out
+/// force RMS errors are 4–6 % (`config/surrogates/*.accuracy.toml`). Sets
+/// the rows' weights (relative, the same for both rows) against the prior.
+const ESTIMATOR_RELATIVE_ERROR: f64 = 0.05;
+
+/// Most plans [`Mpc::planned_ratio_from_rest`] makes.
+pub const FIRST_PLAN_ITERATIONS: usize = 50;
 
 /// Model-predictive control of the slice (DESIGN §4).
 ///
@@ -164,9 +168,13 @@ impl<M: SliceModel> Mpc<M> {
             stroke_tau: vec![0.0; n],
             stats: MpcStats::default(),
             replanned: false,
-            estimator: settings
-                .estimate
-                .then(|| ScaleEstimator::new(ESTIMATOR_PRIOR_VARIANCE, settings.forgetting)),
+            estimator: settings.estimate.then(|| {
+                ScaleEstimator::new(
+                    ESTIMATOR_PRIOR_VARIANCE,
+                    settings.forgetting,
+                    ESTIMATOR_RELATIVE_ERROR,
+                )
+            }),
             touch_height: None,
             telemetry: ControllerTelemetry::default(),
         })
@@ -206,7 +214,8 @@ impl<M: SliceModel> Mpc<M> {
 
     /// Feeds the measured forces per unit length of edge in contact to the
     /// estimator, with the model's parts at the executed ξ and the current
-    /// state.
+    /// state: as changes from tick to tick during the indentation (which
+    /// identifies the stiffness), as they are after the first fracture.
     fn estimate(&mut self, m: &Measurement) {
         let Some(estimator) = self.estimator.as_mut() else {
             return;
@@ -240,28 +249,71 @@ impl<M: SliceModel> Mpc<M> {
             fractured,
             travel_since_fracture: since,
         };
-        let Some((normal, tangential)) = self.model.force_parts(xi, &state) else {
+        let Some(parts) = self.model.force_parts(xi, &state) else {
             return;
         };
-        // Measured resistance per unit length: up, and against the
-        // tangential motion.
-        let f_n = m.wrench[1] / l;
-        let f_t = -m.wrench[2] * m.velocity.z.signum() / l;
-        estimator.update(normal, f_n, ESTIMATOR_FORCE_NOISE);
-        if m.velocity.z != 0.0 {
-            estimator.update(tangential, f_t, ESTIMATOR_FORCE_NOISE);
+        // Measured resistance: up, and against the tangential motion.
+        let force = [m.wrench[1], -m.wrench[2] * m.velocity.z.signum()];
+        if fractured {
+            let per_length = [
+                Some(force[0] / l),
+                (m.velocity.z != 0.0).then(|| force[1] / l),
+            ];
+            estimator.observe_cut(per_length, parts);
+        } else {
+            estimator.observe_indentation(l, force.map(|f| f / l), parts);
         }
     }
 
+    /// The blade the first plan from the intact object asks for per unit
+    /// depth: its mean slice-push ratio Σ Δd_k ξ_k / Σ Δd_k over the whole
+    /// cut (with the sawing strokes it plans, if they pay). A plant plans its
+    /// contact arc and first sections for a direction of motion; this is
+    /// the one the MPC is going to cut along. Successive plans re-linearise
+    /// within a trust region, so it replans (at most
+    /// [`FIRST_PLAN_ITERATIONS`] times) until the plan settles. Plans on
+    /// this controller, so call it on a fresh one that is then dropped.
+    pub fn planned_ratio_from_rest(&mut self) -> f64 {
+        let mean = |xi: &[f64]| xi.iter().sum::<f64>() / xi.len() as f64;
+        let mut last = f64::NAN;
+        for _ in 0..FIRST_PLAN_ITERATIONS {
+            self.replan_at(0.0, false);
+            let now = mean(&self.plan_xi);
+            if (now - last).abs() < 1e-4 {
+                break;
+            }
+            last = now;
+        }
+        mean(&self.plan_xi)
+    }
+
     fn replan(&mut self, m: &Measurement) {
+        self.replan_at(m.crack_depth.max(0.0), m.fractured_sections > 0);
+    }
+
+    /// Plans from crack depth `d0` (m), `fractured` or not.
+    fn replan_at(&mut self, d0: f64, fractured: bool) {
         let n = self.settings.stages;
-        let d0 = m.crack_depth.max(0.0);
         let remaining = (self.task.target_depth - d0).max(1e-6);
         let dd = remaining / n as f64;
-        let fractured = m.fractured_sections > 0;
         let since = self.depth_at_fracture;
         let [t, st, f] = self.scale();
         self.model.set_scale(t, st, f);
+        // Before the first fracture the onset's cost covers the catch-up
+        // after it, whose length the ratio at the fracture sets; the later
+        // stages are priced at the rates after that span (`SliceModel`).
+        let span = if fractured {
+            0.0
+        } else {
+            let first = StageState {
+                depth: d0 + 0.5 * dd,
+                height: self.profile.height(),
+                half_width: self.profile.half_width(),
+                fractured: false,
+                travel_since_fracture: 0.0,
+            };
+            self.model.catch_up_span(self.plan_xi[0], &first)
+        };
         for k in 0..n {
             let depth = d0 + (k as f64 + 0.5) * dd;
             let state = StageState {
@@ -269,7 +321,11 @@ impl<M: SliceModel> Mpc<M> {
                 height: self.profile.height(),
                 half_width: self.profile.half_width(),
                 fractured: fractured || k > 0,
-                travel_since_fracture: (depth - since.unwrap_or(d0)).max(0.0),
+                travel_since_fracture: match since {
+                    Some(at) if fractured => (depth - at).max(0.0),
+                    _ if k == 0 => span,
+                    _ => (depth - d0).max(span),
+                },
             };
             let xi_bar = self.plan_xi[k];
             self.stages[k] = StageData {

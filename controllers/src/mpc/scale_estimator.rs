@@ -10,34 +10,115 @@ use nalgebra::{Matrix3, Vector3};
 /// where (a, b, c) are the model's parts of a force per unit length at the
 /// current state (the surrogate's `ScaledParts`: what multiplies R_c, E and
 /// μ·E) and F the measured force per unit length. Each tick brings two such
-/// rows (normal and tangential force); recursive least squares with a
-/// forgetting factor λ tracks slow changes (skin, then flesh), and each
+/// rows (normal and tangential force): during the indentation before the
+/// first fracture as changes from the previous tick
+/// ([`Self::observe_indentation`]; only the stiffness part is non-zero, so
+/// only θ₂ moves), after it as they are, weighed by the model's relative
+/// error ([`Self::observe_cut`]). Recursive least squares, with an optional
+/// forgetting factor λ per row for slow changes (skin, then flesh); each
 /// factor is kept within [`ScaleEstimator::BOUNDS`].
 ///
 /// Rows whose parts are all tiny carry no information and are skipped (no
-/// contact, or pressing with no tangential force). Before the first fracture
-/// only the stiffness part is non-zero, so only θ₂ moves. Allocation-free.
+/// contact, or pressing with no tangential force). Allocation-free.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ScaleEstimator {
     theta: Vector3<f64>,
     covariance: Matrix3<f64>,
     forgetting: f64,
     updates: u64,
+    relative_error: f64,
+    /// The last indentation tick: contact length, measured normal and
+    /// tangential forces per unit length, and the model's parts of them.
+    last_indentation: Option<(f64, [f64; 2], [[f64; 3]; 2])>,
 }
 
 impl ScaleEstimator {
     /// Smallest and largest factor accepted.
     pub const BOUNDS: (f64, f64) = (0.2, 5.0);
 
+    /// The plant's tangential force that no factor explains, as a fraction
+    /// of the normal force: pressing (ξ = 0) with the chef's knife through
+    /// the half potato, where the model's tangential force is 0, the
+    /// measured one is 1–2 % of the normal force (the curved edge's
+    /// inclination, the sections' asymmetry).
+    pub const LATERAL_FORCE: f64 = 0.02;
+
     /// Starts at the nominal material (all factors 1) with prior variance
     /// `prior_variance` per factor and forgetting factor `forgetting` in
-    /// (0, 1] (1: no forgetting).
-    pub fn new(prior_variance: f64, forgetting: f64) -> Self {
+    /// (0, 1] (1: no forgetting) per row. `relative_error` is the model's
+    /// force error as a fraction of the force (the surrogates' force RMS
+    /// errors are 4–6 %): [`Self::observe_cut`] weighs each row by it.
+    pub fn new(prior_variance: f64, forgetting: f64, relative_error: f64) -> Self {
         Self {
             theta: Vector3::new(1.0, 1.0, 1.0),
             covariance: Matrix3::identity() * prior_variance,
             forgetting,
             updates: 0,
+            relative_error,
+            last_indentation: None,
+        }
+    }
+
+    /// One tick of the cut after the first fracture: the measured normal
+    /// and tangential forces per unit length `force` (N/m; the tangential
+    /// one `None` when the knife does not move along its edge) and the
+    /// model's parts of them.
+    ///
+    /// Each row's standard deviation is the model's relative error times
+    /// the force the model predicts for the nominal material (not at the
+    /// current factors: weights that follow the estimate can run away with
+    /// it), plus [`Self::LATERAL_FORCE`] times the normal force: the rows
+    /// are compared in relative terms, so the tangential force — a third
+    /// of the normal one or less, and mostly friction — weighs about as
+    /// much as the normal one (absolute weights let the normal force's
+    /// model error set the friction), while near pressing, where the model's
+    /// tangential force vanishes, the plant's unmodelled lateral force
+    /// keeps the tangential row from dominating. The crack-jump sawtooth is
+    /// zero-mean noise on these rows: least squares without forgetting
+    /// averages it over the cut.
+    pub fn observe_cut(&mut self, force: [Option<f64>; 2], parts: ([f64; 3], [f64; 3])) {
+        let normal = parts.0.iter().sum::<f64>().abs();
+        for (measured, row) in force.into_iter().zip([parts.0, parts.1]) {
+            let Some(measured) = measured else {
+                continue;
+            };
+            let predicted = row.iter().sum::<f64>().abs();
+            let noise = self.relative_error * predicted + Self::LATERAL_FORCE * normal;
+            if noise > 0.0 {
+                self.update(row, measured, noise);
+            }
+        }
+    }
+
+    /// One tick of the indentation before the first fracture: the measured
+    /// normal and tangential forces per unit length `force` (N/m) with
+    /// `contact` metres of edge in contact, and the model's parts of them.
+    ///
+    /// The rows are the changes from the previous tick, not the forces
+    /// themselves: the edge touches within a tick, so the knife's travel
+    /// since the first tick in contact lags the indentation by a fraction
+    /// of a tick's travel, which offsets the force by a near-constant
+    /// amount (and so does a sensor bias); differences cancel both. Ticks
+    /// where the contact length changed (another part of the edge touched,
+    /// with no indentation yet) are skipped: the force per unit length of
+    /// the model is not the plant's across them.
+    pub fn observe_indentation(
+        &mut self,
+        contact: f64,
+        force: [f64; 2],
+        parts: ([f64; 3], [f64; 3]),
+    ) {
+        let now = (contact, force, [parts.0, parts.1]);
+        if let Some((l, f, p)) = self.last_indentation.replace(now)
+            && (l - contact).abs() <= 1e-9 * contact
+        {
+            for i in 0..2 {
+                let row = [0, 1, 2].map(|k| now.2[i][k] - p[i][k]);
+                let predicted = row.iter().sum::<f64>().abs();
+                if predicted > 0.0 {
+                    self.update(row, force[i] - f[i], self.relative_error * predicted);
+                }
+            }
         }
     }
 
@@ -106,7 +187,7 @@ mod tests {
     #[test]
     fn recovers_factors_from_exciting_rows() {
         let truth = [1.3, 0.7, 0.7 * 1.25];
-        let mut e = ScaleEstimator::new(1.0, 1.0);
+        let mut e = ScaleEstimator::new(1.0, 1.0, 0.05);
         // Deterministic, varied parts (as the state and ξ change).
         for k in 0..400 {
             let t = k as f64 * 0.1;
@@ -128,7 +209,7 @@ mod tests {
     #[test]
     fn a_frozen_stiffness_stays_while_the_others_are_identified() {
         let truth = [1.3, 0.7, 0.7 * 1.25];
-        let mut e = ScaleEstimator::new(1.0, 1.0);
+        let mut e = ScaleEstimator::new(1.0, 1.0, 0.05);
         // Rows with only the stiffness part (an indentation) identify it.
         for k in 0..200 {
             let b = 40.0 + k as f64 * 0.1;
@@ -155,7 +236,7 @@ mod tests {
 
     #[test]
     fn uninformative_rows_change_nothing() {
-        let mut e = ScaleEstimator::new(1.0, 0.99);
+        let mut e = ScaleEstimator::new(1.0, 0.99, 0.05);
         e.update([0.0; 3], 5.0, 1.0);
         e.update([f64::NAN, 1.0, 1.0], 5.0, 1.0);
         assert_eq!(

@@ -14,7 +14,10 @@ pub struct StageState {
     /// the cost of reaching the fracture (`onset_work`, `deformation`, and
     /// the peak force as `force_normal`).
     pub fractured: bool,
-    /// Normal knife travel since the first fracture, m (friction grows with it).
+    /// Normal knife travel since the first fracture, m (friction grows with
+    /// it). Before the first fracture (`fractured` false): the travel after
+    /// it whose cost beyond the rate at its end the onset's cost includes
+    /// ([`SliceModel::catch_up_span`]); the stage's rates are those there.
     pub travel_since_fracture: f64,
 }
 
@@ -37,9 +40,11 @@ pub struct StageCost {
     /// Its derivative with respect to ξ.
     pub deformation_slope: f64,
     /// Before the first fracture: the knife work per unit length spent
-    /// indenting until the material fractures, J/m (0 once fractured). The
-    /// crack does not advance meanwhile, so it is a cost of the first
-    /// stage, not a rate per depth.
+    /// indenting until the material fractures, plus what the catch-up span
+    /// after it costs beyond the rate at the span's end (negative when the
+    /// crack's jump saves work), J/m (0 once fractured). The crack does not
+    /// advance while indenting, so it is a cost of the first stage, not a
+    /// rate per depth.
     pub onset_work: f64,
     /// Its derivative with respect to ξ.
     pub onset_work_slope: f64,
@@ -53,6 +58,16 @@ pub struct StageCost {
 pub trait SliceModel {
     /// The model at `xi` in `state`.
     fn stage(&self, xi: f64, state: &StageState) -> StageCost;
+
+    /// Before the first fracture: the normal travel after it, m, over which
+    /// what a fracture at `xi` leads to (the crack's jump, the edge catching
+    /// up with the tip) depends on the ratio at the fracture rather than on
+    /// the ratios planned for those depths. The onset's cost includes that
+    /// span, and the stages planned before the fracture are priced at the
+    /// rates after it. 0 (the default) for a model without a catch-up.
+    fn catch_up_span(&self, _xi: f64, _state: &StageState) -> f64 {
+        0.0
+    }
 
     /// The parts of the normal and tangential forces per unit length at
     /// `xi` in `state` that multiply the toughness, stiffness and

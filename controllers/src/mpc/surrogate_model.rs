@@ -9,6 +9,19 @@ use super::slice_model::{SliceModel, StageCost, StageState};
 /// deflection at the onset depth).
 const ONSET_STEP: f64 = 1e-3;
 
+/// Intervals of the catch-up integral (trapezoidal rule).
+const CATCH_UP_INTERVALS: usize = 32;
+
+/// Normal travel after the first fracture that the onset's cost covers, in
+/// onset depths d*(ξ): the crack's jump, the edge catching up with the tip
+/// and the knee after it take 1–2.5 d* in the full model
+/// (`docs/surrogates.md`).
+const CATCH_UP_SPAN_ONSETS: f64 = 4.0;
+
+/// Smallest such travel, m (a few bevel heights: the wedge entering the
+/// crack after a shallow onset).
+const MIN_CATCH_UP_SPAN: f64 = 5e-3;
+
 /// A [`Surrogate`] (seed 000's model reduced by `shearcut fit`) with the
 /// scale factors the estimator last set.
 #[derive(Debug, Clone)]
@@ -46,9 +59,11 @@ impl SurrogateModel {
     /// What reaching the first fracture costs at `xi` from an intact
     /// surface: (work per unit length, deflection, vertical force per unit
     /// length) at the onset depth d*(ξ). The force grows linearly with the
-    /// indentation (the surrogate's pre-fracture stiffness), so the work is
-    /// ½·w(d*)·d*.
-    fn onset(&self, xi: f64, cut: &CutState) -> (f64, f64, f64) {
+    /// indentation (the surrogate's pre-fracture stiffness), so the work to
+    /// the onset is ½·w(d*)·d*; to it is added what the first `span` of
+    /// travel after the onset costs beyond the rate at its end
+    /// ([`Self::catch_up_excess`]).
+    fn onset(&self, xi: f64, cut: &CutState, span: f64) -> (f64, f64, f64) {
         let d_star = self
             .surrogate
             .evaluate(xi, cut, &self.scale)
@@ -60,10 +75,47 @@ impl SurrogateModel {
         };
         let o = self.surrogate.evaluate(xi, &at_onset, &self.scale);
         (
-            0.5 * o.work_per_depth * d_star,
+            0.5 * o.work_per_depth * d_star + self.catch_up_excess(xi, d_star, cut, span),
             o.deformation,
             o.force_normal,
         )
+    }
+
+    /// What the first `span` of normal travel after a first fracture at
+    /// `xi` (onset depth `d_star`) costs beyond cutting it at the rate
+    /// reached at its end: ∫₀^span [w(ξ, s) − w(ξ, span)] ds over the travel
+    /// s since the fracture, J/m (trapezoidal rule).
+    ///
+    /// The strain energy stored while indenting, about ½·r·R'_c·d* (seed
+    /// 000 eq. 1), is not lost: it runs the crack ahead of the edge, and
+    /// until the edge catches up the knife does no fracture work (the
+    /// surrogate's catch-up, `docs/surrogates.md`), so this is mostly a
+    /// saving (negative), the larger the deeper the onset; the drag that
+    /// slicing builds up costs extra over it. It depends on the ratio at
+    /// the fracture, not on those planned for the depths it spans, so it
+    /// belongs to the onset's cost, and the stages planned before the
+    /// fracture are priced at the rates after it.
+    fn catch_up_excess(&self, xi: f64, d_star: f64, cut: &CutState, span: f64) -> f64 {
+        if span <= 0.0 {
+            return 0.0;
+        }
+        let at = |s: f64| {
+            let after = CutState {
+                depth: d_star + s,
+                fractured: true,
+                travel_since_fracture: s,
+                ..*cut
+            };
+            self.surrogate
+                .evaluate(xi, &after, &self.scale)
+                .work_per_depth
+        };
+        let ds = span / CATCH_UP_INTERVALS as f64;
+        let end = at(span);
+        let inner: f64 = (1..CATCH_UP_INTERVALS)
+            .map(|i| at(i as f64 * ds) - end)
+            .sum();
+        (inner + 0.5 * (at(0.0) - end)) * ds
     }
 }
 
@@ -81,17 +133,19 @@ impl SliceModel for SurrogateModel {
                 ..StageCost::default()
             };
         }
-        // Before the first fracture: the rates once cutting, plus the cost
-        // of getting there (central differences in ξ; one-sided at 0).
+        // Before the first fracture: the rates once cutting, at the end of
+        // the span the onset's cost covers, plus that cost (central
+        // differences in ξ; one-sided at 0).
+        let span = state.travel_since_fracture.max(0.0);
         cut.fractured = true;
-        cut.travel_since_fracture = 0.0;
+        cut.travel_since_fracture = span;
         let o = self.surrogate.evaluate(xi, &cut, &self.scale);
         cut.fractured = false;
         let h = ONSET_STEP;
         let (lo, hi) = ((xi - h).max(0.0), xi + h);
-        let (w0, d0, f0) = self.onset(xi, &cut);
-        let (wl, dl, fl) = self.onset(lo, &cut);
-        let (wh, dh, fh) = self.onset(hi, &cut);
+        let (w0, d0, f0) = self.onset(xi, &cut, span);
+        let (wl, dl, fl) = self.onset(lo, &cut, span);
+        let (wh, dh, fh) = self.onset(hi, &cut, span);
         let span = hi - lo;
         // Second difference on the possibly uneven stencil.
         let curvature = 2.0 * ((wh - w0) / (hi - xi) - (w0 - wl) / (xi - lo).max(h)) / span;
@@ -112,6 +166,20 @@ impl SliceModel for SurrogateModel {
             onset_work_slope: (wh - wl) / span,
             onset_work_curvature: if xi - lo > 0.0 { curvature } else { 0.0 },
         }
+    }
+
+    fn catch_up_span(&self, xi: f64, state: &StageState) -> f64 {
+        let intact = CutState {
+            fractured: false,
+            ..Self::cut_state(state)
+        };
+        let d_star = self
+            .surrogate
+            .evaluate(xi, &intact, &self.scale)
+            .fracture_onset_depth;
+        (CATCH_UP_SPAN_ONSETS * d_star)
+            .max(MIN_CATCH_UP_SPAN)
+            .min((state.height - d_star).max(0.0))
     }
 
     fn force_parts(&self, xi: f64, state: &StageState) -> Option<([f64; 3], [f64; 3])> {

@@ -26,7 +26,7 @@
 //! whose shapes are not constant or whose polynomial check fails.
 
 use super::dof::Dof;
-use super::polynomial::{closed_form_roots_checked, polynomial_roots};
+use super::polynomial::{RootSet, closed_form_roots_checked, polynomial_roots};
 use super::position_time_optimal::peak_parts;
 use super::roots::{Roots, scan};
 
@@ -136,6 +136,7 @@ pub(crate) struct PeakInputs {
 
 /// Shape of both velocity changes at `vp` (first holds, first jerk sign, second holds, second
 /// jerk sign) and the residual `kind` there (the guard value of the window's polynomial).
+#[inline(always)]
 fn shape(d: &Dof, vp: f64, kind: PeakResidual) -> Option<(bool, f64, bool, f64, f64)> {
     let (c1, c2) = peak_parts(d, vp)?;
     // Exactly the arithmetic of `peak_distance`.
@@ -153,7 +154,10 @@ fn shape(d: &Dof, vp: f64, kind: PeakResidual) -> Option<(bool, f64, bool, f64, 
 const PEAK_SAMPLES: usize = 6;
 
 /// Roots of a peak-family residual `f(v_p)` on one window `[l, r]` between break points (see the
-/// module documentation). `density` multiplies the samples of the fallback scan.
+/// module documentation). `density` multiplies the samples of the fallback scan; `set` says
+/// whether every root is needed or any one will do (see [`RootSet`]; only the closed forms
+/// make use of it).
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn scan_peak_window<F: FnMut(f64) -> f64>(
     d: &Dof,
     f: &mut F,
@@ -161,6 +165,7 @@ pub(crate) fn scan_peak_window<F: FnMut(f64) -> f64>(
     r: f64,
     density: usize,
     kind: PeakResidual,
+    set: RootSet,
     out: &mut Roots,
 ) {
     let w = r - l;
@@ -168,7 +173,7 @@ pub(crate) fn scan_peak_window<F: FnMut(f64) -> f64>(
         scan(f, l, r, 1, out);
         return;
     }
-    if density == 1 && polynomial_window(d, f, l, r, kind, out) {
+    if density == 1 && polynomial_window(d, f, l, r, kind, set, out) {
         return;
     }
     let scale = d.a_max.max(-d.a_min).powi(2) / d.j;
@@ -189,6 +194,7 @@ fn polynomial_window<F: FnMut(f64) -> f64>(
     l: f64,
     r: f64,
     kind: PeakResidual,
+    set: RootSet,
     out: &mut Roots,
 ) -> bool {
     // The shape at the window's midpoint, and the residual there, which guards the closed
@@ -230,7 +236,7 @@ fn polynomial_window<F: FnMut(f64) -> f64>(
     match (h1, h2) {
         (true, true) => {
             let check = Some((vp_mid, y_mid));
-            if !closed_form_roots_checked(deg, &coef, f, l, r, check, &mut roots)
+            if !closed_form_roots_checked(deg, &coef, f, l, r, check, set, &mut roots)
                 && !polynomial_roots(f, l, r, deg_hh, &mut roots)
             {
                 return false;
@@ -244,7 +250,7 @@ fn polynomial_window<F: FnMut(f64) -> f64>(
             let mut g = |x: f64| f(vp_of_x(x));
             let (lo, hi) = (xl.min(xr), xl.max(xr));
             let check = Some((x_of(vp_mid), y_mid));
-            if !closed_form_roots_checked(deg, &coef, &mut g, lo, hi, check, &mut roots)
+            if !closed_form_roots_checked(deg, &coef, &mut g, lo, hi, check, set, &mut roots)
                 && !polynomial_roots(&mut g, lo, hi, deg_one, &mut roots)
             {
                 return false;
@@ -258,7 +264,7 @@ fn polynomial_window<F: FnMut(f64) -> f64>(
             let mut g = |y: f64| f(vp_of_y(y));
             let (lo, hi) = (yl.min(yr), yl.max(yr));
             let check = Some((y_of(vp_mid), y_mid));
-            if !closed_form_roots_checked(deg, &coef, &mut g, lo, hi, check, &mut roots)
+            if !closed_form_roots_checked(deg, &coef, &mut g, lo, hi, check, set, &mut roots)
                 && !polynomial_roots(&mut g, lo, hi, deg_one, &mut roots)
             {
                 return false;
@@ -282,7 +288,7 @@ fn polynomial_window<F: FnMut(f64) -> f64>(
             let mut g = |w: f64| f(vp_of_w(w)) * (1.0 + w * w).powi(mult_same);
             let wm = w_of(vp_mid);
             let check = Some((wm, y_mid * (1.0 + wm * wm).powi(mult_same)));
-            if !closed_form_roots_checked(deg, &coef, &mut g, lo, hi, check, &mut roots)
+            if !closed_form_roots_checked(deg, &coef, &mut g, lo, hi, check, set, &mut roots)
                 && !polynomial_roots(&mut g, lo, hi, deg_same, &mut roots)
             {
                 return false;
@@ -304,7 +310,7 @@ fn polynomial_window<F: FnMut(f64) -> f64>(
             let mut g = |u: f64| f(vp_of_u(u)) * u.powi(mult);
             let um = u_of(vp_mid);
             let check = Some((um, y_mid * um.powi(mult)));
-            if !closed_form_roots_checked(deg, &coef, &mut g, lo, hi, check, &mut roots)
+            if !closed_form_roots_checked(deg, &coef, &mut g, lo, hi, check, set, &mut roots)
                 && !polynomial_roots(&mut g, lo, hi, deg_two, &mut roots)
             {
                 return false;
@@ -367,7 +373,7 @@ mod tests {
                         }
                     };
                     let mut fast = Roots::new();
-                    if !polynomial_window(&d, &mut f, l, r, kind, &mut fast) {
+                    if !polynomial_window(&d, &mut f, l, r, kind, RootSet::All, &mut fast) {
                         continue;
                     }
                     let mut dense = Roots::new();

@@ -11,6 +11,14 @@
 //!
 //! The interpolation variable is the window mapped to `t ∈ [−1, 1]`, where the monomial basis
 //! of degree ≤ 6 is well conditioned.
+//!
+//! Most windows hold no root. Before any critical point is computed, the polynomial (and, on
+//! the way down, each derivative) is tested in the Bernstein basis of `[−1, 1]`: a polynomial
+//! lies in the convex hull of its Bernstein coefficients, so if they all have the same sign,
+//! clear of zero by more than the tangency threshold and the rounding of the conversion, the
+//! polynomial has no root and no tangency there, and the isolation below would report none
+//! (see [`bernstein_excludes`]). The derivative's Bernstein coefficients are scaled differences
+//! of the polynomial's, so the test costs `O(n)` per level after one `O(n²)` conversion.
 
 use super::roots::Roots;
 
@@ -64,6 +72,107 @@ impl Poly {
     pub fn scale(&self) -> f64 {
         self.c[..=self.n].iter().fold(0.0, |m, x| m.max(x.abs()))
     }
+}
+
+/// `BERNSTEIN[n][i][k]`: the `i`-th Bernstein coefficient of `t^k` in degree `n` on
+/// `t ∈ [−1, 1]` (with `t = 2s − 1`, basis `C(n, i) s^i (1 − s)^(n−i)`), i.e.
+/// `Σ_j C(k, j) C(n − k, i − j) (−1)^(k−j) / C(n, i)`. Every entry has magnitude ≤ 1 (the
+/// Bernstein coefficients of `t^k` are averages of `±1` products), so the conversion is
+/// well conditioned.
+const BERNSTEIN: [[[f64; MAX_DEGREE + 1]; MAX_DEGREE + 1]; MAX_DEGREE + 1] = bernstein_table();
+
+const fn binomial(n: usize, k: usize) -> f64 {
+    if k > n {
+        return 0.0;
+    }
+    let mut r = 1.0;
+    let mut i = 0;
+    while i < k {
+        r = r * (n - i) as f64 / (i + 1) as f64;
+        i += 1;
+    }
+    r
+}
+
+const fn bernstein_table() -> [[[f64; MAX_DEGREE + 1]; MAX_DEGREE + 1]; MAX_DEGREE + 1] {
+    let mut m = [[[0.0; MAX_DEGREE + 1]; MAX_DEGREE + 1]; MAX_DEGREE + 1];
+    let mut n = 0;
+    while n <= MAX_DEGREE {
+        let mut i = 0;
+        while i <= n {
+            let mut k = 0;
+            while k <= n {
+                let mut sum = 0.0;
+                let mut j = 0;
+                while j <= k {
+                    if j <= i && i - j <= n - k {
+                        let sign = if (k - j) % 2 == 0 { 1.0 } else { -1.0 };
+                        sum += sign * binomial(k, j) * binomial(n - k, i - j);
+                    }
+                    j += 1;
+                }
+                m[n][i][k] = sum / binomial(n, i);
+                k += 1;
+            }
+            i += 1;
+        }
+        n += 1;
+    }
+    m
+}
+
+/// Bernstein coefficients of `p` on `[−1, 1]` (see [`BERNSTEIN`]).
+fn bernstein(p: &Poly) -> [f64; MAX_DEGREE + 1] {
+    match p.n {
+        0 => bernstein_n::<0>(&p.c),
+        1 => bernstein_n::<1>(&p.c),
+        2 => bernstein_n::<2>(&p.c),
+        3 => bernstein_n::<3>(&p.c),
+        4 => bernstein_n::<4>(&p.c),
+        5 => bernstein_n::<5>(&p.c),
+        _ => bernstein_n::<6>(&p.c),
+    }
+}
+
+/// [`bernstein`] for the degree `N` (fixed, so that the loops unroll).
+#[inline(always)]
+fn bernstein_n<const N: usize>(c: &[f64; MAX_DEGREE + 1]) -> [f64; MAX_DEGREE + 1] {
+    let m = &BERNSTEIN[N];
+    let mut b = [0.0; MAX_DEGREE + 1];
+    for i in 0..=N {
+        let mut s = 0.0;
+        for k in 0..=N {
+            s += m[i][k] * c[k];
+        }
+        b[i] = s;
+    }
+    b
+}
+
+/// Bernstein coefficients of `p′` (in `t`) from those of `p` (degree `n`):
+/// `(n/2)(b_{i+1} − b_i)`.
+fn bernstein_derivative(b: &[f64; MAX_DEGREE + 1], n: usize) -> [f64; MAX_DEGREE + 1] {
+    let mut d = [0.0; MAX_DEGREE + 1];
+    let h = 0.5 * n as f64;
+    for i in 0..n {
+        d[i] = h * (b[i + 1] - b[i]);
+    }
+    d
+}
+
+/// Whether the Bernstein coefficients `b[..=n]` prove that the polynomial has neither a root nor
+/// a reported tangency on `[−1, 1]`: all of one sign and clear of zero by `margin`. The
+/// polynomial is bounded below by the smallest coefficient (convex hull property), so with
+/// `margin` above the tangency threshold plus the rounding of the coefficients and of the
+/// evaluations, [`roots_rec`] would report nothing either.
+#[inline]
+fn bernstein_excludes(b: &[f64; MAX_DEGREE + 1], n: usize, margin: f64) -> bool {
+    let (mut lo, mut hi) = (b[0], b[0]);
+    for &x in &b[1..=n] {
+        lo = lo.min(x);
+        hi = hi.max(x);
+    }
+    lo > margin || hi < -margin
 }
 
 /// Chebyshev points `cos((2k + 1)π / (2m))`, `k = 0..m`, for `m = n + 1` nodes, per degree `n`.
@@ -163,22 +272,48 @@ pub(crate) fn real_roots(p: &Poly, lo: f64, hi: f64, out: &mut [f64; MAX_DEGREE]
     while q.n > 0 && q.c[q.n].abs() <= 1e-14 * s {
         q.n -= 1;
     }
-    roots_rec(&q, lo, hi, s, 0, out)
+    roots_rec(&q, lo, hi, s, 0.0, None, 0, out)
 }
 
 /// `depth` 0 is the polynomial itself (roots to full precision); deeper levels are derivatives,
 /// whose roots only separate monotone pieces and are refined to a relative 1e-10.
+///
+/// `bern`: the Bernstein coefficients of `p` on `[lo, hi] = [−1, 1]` at depth > 0 (computed
+/// here at depth 0, and `None` on any other interval); `rounding` bounds their rounding error
+/// (and that of evaluating `p`) at depth 0, set here at depth 0.
+#[allow(clippy::too_many_arguments)]
 fn roots_rec(
     p: &Poly,
     lo: f64,
     hi: f64,
     scale: f64,
+    rounding: f64,
+    bern: Option<&[f64; MAX_DEGREE + 1]>,
     depth: usize,
     out: &mut [f64; MAX_DEGREE],
 ) -> usize {
     // On [−1, 1], |p(t) − c0| ≤ Σ_{k≥1} |c_k|: no root (nor tangency) if c0 dominates.
     let tail: f64 = p.c[1..=p.n].iter().map(|c| c.abs()).sum();
     if p.c[0].abs() > tail * (1.0 + 1e-12) + 1e-12 * scale {
+        return 0;
+    }
+    // Convex hull of the Bernstein coefficients: no root nor tangency (module documentation).
+    // The margin covers the tangency threshold `1e-12 · scale` used below and the rounding.
+    let b0;
+    let (bern, rounding) = if depth == 0 && p.n >= 2 && lo == -1.0 && hi == 1.0 {
+        // Rounding of the conversion (entries of magnitude ≤ 1, at most 7 terms: below
+        // 16 ε Σ|c_k| ≈ 3.6e-15 Σ|c_k|) and of evaluating p, with a factor of 100 to spare;
+        // each derivative level multiplies it by at most n ≤ 6.
+        b0 = bernstein(p);
+        (Some(&b0), 1e-12 * (tail + p.c[0].abs()))
+    } else {
+        (bern, rounding)
+    };
+    let depth_rounding = rounding * 6f64.powi(depth as i32);
+    if let Some(b) = bern
+        && p.n >= 2
+        && bernstein_excludes(b, p.n, 1e-12 * scale + depth_rounding)
+    {
         return 0;
     }
     let mut n_out = 0;
@@ -218,7 +353,17 @@ fn roots_rec(
     // Critical points split [lo, hi] into intervals where p is monotone.
     let d = p.derivative();
     let mut crit = [0.0; MAX_DEGREE];
-    let nc = roots_rec(&d, lo, hi, scale, depth + 1, &mut crit);
+    let db = bern.map(|b| bernstein_derivative(b, p.n));
+    let nc = roots_rec(
+        &d,
+        lo,
+        hi,
+        scale,
+        rounding,
+        db.as_ref(),
+        depth + 1,
+        &mut crit,
+    );
     let tol = if depth == 0 {
         4.0 * f64::EPSILON
     } else {
@@ -305,12 +450,26 @@ pub(crate) fn closed_form_roots<F: FnMut(f64) -> f64>(
     wr: f64,
     out: &mut Roots,
 ) -> bool {
-    closed_form_roots_checked(n, c, f, wl, wr, None, out)
+    closed_form_roots_checked(n, c, f, wl, wr, None, RootSet::All, out)
+}
+
+/// Which roots of a window a caller needs.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum RootSet {
+    /// Every root (extremal profiles: each one may end a blocked interval).
+    All,
+    /// Any one root, if the polynomial changes sign over the window; otherwise every root.
+    /// For callers to which any verified profile will do (fixed-duration profiles): the root
+    /// is bracketed by the window's end points and found without isolating the others, and
+    /// it is a root of the polynomial, not polished on the residual. A caller whose single
+    /// root does not give a valid profile asks again with [`Self::All`].
+    AnyOne,
 }
 
 /// [`closed_form_roots`] with the guard value supplied by the caller: `check = (w, f(w))` for
 /// some `w` inside `[wl, wr]` that the caller has already evaluated (saves one evaluation of
-/// the residual per window).
+/// the residual per window), and the roots needed (`set`).
+#[allow(clippy::too_many_arguments)]
 pub(crate) fn closed_form_roots_checked<F: FnMut(f64) -> f64>(
     n: usize,
     c: &[f64; MAX_DEGREE + 1],
@@ -318,6 +477,7 @@ pub(crate) fn closed_form_roots_checked<F: FnMut(f64) -> f64>(
     wl: f64,
     wr: f64,
     check: Option<(f64, f64)>,
+    set: RootSet,
     out: &mut Roots,
 ) -> bool {
     if !(wl.is_finite() && wr.is_finite() && wr >= wl) || n > MAX_DEGREE {
@@ -356,15 +516,14 @@ pub(crate) fn closed_form_roots_checked<F: FnMut(f64) -> f64>(
     if !yc.is_finite() || (yc - q.eval(tc)).abs() > 1e-9 * (scale + yc.abs()) + 1e-300 {
         return false;
     }
-    let mut r = [0.0; MAX_DEGREE];
-    let nr = real_roots(&q, -1.0, 1.0, &mut r);
-    let mut polished = [0.0; MAX_DEGREE];
-    for (k, &tr) in r[..nr].iter().enumerate() {
+    // Newton polish of a root `tr` of q on f itself (with q's slope); `None` if f does not
+    // vanish there to a relative 1e-8 (the closed form does not describe f).
+    let mut polish = |tr: f64| -> Option<f64> {
         let mut tt = tr;
         let mut ft = f(w_of(tt));
         for _ in 0..3 {
             if !ft.is_finite() {
-                return false;
+                return None;
             }
             if ft.abs() <= 1e-14 * scale {
                 break;
@@ -382,9 +541,36 @@ pub(crate) fn closed_form_roots_checked<F: FnMut(f64) -> f64>(
             ft = fnew;
         }
         if ft.is_nan() || ft.abs() > 1e-8 * scale.max(1e-300) {
-            return false;
+            return None;
         }
-        polished[k] = w_of(tt);
+        Some(w_of(tt))
+    };
+    if set == RootSet::AnyOne && half > 0.0 {
+        // A sign change over the window brackets a root: refine it inside the bracket (the
+        // bracket shrinks at every step whether or not q is monotone there). It is not
+        // polished on f: the caller verifies the profile it gives and asks for every
+        // (polished) root if that fails.
+        let (fl, fr) = (q.eval(-1.0), q.eval(1.0));
+        if fl != 0.0 && fr != 0.0 && (fl > 0.0) != (fr > 0.0) {
+            out.push(w_of(monotone_root(
+                &q,
+                -1.0,
+                fl,
+                1.0,
+                fr,
+                4.0 * f64::EPSILON,
+            )));
+            return true;
+        }
+    }
+    let mut r = [0.0; MAX_DEGREE];
+    let nr = real_roots(&q, -1.0, 1.0, &mut r);
+    let mut polished = [0.0; MAX_DEGREE];
+    for (k, &tr) in r[..nr].iter().enumerate() {
+        match polish(tr) {
+            Some(w) => polished[k] = w,
+            None => return false,
+        }
     }
     for &w in &polished[..nr] {
         out.push(w);
@@ -485,6 +671,119 @@ mod tests {
                 p.c[k]
             );
         }
+    }
+
+    /// The Bernstein coefficients reproduce the polynomial (`Σ b_i C(n,i) s^i (1−s)^(n−i)` with
+    /// `t = 2s − 1`), their differences those of the derivative, and the exclusion test never
+    /// fires on a polynomial with a root or a near-tangency in `[−1, 1]`.
+    #[test]
+    fn bernstein_form_is_exact_and_exclusion_is_safe() {
+        use rand::{Rng, SeedableRng};
+        let mut rng = rand_chacha::ChaCha8Rng::seed_from_u64(11);
+        for _ in 0..2000 {
+            let n = rng.random_range(1..=MAX_DEGREE);
+            let mut p = Poly {
+                n,
+                c: [0.0; MAX_DEGREE + 1],
+            };
+            for k in 0..=n {
+                p.c[k] = rng.random_range(-1.0..1.0);
+            }
+            let b = bernstein(&p);
+            let db = bernstein_derivative(&b, n);
+            let bern_eval = |b: &[f64; MAX_DEGREE + 1], m: usize, t: f64| {
+                let s = 0.5 * (t + 1.0);
+                (0..=m)
+                    .map(|i| {
+                        b[i] * binomial(m, i) * s.powi(i as i32) * (1.0 - s).powi((m - i) as i32)
+                    })
+                    .sum::<f64>()
+            };
+            for k in 0..=20 {
+                let t = -1.0 + 0.1 * k as f64;
+                assert!(
+                    (bern_eval(&b, n, t) - p.eval(t)).abs() < 1e-12,
+                    "{p:?} at {t}"
+                );
+                let dt = p.eval_d(t).1;
+                assert!(
+                    (bern_eval(&db, n - 1, t) - dt).abs() < 1e-11,
+                    "{p:?}' at {t}"
+                );
+            }
+            // Exclusion is only allowed where the polynomial keeps its sign with a margin.
+            if bernstein_excludes(&b, n, 0.0) {
+                let m = (0..=2000)
+                    .map(|k| p.eval(-1.0 + 1e-3 * k as f64))
+                    .fold(f64::INFINITY, |m, y| m.min(y.abs()));
+                let lo = b[..=n].iter().fold(f64::INFINITY, |m, y| m.min(y.abs()));
+                assert!(
+                    m >= lo - 1e-12,
+                    "{p:?}: min |p| {m} below the hull bound {lo}"
+                );
+            }
+        }
+        // Polynomials with roots inside are never excluded, and their roots are all found.
+        let p = from_roots(&[-0.3, 0.2, 0.7, 0.9]);
+        assert!(!bernstein_excludes(&bernstein(&p), 4, 0.0));
+        let mut out = [0.0; MAX_DEGREE];
+        assert_eq!(real_roots(&p, -1.0, 1.0, &mut out), 4);
+        // No real roots at all: excluded early, none reported.
+        let mut q = from_roots(&[]);
+        q.n = 4;
+        q.c = [2.0, 0.1, 0.3, -0.2, 0.5, 0.0, 0.0];
+        assert_eq!(real_roots(&q, -1.0, 1.0, &mut out), 0);
+    }
+
+    /// `RootSet::AnyOne` returns one root of a sign-changing window (the same as one of
+    /// `RootSet::All`), and every root when the window does not change sign.
+    #[test]
+    fn any_one_root_is_one_of_all_roots() {
+        // (w − 0.2)(w − 0.5)(w − 0.9) on [0, 1]: sign change, three roots.
+        let c = [-0.09, 0.73, -1.6, 1.0, 0.0, 0.0, 0.0];
+        let mut f = |w: f64| ((w - 1.6) * w + 0.73) * w - 0.09;
+        let mut all = Roots::new();
+        assert!(closed_form_roots_checked(
+            3,
+            &c,
+            &mut f,
+            0.0,
+            1.0,
+            None,
+            RootSet::All,
+            &mut all
+        ));
+        assert_eq!(all.as_slice().len(), 3);
+        let mut one = Roots::new();
+        assert!(closed_form_roots_checked(
+            3,
+            &c,
+            &mut f,
+            0.0,
+            1.0,
+            None,
+            RootSet::AnyOne,
+            &mut one
+        ));
+        assert_eq!(one.as_slice().len(), 1);
+        assert!(
+            all.as_slice()
+                .iter()
+                .any(|&x| (x - one.as_slice()[0]).abs() < 1e-14)
+        );
+        // On [0.1, 0.6] there is no sign change (two roots): all of them are returned.
+        let mut two = Roots::new();
+        assert!(closed_form_roots_checked(
+            3,
+            &c,
+            &mut f,
+            0.1,
+            0.6,
+            None,
+            RootSet::AnyOne,
+            &mut two
+        ));
+        assert_eq!(two.as_slice().len(), 2);
     }
 
     #[test]

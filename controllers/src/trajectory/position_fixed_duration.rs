@@ -24,7 +24,7 @@
 
 use super::dof::{Dof, Segments};
 use super::peak_window::{PeakResidual, scan_peak_window};
-use super::polynomial::polynomial_roots;
+use super::polynomial::{RootSet, polynomial_roots};
 use super::position_time_optimal::{peak_breaks, peak_distance, peak_parts, peak_segments};
 use super::profile::{Profile, integrate};
 use super::roots::{Roots, scan};
@@ -96,19 +96,34 @@ fn peak_cruise(d: &Dof, prefix: &Profile, t: f64) -> Option<(Segments, f64)> {
         let Some(w) = (idx < nw).then(|| [br[idx], br[idx + 1]]) else {
             continue;
         };
-        let mut roots = Roots::new();
-        scan_peak_window(
-            d,
-            &mut g,
-            w[0],
-            w[1],
-            1,
-            PeakResidual::CruiseDistance { dp, t },
-            &mut roots,
-        );
-        for &vp in roots.as_slice() {
-            if let Some(p) = try_vp(vp) {
-                return Some(p);
+        // First any one root of the window (bracketed by a sign change, no isolation of the
+        // others); if it gives no valid profile, every root.
+        let mut tried = f64::NAN;
+        for set in [RootSet::AnyOne, RootSet::All] {
+            let mut roots = Roots::new();
+            scan_peak_window(
+                d,
+                &mut g,
+                w[0],
+                w[1],
+                1,
+                PeakResidual::CruiseDistance { dp, t },
+                set,
+                &mut roots,
+            );
+            for &vp in roots.as_slice() {
+                if vp == tried {
+                    continue;
+                }
+                if let Some(p) = try_vp(vp) {
+                    return Some(p);
+                }
+            }
+            match roots.as_slice() {
+                // A single root that failed: ask for all of them.
+                [vp] if set == RootSet::AnyOne => tried = *vp,
+                // Every root was tried (the closed forms returned all of them).
+                _ => break,
             }
         }
     }

@@ -36,7 +36,7 @@
 use super::dof::{Dof, Segments};
 use super::peak_polynomials as pp;
 use super::peak_window::{PeakResidual, scan_peak_window};
-use super::polynomial::{closed_form_roots, polynomial_roots};
+use super::polynomial::{RootSet, closed_form_roots, polynomial_roots};
 use super::profile::{Profile, integrate};
 use super::roots::{Roots, scan};
 use super::vel_change::{VelChange, vel_change};
@@ -129,7 +129,7 @@ fn push_change(s: &mut Segments, c: &VelChange, scale: f64) -> bool {
 }
 
 /// The two velocity changes of the peak family at peak velocity `vp`.
-#[inline]
+#[inline(always)]
 pub(crate) fn peak_parts(d: &Dof, vp: f64) -> Option<(VelChange, VelChange)> {
     let c1 = vel_change(d.v0, d.a0, vp, 0.0, d.a_max, d.a_min, d.j)?;
     let c2 = vel_change(vp, 0.0, d.vf, d.af, d.a_max, d.a_min, d.j)?;
@@ -137,7 +137,7 @@ pub(crate) fn peak_parts(d: &Dof, vp: f64) -> Option<(VelChange, VelChange)> {
 }
 
 /// Distance covered by the two parts at peak velocity `vp` (NaN if a part is impossible).
-#[inline]
+#[inline(always)]
 pub(crate) fn peak_distance(d: &Dof, vp: f64) -> (f64, f64) {
     match peak_parts(d, vp) {
         Some((c1, c2)) => (
@@ -208,6 +208,7 @@ fn peak_family(d: &Dof, prefix: &Profile, density: usize, out: &mut TimeOptimal)
             w[1],
             density,
             PeakResidual::Distance { dp },
+            RootSet::All,
             &mut roots,
         );
     }
@@ -335,7 +336,24 @@ fn three_arc_family(
     }
 
     // (2) phase 2 at a_max: +J (a0→amax), hold t2, −J (amax→a2), +J (a2→af).
-    if amax > 0.0 && af > 0.0 {
+    // The hold t2(a2) = (Δv − (2 a+² − a0² − 2 a2² + af²)/(2J))/a+ grows with a2², so its
+    // largest value on the range is at the largest a2²; if even that is negative (beyond the
+    // rounding of the formula), every root would be rejected by `Segments::push`: skip.
+    let hold_max_range = |lo: f64, hi: f64| lo.abs().max(hi.abs()).powi(2);
+    let feasible_hold = |num: f64, terms: f64, hold: f64| {
+        let t = num / hold;
+        t >= -1e-9 * (1.0 + terms / hold.abs())
+    };
+    let (lo2, hi2) = (-1e-12 * amax, af.min(amax));
+    let x2 = hold_max_range(lo2, hi2);
+    if amax > 0.0
+        && af > 0.0
+        && feasible_hold(
+            dv - (2.0 * amax * amax - a0 * a0 - 2.0 * x2 + af * af) / (2.0 * j),
+            dv.abs() + (2.0 * amax * amax + a0 * a0 + 2.0 * x2 + af * af) / (2.0 * j),
+            amax,
+        )
+    {
         let times = |a2: f64| {
             let t2 =
                 (dv - (2.0 * amax * amax - a0 * a0 - 2.0 * a2 * a2 + af * af) / (2.0 * j)) / amax;
@@ -347,7 +365,7 @@ fn three_arc_family(
         };
         let mut roots = Roots::new();
         // A quartic in a2 (the hold is quadratic in a2, the ramps linear).
-        let (lo, hi) = (-1e-12 * amax, af.min(amax));
+        let (lo, hi) = (lo2, hi2);
         let (n, c) = pp::arc_hold_max(&q);
         if density > 1
             || !(closed_form_roots(n, &c, &mut f, lo, hi, &mut roots)
@@ -369,7 +387,17 @@ fn three_arc_family(
     }
 
     // (3) phase 6 at a_min: +J (a0→a1), −J (a1→amin), hold t6, +J (amin→af).
-    if amin < 0.0 && a0 < 0.0 {
+    // Likewise t6(a1) = (Δv − (2 a1² − a0² − 2 a−² + af²)/(2J))/a− (a− < 0) grows with a1².
+    let (lo3, hi3) = (a0.max(amin), -1e-12 * amin);
+    let x3 = hold_max_range(lo3, hi3);
+    if amin < 0.0
+        && a0 < 0.0
+        && feasible_hold(
+            dv - (2.0 * x3 - a0 * a0 - 2.0 * amin * amin + af * af) / (2.0 * j),
+            dv.abs() + (2.0 * x3 + a0 * a0 + 2.0 * amin * amin + af * af) / (2.0 * j),
+            amin,
+        )
+    {
         let times = |a1: f64| {
             let t6 =
                 (dv - (2.0 * a1 * a1 - a0 * a0 - 2.0 * amin * amin + af * af) / (2.0 * j)) / amin;
@@ -380,7 +408,7 @@ fn three_arc_family(
             reach(d.v0, a0, &[(t1, j), (t2, -j), (t3, 0.0), (t4, j)]) - dp
         };
         let mut roots = Roots::new();
-        let (lo, hi) = (a0.max(amin), -1e-12 * amin);
+        let (lo, hi) = (lo3, hi3);
         let (n, c) = pp::arc_hold_min(&q);
         if density > 1
             || !(closed_form_roots(n, &c, &mut f, lo, hi, &mut roots)

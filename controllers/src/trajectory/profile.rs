@@ -75,7 +75,7 @@ pub struct DofExtrema {
 }
 
 /// Integrates one constant-jerk segment of duration `t` from `(p, v, a)`.
-#[inline]
+#[inline(always)]
 pub(crate) fn integrate(p: f64, v: f64, a: f64, j: f64, t: f64) -> (f64, f64, f64) {
     (
         p + t * (v + t * (a / 2.0 + t * j / 6.0)),

@@ -50,7 +50,7 @@ impl VelChange {
 const SHAPE_EPS: f64 = 1e-12;
 
 /// The "up" shape (+J, hold, −J). `None` if it cannot realise the change.
-#[inline]
+#[inline(always)]
 fn up(vs: f64, a_s: f64, ve: f64, ae: f64, a_max: f64, j: f64) -> Option<VelChange> {
     let dv = ve - vs;
     let m = a_s.max(ae);
@@ -97,7 +97,7 @@ fn up(vs: f64, a_s: f64, ve: f64, ae: f64, a_max: f64, j: f64) -> Option<VelChan
 
 /// Time-optimal velocity change from `(vs, a_s)` to `(ve, ae)` with accelerations in
 /// `[a_min, a_max]` (`a_min ≤ 0 ≤ a_max`) and jerk magnitude `j > 0`.
-#[inline]
+#[inline(always)]
 pub(crate) fn vel_change(
     vs: f64,
     a_s: f64,

@@ -38,22 +38,24 @@
 
 #![allow(non_snake_case, clippy::needless_range_loop)]
 
-use faer::dyn_stack::{MemBuffer, MemStack};
+use std::sync::Arc;
+
+use faer::dyn_stack::MemStack;
 use faer::linalg::matmul::matmul;
 use faer::linalg::matmul::triangular::{self, BlockStructure};
 use faer::linalg::{triangular_inverse, triangular_solve};
-use faer::perm::PermRef;
-use faer::sparse::linalg::SupernodalThreshold;
-use faer::sparse::linalg::cholesky::supernodal::SupernodalLltRef;
-use faer::sparse::linalg::cholesky::{
-    CholeskySymbolicParams, SymbolicCholeskyRaw, SymmetricOrdering, factorize_symbolic_cholesky,
+use faer::sparse::linalg::cholesky::SymbolicCholeskyRaw;
+use faer::sparse::linalg::cholesky::supernodal::{
+    SupernodalLltRef, factorize_supernodal_numeric_llt,
 };
 #[cfg(test)]
 use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
+#[cfg(test)]
 use faer::sparse::{SparseColMat, SymbolicSparseColMat, Triplet};
-use faer::{Accum, Mat, MatRef, Par, Side};
+use faer::{Accum, Mat, MatRef, Par};
 
 use super::error::SectionError;
+use super::factor_cache::{self, FactorMemory, Problem, StiffnessPattern, Topology};
 use super::mesh::SectionMesh;
 use super::{antiplane, plane_strain};
 
@@ -111,9 +113,9 @@ pub(crate) fn sparse_llt(
 ) -> Result<Llt<usize, f64>, SectionError> {
     let K = SparseColMat::<usize, f64>::try_new_from_triplets(n, n, triplets)
         .map_err(|_| SectionError::Factorisation("sparse assembly failed"))?;
-    let symbolic = SymbolicLlt::try_new(K.symbolic(), Side::Lower)
+    let symbolic = SymbolicLlt::try_new(K.symbolic(), faer::Side::Lower)
         .map_err(|_| SectionError::Factorisation("symbolic Cholesky failed"))?;
-    Llt::try_new_with_symbolic(symbolic, K.as_ref(), Side::Lower)
+    Llt::try_new_with_symbolic(symbolic, K.as_ref(), faer::Side::Lower)
         .map_err(|_| SectionError::Factorisation("stiffness is not positive definite"))
 }
 
@@ -147,13 +149,21 @@ impl CondensedLine {
             index[2 * mesh.node(0, r)] = KEPT + ny + r - 1;
         }
         let (ni, rows) = number_interior(&mut index, 2 * bottom);
-        let mut triplets = Vec::new();
-        plane_strain::assemble(mesh, e_mod, nu, |i, j, v| {
-            if let (Some(a), Some(b)) = (position(index[i], ni), position(index[j], ni)) {
-                triplets.push(Triplet::new(a, b, v));
-            }
-        });
-        let l = schur_factor(ni, ny + n, &triplets, &rows)?;
+        let mut memory = factor_cache::take_memory();
+        let l = schur_factor(
+            Topology::of(mesh, Problem::InPlane),
+            ni,
+            ny + n,
+            &rows,
+            &mut memory,
+            |add| {
+                plane_strain::assemble(mesh, e_mod, nu, |i, j, v| {
+                    if let (Some(a), Some(b)) = (position(index[i], ni), position(index[j], ni)) {
+                        add(a, b, v);
+                    }
+                });
+            },
+        )?;
         let l_yy = l.as_ref().submatrix(0, 0, ny, ny);
         let l_xy = l.as_ref().submatrix(ny, 0, n, ny);
         let l_xx = l.as_ref().submatrix(ny, ny, n, n);
@@ -180,13 +190,22 @@ impl CondensedLine {
             }
         }
         let (nzi, zrows) = number_interior(&mut zindex, bottom);
-        let mut ztriplets = Vec::new();
-        antiplane::assemble(mesh, e_mod / (2.0 * (1.0 + nu)), |i, j, v| {
-            if let (Some(a), Some(b)) = (position(zindex[i], nzi), position(zindex[j], nzi)) {
-                ztriplets.push(Triplet::new(a, b, v));
-            }
-        });
-        let lz = schur_factor(nzi, ny, &ztriplets, &zrows)?;
+        let lz = schur_factor(
+            Topology::of(mesh, Problem::Antiplane),
+            nzi,
+            ny,
+            &zrows,
+            &mut memory,
+            |add| {
+                antiplane::assemble(mesh, e_mod / (2.0 * (1.0 + nu)), |i, j, v| {
+                    if let (Some(a), Some(b)) = (position(zindex[i], nzi), position(zindex[j], nzi))
+                    {
+                        add(a, b, v);
+                    }
+                });
+            },
+        )?;
+        factor_cache::give_back(memory);
         let Cz = inverse_from_factor(lz.as_ref());
         Ok(Self { n, k, C, Et, A, Cz })
     }
@@ -226,9 +245,12 @@ impl CondensedLine {
     }
 
     /// In-plane solve with every X DOF prescribed to `g` (gaps, m) and, if
-    /// `strip` is given, the strip constraint. Writes the X reactions into `p`
-    /// (N/m, +x on the material) and the strip forces into `lambda` (N/m, +y on
-    /// the material). Allocation-free.
+    /// `strip` is given, the strip constraint. Writes the X reactions of the
+    /// rows from `first_nonzero` on into `p` (N/m, +x on the material; the
+    /// rows below, which carry no gap, are set to 0, not computed) and the
+    /// strip forces into `lambda` (N/m, +y on the material). `g` must be 0
+    /// below `first_nonzero`. Allocation-free.
+    #[inline(always)]
     pub fn solve(
         &self,
         g: &[f64],
@@ -259,23 +281,32 @@ impl CondensedLine {
             lambda[..self.k].copy_from_slice(&rhs[..self.k]);
             energy_strip = s.value * rhs[..self.k].iter().sum::<f64>();
         }
-        p[..n].fill(0.0);
-        for (i, &gi) in g.iter().enumerate().skip(first_nonzero) {
+        // Only the rows at and above `first_nonzero` are needed (the rows
+        // below carry no gap): A_FC g_C restricted to them, the symmetric
+        // block of A that the gaps touch. Element by element the sums are
+        // the same as over the whole columns.
+        let f0 = first_nonzero.min(n);
+        p[..f0].fill(0.0);
+        p[f0..n].fill(0.0);
+        for (i, &gi) in g.iter().enumerate().take(n).skip(f0) {
             if gi != 0.0 {
-                axpy(gi, self.A.col_as_slice(i), p);
+                axpy(gi, &self.A.col_as_slice(i)[f0..], &mut p[f0..n]);
             }
         }
         if let Some(s) = strip {
             for a in 0..self.k {
                 for (q, w) in self.taps(a, s) {
                     if w != 0.0 {
-                        axpy(w * lambda[a], self.Et.col_as_slice(q), p);
+                        axpy(w * lambda[a], &self.Et.col_as_slice(q)[f0..], &mut p[f0..n]);
                     }
                 }
             }
         }
+        // g is 0 below `first_nonzero`: the dot from the 4-aligned row at or
+        // below it has the same partial sums as the full one.
+        let f4 = f0 & !3;
         InPlane {
-            energy: 0.5 * (dot(g, p) + energy_strip),
+            energy: 0.5 * (dot(&g[f4..n], &p[f4..n]) + energy_strip),
             strip_force: lambda[..self.k].iter().sum(),
         }
     }
@@ -344,27 +375,118 @@ impl CondensedLine {
     }
 }
 
+/// Released sets whose factors [`ReleasedWorkspace`] keeps. The trial
+/// extensions of a step and the passes of the contact active set move
+/// between a few released sets (a face row near the tip or near the end of
+/// the bevel in or out), so their factors are kept rather than recomputed.
+const FACTOR_SLOTS: usize = 4;
+
+/// The dense Cholesky factor of A_FF for one released set F: the rows of the
+/// lower factor packed one after the other (row a, of length a + 1, from
+/// a·(a+1)/2), so a factor of F is also the factor of any leading part of F.
+#[derive(Debug, Clone)]
+struct ReleasedFactor {
+    /// The released rows F (ascending) whose factor is in `l`.
+    rows: Vec<usize>,
+    /// Packed lower factor, capacity R·(R+1)/2.
+    l: Vec<f64>,
+    /// When the factor was last used (the workspace's call counter).
+    used: u64,
+}
+
+/// Offset of row a of a packed lower triangle.
+#[inline(always)]
+fn packed_row(a: usize) -> usize {
+    a * (a + 1) / 2
+}
+
 /// Preallocated memory of [`CondensedLine::solve_released`]: the released
-/// rows, a dense Cholesky factor of A_FF and its right-hand sides.
+/// rows, dense Cholesky factors of A_FF for the last few released sets and
+/// the right-hand sides.
 #[derive(Debug, Clone)]
 pub(crate) struct ReleasedWorkspace {
     idx: Vec<usize>,
-    /// The released rows whose A_FF is factorised in `l` (the factor is
-    /// reused while the active set does not change, which is most calls).
-    factored: Vec<usize>,
-    l: Vec<f64>,
+    /// Factors of the last `FACTOR_SLOTS` released sets (least recently
+    /// used replaced first).
+    factors: [ReleasedFactor; FACTOR_SLOTS],
+    /// Calls so far (the factors' use clock).
+    calls: u64,
     z: Vec<f64>,
 }
 
 impl ReleasedWorkspace {
-    /// Memory for a line of `n` rows (n² + n·(MAX_STRIP + 2) doubles).
+    /// Memory for a line of `n` rows (`FACTOR_SLOTS`·n·(n+1)/2 +
+    /// n·(MAX_STRIP + 2) doubles; a factor's pages are touched only as far
+    /// as its released sets reach).
     pub fn new(n: usize) -> Self {
         Self {
             idx: Vec::with_capacity(n),
-            factored: Vec::with_capacity(n),
-            l: vec![0.0; n * n],
+            factors: std::array::from_fn(|_| ReleasedFactor {
+                rows: Vec::with_capacity(n),
+                l: vec![0.0; packed_row(n)],
+                used: 0,
+            }),
+            calls: 0,
             z: vec![0.0; n * (MAX_STRIP + 1)],
         }
+    }
+
+    /// The slot holding the factor of the released set `idx`, computing it
+    /// (Cholesky–Crout, row by row) if no slot holds it: into the least
+    /// recently used slot, starting from the longest leading part of `idx`
+    /// that some slot has factorised already (those rows of the factor are
+    /// the same). Every row is computed with the same operations as a
+    /// factorisation from scratch. Allocation-free.
+    #[inline(always)]
+    fn factor(&mut self, A: &Mat<f64>) -> usize {
+        self.calls += 1;
+        let idx = &self.idx;
+        let m = idx.len();
+        if let Some(hit) = self.factors.iter().position(|f| f.rows == *idx) {
+            self.factors[hit].used = self.calls;
+            return hit;
+        }
+        let prefix =
+            |f: &ReleasedFactor| f.rows.iter().zip(idx).take_while(|(a, b)| a == b).count();
+        let victim = (0..FACTOR_SLOTS)
+            .min_by_key(|&s| self.factors[s].used)
+            .unwrap_or(0);
+        let (best, keep) = (0..FACTOR_SLOTS)
+            .map(|s| (s, prefix(&self.factors[s])))
+            .max_by_key(|&(s, p)| (p, s == victim))
+            .unwrap_or((victim, 0));
+        if best != victim && keep > 0 {
+            let len = packed_row(keep);
+            let (src, dst) = if best < victim {
+                let (lo, hi) = self.factors.split_at_mut(victim);
+                (&lo[best], &mut hi[0])
+            } else {
+                let (lo, hi) = self.factors.split_at_mut(best);
+                (&hi[0], &mut lo[victim])
+            };
+            dst.l[..len].copy_from_slice(&src.l[..len]);
+        }
+        let f = &mut self.factors[victim];
+        let l = &mut f.l[..packed_row(m)];
+        // Row-oriented (Cholesky–Crout): contiguous dot products.
+        for a in keep..m {
+            let (before, rest) = l.split_at_mut(packed_row(a));
+            let ra = &mut rest[..a + 1];
+            let col = A.col_as_slice(idx[a]);
+            for (b, &j) in idx.iter().enumerate().take(a + 1) {
+                ra[b] = col[j];
+            }
+            for b in 0..a {
+                let rb = &before[packed_row(b)..packed_row(b) + b + 1];
+                ra[b] = (ra[b] - dot(&ra[..b], &rb[..b])) / rb[b];
+            }
+            let d = ra[a] - dot(&ra[..a], &ra[..a]);
+            ra[a] = d.max(f64::MIN_POSITIVE).sqrt();
+        }
+        f.rows.clear();
+        f.rows.extend_from_slice(idx);
+        f.used = self.calls;
+        victim
     }
 }
 
@@ -372,7 +494,8 @@ impl CondensedLine {
     /// In-plane solve with the X DOFs of the rows flagged in `released` free
     /// (loaded by `f_ext`, N/m, +x on the material; zero if `None`) and all
     /// others prescribed to `g`. On return `g` holds the solved displacements
-    /// of the released rows, `p` the reactions (p = f_ext on released rows)
+    /// of the released rows, `p` the reactions from `first_nonzero` on (p =
+    /// f_ext on released rows; 0 below `first_nonzero`, as [`Self::solve`])
     /// and `lambda` the strip forces, as in [`Self::solve`]. Released rows
     /// must lie at or above `first_nonzero`. Allocation-free.
     ///
@@ -384,6 +507,39 @@ impl CondensedLine {
     /// Schur system (M + B_Fᵀ A_FF⁻¹ B_F) λ = value + B_Cᵀ g_C + B_Fᵀ A_FF⁻¹ r_F.
     #[allow(clippy::too_many_arguments)]
     pub fn solve_released(
+        &self,
+        g: &mut [f64],
+        first_nonzero: usize,
+        released: &[bool],
+        f_ext: Option<&[f64]>,
+        strip: Option<&StripConstraint>,
+        p: &mut [f64],
+        lambda: &mut [f64; MAX_STRIP],
+        ws: &mut ReleasedWorkspace,
+    ) -> InPlane {
+        // The same code compiled for the widest vector instructions the CPU
+        // has (pulp's runtime dispatch, through faer). The arithmetic is the
+        // same operation by operation (Rust never fuses a multiply and an
+        // add, and the sums keep their order), so the results are the same
+        // to the bit on any CPU; only the loops run wider.
+        faer::traits::pulp::Arch::new().dispatch(ReleasedSolve {
+            line: self,
+            g,
+            first_nonzero,
+            released,
+            f_ext,
+            strip,
+            p,
+            lambda,
+            ws,
+        })
+    }
+
+    /// [`Self::solve_released`]'s body, inlined into each instruction set's
+    /// version.
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn solve_released_body(
         &self,
         g: &mut [f64],
         first_nonzero: usize,
@@ -406,47 +562,15 @@ impl CondensedLine {
             g[i] = 0.0;
         }
         // r_F = f_F − A_FC g_C (A symmetric: row i is column i).
-        let (rf, zb) = ws.z.split_at_mut(n);
         for (a, &i) in ws.idx.iter().enumerate() {
             let f = f_ext.map_or(0.0, |f| f[i]);
-            rf[a] = f - dot(&self.A.col_as_slice(i)[first..], &g[first..]);
+            ws.z[a] = f - dot(&self.A.col_as_slice(i)[first..], &g[first..]);
         }
-        // Dense Cholesky of A_FF (lower, row-major m×m in ws.l), unless the
-        // factor of this released set is already there.
-        let l = &mut ws.l[..m * m];
-        if ws.factored != ws.idx {
-            for (a, &i) in ws.idx.iter().enumerate() {
-                let col = self.A.col_as_slice(i);
-                for (b, &j) in ws.idx.iter().enumerate().take(a + 1) {
-                    l[a * m + b] = col[j];
-                }
-            }
-            // Row-oriented (Cholesky–Crout): contiguous dot products.
-            for a in 0..m {
-                let (before, rest) = l.split_at_mut(a * m);
-                let ra = &mut rest[..m];
-                for b in 0..a {
-                    let rb = &before[b * m..b * m + b + 1];
-                    ra[b] = (ra[b] - dot(&ra[..b], &rb[..b])) / rb[b];
-                }
-                let d = ra[a] - dot(&ra[..a], &ra[..a]);
-                ra[a] = d.max(f64::MIN_POSITIVE).sqrt();
-            }
-            ws.factored.clear();
-            ws.factored.extend_from_slice(&ws.idx);
-        }
-        let chol_solve = |l: &[f64], x: &mut [f64]| {
-            // L y = x (rows of L contiguous), then Lᵀ z = y (column sweep
-            // along the rows of L).
-            for a in 0..m {
-                x[a] = (x[a] - dot(&l[a * m..a * m + a], &x[..a])) / l[a * m + a];
-            }
-            for a in (0..m).rev() {
-                x[a] /= l[a * m + a];
-                let xa = x[a];
-                axpy(-xa, &l[a * m..a * m + a], &mut x[..a]);
-            }
-        };
+        // Dense Cholesky of A_FF (lower, packed rows), unless the factor of
+        // this released set is kept already.
+        let slot = ws.factor(&self.A);
+        let l = &ws.factors[slot].l[..packed_row(m)];
+        let (rf, zb) = ws.z.split_at_mut(n);
         chol_solve(l, &mut rf[..m]);
         if let Some(s) = strip {
             // Z_B = A_FF⁻¹ B_F, column a in zb[a·n..].
@@ -502,6 +626,56 @@ impl CondensedLine {
         // plain solve recovers the same λ, the reactions and the energy; the
         // external forces' work is part of ½ g·p (p_F = f_F).
         self.solve(g, first, strip, p, lambda)
+    }
+}
+
+/// The arguments of [`CondensedLine::solve_released`], run by pulp's
+/// dispatch with the CPU's vector instructions enabled.
+struct ReleasedSolve<'a> {
+    line: &'a CondensedLine,
+    g: &'a mut [f64],
+    first_nonzero: usize,
+    released: &'a [bool],
+    f_ext: Option<&'a [f64]>,
+    strip: Option<&'a StripConstraint>,
+    p: &'a mut [f64],
+    lambda: &'a mut [f64; MAX_STRIP],
+    ws: &'a mut ReleasedWorkspace,
+}
+
+impl faer::traits::pulp::WithSimd for ReleasedSolve<'_> {
+    type Output = InPlane;
+
+    #[inline(always)]
+    fn with_simd<S: faer::traits::pulp::Simd>(self, _simd: S) -> InPlane {
+        self.line.solve_released_body(
+            self.g,
+            self.first_nonzero,
+            self.released,
+            self.f_ext,
+            self.strip,
+            self.p,
+            self.lambda,
+            self.ws,
+        )
+    }
+}
+
+/// Solves L Lᵀ x = b in place (x ← b on entry) for the packed lower factor
+/// `l` of order `x.len()`: L y = b (rows of L contiguous), then Lᵀ x = y
+/// (column sweep along the rows of L).
+#[inline(always)]
+fn chol_solve(l: &[f64], x: &mut [f64]) {
+    let m = x.len();
+    for a in 0..m {
+        let r = packed_row(a);
+        x[a] = (x[a] - dot(&l[r..r + a], &x[..a])) / l[r + a];
+    }
+    for a in (0..m).rev() {
+        let r = packed_row(a);
+        x[a] /= l[r + a];
+        let xa = x[a];
+        axpy(-xa, &l[r..r + a], &mut x[..a]);
     }
 }
 
@@ -565,9 +739,11 @@ fn position(index: usize, ni: usize) -> Option<usize> {
 }
 
 /// The lower Cholesky factor L_bb (dense, `nb`×`nb`) of the Schur complement
-/// S = K_bb − K_bi K_ii⁻¹ K_ib of the SPD matrix K (`triplets`, both
-/// triangles, duplicates summed) onto its last `nb` rows and columns, after
-/// the `ni` interior ones: S = L_bb L_bbᵀ.
+/// S = K_bb − K_bi K_ii⁻¹ K_ib of the SPD matrix K onto its last `nb` rows
+/// and columns, after the `ni` interior ones: S = L_bb L_bbᵀ. K is given by
+/// `assemble`, which calls its argument `add(i, j, k_ij)` for every
+/// contribution (both triangles, duplicates summed; the upper ones are
+/// skipped).
 ///
 /// K is factorised once by faer's supernodal sparse Cholesky with the kept
 /// DOFs ordered last, so the trailing block of the factor is L_bb: a partial
@@ -578,60 +754,91 @@ fn position(index: usize, ni: usize) -> Option<usize> {
 /// fill than approximate minimum degree but larger, denser supernodes and
 /// no ordering cost, and built the `section_condense` bench's sections
 /// about 10 % faster.
+///
+/// K's pattern, the order in which its contributions are summed and the
+/// symbolic factorisation depend only on the mesh's `topology`: they are
+/// taken from the [`factor_cache`] when a section of the same topology was
+/// built before (bit-identical either way), and the scratch memory comes
+/// from `memory`.
 fn schur_factor(
+    topology: Topology,
     ni: usize,
     nb: usize,
-    triplets: &[Triplet<usize, usize, f64>],
     rows: &[usize],
+    memory: &mut FactorMemory,
+    assemble: impl FnOnce(&mut dyn FnMut(usize, usize, f64)),
 ) -> Result<Mat<f64>, SectionError> {
-    let nt = ni + nb;
-    let K = lower_csc(nt, triplets);
-    // Fill-reducing order of the interior: nested dissection by node rows;
-    // the kept DOFs last, in place.
-    let mut fwd: Vec<usize> = Vec::with_capacity(nt);
-    dissect(rows, 0, rows.len() - 1, &mut fwd);
-    fwd.extend(ni..nt);
-    let mut inv = vec![0; nt];
-    for (new, &old) in fwd.iter().enumerate() {
-        inv[old] = new;
-    }
-    let perm = PermRef::new_checked(&fwd, &inv, nt);
-    let symbolic = factorize_symbolic_cholesky(
-        K.symbolic(),
-        Side::Lower,
-        SymmetricOrdering::Custom(perm),
-        CholeskySymbolicParams {
-            supernodal_flop_ratio_threshold: SupernodalThreshold::FORCE_SUPERNODAL,
-            ..Default::default()
-        },
-    )
-    .map_err(|_| SectionError::Factorisation("symbolic Cholesky failed"))?;
+    let cached = factor_cache::lookup(&topology).filter(|p| p.ni == ni && p.nb == nb);
+    let FactorMemory {
+        contributions,
+        pairs,
+        ..
+    } = memory;
+    contributions.clear();
+    pairs.clear();
+    let record = cached.is_none();
+    assemble(&mut |a, b, v| {
+        if a >= b {
+            contributions.push(v);
+            if record {
+                pairs.push((a, b));
+            }
+        }
+    });
+    let pattern = match cached {
+        Some(p) if p.contributions() == contributions.len() => p,
+        Some(_) => {
+            return Err(SectionError::Factorisation(
+                "the cached stiffness pattern does not match the mesh",
+            ));
+        }
+        None => {
+            // Fill-reducing order of the interior: nested dissection by node
+            // rows; the kept DOFs last, in place.
+            let nt = ni + nb;
+            let mut fwd: Vec<usize> = Vec::with_capacity(nt);
+            dissect(rows, 0, rows.len() - 1, &mut fwd);
+            fwd.extend(ni..nt);
+            let p = Arc::new(StiffnessPattern::new(ni, nb, pairs, &fwd)?);
+            factor_cache::insert(topology, Arc::clone(&p));
+            p
+        }
+    };
+    let symbolic = &pattern.symbolic;
     let SymbolicCholeskyRaw::Supernodal(supernodal) = symbolic.raw() else {
         return Err(SectionError::Factorisation(
             "the Cholesky factor is not supernodal",
         ));
     };
-    let mut values = vec![0.0; symbolic.len_val()];
-    {
-        let mut mem = MemBuffer::try_new(
-            symbolic.factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default()),
-        )
-        .map_err(|_| SectionError::Factorisation("out of memory for the factor"))?;
-        symbolic
-            .factorize_numeric_llt(
-                &mut values,
-                K.as_ref(),
-                Side::Lower,
-                Default::default(),
-                Par::Seq,
-                MemStack::new(&mut mem),
-                Default::default(),
-            )
-            .map_err(|_| SectionError::Factorisation("stiffness is not positive definite"))?;
+    let FactorMemory {
+        contributions,
+        lower,
+        factor,
+        stack,
+        ..
+    } = memory;
+    let stack = factor_cache::grow_stack(stack, pattern.stack)?;
+    let K = pattern.sum(contributions, lower);
+    let len = symbolic.len_val();
+    if factor.len() < len {
+        factor.resize(len, 0.0);
     }
+    let values = &mut factor[..len];
+    // K is already in the factorisation's order (as faer's
+    // `SymbolicCholesky::factorize_numeric_llt` would permute it).
+    factorize_supernodal_numeric_llt(
+        values,
+        K,
+        Default::default(),
+        supernodal,
+        Par::Seq,
+        MemStack::new(stack),
+        Default::default(),
+    )
+    .map_err(|_| SectionError::Factorisation("stiffness is not positive definite"))?;
     // Read L_bb off the supernodes holding columns ni.. (their rows are all
     // kept DOFs too: the kept ones come last).
-    let factor = SupernodalLltRef::new(supernodal, &values);
+    let factor = SupernodalLltRef::new(supernodal, &factor[..len]);
     let mut L = Mat::<f64>::zeros(nb, nb);
     for s in 0..supernodal.n_supernodes() {
         let node = factor.supernode(s);
@@ -661,8 +868,9 @@ fn schur_factor(
 /// The lower triangle of the symmetric matrix given by `triplets` (both
 /// triangles, duplicates summed; the upper ones are skipped) in compressed
 /// sparse columns: a counting sort on the columns, then a sort of each
-/// column's few entries by row (a global sort of the element assembly's
-/// triplets cost as much as the factorisation).
+/// column's few entries by row. The assembly of the section builds before
+/// the [`factor_cache`]; kept as the reference of its summation order.
+#[cfg(test)]
 fn lower_csc(nt: usize, triplets: &[Triplet<usize, usize, f64>]) -> SparseColMat<usize, f64> {
     let mut start = vec![0usize; nt + 1];
     for t in triplets.iter().filter(|t| t.row >= t.col) {
@@ -734,7 +942,7 @@ fn symmetrise_from_lower(M: &mut Mat<f64>) {
 }
 
 /// Dot product with four partial sums (lets the compiler vectorise).
-#[inline]
+#[inline(always)]
 fn dot(a: &[f64], b: &[f64]) -> f64 {
     let n = a.len().min(b.len());
     let (a, b) = (&a[..n], &b[..n]);
@@ -750,7 +958,7 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
     (acc[0] + acc[1]) + (acc[2] + acc[3]) + tail
 }
 
-#[inline]
+#[inline(always)]
 fn axpy(alpha: f64, x: &[f64], y: &mut [f64]) {
     for (yi, xi) in y.iter_mut().zip(x) {
         *yi += alpha * xi;
@@ -949,6 +1157,93 @@ mod tests {
             ..SectionSettings::default()
         };
         assert_same(&dome(0.006, 0.009), &settings);
+    }
+
+    /// The factor cache's assembly (contributions summed in a recorded
+    /// order, placed in the factorisation's order) gives the same bits as
+    /// the triplet assembly it replaced.
+    #[test]
+    fn cached_assembly_sums_in_the_order_of_the_triplets() {
+        let settings = SectionSettings {
+            row_spacing: 5e-4,
+            ..SectionSettings::default()
+        };
+        let mesh = SectionMesh::new(&dome(0.006, 0.009), 1e-4, &settings).unwrap();
+        let (n, k, nn) = (mesh.rows, mesh.strip + 1, mesh.node_count());
+        let mut index = vec![FIXED; 2 * nn];
+        for c in 0..k {
+            for r in 1..=n {
+                index[2 * mesh.node(c, r) + 1] = KEPT + c * n + r - 1;
+            }
+        }
+        for r in 1..=n {
+            index[2 * mesh.node(0, r)] = KEPT + k * n + r - 1;
+        }
+        let (ni, rows) = number_interior(&mut index, 2 * mesh.columns());
+        let nb = (k + 1) * n;
+        let (mut triplets, mut pairs, mut contributions) = (Vec::new(), Vec::new(), Vec::new());
+        plane_strain::assemble(&mesh, 2.0e6, 0.4, |i, j, v| {
+            if let (Some(a), Some(b)) = (position(index[i], ni), position(index[j], ni)) {
+                triplets.push(Triplet::new(a, b, v));
+                if a >= b {
+                    pairs.push((a, b));
+                    contributions.push(v);
+                }
+            }
+        });
+        let mut fwd = Vec::new();
+        dissect(&rows, 0, rows.len() - 1, &mut fwd);
+        fwd.extend(ni..ni + nb);
+        let pattern = StiffnessPattern::new(ni, nb, &pairs, &fwd).unwrap();
+        let mut values = Vec::new();
+        // P K Pᵀ: entry (r, c) is K's (fwd[r], fwd[c]).
+        let cached = pattern.sum(&contributions, &mut values);
+        let reference = lower_csc(ni + nb, &triplets);
+        assert_eq!(cached.compute_nnz(), reference.compute_nnz());
+        for c in 0..ni + nb {
+            for (r, v) in cached.row_idx_of_col(c).zip(cached.val_of_col(c)) {
+                let (i, j) = (fwd[r].max(fwd[c]), fwd[r].min(fwd[c]));
+                let k = reference.row_idx_of_col(j).position(|x| x == i);
+                let k = k.expect("the entry is in K's pattern");
+                assert_eq!(v.to_bits(), reference.val_of_col(j)[k].to_bits());
+            }
+        }
+    }
+
+    /// A build whose pattern comes from the cache gives the same bits as the
+    /// build that computed it, also for another shape of the same topology
+    /// (same rows and columns, other coordinates).
+    #[test]
+    fn builds_from_the_factor_cache_are_bit_identical() {
+        let settings = SectionSettings {
+            row_spacing: 5e-4,
+            ..SectionSettings::default()
+        };
+        let (e_mod, nu) = (2.0e6, 0.4);
+        let bits = |line: &CondensedLine| {
+            [&line.C, &line.Et, &line.A, &line.Cz].map(|m| {
+                (0..m.ncols())
+                    .flat_map(|j| m.col_as_slice(j).iter().map(|x| x.to_bits()))
+                    .collect::<Vec<_>>()
+            })
+        };
+        let a = SectionMesh::new(&dome(0.006, 0.009), 1e-4, &settings).unwrap();
+        let b = SectionMesh::new(&dome(0.0061, 0.0091), 1e-4, &settings).unwrap();
+        assert_eq!((a.rows, a.columns()), (b.rows, b.columns()));
+        assert_ne!(a.nodes, b.nodes);
+        let cold = |mesh: &SectionMesh| {
+            for problem in [Problem::InPlane, Problem::Antiplane] {
+                factor_cache::forget(&Topology::of(mesh, problem));
+            }
+            CondensedLine::new(mesh, e_mod, nu).unwrap()
+        };
+        let a_cold = bits(&cold(&a));
+        let a_cached = bits(&CondensedLine::new(&a, e_mod, nu).unwrap());
+        assert!(a_cold == a_cached, "a cached build differs");
+        let b_cached = bits(&CondensedLine::new(&b, e_mod, nu).unwrap());
+        let b_cold = bits(&cold(&b));
+        assert!(b_cold == b_cached, "a build on a cached topology differs");
+        assert!(a_cold != b_cold, "the two shapes differ");
     }
 
     /// The default mesh of the loop's half potato (≈ 5 s in release, minutes

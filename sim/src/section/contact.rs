@@ -92,17 +92,39 @@ impl WedgeProfile {
     }
 }
 
-/// Friction forces (vertical, tangential) resisting the knife from a face
-/// normal force `normal` (N/m) on a face of slope `slope` for knife increments
-/// (dn, dt). Zero when the knife does not move.
-#[inline]
-pub(crate) fn friction(mu: f64, normal: f64, slope: f64, dn: f64, dt: f64) -> (f64, f64) {
-    let cos2 = 1.0 / (1.0 + slope * slope);
-    let v = (dn * dn * cos2 + dt * dt).sqrt();
-    if v == 0.0 {
-        return (0.0, 0.0);
+/// The slip of the blade along a face of one slope for knife increments
+/// (dn, dt), from which [`FaceSlip::friction`] gives the friction forces:
+/// what the faces of the same slope share, computed once for them.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct FaceSlip {
+    /// cos²θ = 1/(1 + s²) of the face's inclination.
+    cos2: f64,
+    /// Slip per step |v_s| = √(dn² cos²θ + dt²), m.
+    slip: f64,
+}
+
+impl FaceSlip {
+    /// The slip of a face of slope `slope` for knife increments (dn, dt).
+    #[inline]
+    pub fn new(slope: f64, dn: f64, dt: f64) -> Self {
+        let cos2 = 1.0 / (1.0 + slope * slope);
+        let slip = (dn * dn * cos2 + dt * dt).sqrt();
+        Self { cos2, slip }
     }
-    (mu * normal * dn * cos2 / v, mu * normal * dt / v)
+
+    /// Friction forces (vertical, tangential) resisting the knife from a
+    /// face normal force `normal` (N/m) for the knife increments (dn, dt)
+    /// the slip was made for, N/m. Zero when the knife does not move.
+    #[inline]
+    pub fn friction(&self, mu: f64, normal: f64, dn: f64, dt: f64) -> (f64, f64) {
+        if self.slip == 0.0 {
+            return (0.0, 0.0);
+        }
+        (
+            mu * normal * dn * self.cos2 / self.slip,
+            mu * normal * dt / self.slip,
+        )
+    }
 }
 
 #[cfg(test)]
@@ -114,7 +136,7 @@ mod tests {
         // Dissipation F_n dn + F_t dt = μ N |slip| for any direction.
         for (dn, dt) in [(1.0, 0.0), (1.0, 0.75), (0.2, 1.8)] {
             let s = 0.27;
-            let (fv, ft) = friction(0.1, 50.0, s, dn, dt);
+            let (fv, ft) = FaceSlip::new(s, dn, dt).friction(0.1, 50.0, dn, dt);
             let slip = (dn * dn / (1.0 + s * s) + dt * dt).sqrt();
             assert!((fv * dn + ft * dt - 0.1 * 50.0 * slip).abs() < 1e-12);
         }

@@ -13,6 +13,7 @@ mod antiplane;
 mod condensed;
 mod contact;
 mod error;
+mod factor_cache;
 mod fracture;
 mod geometry;
 mod mesh;

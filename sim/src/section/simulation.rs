@@ -5,7 +5,7 @@ use crate::blade::BladeSection;
 use crate::material::Material;
 
 use super::condensed::{CondensedLine, MAX_STRIP, ReleasedWorkspace, StripConstraint};
-use super::contact::{WedgeProfile, friction};
+use super::contact::{FaceSlip, WedgeProfile};
 use super::error::SectionError;
 use super::fracture::{Extension, solve_extension, toughness_ratio};
 use super::geometry::SectionGeometry;
@@ -161,6 +161,12 @@ struct Workspace {
     /// starts there, so its start evaluation needs only the friction for
     /// the new increments (`face_terms`), not another active-set solve.
     end: Option<(f64, f64, f64, Eval)>,
+    /// The arguments (y_tip, y_edge, drag, dn, dt, as bits) and result of
+    /// the last evaluation, if its active sets converged; its gaps,
+    /// reactions and strip forces are still in `g`, `p` and `lambda`. An
+    /// evaluation of the same configuration is then this result (the first
+    /// active-set pass would solve the same system and change nothing).
+    last: Option<([u64; 5], Eval)>,
 }
 
 /// Most active-set iterations of the face contact per evaluation.
@@ -301,6 +307,7 @@ impl CrossSection {
                 mixed: ReleasedWorkspace::new(n),
                 solves: 0,
                 end: None,
+                last: None,
             },
             model,
             state,
@@ -314,6 +321,7 @@ impl CrossSection {
         // Active-set warm starts: reset too, so a rerun is bit-identical.
         self.ws.released.fill(false);
         self.ws.end = None;
+        self.ws.last = None;
         self.ws.strip_active = [true; MAX_STRIP];
     }
 
@@ -854,6 +862,13 @@ fn evaluate(
     dn: f64,
     dt: f64,
 ) -> Eval {
+    let key = [y_tip, y_edge, drag, dn, dt].map(f64::to_bits);
+    if let Some((last, e)) = ws.last
+        && last == key
+    {
+        return e;
+    }
+    ws.last = None;
     let h = model.h;
     let (j, _) = tip_row(model, y_tip);
     // Gaps: rows above the tip open to the blade, measured from the tip while
@@ -896,6 +911,7 @@ fn evaluate(
         }
     }
     let mut ip = Default::default();
+    let mut converged = false;
     for _ in 0..MAX_ACTIVE_SET_ITERATIONS {
         ws.solves += 1;
         let any = strip_c.active[..k].iter().any(|&a| a);
@@ -938,6 +954,7 @@ fn evaluate(
             }
         }
         if !changed {
+            converged = true;
             break;
         }
     }
@@ -973,6 +990,9 @@ fn evaluate(
         ..Default::default()
     };
     face_terms(model, ws, y_tip, y_edge, dn, dt, &mut e);
+    if converged {
+        ws.last = Some((key, e));
+    }
     e
 }
 
@@ -997,12 +1017,26 @@ fn face_terms(
     e.tensile = 0;
     e.f_fric_n = 0.0;
     e.f_fric_t = 0.0;
+    // The face slope takes a few values along the faces (corner, bevel,
+    // flank): the slip geometry and the normal's stretch factor are
+    // computed once per run of equal slopes (the same expressions, so the
+    // same values).
+    let mut run: Option<(u64, FaceSlip, f64)> = None;
     for i in first..model.n {
         let y = (i + 1) as f64 * h;
         if y <= y_tip {
             continue;
         }
         let slope = model.profile.slope(y - y_ref);
+        let (slip, stretch) = match run {
+            Some((bits, slip, stretch)) if bits == slope.to_bits() => (slip, stretch),
+            _ => {
+                let slip = FaceSlip::new(slope, dn, dt);
+                let stretch = (1.0 + slope * slope).sqrt();
+                run = Some((slope.to_bits(), slip, stretch));
+                (slip, stretch)
+            }
+        };
         let p = ws.p[i];
         // The knife's vertical force from the faces' pressure is the
         // derivative of the energy with respect to the knife position at a
@@ -1013,8 +1047,8 @@ fn face_terms(
         if p < -1e-9 * model.material.fracture_toughness {
             e.tensile += 1;
         }
-        let normal = p.max(0.0) * (1.0 + slope * slope).sqrt();
-        let (fn_, ft) = friction(mu, normal, slope, dn, dt);
+        let normal = p.max(0.0) * stretch;
+        let (fn_, ft) = slip.friction(mu, normal, dn, dt);
         e.f_fric_n += 2.0 * fn_;
         e.f_fric_t += 2.0 * ft;
     }

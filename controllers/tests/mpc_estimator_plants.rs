@@ -1,0 +1,272 @@
+//! The MPC with online estimation in closed loop with the full plant
+//! (fracture-mechanics cross sections) whose material differs from the
+//! controller's preset by ±30 %: the end-of-cut scale factors against the
+//! truth, on the potato cuboid (straight edge) and the half potato (chef's
+//! knife), built as `shearcut run` builds `loop-potato-cuboid` and
+//! `loop-potato-whole` (seed 0, 1 kHz, default arm and sections).
+//!
+//! The full plant is far too slow for CI in a debug build (minutes per
+//! cut), so the test is ignored; run it in release:
+//!
+//! ```text
+//! cargo test --release -p shearcut-controllers --test mpc_estimator_plants -- --ignored --nocapture
+//! ```
+
+use std::path::Path;
+
+use nalgebra::Vector2;
+use shearcut_controllers::controller::{Controller, CutTask, MotionLimits};
+use shearcut_controllers::mpc::{
+    DepthProfile, Mpc, MpcSettings, SliceModel, StageState, SurrogateModel,
+};
+use shearcut_sim::geometry::TriangleMesh;
+use shearcut_sim::plant::Measurement;
+use shearcut_sim::plant::{ArmLimits, Plant, PlantSettings, knife_plane_silhouette};
+use shearcut_sim::section::SectionSettings;
+use shearcut_sim::surrogate::Surrogate;
+use shearcut_sim::{Cuboid, Knife, KnifePreset, MaterialPreset, ObjectShape};
+
+/// Safety margin on the arm's acceleration and jerk (as `shearcut run`).
+const ARM_MARGIN: f64 = 0.9;
+/// Depth samples of the object's profile (as `shearcut run`).
+const PROFILE_SAMPLES: usize = 41;
+
+/// One of the shipped closed-loop objects.
+#[derive(Debug, Clone, Copy)]
+struct Setup {
+    name: &'static str,
+    material: MaterialPreset,
+    knife: KnifePreset,
+    surrogate: &'static str,
+    object: fn() -> ObjectShape,
+    segments: usize,
+    z0: f64,
+    depth: f64,
+    blade_budget: f64,
+}
+
+const CUBOID: Setup = Setup {
+    name: "potato cuboid",
+    material: MaterialPreset::PotatoCuboid,
+    knife: KnifePreset::Straight,
+    surrogate: "potato-cuboid-straight",
+    object: || {
+        ObjectShape::Cuboid(Cuboid {
+            width: 0.03,
+            height: 0.025,
+            length: 0.03,
+        })
+    },
+    segments: 4,
+    z0: 0.02,
+    depth: 0.02,
+    blade_budget: 0.012,
+};
+
+const WHOLE: Setup = Setup {
+    name: "half potato",
+    material: MaterialPreset::PotatoWhole,
+    knife: KnifePreset::Chef,
+    surrogate: "potato-whole-chef",
+    object: || ObjectShape::HalfPotato {
+        length: 0.09,
+        width: 0.06,
+        height: 0.035,
+    },
+    segments: 10,
+    z0: 0.02,
+    depth: 0.025,
+    blade_budget: 0.015,
+};
+
+/// Factors (toughness on R_c and R'_c, stiffness on E, friction on μ) of
+/// the plant's material against the preset.
+const PLANTS: [(&str, [f64; 3]); 5] = [
+    ("nominal", [1.0, 1.0, 1.0]),
+    ("R_c x1.3, E x0.7", [1.3, 0.7, 1.0]),
+    ("R_c x0.7, E x1.3", [0.7, 1.3, 1.0]),
+    ("mu x1.3", [1.0, 1.0, 1.3]),
+    ("mu x0.7", [1.0, 1.0, 0.7]),
+];
+
+fn profile(mesh: &TriangleMesh) -> DepthProfile {
+    let (lo, hi) = mesh.bounds();
+    let height = hi.y - lo.y;
+    let silhouette = knife_plane_silhouette(mesh).expect("crosses x = 0");
+    let depths: Vec<f64> = (0..PROFILE_SAMPLES)
+        .map(|i| height * (0.005 + 0.99 * i as f64 / (PROFILE_SAMPLES - 1) as f64))
+        .collect();
+    let lengths = depths
+        .iter()
+        .map(|d| silhouette.chord_length(hi.y - d))
+        .collect();
+    DepthProfile::new(depths, lengths, height, 0.5 * (hi.x - lo.x)).unwrap()
+}
+
+/// Crack depth past the first fracture before the rows count (the
+/// controller's settling depth), m.
+const SETTLE: f64 = 2e-3;
+
+/// How well the model at the true factors predicts the plant where the
+/// estimator uses it: the normal and tangential work done after the first
+/// fracture (past [`SETTLE`]), measured over modelled. A factor can only be
+/// as close to the truth as these are to 1.
+#[derive(Debug, Default)]
+struct ModelCheck {
+    fracture: Option<f64>,
+    measured: [f64; 2],
+    modelled: [f64; 2],
+}
+
+impl ModelCheck {
+    fn add(
+        &mut self,
+        model: &SurrogateModel,
+        profile: &DepthProfile,
+        m: &Measurement,
+        truth: [f64; 3],
+    ) {
+        let v_n = -m.velocity.y;
+        let l = m.contact_length;
+        if !(v_n > 0.0 && l > 0.0) {
+            return;
+        }
+        if m.fractured_sections == 0 {
+            return;
+        }
+        let depth = m.crack_depth.max(0.0);
+        let since = depth - *self.fracture.get_or_insert(depth);
+        if since < SETTLE {
+            return;
+        }
+        let xi = m.velocity.z.abs() / v_n;
+        let state = StageState {
+            depth,
+            height: profile.height(),
+            half_width: profile.half_width(),
+            fractured: true,
+            travel_since_fracture: since,
+        };
+        let (n, t) = model.force_parts(xi, &state).unwrap();
+        let at = |p: [f64; 3]| p[0] * truth[0] + p[1] * truth[1] + p[2] * truth[1] * truth[2];
+        let v_t = m.velocity.z.abs();
+        self.measured[0] += m.wrench[1] * v_n;
+        self.modelled[0] += l * at(n) * v_n;
+        self.measured[1] += -m.wrench[2] * m.velocity.z.signum() * v_t;
+        self.modelled[1] += l * at(t) * v_t;
+    }
+
+    fn ratios(&self) -> [f64; 2] {
+        [0, 1].map(|k| self.measured[k] / self.modelled[k])
+    }
+}
+
+/// The end-of-cut factors (toughness, stiffness, friction) the MPC's
+/// estimator believes after cutting `setup` made of its preset scaled by
+/// `truth`, the model check, and whether the cut completed.
+fn end_of_cut(
+    setup: &Setup,
+    truth: [f64; 3],
+    settings: &MpcSettings,
+) -> ([f64; 3], ModelCheck, bool) {
+    let mut material = setup.material.material();
+    material.fracture_toughness *= truth[0];
+    material.initial_fracture_toughness *= truth[0];
+    material.youngs_modulus *= truth[1];
+    material.friction_coefficient *= truth[2];
+    let knife = Knife::new(&setup.knife.settings()).unwrap();
+    let mesh = (setup.object)().mesh().unwrap();
+    let arm = ArmLimits::default();
+    let task = CutTask {
+        target_depth: setup.depth,
+        period: 1e-3,
+        blade_budget: setup.blade_budget,
+        limits: MotionLimits::within_arm(
+            0.05f64.min(arm.velocity),
+            0.1f64.min(arm.velocity),
+            arm.acceleration,
+            arm.jerk,
+            ARM_MARGIN,
+        ),
+    };
+    let xi = (task.blade_budget / task.target_depth).min(1.0);
+    let path = Path::new(env!("CARGO_MANIFEST_DIR"))
+        .join("../config/surrogates")
+        .join(format!("{}.toml", setup.surrogate));
+    let model = SurrogateModel::new(Surrogate::from_path(&path).unwrap());
+    let profile = profile(&mesh);
+    let mut check = ModelCheck::default();
+    let mut mpc = Mpc::new(&task, settings, model.clone(), profile.clone(), xi).unwrap();
+    let alpha = xi.atan();
+    let plant_settings = PlantSettings {
+        segments: setup.segments,
+        ..PlantSettings::default()
+    };
+    let mut plant = Plant::new(
+        &material,
+        &knife,
+        &mesh,
+        setup.z0,
+        Vector2::new(alpha.sin(), -alpha.cos()),
+        &plant_settings,
+        &SectionSettings::default(),
+        &arm,
+        0,
+    )
+    .unwrap();
+    let mut m = plant
+        .step(&Default::default(), task.period)
+        .expect("plant steps");
+    // 30 s of simulated time at most, as `shearcut run`.
+    for _ in 0..30_000 {
+        let command = mpc.tick(&m);
+        m = plant.step(&command, task.period).expect("plant steps");
+        check.add(&model, &profile, &m, truth);
+        if m.crack_depth >= task.target_depth {
+            return (mpc.scale(), check, true);
+        }
+    }
+    (mpc.scale(), check, false)
+}
+
+/// Relative errors of the estimated factors.
+fn errors(estimated: [f64; 3], truth: [f64; 3]) -> [f64; 3] {
+    [0, 1, 2].map(|k| estimated[k] / truth[k] - 1.0)
+}
+
+#[test]
+#[ignore = "the full plant takes minutes per cut in a debug build: run in release with --ignored"]
+fn the_estimator_converges_on_plants_off_the_preset() {
+    let settings = MpcSettings {
+        estimate: true,
+        ..MpcSettings::default()
+    };
+    let mut worst: f64 = 0.0;
+    for setup in [CUBOID, WHOLE] {
+        for (label, truth) in PLANTS {
+            let (estimated, check, completed) = end_of_cut(&setup, truth, &settings);
+            assert!(
+                completed,
+                "{} {label}: the cut did not complete",
+                setup.name
+            );
+            let e = errors(estimated, truth);
+            let r = check.ratios();
+            println!(
+                "{:14} {:18} T {:.3} ({:+5.1} %)  S {:.3} ({:+5.1} %)  F {:.3} ({:+5.1} %)  | plant/model at truth: normal {:.3}, tangential {:.3}",
+                setup.name,
+                label,
+                estimated[0],
+                100.0 * e[0],
+                estimated[1],
+                100.0 * e[1],
+                estimated[2],
+                100.0 * e[2],
+                r[0],
+                r[1],
+            );
+            worst = e.iter().fold(worst, |w, x| w.max(x.abs()));
+        }
+    }
+    println!("worst factor error {:.1} %", 100.0 * worst);
+}

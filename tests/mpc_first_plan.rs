@@ -1,0 +1,99 @@
+//! What the MPC plans from the intact object, before any plant is built:
+//! the catch-up after the first fracture priced into the onset's cost, and
+//! the direction the plant's contact arc is planned for.
+
+use shearcut::commands::run::{LoopSetup, mpc_cutting_ratio, mpc_start};
+use shearcut::controller_choice::ControllerChoice;
+use shearcut::object_profile::depth_profile;
+use shearcut::scenario::Scenario;
+use shearcut::surrogates::surrogate_for;
+use shearcut_controllers::mpc::{SliceModel, StageState, SurrogateModel};
+
+fn model_and_profile(name: &str) -> (SurrogateModel, StageState) {
+    let s = Scenario::load(name).expect("a built-in scenario");
+    let setup = LoopSetup::new(&s, ControllerChoice::Press).expect("a valid scenario");
+    let profile = depth_profile(&setup.mesh).expect("a profile");
+    let model = SurrogateModel::new(surrogate_for(&s).expect("a shipped surrogate"));
+    let intact = StageState {
+        depth: 2e-3,
+        height: profile.height(),
+        half_width: profile.half_width(),
+        fractured: false,
+        travel_since_fracture: 0.0,
+    };
+    (model, intact)
+}
+
+/// The eggplant's skin (R'_c = 2.5 R_c) stores the strain energy that runs
+/// the first crack ahead of the edge (seed 000 eq. 1): the onset's net
+/// cost is below the work of indenting to it, ½·w(d*)·d*, by what the
+/// catch-up saves. Slicing fractures sooner but saves less and builds up
+/// drag, so the net cost does not fall with ξ the way the indentation
+/// work does.
+#[test]
+fn the_eggplant_onset_cost_nets_out_the_catch_up() {
+    let (model, intact) = model_and_profile("loop-eggplant-whole");
+    let span = model.catch_up_span(0.0, &intact);
+    assert!(span > 0.02, "span {span} m: four onset depths of ~9 mm");
+    let state = StageState {
+        travel_since_fracture: span,
+        ..intact
+    };
+    let pressing = model.stage(0.0, &state);
+    let no_span = model.stage(
+        0.0,
+        &StageState {
+            travel_since_fracture: 0.0,
+            ..intact
+        },
+    );
+    // Without a span the cost is the indentation work alone.
+    assert!(
+        pressing.onset_work < 0.9 * no_span.onset_work,
+        "net {} J/m against indentation {} J/m",
+        pressing.onset_work,
+        no_span.onset_work
+    );
+    // The indentation work falls steeply with ξ; the net cost does not.
+    let slicing = model.stage(1.0, &state);
+    let slicing_no_span = model.stage(
+        1.0,
+        &StageState {
+            travel_since_fracture: 0.0,
+            ..intact
+        },
+    );
+    assert!(slicing_no_span.onset_work < 0.5 * no_span.onset_work);
+    assert!(
+        slicing.onset_work > pressing.onset_work,
+        "net onset cost at ξ = 1: {} J/m, pressing: {} J/m",
+        slicing.onset_work,
+        pressing.onset_work
+    );
+}
+
+/// On the whole eggplant the plan from rest presses (the skin's onset is
+/// not cheaper sliced, and the flesh's work rises with ξ); on the potatoes
+/// it slices. The plant is planned for that ratio, not for the blade
+/// budget spread over the depth.
+#[test]
+fn the_first_plan_sets_the_direction_the_plant_is_planned_for() {
+    for (name, low, high) in [
+        ("loop-eggplant-whole", 0.0, 0.15),
+        ("loop-potato-whole", 0.4, 1.2),
+        ("loop-potato-cuboid", 0.4, 1.2),
+    ] {
+        let s = Scenario::load(name).expect("a built-in scenario");
+        let setup = LoopSetup::new(&s, ControllerChoice::Mpc).expect("a valid scenario");
+        let ratio = mpc_cutting_ratio(&s, &setup.task, &setup.mesh).expect("a plan");
+        assert!(
+            (low..=high).contains(&ratio),
+            "{name}: planned ratio {ratio}, expected in [{low}, {high}] (start {})",
+            mpc_start(&setup.task)
+        );
+        assert_eq!(
+            setup.xi, ratio,
+            "{name}: the plant's direction is the plan's"
+        );
+    }
+}
