@@ -247,7 +247,9 @@ impl CondensedLine {
     /// In-plane solve with every X DOF prescribed to `g` (gaps, m) and, if
     /// `strip` is given, the strip constraint. Writes the X reactions of the
     /// rows from `first_nonzero` on into `p` (N/m, +x on the material; the
-    /// rows below, which carry no gap, are set to 0, not computed) and the
+    /// rows below, which carry no gap, are not computed: the few below it
+    /// down to a multiple of 4 are set to 0, the others are left as they
+    /// were) and the
     /// strip forces into `lambda` (N/m, +y on the material). `g` must be 0
     /// below `first_nonzero`. Allocation-free.
     #[inline(always)]
@@ -286,8 +288,10 @@ impl CondensedLine {
         // block of A that the gaps touch. Element by element the sums are
         // the same as over the whole columns.
         let f0 = first_nonzero.min(n);
-        p[..f0].fill(0.0);
-        p[f0..n].fill(0.0);
+        // g is 0 below `first_nonzero`: the energy's dot from the 4-aligned
+        // row at or below it has the same partial sums as the full one.
+        let f4 = f0 & !3;
+        p[f4..n].fill(0.0);
         for (i, &gi) in g.iter().enumerate().take(n).skip(f0) {
             if gi != 0.0 {
                 axpy(gi, &self.A.col_as_slice(i)[f0..], &mut p[f0..n]);
@@ -302,9 +306,6 @@ impl CondensedLine {
                 }
             }
         }
-        // g is 0 below `first_nonzero`: the dot from the 4-aligned row at or
-        // below it has the same partial sums as the full one.
-        let f4 = f0 & !3;
         InPlane {
             energy: 0.5 * (dot(&g[f4..n], &p[f4..n]) + energy_strip),
             strip_force: lambda[..self.k].iter().sum(),
@@ -495,7 +496,8 @@ impl CondensedLine {
     /// (loaded by `f_ext`, N/m, +x on the material; zero if `None`) and all
     /// others prescribed to `g`. On return `g` holds the solved displacements
     /// of the released rows, `p` the reactions from `first_nonzero` on (p =
-    /// f_ext on released rows; 0 below `first_nonzero`, as [`Self::solve`])
+    /// f_ext on released rows; not computed below `first_nonzero`, as
+    /// [`Self::solve`])
     /// and `lambda` the strip forces, as in [`Self::solve`]. Released rows
     /// must lie at or above `first_nonzero`. Allocation-free.
     ///
@@ -552,7 +554,9 @@ impl CondensedLine {
     ) -> InPlane {
         let n = self.n;
         ws.idx.clear();
-        ws.idx.extend((0..n).filter(|&i| released[i]));
+        // (Released rows lie at or above `first_nonzero`.)
+        ws.idx
+            .extend((first_nonzero.min(n)..n).filter(|&i| released[i]));
         let m = ws.idx.len();
         if m == 0 {
             return self.solve(g, first_nonzero, strip, p, lambda);
@@ -570,10 +574,10 @@ impl CondensedLine {
         // this released set is kept already.
         let slot = ws.factor(&self.A);
         let l = &ws.factors[slot].l[..packed_row(m)];
-        let (rf, zb) = ws.z.split_at_mut(n);
-        chol_solve(l, &mut rf[..m]);
         if let Some(s) = strip {
-            // Z_B = A_FF⁻¹ B_F, column a in zb[a·n..].
+            // Z_B = B_F, column a in z[(a + 1)·n..], then r_F and Z_B are
+            // solved together: Z_B = A_FF⁻¹ B_F.
+            let zb = &mut ws.z[n..];
             for a in 0..self.k {
                 let zc = &mut zb[a * n..a * n + m];
                 zc.fill(0.0);
@@ -585,8 +589,9 @@ impl CondensedLine {
                         }
                     }
                 }
-                chol_solve(l, zc);
             }
+            chol_solve_columns(l, &mut ws.z, n, m, 1 + self.k);
+            let (rf, zb) = ws.z.split_at(n);
             let mut S = self.strip_matrix(&self.C, s);
             let mut rhs = [0.0; MAX_STRIP];
             for a in 0..self.k {
@@ -594,15 +599,16 @@ impl CondensedLine {
                 for (q, w) in self.taps(a, s) {
                     if w != 0.0 {
                         let et = self.Et.col_as_slice(q);
-                        // B_Cᵀ g_C (g_F is zero here) and B_Fᵀ A_FF⁻¹ r_F.
+                        // B_Cᵀ g_C (g_F is zero here) and B_Fᵀ A_FF⁻¹ r_F,
+                        // and B_Fᵀ Z_B into S: each sum in the order of the
+                        // released rows, the sums side by side.
                         rhs[a] += w * dot(&et[first..], &g[first..]);
+                        let Sa = &mut S[a];
                         for (c, &i) in ws.idx.iter().enumerate() {
-                            rhs[a] += w * et[i] * rf[c];
-                        }
-                        for b in 0..self.k {
-                            let zc = &zb[b * n..b * n + m];
-                            for (c, &i) in ws.idx.iter().enumerate() {
-                                S[a][b] += w * et[i] * zc[c];
+                            let t = w * et[i];
+                            rhs[a] += t * rf[c];
+                            for b in 0..self.k {
+                                Sa[b] += t * zb[b * n + c];
                             }
                         }
                     }
@@ -618,8 +624,9 @@ impl CondensedLine {
                 g[i] = v;
             }
         } else {
+            chol_solve_columns(l, &mut ws.z, n, m, 1);
             for (c, &i) in ws.idx.iter().enumerate() {
-                g[i] = rf[c];
+                g[i] = ws.z[c];
             }
         }
         // The full displacement vector satisfies the strip equations, so the
@@ -662,20 +669,30 @@ impl faer::traits::pulp::WithSimd for ReleasedSolve<'_> {
 }
 
 /// Solves L Lᵀ x = b in place (x ← b on entry) for the packed lower factor
-/// `l` of order `x.len()`: L y = b (rows of L contiguous), then Lᵀ x = y
-/// (column sweep along the rows of L).
+/// `l` of order `m`, for the `cols` right-hand sides z[c·stride..c·stride +
+/// m]: L y = b (rows of L contiguous), then Lᵀ x = y (column sweep along the
+/// rows of L). The columns are swept side by side, row by row, so their
+/// independent divisions and dot products overlap; each column's operations
+/// are those of a solve on its own.
 #[inline(always)]
-fn chol_solve(l: &[f64], x: &mut [f64]) {
-    let m = x.len();
+fn chol_solve_columns(l: &[f64], z: &mut [f64], stride: usize, m: usize, cols: usize) {
     for a in 0..m {
         let r = packed_row(a);
-        x[a] = (x[a] - dot(&l[r..r + a], &x[..a])) / l[r + a];
+        let (row, d) = (&l[r..r + a], l[r + a]);
+        for c in 0..cols {
+            let x = &mut z[c * stride..c * stride + m];
+            x[a] = (x[a] - dot(row, &x[..a])) / d;
+        }
     }
     for a in (0..m).rev() {
         let r = packed_row(a);
-        x[a] /= l[r + a];
-        let xa = x[a];
-        axpy(-xa, &l[r..r + a], &mut x[..a]);
+        let (row, d) = (&l[r..r + a], l[r + a]);
+        for c in 0..cols {
+            let x = &mut z[c * stride..c * stride + m];
+            x[a] /= d;
+            let xa = x[a];
+            axpy(-xa, row, &mut x[..a]);
+        }
     }
 }
 

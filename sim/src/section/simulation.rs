@@ -875,9 +875,10 @@ fn evaluate(
     // the edge presses below it, from the edge when the crack runs ahead.
     let y_ref = y_tip.max(y_edge);
     let first = j; // index of row j+1
-    for (i, g) in ws.g.iter_mut().enumerate() {
+    ws.g[..first].fill(0.0);
+    for (i, g) in ws.g.iter_mut().enumerate().skip(first) {
         let y = (i + 1) as f64 * h;
-        *g = if i < first || y <= y_tip {
+        *g = if y <= y_tip {
             0.0
         } else {
             model.profile.width(y - y_ref)
@@ -904,11 +905,13 @@ fn evaluate(
     strip_c.active = ws.strip_active;
     let tol = 1e-9 * model.material.fracture_toughness;
     let gap_tol = 1e-9 * h;
-    for (i, r) in ws.released.iter_mut().enumerate() {
+    ws.released[..first].fill(false);
+    for (i, r) in ws.released.iter_mut().enumerate().skip(first) {
         let y = (i + 1) as f64 * h;
-        if i < first || y <= y_tip {
-            *r = false;
+        if y > y_tip {
+            break;
         }
+        *r = false;
     }
     let mut ip = Default::default();
     let mut converged = false;
@@ -962,7 +965,8 @@ fn evaluate(
     let mut contacts = strip_c.active[..k]
         .iter()
         .fold(0u64, |m, &a| (m << 1) | u64::from(a));
-    for (i, &r) in ws.released.iter().enumerate() {
+    // (No face row below `first` is released.)
+    for (i, &r) in ws.released.iter().enumerate().skip(first) {
         if r {
             contacts = contacts.wrapping_mul(1_000_003) ^ (i as u64 + 1);
         }
