@@ -5,14 +5,15 @@
 //! Held out: ξ = 0.6, 1.2, 2.1 (the fit used 0, 0.25, 0.5, 0.75, 1, 1.4, 1.8,
 //! 2.4) on a 25 mm high, 40 mm wide section (the fit's sizes are listed in
 //! `FIT_SECTION_SIZES`; this one is not among them), for potato (no crack
-//! jump at the onset) and cuboid eggplant (R'_c/R_c ≈ 2: the first crack
-//! jumps 0.5–2 mm ahead of the edge and the surrogate's catch-up carries the
-//! forces to the knee). Forces are compared with the full model's window
-//! means after fracture (the sawtooth; see
+//! jump at the onset), cuboid eggplant (R'_c/R_c ≈ 2: the first crack jumps
+//! 0.5–2 mm ahead of the edge and the surrogate's catch-up carries the
+//! forces to the knee) and whole eggplant (R'_c/R_c = 2.5: jumps of 3–7 mm
+//! on this section, the longest catch-up). Forces are compared with the
+//! full model's window means after fracture (the sawtooth; see
 //! `shearcut_sim::surrogate::accuracy`). `shearcut fit` also reports the
-//! second held-out size, 40 mm × 24 mm (tall and narrow), and whole
-//! eggplant: the figures are in docs/surrogates.md, with the cases that miss
-//! a target; those are not asserted here.
+//! second held-out size, 40 mm × 24 mm (tall and narrow), and whole potato:
+//! the figures are in docs/surrogates.md (all within the targets); they are
+//! not recomputed here to keep the test short.
 
 use std::path::PathBuf;
 
@@ -65,4 +66,9 @@ fn potato_surrogate_meets_the_issue_tolerances_on_held_out_runs() {
 #[test]
 fn eggplant_surrogate_meets_the_issue_tolerances_on_held_out_runs() {
     meets_the_issue_tolerances(MaterialPreset::EggplantCuboid);
+}
+
+#[test]
+fn whole_eggplant_surrogate_meets_the_issue_tolerances_on_held_out_runs() {
+    meets_the_issue_tolerances(MaterialPreset::EggplantWhole);
 }

@@ -157,12 +157,28 @@ fn negative_knee_width_is_refused_and_named() {
 }
 
 #[test]
-fn version_1_files_are_refused_with_a_refit_hint() {
-    // Version 1 had no catch-up: its coefficients mean something else.
-    let text = potato_text().replace(
-        &format!("version = {SURROGATE_FORMAT_VERSION}"),
-        "version = 1",
-    );
-    let e = Surrogate::from_toml_str(&text).unwrap_err();
-    assert!(e.to_string().contains("shearcut fit"), "{e}");
+fn older_versions_are_refused_with_a_refit_hint() {
+    // Version 1 had no catch-up, version 2 no knee lead, its face reaction's
+    // ramps ran on the travel and its split had four terms: their
+    // coefficients mean something else.
+    for old in [1, 2] {
+        let text = potato_text().replace(
+            &format!("version = {SURROGATE_FORMAT_VERSION}"),
+            &format!("version = {old}"),
+        );
+        let e = Surrogate::from_toml_str(&text).unwrap_err();
+        assert!(e.to_string().contains("shearcut fit"), "{e}");
+    }
+}
+
+#[test]
+fn negative_knee_lead_is_refused_and_named() {
+    let text = potato_text();
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("knee_lead = "))
+        .unwrap();
+    let t = text.replace(line, "knee_lead = -0.1");
+    let e = Surrogate::from_toml_str(&t).unwrap_err();
+    assert!(e.to_string().contains("post_fracture.knee_lead"), "{e}");
 }

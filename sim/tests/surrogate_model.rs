@@ -321,14 +321,112 @@ fn frictionless_steady_state_is_the_slicing_toughness() {
 
 #[test]
 fn work_is_convex_in_xi_beyond_the_concave_shoulder_of_eq_6() {
-    // Documented on `Surrogate::work_quadratic`: the only concave term is
-    // r(ξ,ν)·R_c, concave below ξ_c(ν).
+    // Documented on `Surrogate::work_quadratic`: r(ξ,ν)·R_c is concave below
+    // ξ_c(ν); the fitted face reaction's ξ² terms can make the friction's
+    // work concave too, beyond the fitted ξ range (format 3: potato, ξ = 3
+    // right after fracture) and for eggplant through the ξ-dependent
+    // catch-up, so this checks potato on [ξ_c, ξ_max] of its fit.
     let s = potato();
     let xi_c = shearcut_sim::surrogate::concave_up_to(0.4, 3.0);
+    let xi_max = s.range.xi_max;
     for state in states() {
-        for xi in [xi_c + 0.01, 1.0, 1.5, 2.0, 2.5, 3.0] {
+        for xi in [xi_c + 0.01, 1.0, 1.5, 2.0, xi_max] {
             let q = s.work_quadratic(xi, &state, &ScaleFactors::default());
             assert!(q.curvature > 0.0, "{state:?} xi {xi}: {}", q.curvature);
         }
+    }
+}
+
+/// One output of an evaluation.
+type Field = fn(&SurrogateOutput) -> f64;
+
+/// The largest change of `f` between neighbouring travels s and s + h over
+/// the catch-up and the knee of whole eggplant (30 × 30 mm section, depth
+/// d*₀ + s), for s in [0, 20 mm).
+fn largest_step(s: &Surrogate, xi: f64, h: f64, f: impl Fn(&SurrogateOutput) -> f64) -> f64 {
+    let onset = s
+        .evaluate(
+            xi,
+            &CutState {
+                depth: 0.0,
+                height: 0.03,
+                half_width: 0.015,
+                fractured: false,
+                travel_since_fracture: 0.0,
+            },
+            &ScaleFactors::default(),
+        )
+        .fracture_onset_depth;
+    let at = |travel: f64| {
+        f(&s.evaluate(
+            xi,
+            &CutState {
+                depth: onset + travel,
+                height: 0.03,
+                half_width: 0.015,
+                fractured: true,
+                travel_since_fracture: travel,
+            },
+            &ScaleFactors::default(),
+        ))
+    };
+    let n = (0.02 / h).round() as usize;
+    (0..n)
+        .map(|i| (at((i + 1) as f64 * h) - at(i as f64 * h)).abs())
+        .fold(0.0, f64::max)
+}
+
+/// The catch-up's progress v is C¹ (min(s/L, 1) with its corner rounded), so
+/// through the knee the ξ-derivatives of F_n, F_t and the work are
+/// continuous in the travel and the travel-derivatives of the forces too:
+/// halving the step roughly halves the largest change of a ξ-slope between
+/// neighbouring travels and quarters the largest second difference of a
+/// force. A jump (the kink of min(s/L, 1)) would keep the first ratio near 1
+/// and the second near ½.
+#[test]
+fn eggplant_outputs_are_smooth_through_the_knee() {
+    let s = eggplant();
+    for xi in [0.3, 1.0, 2.0] {
+        let slopes: [(&str, Field); 3] = [
+            ("F_n slope", |o| o.force_normal_slope),
+            ("F_t slope", |o| o.force_tangential_slope),
+            ("work slope", |o| o.work_per_depth_slope),
+        ];
+        for (name, f) in slopes {
+            let coarse = largest_step(&s, xi, 4e-6, f);
+            let fine = largest_step(&s, xi, 2e-6, f);
+            assert!(
+                fine < 0.6 * coarse,
+                "xi {xi}: {name} changes by {coarse} over 4 µm, {fine} over 2 µm"
+            );
+        }
+        // Second differences of F_n in the travel: the largest over the
+        // range, at steps h and h/2.
+        let second = |h: f64| {
+            let at = |i: usize| {
+                let travel = i as f64 * h;
+                s.evaluate(
+                    xi,
+                    &CutState {
+                        depth: 5e-3 + travel,
+                        height: 0.03,
+                        half_width: 0.015,
+                        fractured: true,
+                        travel_since_fracture: travel,
+                    },
+                    &ScaleFactors::default(),
+                )
+                .force_normal
+            };
+            let n = (0.02 / h).round() as usize;
+            (1..n)
+                .map(|i| (at(i + 1) - 2.0 * at(i) + at(i - 1)).abs())
+                .fold(0.0, f64::max)
+        };
+        let (coarse, fine) = (second(4e-6), second(2e-6));
+        assert!(
+            fine < 0.4 * coarse,
+            "xi {xi}: F_n second difference {coarse} at 4 µm, {fine} at 2 µm"
+        );
     }
 }

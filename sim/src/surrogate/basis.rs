@@ -14,8 +14,9 @@
 //! lengths ℓ_k = `RAMP_LENGTHS`[k] × the blade's bevel height h_b: the crack
 //! faces are wedged open progressively while the bevel enters the crack and
 //! to the full blade thickness once it has passed, so the wedge's load builds
-//! up over about h_b. Depth features: powers of d/H, the stiffening as the
-//! crack tip nears the board.
+//! up over about h_b. The face reaction takes the same ramps at the edge's
+//! depth d instead (the bevel length inside the cut). Depth features: powers
+//! of d/H, the stiffening as the crack tip nears the board.
 
 /// Lengths of the travel ramps, in units of the blade's bevel height.
 pub const RAMP_LENGTHS: [f64; RAMPS] = [0.3, 0.6, 1.2, 3.0];
@@ -119,12 +120,17 @@ pub fn knee_derivatives(c: &[f64; FRICTION_TERMS], knee: &[Jet; KNEE_TERMS]) -> 
 
 /// Basis of the wedge faces' normal reaction N/(E·Δ) (Δ the blade's
 /// half-thickness): [1, λ_H, λ_w, (ρ_k, ρ_kλ_H, ρ_kλ_w) for k < 4, d/H,
-/// (d/H)³, (g, gλ_H, gλ_w, gξ², v², v⁴)] with the catch-up terms of
-/// `catch_up::knee_terms`. The faces are pushed open by Δ, so N scales with
-/// E·Δ; it builds up as the crack passes the bevel (ramps), depends on how
-/// stiff the halves are (λ_H, λ_w), grows as the tip nears the board (d/H),
-/// grows during the catch-up (v) and steps up at the knee g, where the edge
-/// presses on the crack tip again and squeezes the faces onto the wedge.
+/// (d/H)³, (d/H)λ_H, (d/H)λ_w, (g, gλ_H, gλ_w, gξ², v², v⁴, v²ξ², v⁴ξ²,
+/// (1 − g)ξ²)] with the catch-up terms of `catch_up::knee_terms`. The faces
+/// are pushed open by Δ, so N scales with E·Δ; it builds up with the length
+/// of bevel inside the cut, so the ramps `ramp` are taken at the edge's
+/// depth d, not at the travel since fracture (they differ by the onset
+/// depth, millimetres for eggplant, where the bevel is partly in when the
+/// crack opens); it depends on how stiff the halves are (λ_H, λ_w), grows as
+/// the tip nears the board (d/H), grows during the catch-up (v, at a rate
+/// that depends on ξ through the jump) and steps up at the knee g, where the
+/// edge presses on the crack tip again and squeezes the faces onto the
+/// wedge.
 #[inline]
 pub fn friction_basis(
     ramp: &[f64; RAMPS],
@@ -178,20 +184,24 @@ pub fn deflection_basis(ramp: &[f64; RAMPS], lw: f64) -> [f64; DEFLECTION_TERMS]
 }
 
 /// Number of terms of the force split σ = F_t/F_n of the non-friction force.
-pub const SPLIT_TERMS: usize = 4;
+pub const SPLIT_TERMS: usize = 5;
 
-/// [ξ, ξλ_H, ξλ_w, ξ²]: σ vanishes at pressing; its slope depends on the
-/// section, whose antiplane and plane compliances scale differently with
-/// its size (as C_t and C_n do before fracture).
+/// [ξ, ξλ_H, ξλ_w, ξ², ξ/(1+ξ²)]: σ vanishes at pressing; its slope
+/// depends on the section, whose antiplane and plane compliances scale
+/// differently with its size (as C_t and C_n do before fracture). The full
+/// model's σ rises steeply up to ξ ≈ 0.5 and then about linearly (eggplant
+/// after the knee: 0.06 at ξ = 0.25, 0.10 at 0.5, 0.13–0.18 at 1, 0.21–0.32
+/// at 2.4), which ξ/(1+ξ²) (slope 1 at 0, flat by ξ = 1) lets the fit follow.
 #[inline]
 pub fn split_basis(xi: f64, lh: f64, lw: f64) -> [f64; SPLIT_TERMS] {
-    [xi, xi * lh, xi * lw, xi * xi]
+    [xi, xi * lh, xi * lw, xi * xi, xi / (1.0 + xi * xi)]
 }
 
 /// ∂/∂ξ of [`split_basis`].
 #[inline]
 pub fn split_basis_slope(xi: f64, lh: f64, lw: f64) -> [f64; SPLIT_TERMS] {
-    [1.0, lh, lw, 2.0 * xi]
+    let q = 1.0 + xi * xi;
+    [1.0, lh, lw, 2.0 * xi, (1.0 - xi * xi) / (q * q)]
 }
 
 /// The decays 1 − ρ_k(s) of the antiplane drag held by the edge at the

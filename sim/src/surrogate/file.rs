@@ -136,6 +136,7 @@ impl Surrogate {
         arr("post_fracture.face_reaction", &post.face_reaction);
         arr("post_fracture.strain_energy_rate", &post.strain_energy_rate);
         arr("post_fracture.deflection", &post.deflection);
+        v.push(("post_fracture.knee_lead".to_string(), post.knee_lead));
         v
     }
 
@@ -159,6 +160,14 @@ impl Surrogate {
                     allowed: "must be non-negative",
                 });
             }
+        }
+        let lead = self.post_fracture.knee_lead;
+        if lead < 0.0 {
+            return Err(SurrogateFileError::BadValue {
+                key: "post_fracture.knee_lead".to_string(),
+                value: lead,
+                allowed: "must be non-negative",
+            });
         }
         if kappa + beta <= 0.0 {
             return Err(SurrogateFileError::BadValue {

@@ -98,15 +98,16 @@ impl<const N: usize> Rows<N> {
 ///   d* the middle of the step that first fractured;
 /// - the catch-up ℓ = L/d*₀ on [1, λ_H, λ_w, ξ, ξ²] from the knee each run
 ///   shows (`catch_up`), 0 where the crack did not jump ahead of the edge;
-/// - after fracture, for each knee width [κ, β] of a grid (`KNEE_WIDTHS` ×
-///   `KNEE_BEVEL_WIDTHS`, with each run's own catch-up length): the faces'
+/// - after fracture, for each knee shape [κ, β, a] of a grid (`KNEE_WIDTHS`
+///   × `KNEE_BEVEL_WIDTHS` × `KNEE_LEADS`, with each run's own catch-up
+///   length): the faces'
 ///   normal reaction N = (F_n^f + ξF_t^f)/(μ√(1+ξ²)) (the friction work per
 ///   depth over μ√(1+ξ²)) over E·Δ; the knife's non-friction work per depth
 ///   beyond r(ξ,ν)·R_c·g, F_n^c + ξF_t^c − r·R_c·g, over E·Δ², on the rates
 ///   of the strain-energy basis (so the fit targets the force the knife
 ///   feels, sawtooth averaged by least squares); then, with the wedge's
 ///   S·U̇ taken off F_n^c, the edge's F_t^c = σ·F_n^e + Q(ξ)·h(s) (split and
-///   released drag, jointly); the deflection over Δ. The width kept is the
+///   released drag, jointly); the deflection over Δ. The shape kept is the
 ///   one whose surrogate follows the fit's own runs best (`compare_run`).
 ///
 /// With μ = 0 the face reaction cannot be observed and is fitted as 0.
@@ -214,6 +215,7 @@ pub fn fit_surrogate(
         post_fracture: PostFracture {
             catch_up,
             knee_width: [KNEE_WIDTHS[0], KNEE_BEVEL_WIDTHS[0]],
+            knee_lead: KNEE_LEADS[0],
             split: [0.0; SPLIT_TERMS],
             drag: [0.0; RAMPS],
             face_reaction: [0.0; FRICTION_TERMS],
@@ -221,14 +223,16 @@ pub fn fit_surrogate(
             deflection: [0.0; DEFLECTION_TERMS],
         },
     };
-    // The knee's width [κ, β]: the candidates whose fit follows the fit's
+    // The knee's shape [κ, β, a]: the candidates whose fit follows the fit's
     // own runs best (sum of the F_n and F_t RMS errors over the runs, as
     // `fit` reports them); the first of equals, so the choice is
     // deterministic.
     let mut best: Option<(f64, Surrogate)> = None;
-    let widths = KNEE_WIDTHS
-        .iter()
-        .flat_map(|&k| KNEE_BEVEL_WIDTHS.iter().map(move |&b| [k, b]));
+    let widths = KNEE_WIDTHS.iter().flat_map(|&k| {
+        KNEE_BEVEL_WIDTHS
+            .iter()
+            .flat_map(move |&b| KNEE_LEADS.iter().map(move |&a| [k, b, a]))
+    });
     for width in widths {
         let post = fit_post_fracture(material, blade, runs, &lengths, &base, width)?;
         let s = Surrogate {
@@ -251,7 +255,11 @@ pub fn fit_surrogate(
 }
 
 /// Candidate widths κ of the knee gate, relative to the catch-up length.
-pub const KNEE_WIDTHS: [f64; 6] = [0.05, 0.2, 0.4, 0.7, 1.0, 1.3];
+pub const KNEE_WIDTHS: [f64; 2] = [0.05, 0.2];
+
+/// Candidate leads a of the knee gate's centre before the catch-up length,
+/// in bevel heights.
+pub const KNEE_LEADS: [f64; 5] = [0.0, 0.1, 0.2, 0.3, 0.45];
 
 /// Candidate widths β of the knee gate, in bevel heights.
 pub const KNEE_BEVEL_WIDTHS: [f64; 6] = [0.0, 0.5, 1.0, 2.0, 3.0, 4.0];
@@ -278,7 +286,7 @@ fn observed_catch_up(run: &SweepRun) -> Option<f64> {
         .map(|s| s.travel_since_fracture)
 }
 
-/// The post-fracture least squares for a knee width `width` = [κ, β], given the
+/// The post-fracture least squares for a knee shape `width` = [κ, β, a], given the
 /// fitted pre-fracture part and catch-up in `base` and each run's catch-up
 /// length.
 fn fit_post_fracture(
@@ -287,7 +295,7 @@ fn fit_post_fracture(
     runs: &[SweepRun],
     lengths: &[f64],
     base: &Surrogate,
-    width: [f64; 2],
+    width: [f64; 3],
 ) -> Result<PostFracture, FitError> {
     let e0 = material.youngs_modulus;
     let nu = material.poisson_ratio;
@@ -296,7 +304,7 @@ fn fit_post_fracture(
     let b = blade.edge_width;
     let delta = 0.5 * blade.thickness;
     let h_b = blade.bevel_height();
-    let kappa = [width[0], width[1] * h_b];
+    let kappa = [width[0], width[1] * h_b, width[2] * h_b];
     let pre_fracture = &base.pre_fracture;
     let mut face = Rows::new("post_fracture.face_reaction");
     let mut strain = Rows::new("post_fracture.strain_energy_rate");
@@ -315,7 +323,7 @@ fn fit_post_fracture(
             if mu0 > 0.0 {
                 let n = (s.force_normal_friction + xi * s.force_tangential_friction) / (mu0 * root);
                 face.push(
-                    friction_basis(&ramp, depth_ratio, &knee, lh, lw),
+                    friction_basis(&ramps(s.depth, h_b).0, depth_ratio, &knee, lh, lw),
                     n / (e0 * delta),
                 );
             }
@@ -362,6 +370,7 @@ fn fit_post_fracture(
                     sb[1] * f_n,
                     sb[2] * f_n,
                     sb[3] * f_n,
+                    sb[4] * f_n,
                     q * db[0],
                     q * db[1],
                     q * db[2],
@@ -379,9 +388,16 @@ fn fit_post_fracture(
     };
     Ok(PostFracture {
         catch_up: base.post_fracture.catch_up,
-        knee_width: width,
-        split: [split_drag[0], split_drag[1], split_drag[2], split_drag[3]],
-        drag: [split_drag[4], split_drag[5], split_drag[6], split_drag[7]],
+        knee_width: [width[0], width[1]],
+        knee_lead: width[2],
+        split: [
+            split_drag[0],
+            split_drag[1],
+            split_drag[2],
+            split_drag[3],
+            split_drag[4],
+        ],
+        drag: [split_drag[5], split_drag[6], split_drag[7], split_drag[8]],
         face_reaction,
         strain_energy_rate,
         deflection: defl_post.solve()?,

@@ -16,7 +16,7 @@ use crate::blade::BladeSection;
 use crate::material::Material;
 
 /// Version of the surrogate file format this build reads and writes.
-pub const SURROGATE_FORMAT_VERSION: u32 = 2;
+pub const SURROGATE_FORMAT_VERSION: u32 = 3;
 
 /// The blade section a surrogate was fitted for (all fields required in a file).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -88,15 +88,19 @@ pub struct PostFracture {
     /// [κ, β]: the knee gate g(s) rises over W = κ·L + β·h_b around the
     /// catch-up length L (h_b the bevel height; both ≥ 0, not both 0).
     pub knee_width: [f64; 2],
+    /// a: the knee gate is centred a·h_b before the catch-up length L
+    /// (a ≥ 0, in bevel heights; chosen by the fit with the width).
+    pub knee_lead: f64,
     /// σ = F_t/F_n of the non-friction force (beyond the drag) on
-    /// [ξ, ξλ_H, ξλ_w, ξ²].
+    /// [ξ, ξλ_H, ξλ_w, ξ², ξ/(1+ξ²)].
     pub split: [f64; SPLIT_TERMS],
     /// Share h(s) of the antiplane drag at onset still held after a travel
     /// s, on the decays [1 − ρ_k(s)] for k < 4.
     pub drag: [f64; RAMPS],
     /// N/(E·Δ), the wedge faces' normal reaction, on the friction basis
-    /// [1, λ_H, λ_w, (ρ_k, ρ_kλ_H, ρ_kλ_w) for k < 4, d/H, (d/H)³,
-    /// (g, gλ_H, gλ_w, gξ², v², v⁴)] (`basis::friction_basis`).
+    /// [1, λ_H, λ_w, (ρ_k(d), ρ_k(d)λ_H, ρ_k(d)λ_w) for k < 4, d/H, (d/H)³,
+    /// (d/H)λ_H, (d/H)λ_w, (g, gλ_H, gλ_w, gξ², v², v⁴, v²ξ², v⁴ξ²,
+    /// (1 − g)ξ²)] with the ramps in the depth d (`basis::friction_basis`).
     pub face_reaction: [f64; FRICTION_TERMS],
     /// The strain-energy rate U̇/(E·Δ²) (1/m) on the slopes of
     /// [1, λ_H, λ_w, (ρ_k, ρ_kλ_H, ρ_kλ_w) for k < 4, (d/H)³, (d/H)⁴]:
@@ -193,6 +197,7 @@ impl Surrogate {
         let delta = self.half_thickness();
         let travel = state.travel_since_fracture.max(0.0);
         let (ramp, ramp_slope) = ramps(travel, self.bevel_height());
+        let (ramp_depth, _) = ramps(state.depth, self.bevel_height());
         let height = state.height.max(b);
         let depth_ratio = (state.depth / height).clamp(0.0, 1.0);
         // Catch-up after the crack's jump (`catch_up`): L = d*₀(ξ)·ℓ(ξ) at
@@ -211,7 +216,11 @@ impl Surrogate {
             .mul(y_jet.recip())
             .scale(m.initial_fracture_toughness / e0);
         let length = onset0.mul(dot_jet(&p.catch_up, &catch_up_basis(xi, lh, lw)));
-        let knee_width = [p.knee_width[0], p.knee_width[1] * self.bevel_height()];
+        let knee_width = [
+            p.knee_width[0],
+            p.knee_width[1] * self.bevel_height(),
+            p.knee_lead * self.bevel_height(),
+        ];
         let knee = knee_terms(travel, xi, length, knee_width, lh, lw);
         let knee_v = knee.map(|j| j.v);
         // Nominal face reaction N₀ (a jet: only its catch-up terms depend
@@ -221,7 +230,7 @@ impl Surrogate {
         let n0 = Jet::new(
             dot(
                 &p.face_reaction,
-                &friction_basis(&ramp, depth_ratio, &knee_v, lh, lw),
+                &friction_basis(&ramp_depth, depth_ratio, &knee_v, lh, lw),
             ),
             nd,
             ndd,
