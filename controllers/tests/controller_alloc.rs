@@ -1,12 +1,9 @@
 //! Proves that the baselines' `tick()` allocates nothing after construction,
 //! with a counting global allocator (its own test binary).
-#![allow(unsafe_code)] // GlobalAlloc is an unsafe trait; the impl only forwards to System.
 
 mod synthetic_arm;
 
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::Ordering;
 
 use shearcut_controllers::controller::{
     ConstantSlice, Controller, ForceFeedback, ForceFeedbackGains,
@@ -14,40 +11,10 @@ use shearcut_controllers::controller::{
 use shearcut_sim::plant::PlantStatus;
 use synthetic_arm::{SyntheticArm, task};
 
-struct Counting;
+#[path = "support/counting_allocator.rs"]
+mod counting_allocator;
 
-static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
-
-thread_local! {
-    /// Only the measuring thread's allocations count.
-    static TRACK: Cell<bool> = const { Cell::new(false) };
-}
-
-fn count() {
-    if TRACK.try_with(Cell::get).unwrap_or(false) {
-        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
-    }
-}
-
-// SAFETY: every call is forwarded unchanged to the system allocator.
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        count();
-        // SAFETY: same contract as the caller's.
-        unsafe { System.alloc(layout) }
-    }
-
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        // SAFETY: same contract as the caller's.
-        unsafe { System.dealloc(ptr, layout) }
-    }
-
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        count();
-        // SAFETY: same contract as the caller's.
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-}
+use counting_allocator::{ALLOCATIONS, Counting, TRACK};
 
 #[global_allocator]
 static GLOBAL: Counting = Counting;

@@ -2,51 +2,18 @@
 //! force parts and the indentation and cut rows — allocates nothing, with a
 //! counting global allocator (its own test binary). The MPC's tick with
 //! `estimate` on adds exactly this to the tick `controller_alloc.rs` counts.
-#![allow(unsafe_code)] // GlobalAlloc is an unsafe trait; the impl only forwards to System.
 
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::Ordering;
 
 use std::path::Path;
 
 use shearcut_controllers::mpc::{ScaleEstimator, SliceModel, StageState, SurrogateModel};
 use shearcut_sim::surrogate::Surrogate;
 
-struct Counting;
+#[path = "support/counting_allocator.rs"]
+mod counting_allocator;
 
-static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
-
-thread_local! {
-    /// Only the measuring thread's allocations count.
-    static TRACK: Cell<bool> = const { Cell::new(false) };
-}
-
-fn count() {
-    if TRACK.try_with(Cell::get).unwrap_or(false) {
-        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
-    }
-}
-
-// SAFETY: every call is forwarded unchanged to the system allocator.
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        count();
-        // SAFETY: same contract as the caller's.
-        unsafe { System.alloc(layout) }
-    }
-
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        // SAFETY: same contract as the caller's.
-        unsafe { System.dealloc(ptr, layout) }
-    }
-
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        count();
-        // SAFETY: same contract as the caller's.
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-}
+use counting_allocator::{ALLOCATIONS, Counting, TRACK};
 
 #[global_allocator]
 static GLOBAL: Counting = Counting;
