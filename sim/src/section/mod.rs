@@ -5,7 +5,9 @@
 //!
 //! Files: `geometry` (the section polygon), `mesh` (graded Q4 mesh of the half
 //! section), `plane_strain` and `antiplane` (element stiffnesses), `condensed`
-//! (factorisation and Schur complement onto the cut line), `contact` (wedge
+//! (factorisation and Schur complement onto the cut line), `factor_cache`
+//! (stiffness pattern and symbolic factorisation per mesh shape, shared by
+//! every build), `contact` (wedge
 //! profile and friction), `fracture` (toughness ratio, bracketing and
 //! regula falsi), `simulation` ([`CrossSection`]), `settings`, `error`.
 
