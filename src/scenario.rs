@@ -281,6 +281,8 @@ impl ScenarioFile {
         self.motion
             .validate(self.object.nominal_height())
             .map_err(|e| e.prefixed("motion"))?;
+        self.section.validate().map_err(|e| e.prefixed("section"))?;
+        self.plant.validate().map_err(|e| e.prefixed("plant"))?;
         self.control_loop
             .validate()
             .map_err(|e| e.prefixed("loop"))?;

@@ -97,3 +97,26 @@ fn the_first_plan_sets_the_direction_the_plant_is_planned_for() {
         );
     }
 }
+
+/// `[plant] planned_ratio` plans every controller's plant for the same
+/// direction (to compare them on the same arc); a negative one is refused
+/// with the key, the value and what is allowed.
+#[test]
+fn a_planned_ratio_setting_overrides_the_controllers_direction() {
+    let base = include_str!("../config/scenarios/loop-potato-whole.toml");
+    let text = base.replace("[plant]", "[plant]\nplanned_ratio = 0.3");
+    assert_ne!(text, base, "the scenario has a [plant] table");
+    let s = Scenario::parse(&text, "planned", "planned").expect("a valid scenario");
+    for choice in [ControllerChoice::Mpc, ControllerChoice::Press] {
+        let setup = LoopSetup::new(&s, choice).expect("a valid setup");
+        assert_eq!(setup.xi, 0.3);
+    }
+    let bad = base.replace("[plant]", "[plant]\nplanned_ratio = -0.5");
+    let message = Scenario::parse(&bad, "bad", "bad")
+        .expect_err("a negative ratio is refused")
+        .to_string();
+    assert!(
+        message.contains("planned_ratio") && message.contains("-0.5") && message.contains(">= 0"),
+        "{message}"
+    );
+}

@@ -249,9 +249,10 @@ impl LoopSetup {
             .mesh()
             .map_err(|e| invalid(s, InvalidSetting::new("object", "mesh", e.to_string())))?;
         let task = cut_task(s, &knife, &mesh);
-        let xi = match choice {
-            ControllerChoice::Mpc => mpc_cutting_ratio(s, &task, &mesh)?,
-            _ => choice.nominal_slice_push_ratio(mpc_start(&task)),
+        let xi = match (s.plant.planned_ratio, choice) {
+            (Some(xi), _) => xi,
+            (None, ControllerChoice::Mpc) => mpc_cutting_ratio(s, &task, &mesh)?,
+            (None, _) => choice.nominal_slice_push_ratio(mpc_start(&task)),
         };
         Ok(Self {
             knife,

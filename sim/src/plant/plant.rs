@@ -36,6 +36,13 @@ pub struct PlantSettings {
     pub update_distance: f64,
     /// The F/T sensor.
     pub sensor: FtSensorSettings,
+    /// Slice-push ratio of the direction the contact arc and the first
+    /// sections are planned for (default: none, the controller's own — its
+    /// constant ξ, 0 for pressing, the MPC's first plan). The plant's
+    /// answer depends on it when the knife moves along another direction
+    /// (README, Known limitations); set it to compare controllers on the
+    /// same arc.
+    pub planned_ratio: Option<f64>,
 }
 
 impl Default for PlantSettings {
@@ -46,6 +53,7 @@ impl Default for PlantSettings {
             rim_fraction: 0.05,
             update_distance: 1e-3,
             sensor: FtSensorSettings::default(),
+            planned_ratio: None,
         }
     }
 }
@@ -79,6 +87,15 @@ impl PlantSettings {
                 "update_distance",
                 self.update_distance,
                 "must be a finite number > 0 m",
+            ));
+        }
+        if let Some(xi) = self.planned_ratio
+            && !(xi.is_finite() && xi >= 0.0)
+        {
+            return Err(InvalidSetting::new(
+                "planned_ratio",
+                xi,
+                "must be a finite number >= 0",
             ));
         }
         self.sensor.validate().map_err(|e| e.prefixed("sensor"))
