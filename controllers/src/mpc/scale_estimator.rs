@@ -184,11 +184,9 @@ impl ScaleEstimator {
 mod tests {
     use super::ScaleEstimator;
 
-    #[test]
-    fn recovers_factors_from_exciting_rows() {
-        let truth = [1.3, 0.7, 0.7 * 1.25];
-        let mut e = ScaleEstimator::new(1.0, 1.0, 0.05);
-        // Deterministic, varied parts (as the state and ξ change).
+    /// 400 exact rows of deterministic, varied parts (as the state and ξ
+    /// change) for the factors `truth`.
+    fn feed_exciting_rows(e: &mut ScaleEstimator, truth: [f64; 3]) {
         for k in 0..400 {
             let t = k as f64 * 0.1;
             let parts = [
@@ -199,6 +197,13 @@ mod tests {
             let f: f64 = parts.iter().zip(truth).map(|(p, q)| p * q).sum();
             e.update(parts, f, 1.0);
         }
+    }
+
+    #[test]
+    fn recovers_factors_from_exciting_rows() {
+        let truth = [1.3, 0.7, 0.7 * 1.25];
+        let mut e = ScaleEstimator::new(1.0, 1.0, 0.05);
+        feed_exciting_rows(&mut e, truth);
         // Exact data: what remains is the prior's pull, of order
         // ‖θ₀ − θ‖ / (P₀·λ_min(Σφφᵀ)) ≈ 1e-6 here.
         assert!((e.toughness() - 1.3).abs() < 1e-4, "{}", e.toughness());
@@ -219,16 +224,7 @@ mod tests {
         let held = e.stiffness();
         e.freeze_stiffness();
         // Then rows with all three parts: θ₂ is held, θ₁ and θ₃ converge.
-        for k in 0..400 {
-            let t = k as f64 * 0.1;
-            let parts = [
-                100.0 + 20.0 * t.sin(),
-                40.0 + 30.0 * (0.7 * t).cos(),
-                15.0 + 10.0 * (1.3 * t).sin(),
-            ];
-            let f: f64 = parts.iter().zip(truth).map(|(p, q)| p * q).sum();
-            e.update(parts, f, 1.0);
-        }
+        feed_exciting_rows(&mut e, truth);
         assert_eq!(e.stiffness(), held);
         assert!((e.toughness() - 1.3).abs() < 2e-3, "{}", e.toughness());
         assert!((e.friction() - 1.25).abs() < 5e-3, "{}", e.friction());
