@@ -222,6 +222,13 @@ impl LoopServices {
     /// The other role's board, once that side has created it (`None`
     /// before).
     ///
+    /// A board still being set up can read as corrupted for an instant in
+    /// iceoryx2 0.10 (its static config written, its segments not yet):
+    /// two runs starting at once hit it. It counts as not there yet, like
+    /// one that hangs in creation; the caller's connect timeout bounds the
+    /// wait, and a board left corrupted by a killed process is removed by
+    /// the dead-node cleanup when the next run's node starts.
+    ///
     /// # Errors
     /// The board exists but iceoryx2 refused to open it.
     pub fn open_peer_board(&self) -> Result<Option<Board>, ServiceError> {
@@ -238,7 +245,8 @@ impl LoopServices {
             Err(
                 BlackboardOpenError::DoesNotExist
                 | BlackboardOpenError::IsMarkedForDestruction
-                | BlackboardOpenError::HangsInCreation,
+                | BlackboardOpenError::HangsInCreation
+                | BlackboardOpenError::ServiceInCorruptedState,
             ) => Ok(None),
             Err(e) => Err(iceoryx(&format!("{} board", board_name(peer)), e)),
         }
