@@ -23,8 +23,8 @@ const ALLOWED: &str =
     "one of mpc, press, slice:XI (XI >= 0, e.g. slice:0.75), force:N (N > 0, e.g. force:20)";
 
 impl ControllerChoice {
-    /// The slice-push ratio the controller starts with (the plant plans its
-    /// contact arc for it): ξ for slicing, 0 for pressing and force control,
+    /// The slice-push ratio the controller starts with (the plant builds its
+    /// first sections for it): ξ for slicing, 0 for pressing and force control,
     /// and the MPC's nominal `mpc_start` ratio.
     pub fn nominal_slice_push_ratio(&self, mpc_start: f64) -> f64 {
         match self {

@@ -1,6 +1,6 @@
 //! What the MPC plans from the intact object, before any plant is built:
 //! the catch-up after the first fracture priced into the onset's cost, and
-//! the direction the plant's contact arc is planned for.
+//! the direction the plant's first sections are built for.
 
 use shearcut::commands::run::{LoopSetup, mpc_cutting_ratio, mpc_start};
 use shearcut::controller_choice::ControllerChoice;
@@ -74,8 +74,7 @@ fn the_eggplant_onset_cost_nets_out_the_catch_up() {
 
 /// On the whole eggplant the plan from rest presses (the skin's onset is
 /// not cheaper sliced, and the flesh's work rises with ξ); on the potatoes
-/// it slices. The plant is planned for that ratio, not for the blade
-/// budget spread over the depth.
+/// it slices. The plant builds its first sections for that ratio.
 #[test]
 fn the_first_plan_sets_the_direction_the_plant_is_planned_for() {
     for (name, low, high) in [
@@ -98,25 +97,22 @@ fn the_first_plan_sets_the_direction_the_plant_is_planned_for() {
     }
 }
 
-/// `[plant] planned_ratio` plans every controller's plant for the same
-/// direction (to compare them on the same arc); a negative one is refused
-/// with the key, the value and what is allowed.
+/// `[plant] reach` widens the plant's segmented edge beyond the blade
+/// budget; a negative one is refused with the key, the value and what is
+/// allowed.
 #[test]
-fn a_planned_ratio_setting_overrides_the_controllers_direction() {
+fn a_plant_reach_setting_is_validated_on_load() {
     let base = include_str!("../config/scenarios/loop-potato-whole.toml");
-    let text = base.replace("[plant]", "[plant]\nplanned_ratio = 0.3");
+    let text = base.replace("[plant]", "[plant]\nreach = 0.03");
     assert_ne!(text, base, "the scenario has a [plant] table");
-    let s = Scenario::parse(&text, "planned", "planned").expect("a valid scenario");
-    for choice in [ControllerChoice::Mpc, ControllerChoice::Press] {
-        let setup = LoopSetup::new(&s, choice).expect("a valid setup");
-        assert_eq!(setup.xi, 0.3);
-    }
-    let bad = base.replace("[plant]", "[plant]\nplanned_ratio = -0.5");
+    let s = Scenario::parse(&text, "reach", "reach").expect("a valid scenario");
+    assert_eq!(s.plant.reach, 0.03);
+    let bad = base.replace("[plant]", "[plant]\nreach = -0.5");
     let message = Scenario::parse(&bad, "bad", "bad")
-        .expect_err("a negative ratio is refused")
+        .expect_err("a negative reach is refused")
         .to_string();
     assert!(
-        message.contains("planned_ratio") && message.contains("-0.5") && message.contains(">= 0"),
+        message.contains("reach") && message.contains("-0.5") && message.contains(">= 0"),
         "{message}"
     );
 }

@@ -196,7 +196,7 @@ fn curved_pressing(z0: f64) -> (f64, f64) {
     let cmd = KnifeCommand {
         velocity: Vector3::new(0.0, -SPEED, 0.0),
     };
-    let total: f64 = plant.segments().map(|s| s.length).sum();
+    let total: f64 = plant.edge_segments().iter().map(|s| s.length).sum();
     let mut full = None;
     let mut f_at_1mm = 0.0;
     for k in 1..=2400 {
@@ -417,7 +417,12 @@ fn slicing_straight_edge_moves_sections_along_the_cuboid() {
     assert!(front_checks >= 5, "re-choices every 1 mm: {front_checks}");
     assert!(went_inactive, "the tip-side sections slid off the piece");
     assert_eq!(plant.rebuilds(), 0, "a cuboid's sections are never rebuilt");
-    assert_eq!(plant.woken_segments() + plant.dormant_segments(), 0);
+    assert_eq!(
+        plant.woken_segments(),
+        0,
+        "every segment entered through the top"
+    );
+    assert_eq!(plant.first_contacts(), plant.segments().count());
 }
 
 #[test]
@@ -503,10 +508,11 @@ fn update_distance_must_be_positive() {
 #[test]
 fn steep_slice_gives_near_face_segments_their_sections() {
     // α = 45° into a cuboid with the heel 2 cm before its near face: the
-    // heel-side midpoints' paths enter through the near face (min z), below
-    // the top, so they get no section at construction; they get one through
-    // the crack front when they reach the material, and the contact then
-    // spans the whole piece.
+    // tip-side midpoints' paths enter through the flat top and get fresh
+    // sections as they arrive; the heel-side ones enter through the near
+    // face (min z), below the top, and get theirs through the crack front
+    // when they reach the material. The contact then spans the whole piece,
+    // and a segment still without a section is not over the piece.
     let material = MaterialPreset::PotatoCuboid.material();
     let knife = Knife::new(&KnifePreset::Straight.settings()).unwrap();
     let (w, h, l) = (0.03, 0.03, 0.03);
@@ -522,15 +528,18 @@ fn steep_slice_gives_near_face_segments_their_sections() {
         &LOOSE,
         0,
     );
-    let dormant = plant.dormant_segments();
-    assert!(dormant >= 2, "near-face segments: {dormant}");
     let cmd = KnifeCommand {
         velocity: Vector3::new(0.0, d.y, d.x) * SPEED,
     };
-    let seg_len = plant.segments().map(|s| s.length).fold(0.0, f64::max);
+    let seg_len = plant
+        .edge_segments()
+        .iter()
+        .map(|s| s.length)
+        .fold(0.0, f64::max);
     let mut prev_work = 0.0;
     let mut m = plant.step(&cmd, DT).unwrap();
-    // 4.2 s: the edge about 19 mm deep, every midpoint past the near face.
+    // 4.2 s: the edge about 19 mm deep, every midpoint over the piece past
+    // the near face.
     for k in 0..4200 {
         m = plant.step(&cmd, DT).unwrap();
         assert!(m.work >= prev_work, "tick {k}");
@@ -538,12 +547,27 @@ fn steep_slice_gives_near_face_segments_their_sections() {
         assert!(worst_normal_misalignment(&plant) < 1e-12, "tick {k}");
     }
     assert!(m.crack_depth > 0.005 && m.crack_depth < h - 1e-3);
-    assert_eq!(plant.dormant_segments(), 0);
-    assert_eq!(
-        plant.woken_segments(),
-        dormant,
-        "every near-face segment woke"
+    assert!(
+        plant.woken_segments() >= 2,
+        "near-face segments placed behind the front: {}",
+        plant.woken_segments()
     );
+    assert!(plant.first_contacts() >= 2, "{}", plant.first_contacts());
+    let sectioned: Vec<f64> = plant.segments().map(|s| s.s_start).collect();
+    assert_eq!(
+        sectioned.len(),
+        plant.woken_segments() + plant.first_contacts()
+    );
+    let x = plant.position().z;
+    for s in plant.edge_segments() {
+        let z = x + s.midpoint.x;
+        if !sectioned.contains(&s.s_start) {
+            assert!(
+                !(0.0..=l).contains(&z),
+                "a segment over the piece (z = {z}) has no section"
+            );
+        }
+    }
     assert!(
         (m.contact_length - l).abs() <= seg_len,
         "contact {} vs piece length {l} (segment {seg_len})",
@@ -695,5 +719,60 @@ fn start_position_is_where_the_plant_puts_the_knife() {
             Plant::start_position(&knife, &object, z0, gap),
             p.position()
         );
+    }
+}
+
+#[test]
+fn sections_go_where_the_edge_arrives_whatever_the_planned_direction() {
+    // Slicing a half potato towards the heel at ξ = 0.582 with the plant
+    // planned for that direction, for pressing, or for ξ = 1.5 towards the
+    // tip: the sections are placed where each segment's midpoint really
+    // reaches the material, so the three plants agree to rounding (their
+    // first planes are computed from different points of the same line).
+    // Before, sections were fixed for the planned direction and the work
+    // moved by 7 % with it.
+    let material = MaterialPreset::PotatoWhole.material();
+    let knife = Knife::new(&KnifePreset::Chef.settings()).unwrap();
+    let object = shearcut_sim::ObjectShape::HalfPotato {
+        length: 0.08,
+        width: 0.05,
+        height: 0.03,
+    }
+    .mesh()
+    .unwrap();
+    let xi: f64 = 0.582;
+    let u = Vector2::new(-xi, -1.0).normalize();
+    // A reach that covers every plan's arc: the three grids are the same.
+    let s = PlantSettings {
+        reach: 0.05,
+        ..settings(8)
+    };
+    let run = |planned: Vector2<f64>| {
+        let mut plant = plant(&material, &knife, &object, 0.05, planned, &s, &LOOSE, 3);
+        let cmd = KnifeCommand {
+            velocity: Vector3::new(0.0, u.y, u.x) * SPEED,
+        };
+        let last = (0..2400).map(|_| plant.step(&cmd, DT).unwrap()).last();
+        (
+            last.unwrap(),
+            plant.first_contacts(),
+            plant.edge_segments().len(),
+        )
+    };
+    let (a, contacts_a, grid_a) = run(u);
+    assert!(a.crack_depth > 0.005, "{}", a.crack_depth);
+    for planned in [Vector2::new(0.0, -1.0), Vector2::new(1.5, -1.0).normalize()] {
+        let (b, contacts_b, grid_b) = run(planned);
+        assert_eq!(grid_a, grid_b);
+        assert_eq!(contacts_a, contacts_b);
+        let close = |x: f64, y: f64| (x - y).abs() <= 1e-9 * x.abs().max(y.abs()).max(1e-12);
+        assert!(close(a.work, b.work), "work {} vs {}", a.work, b.work);
+        assert!(
+            close(a.true_wrench.force.y, b.true_wrench.force.y),
+            "F_y {} vs {}",
+            a.true_wrench.force.y,
+            b.true_wrench.force.y
+        );
+        assert!(close(a.crack_depth, b.crack_depth));
     }
 }

@@ -10,7 +10,7 @@ use shearcut_controllers::controller::{
 };
 use shearcut_controllers::mpc::{Mpc, SurrogateModel};
 use shearcut_sim::geometry::TriangleMesh;
-use shearcut_sim::plant::Plant;
+use shearcut_sim::plant::{Plant, PlantSettings};
 use shearcut_sim::{InvalidSetting, Knife};
 
 use crate::closed_loop::{
@@ -108,8 +108,7 @@ pub fn cut_task(s: &Scenario, knife: &Knife, mesh: &TriangleMesh) -> CutTask {
     }
 }
 
-/// The ratio the MPC's first plan starts from (and the plant plans its
-/// contact arc for): what spreads the blade budget evenly over the depth, at
+/// The ratio the MPC's first plan starts from: what spreads the blade budget evenly over the depth, at
 /// most 1.
 pub fn mpc_start(task: &CutTask) -> f64 {
     (task.blade_budget / task.target_depth).min(1.0)
@@ -117,11 +116,10 @@ pub fn mpc_start(task: &CutTask) -> f64 {
 
 /// The ratio the MPC is going to cut along: the mean ratio of its first
 /// plan from the intact object ([`Mpc::planned_ratio_from_rest`], on a
-/// controller built for it and dropped). The plant plans its contact arc
-/// and first sections for it: a plant planned for another direction puts
-/// its sections where the knife does not go (pressing the whole eggplant
-/// with the arc planned for ξ = 0.5 or 1 took 15 % or 25 % less work than
-/// with it planned for pressing).
+/// controller built for it and dropped). The plant builds its first
+/// sections for it before the loop starts, so that a real-time loop finds
+/// them ready (its results do not depend on it: the sections are placed
+/// where the edge arrives).
 pub fn mpc_cutting_ratio(
     s: &Scenario,
     task: &CutTask,
@@ -178,23 +176,31 @@ pub fn make_controller(
     made.map_err(|e| invalid(s, e.prefixed("controller")))
 }
 
-/// Builds the plant for a cut at slice-push ratio `xi` (the direction its
-/// contact arc is planned for) and the scenario's first z₀.
+/// Builds the plant for a cut planned at slice-push ratio `xi` (its first
+/// sections are built for that direction; they are placed where the edge
+/// really arrives, see [`Plant`]) and the scenario's first z₀, its edge
+/// segmented within `reach` of the object along z (the controller's blade
+/// budget; `[plant] reach` if larger).
 pub fn make_plant(
     s: &Scenario,
     knife: &Knife,
     mesh: &TriangleMesh,
     xi: f64,
+    reach: f64,
 ) -> Result<Plant, RunError> {
     let alpha = xi.atan();
     let z0 = s.motion.z0.first().copied().unwrap_or(0.0);
+    let settings = PlantSettings {
+        reach: s.plant.reach.max(reach),
+        ..s.plant
+    };
     Plant::new(
         &s.material,
         knife,
         mesh,
         z0,
         Vector2::new(alpha.sin(), -alpha.cos()),
-        &s.plant,
+        &settings,
         &s.section,
         &s.control_loop.arm_limits,
         s.seed,
@@ -235,8 +241,8 @@ pub struct LoopSetup {
     pub mesh: TriangleMesh,
     /// The cut the controller is given.
     pub task: CutTask,
-    /// The controller's nominal slice-push ratio: the plant plans its
-    /// contact arc for it and the samples carry it as `xi`.
+    /// The controller's nominal slice-push ratio: the plant builds its first
+    /// sections for it and the samples carry it as `xi`.
     pub xi: f64,
 }
 
@@ -249,10 +255,9 @@ impl LoopSetup {
             .mesh()
             .map_err(|e| invalid(s, InvalidSetting::new("object", "mesh", e.to_string())))?;
         let task = cut_task(s, &knife, &mesh);
-        let xi = match (s.plant.planned_ratio, choice) {
-            (Some(xi), _) => xi,
-            (None, ControllerChoice::Mpc) => mpc_cutting_ratio(s, &task, &mesh)?,
-            (None, _) => choice.nominal_slice_push_ratio(mpc_start(&task)),
+        let xi = match choice {
+            ControllerChoice::Mpc => mpc_cutting_ratio(s, &task, &mesh)?,
+            _ => choice.nominal_slice_push_ratio(mpc_start(&task)),
         };
         Ok(Self {
             knife,
@@ -264,7 +269,7 @@ impl LoopSetup {
 
     /// A fresh plant.
     pub fn plant(&self, s: &Scenario) -> Result<Plant, RunError> {
-        make_plant(s, &self.knife, &self.mesh, self.xi)
+        make_plant(s, &self.knife, &self.mesh, self.xi, self.task.blade_budget)
     }
 
     /// A fresh controller.

@@ -96,8 +96,30 @@ pub fn contact_arc(
     direction: Vector2<f64>,
     silhouette: &Polygon,
 ) -> Option<(f64, f64)> {
+    arc_where(edge, |p| {
+        ray_hit(silhouette, knife_origin + p, direction).is_some()
+    })
+}
+
+/// The arc of the edge (knife origin at `knife_origin`) over the span
+/// [`z_low`, `z_high`] of the knife plane's z: the edge points a knife
+/// pressing anywhere over that span could bring down onto the object. None
+/// if no edge point lies over it.
+pub fn span_arc(
+    edge: &KnifeEdge,
+    knife_origin: Vector2<f64>,
+    z_low: f64,
+    z_high: f64,
+) -> Option<(f64, f64)> {
+    arc_where(edge, |p| (z_low..=z_high).contains(&(knife_origin.x + p.x)))
+}
+
+/// The first and last arc lengths at which `holds` (of the edge point in
+/// the knife frame) is true, searched over [`ARC_SEARCH_SAMPLES`] samples
+/// and refined by bisection (the set is assumed to be one interval).
+fn arc_where(edge: &KnifeEdge, holds: impl Fn(Vector2<f64>) -> bool) -> Option<(f64, f64)> {
     let len = edge.length();
-    let hits = |s: f64| ray_hit(silhouette, knife_origin + edge.point_at(s), direction).is_some();
+    let hits = |s: f64| holds(edge.point_at(s));
     let mut first: Option<usize> = None;
     let mut last: Option<usize> = None;
     for k in 0..=ARC_SEARCH_SAMPLES {
@@ -134,24 +156,67 @@ pub fn segments(edge: &KnifeEdge, (s1, s2): (f64, f64), m: usize) -> Vec<EdgeSeg
         .map(|i| {
             let a = s1 + (s2 - s1) * i as f64 / m as f64;
             let b = s1 + (s2 - s1) * (i + 1) as f64 / m as f64;
-            let (pa, pb) = (edge.point_at(a), edge.point_at(b));
-            let chord = pb - pa;
-            let length = chord.norm();
-            let tangent = if length > 0.0 {
-                chord / length
-            } else {
-                edge.tangent_at(a)
-            };
-            EdgeSegment {
-                s_start: a,
-                s_end: b,
-                midpoint: 0.5 * (pa + pb),
-                tangent,
-                normal: Vector2::new(tangent.y, -tangent.x),
-                length,
-            }
+            segment(edge, a, b)
         })
         .collect()
+}
+
+/// The segments of the arc `anchor` = [s1, s2] split into `m` equal ones,
+/// continued with segments of the same length beyond both ends until they
+/// cover `cover` (clipped to the edge: the first and last may be shorter).
+/// The anchor's segments are exactly those of [`segments`]; the whole grid
+/// runs heel to tip.
+pub fn segment_grid(
+    edge: &KnifeEdge,
+    anchor: (f64, f64),
+    m: usize,
+    cover: (f64, f64),
+) -> Vec<EdgeSegment> {
+    let m = m.max(1);
+    let (s1, s2) = anchor;
+    let step = (s2 - s1) / m as f64;
+    if step <= 0.0 {
+        return segments(edge, anchor, m);
+    }
+    let len = edge.length();
+    let (low, high) = (cover.0.min(s1).max(0.0), cover.1.max(s2).min(len));
+    let before = ((s1 - low) / step).ceil() as usize;
+    let after = ((high - s2) / step).ceil() as usize;
+    let mut out = Vec::with_capacity(before + m + after);
+    for i in (1..=before).rev() {
+        let (a, b) = (s1 - step * i as f64, s1 - step * (i - 1) as f64);
+        if b > 0.0 {
+            out.push(segment(edge, a.max(0.0), b));
+        }
+    }
+    out.extend(segments(edge, anchor, m));
+    for i in 0..after {
+        let (a, b) = (s2 + step * i as f64, s2 + step * (i + 1) as f64);
+        if a < len {
+            out.push(segment(edge, a, b.min(len)));
+        }
+    }
+    out
+}
+
+/// The chord of the edge between arc lengths `a` and `b`.
+fn segment(edge: &KnifeEdge, a: f64, b: f64) -> EdgeSegment {
+    let (pa, pb) = (edge.point_at(a), edge.point_at(b));
+    let chord = pb - pa;
+    let length = chord.norm();
+    let tangent = if length > 0.0 {
+        chord / length
+    } else {
+        edge.tangent_at(a)
+    };
+    EdgeSegment {
+        s_start: a,
+        s_end: b,
+        midpoint: 0.5 * (pa + pb),
+        tangent,
+        normal: Vector2::new(tangent.y, -tangent.x),
+        length,
+    }
 }
 
 #[cfg(test)]

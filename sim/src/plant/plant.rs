@@ -12,10 +12,11 @@ use crate::material::Material;
 use crate::section::{CrossSection, SectionError, SectionGeometry, SectionSettings};
 
 use super::arm_limits::{ArmLimitMonitor, ArmLimits, LimitViolation};
-use super::contact_arc::{EdgeSegment, contact_arc, knife_plane_silhouette, ray_hit, segments};
+use super::contact_arc::{
+    EdgeSegment, contact_arc, knife_plane_silhouette, ray_hit, segment_grid, span_arc,
+};
 use super::crack_front::CrackFront;
 use super::ft_sensor::{FtSensor, FtSensorSettings};
-use super::section_shape::section_geometry;
 use super::successor::{Preparation, SectionFactory, SuccessorJob, SuccessorWorker};
 use super::wrench::{SegmentLoad, Wrench, wrench_at};
 
@@ -23,8 +24,20 @@ use super::wrench::{SegmentLoad, Wrench, wrench_at};
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct PlantSettings {
-    /// Number m of edge segments (and cross sections) on the contact arc (default 10).
+    /// Number m of edge segments over the object's span: the edge over
+    /// the object's extent along z is split into m segments of equal arc
+    /// length, and segments of the same length continue the grid over the
+    /// rest of the edge the knife can bring down onto the object (see
+    /// `reach`), at most [`MAX_SEGMENTS`] in all. Each segment gets its
+    /// cross section when it first reaches the material (default 20; 10
+    /// under-resolves the curved knife: README, Known limitations).
     pub segments: usize,
+    /// How far the knife may travel along z (its edge direction) either way
+    /// from its start, m: the edge over the object's span widened by this
+    /// on both sides gets segments (default 0; the closed loops raise it to
+    /// the controller's blade budget). Edge beyond it that the knife's
+    /// planned direction brings onto the object is covered too.
+    pub reach: f64,
     /// Gap between the edge and the object when the plant starts, m (default 0.001).
     pub start_gap: f64,
     /// Rim height below which a dome-shaped section is clipped, as a fraction
@@ -36,24 +49,20 @@ pub struct PlantSettings {
     pub update_distance: f64,
     /// The F/T sensor.
     pub sensor: FtSensorSettings,
-    /// Slice-push ratio of the direction the contact arc and the first
-    /// sections are planned for (default: none, the controller's own — its
-    /// constant ξ, 0 for pressing, the MPC's first plan). The plant's
-    /// answer depends on it when the knife moves along another direction
-    /// (README, Known limitations); set it to compare controllers on the
-    /// same arc.
-    pub planned_ratio: Option<f64>,
 }
+
+/// Largest number of edge segments (and cross sections) of a plant.
+pub const MAX_SEGMENTS: usize = 128;
 
 impl Default for PlantSettings {
     fn default() -> Self {
         Self {
-            segments: 10,
+            segments: 20,
+            reach: 0.0,
             start_gap: 1e-3,
             rim_fraction: 0.05,
             update_distance: 1e-3,
             sensor: FtSensorSettings::default(),
-            planned_ratio: None,
         }
     }
 }
@@ -89,13 +98,11 @@ impl PlantSettings {
                 "must be a finite number > 0 m",
             ));
         }
-        if let Some(xi) = self.planned_ratio
-            && !(xi.is_finite() && xi >= 0.0)
-        {
+        if !(self.reach.is_finite() && self.reach >= 0.0) {
             return Err(InvalidSetting::new(
-                "planned_ratio",
-                xi,
-                "must be a finite number >= 0",
+                "reach",
+                self.reach,
+                "must be a finite number >= 0 m",
             ));
         }
         self.sensor.validate().map_err(|e| e.prefixed("sensor"))
@@ -191,8 +198,8 @@ struct SegmentSection {
     /// plane was chosen, m: q lies on the midpoint's path, not at the
     /// midpoint (the edge indents below the crack tip), so a slicing segment
     /// starts off its new plane by λ·(d·t); the slide is counted from there.
-    /// 0 at construction: the midpoint reaches its first contact when the
-    /// section starts.
+    /// 0 for a fresh section: the midpoint reaches its first contact when
+    /// the section starts.
     slide_reference: f64,
     /// Normal distance the edge still has to travel to reach the section's top, m.
     gap: f64,
@@ -210,27 +217,54 @@ struct SegmentSection {
     successor: bool,
 }
 
-/// The plant: a knife (any edge) cutting an object (any closed mesh) through m
+/// The plant: a knife (any edge) cutting an object (any closed mesh) through
 /// moving cross sections, with an arm's limit reflexes and an F/T sensor.
 ///
-/// Segments and sections are chosen at construction from the knife's planned
-/// direction of motion (assumption A2): each segment's section is normal to
-/// it through the first contact of its midpoint's path with the object
-/// (seed 000 §IV).
+/// # Segments (seed 000 §IV, assumption A2, Fig. 4(a))
+/// The edge over the object's span along z (the arc a pressing knife
+/// touches) is split into [`PlantSettings::segments`] segments of equal arc
+/// length; segments of the same length continue the grid over the edge
+/// within [`PlantSettings::reach`] of that span and over the arc the planned
+/// direction touches. Each segment stands for its chord; its cross section,
+/// normal to it, carries the force per unit length.
 ///
-/// # Segments entering through a side face
-/// When slicing steeply, a heel-side midpoint's path can first meet the
-/// object on a vertical side face (a cuboid's near face, min z) below its
-/// top: a section normal to the segment there would be a sliver of the face.
-/// Such a segment starts *dormant*, without a section. Once a section has
-/// started cutting (so a crack front exists) and the midpoint is within two
-/// update distances of the material along the direction of motion, its first
-/// section is ordered from the worker for the plane normal to it through q,
-/// the front's crossing of its path at the entry point (or the entry point
-/// itself if that crossing is not in the material); when the midpoint is
-/// under the silhouette's top the section takes over like a re-choice,
-/// restarted with the crack depth where the front crosses its plane
-/// ([`Plant::dormant_segments`], [`Plant::woken_segments`]).
+/// # Sections placed where the edge arrives
+/// A segment gets its first section when its midpoint, moving along the
+/// *executed* direction of motion, reaches the material: not where a
+/// planned direction said it would (seed 000 places the sections for the
+/// planned motion; a controller that slices at another ratio than planned,
+/// or saws, brings other parts of the edge to other places, and sections
+/// fixed for the plan cut material the knife never reaches: the answer
+/// moved by 7–25 % with the planned ratio before this). Each tick, a segment
+/// without a section whose midpoint's path (along the direction of motion)
+/// meets the object within two update distances orders its section from
+/// the worker thread, normal to it through q:
+/// - where the path meets the **intact surface** (the top, not yet cut): q
+///   is the entry point, and the section is fresh (no crack); it is taken
+///   when the midpoint is a quarter of an update distance from the surface,
+///   with that gap still to travel. The order is renewed when the predicted
+///   entry moves by more than a tenth of the update distance (the controller
+///   turned the knife).
+/// - where the path enters **behind the crack front** (through a side face
+///   below the top, e.g. a cuboid's near face when slicing steeply, or a
+///   surface the knife has already cut, e.g. the far end of the kerf when
+///   sawing back): q is the crack front's crossing of the path at the entry
+///   point (or the entry point itself if that crossing is not in the
+///   material); the section is taken when the midpoint is in the material,
+///   restarted with the crack depth where the front crosses its plane, and
+///   follows its segment at once like a re-chosen one. A surface counts as
+///   cut where the crack interpolated between the started sections' tips
+///   lies more than a quarter of an update distance below it. Without a
+///   started section there is no front, and nothing enters behind it.
+///
+/// A segment whose path never meets the object never gets a section.
+/// [`Plant::new`] orders the sections for the planned direction and waits
+/// for them, so that a knife moving along it finds them built; along
+/// another direction they are re-ordered (and the plant may wait for the
+/// worker on the first ticks). The results depend on the planned direction
+/// only through the tenth-of-an-update-distance tolerance on renewing an
+/// order ([`Plant::first_contacts`], [`Plant::woken_segments`],
+/// [`Plant::dormant_segments`]).
 ///
 /// # Moving cross sections (seed 000 §IV, Fig. 4(b))
 /// After each tick the plant measures, for every section that has started
@@ -301,10 +335,11 @@ pub struct Plant {
     motion: Vector2<f64>,
     /// The object's silhouette in the knife plane (z, y).
     silhouette: Polygon,
-    /// Segments (arc index, segment) whose paths enter the object through a
-    /// side face: no section until their midpoints reach the material.
-    /// Preallocated; shrinks as they wake.
-    dormant: Vec<(usize, EdgeSegment)>,
+    /// Every segment of the edge's grid, heel to tip (the worker's slots).
+    edge_segments: Vec<EdgeSegment>,
+    /// The segments without a section yet. Preallocated; shrinks as they
+    /// get theirs.
+    dormant: Vec<DormantSegment>,
     /// Crack tips of the started sections (knife plane (z, y)), preallocated.
     tips: Vec<Vector2<f64>>,
     /// The last crack front fitted for a re-choice.
@@ -312,6 +347,7 @@ pub struct Plant {
     rechoices: usize,
     rebuilds: usize,
     unforeseen: usize,
+    first_contacts: usize,
     wakes: usize,
     loads: Vec<SegmentLoad>,
     monitor: ArmLimitMonitor,
@@ -327,10 +363,17 @@ impl Plant {
     ///
     /// `object` is placed with its near face (min z) at `object_z`; the knife's
     /// origin starts at z = `object_z − z0` (so the piece is z₀ from the heel
-    /// along z, seed 000 Fig. 6(b)), with its edge `start_gap` above the
-    /// object along the planned `direction` of motion (knife plane (z, y),
-    /// pointing down into the object). `section` configures every cross
-    /// section; `arm_limits` are the reflexes checked on every command.
+    /// along z, seed 000 Fig. 6(b)), with the lowest point of its edge over
+    /// the object `start_gap` above it. `direction` is the planned direction
+    /// of motion (knife plane (z, y), pointing down into the object): the
+    /// first sections are built for it here (see the type's docs), and the
+    /// sections follow it until the knife first moves. `section` configures
+    /// every cross section; `arm_limits` are the reflexes checked on every
+    /// command.
+    ///
+    /// # Errors
+    /// A setting is out of range, no edge point's path along `direction`
+    /// meets the object, or a first section cannot be built.
     #[allow(clippy::too_many_arguments)]
     pub fn new(
         material: &Material,
@@ -363,64 +406,29 @@ impl Plant {
         let start = Self::start_position(knife, object, z0, settings.start_gap);
         let origin = Vector2::new(start.z, start.y);
         let edge = knife.edge();
-        let arc = contact_arc(edge, origin, d, &silhouette).ok_or(PlantError::NoContact)?;
-        let mut sections = Vec::with_capacity(settings.segments);
-        let mut dormant = Vec::with_capacity(settings.segments);
-        let side_tolerance = 1e-9 * object.size();
-        for (index, segment) in segments(edge, arc, settings.segments)
-            .into_iter()
-            .enumerate()
-        {
-            let start = origin + segment.midpoint;
-            let Some(lambda) = ray_hit(&silhouette, start, d) else {
-                // The midpoint's path misses (a gap in the silhouette): no section.
-                continue;
-            };
-            let q = start + d * lambda;
-            if silhouette
-                .top_at(q.x)
-                .is_none_or(|top| q.y < top - side_tolerance)
-            {
-                // The path enters through a side face below the top (a
-                // cuboid's near face when slicing steeply): no section yet;
-                // it is chosen through the crack front when the midpoint
-                // reaches the material (see the type's docs).
-                dormant.push((index, segment));
-                continue;
-            }
-            let up = -Vector3::new(0.0, segment.normal.y, segment.normal.x);
-            let plane = SectionPlane::normal_to_segment(Vector3::new(0.0, q.y, q.x), up);
-            let Some(polygon) = plane.section(object) else {
-                continue;
-            };
-            let height = polygon.bounds().1.y;
-            let geometry = section_geometry(&polygon, settings.rim_fraction * height)
-                .map_err(|source| PlantError::Section { index, source })?;
-            let section = CrossSection::new(&geometry, material, knife.blade(), section)
-                .map_err(|source| PlantError::Section { index, source })?;
-            let section = Box::new(section);
-            let geometry = Arc::new(geometry);
-            sections.push(SegmentSection {
-                slot: index,
-                segment,
-                section,
-                plane,
-                geometry,
-                active: true,
-                work_offset: 0.0,
-                slide_reference: 0.0,
-                gap: lambda * d.dot(&segment.normal),
-                lift: 0.0,
-                tangential_sign: 0.0,
-                predicted_sign: 0.0,
-                successor: false,
-            });
+        // m segments over the object's span (the arc a pressing knife
+        // touches), the grid continued over the edge within `reach` of the
+        // span and over the arc the planned direction touches.
+        let down = Vector2::new(0.0, -1.0);
+        let anchor = contact_arc(edge, origin, down, &silhouette).ok_or(PlantError::NoContact)?;
+        let (lo, hi) = silhouette.bounds();
+        let reach =
+            span_arc(edge, origin, lo.x - settings.reach, hi.x + settings.reach).unwrap_or(anchor);
+        let planned = contact_arc(edge, origin, d, &silhouette).unwrap_or(anchor);
+        let cover = (reach.0.min(planned.0), reach.1.max(planned.1));
+        let grid = segment_grid(edge, anchor, settings.segments, cover);
+        if grid.len() > MAX_SEGMENTS {
+            return Err(InvalidSetting::new(
+                "reach",
+                settings.reach,
+                format!(
+                    "gives {} segments of the edge (segments = {}), at most {MAX_SEGMENTS} are allowed",
+                    grid.len(),
+                    settings.segments
+                ),
+            )
+            .into());
         }
-        if sections.is_empty() && dormant.is_empty() {
-            return Err(PlantError::NoContact);
-        }
-        let loads = Vec::with_capacity(sections.len());
-        let tips = Vec::with_capacity(sections.len());
         let factory = Arc::new(SectionFactory {
             object: object.clone(),
             material: *material,
@@ -428,21 +436,31 @@ impl Plant {
             settings: *section,
             rim_fraction: settings.rim_fraction,
         });
-        let worker = SuccessorWorker::new(Arc::clone(&factory), settings.segments);
-        Ok(Self {
-            loads,
-            sections,
-            factory,
+        let worker = SuccessorWorker::new(Arc::clone(&factory), grid.len());
+        let mut plant = Self {
+            loads: Vec::with_capacity(grid.len()),
+            tips: Vec::with_capacity(grid.len()),
+            sections: Vec::with_capacity(grid.len()),
+            dormant: grid
+                .iter()
+                .enumerate()
+                .map(|(slot, segment)| DormantSegment {
+                    slot,
+                    segment: *segment,
+                    order: None,
+                })
+                .collect(),
+            edge_segments: grid,
             worker,
+            factory,
             update_distance: settings.update_distance,
             motion: d,
             silhouette,
-            dormant,
-            tips,
             front: None,
             rechoices: 0,
             rebuilds: 0,
             unforeseen: 0,
+            first_contacts: 0,
             wakes: 0,
             monitor: ArmLimitMonitor::new(*arm_limits),
             sensor: FtSensor::new(settings.sensor, seed).map_err(|e| e.prefixed("sensor"))?,
@@ -450,7 +468,24 @@ impl Plant {
             position: Vector3::new(0.0, origin.y, origin.x),
             time: 0.0,
             work: 0.0,
-        })
+        };
+        // Prepare the first sections for the planned direction, so that a
+        // knife moving along it finds them built (a real-time loop must not
+        // wait for them), and place those whose midpoints are already at
+        // the surface.
+        let hits = plant
+            .edge_segments
+            .iter()
+            .filter(|s| ray_hit(&plant.silhouette, origin + s.midpoint, d).is_some())
+            .count();
+        if hits == 0 {
+            return Err(PlantError::NoContact);
+        }
+        let section_error = |(index, source)| PlantError::Section { index, source };
+        plant.place(Lookahead::Everywhere).map_err(section_error)?;
+        plant.worker.wait_idle();
+        plant.place(Lookahead::Lead).map_err(section_error)?;
+        Ok(plant)
     }
 
     /// Where [`Plant::new`] puts the knife frame's origin (world frame, m):
@@ -524,24 +559,35 @@ impl Plant {
         self.rebuilds
     }
 
-    /// Number of segments whose path entered the object through a side face
-    /// and that have since been given their first section.
+    /// Number of segments whose first section was placed behind the crack
+    /// front (their paths entered through a side face below the top or a
+    /// surface the knife had already cut).
     pub fn woken_segments(&self) -> usize {
         self.wakes
     }
 
-    /// Number of segments still without a section: their paths enter the
-    /// object through a side face and their midpoints have not reached it.
+    /// Number of segments whose first section was placed fresh on the
+    /// intact surface where their midpoints arrived.
+    pub fn first_contacts(&self) -> usize {
+        self.first_contacts
+    }
+
+    /// Number of segments still without a section (their midpoints have not
+    /// reached the material, or never will).
     pub fn dormant_segments(&self) -> usize {
         self.dormant.len()
+    }
+
+    /// Every segment of the edge's grid, heel to tip, with a section or not.
+    pub fn edge_segments(&self) -> &[EdgeSegment] {
+        &self.edge_segments
     }
 
     /// Number of re-choices whose successor had not been foreseen on the side
     /// the segment slid to, so that the tick waited for the worker to build
     /// it: the midpoint crossed the whole update distance in one tick, or a
     /// section's edge first touched after its segment had slid farther than
-    /// that off the plane chosen at construction (a knife turned before that
-    /// part of the edge reached the material).
+    /// that off the plane it was placed on.
     pub fn unforeseen_rechoices(&self) -> usize {
         self.unforeseen
     }
@@ -669,7 +715,7 @@ impl Plant {
         }
         self.work = work;
         self.rechoose()?;
-        self.wake()?;
+        self.place(Lookahead::Lead).map_err(|(_, e)| e)?;
         let sensor_origin = self.position + self.sensor_offset;
         let true_wrench = wrench_at(&sensor_origin, &self.loads);
         let wrench = self.sensor.read(self.time, &true_wrench.to_array());
@@ -829,55 +875,87 @@ impl Plant {
 }
 
 impl Plant {
-    /// Gives the dormant segments (paths entering through a side face) their
-    /// first sections: a segment whose midpoint is within
-    /// `WAKE_LEAD × update_distance` of the material along the direction of
-    /// motion orders its section from the worker, for the plane normal to it
-    /// through q, the crack front's crossing of its path at the entry point;
-    /// when the midpoint is under the silhouette's top, the section is taken
-    /// (waiting if the worker is late) and restarted with the crack depth
-    /// where the front crosses its plane, like a re-choice. Without a front
-    /// (no section has started) nothing wakes. Allocates nothing.
-    fn wake(&mut self) -> Result<(), SectionError> {
+    /// Gives the dormant segments their first sections where their
+    /// midpoints' paths along the direction of motion u reach the material
+    /// (see the type's docs, "Sections placed where the edge arrives").
+    /// Within `ORDER_LEAD × update_distance` of the material a segment
+    /// orders its section from the worker, re-ordering it when the predicted
+    /// plane moves by more than the tolerance of its kind, and takes it
+    /// (waiting if the worker is late): an intact surface's section when the
+    /// midpoint is within `TAKE_LEAD × update_distance` of it, one behind
+    /// the crack front when the midpoint is in the material. `lookahead`
+    /// [`Lookahead::Everywhere`] orders every intact entry whatever its
+    /// distance (at construction). Allocates nothing; an error names the
+    /// segment's slot.
+    fn place(&mut self, lookahead: Lookahead) -> Result<(), (usize, SectionError)> {
         if self.dormant.is_empty() {
             return Ok(());
         }
         let position = self.position;
         let u = self.motion;
-        let lead = WAKE_LEAD * self.update_distance;
+        let ud = self.update_distance;
+        let lead = match lookahead {
+            Lookahead::Lead => ORDER_LEAD * ud,
+            Lookahead::Everywhere => f64::INFINITY,
+        };
         let size = self.factory.object.size();
-        // The front over the started sections' tips, fitted when first needed.
+        let side_tolerance = 1e-9 * size;
+        // The front over the started sections' tips (and the tips, sorted
+        // heel to tip in self.tips), fitted when first needed.
         let mut fitted: Option<Option<CrackFront>> = None;
         let mut k = 0;
         while k < self.dormant.len() {
-            let (slot, segment) = self.dormant[k];
+            let DormantSegment {
+                slot,
+                segment,
+                order,
+            } = self.dormant[k];
             let m = midpoint_world(&position, &segment);
             let m2 = Vector2::new(m.z, m.y);
             let inside = self
                 .silhouette
                 .top_at(m2.x)
                 .is_some_and(|top| m2.y >= 0.0 && m2.y < top);
-            if !self.worker.is_pending(slot) {
-                let entry = if inside {
-                    Some(0.0)
-                } else {
-                    ray_hit(&self.silhouette, m2, u).filter(|l| *l <= lead)
-                };
-                let front = match (entry, fitted) {
-                    (None, _) => None,
-                    (Some(_), Some(f)) => f,
-                    (Some(_), None) => {
-                        let f = fit_front(&self.sections, &mut self.tips);
-                        fitted = Some(f);
-                        f
-                    }
-                };
-                if let (Some(entry), Some(front)) = (entry, front) {
-                    let ahead = m2 + u * entry;
+            let entry = if inside {
+                Some(0.0)
+            } else {
+                ray_hit(&self.silhouette, m2, u)
+            };
+            let Some(entry) = entry else {
+                // The path misses the object: nothing to prepare.
+                self.worker.cancel(slot);
+                self.dormant[k].order = None;
+                k += 1;
+                continue;
+            };
+            if entry > lead {
+                // Far yet: keep what was ordered for the planned direction.
+                k += 1;
+                continue;
+            }
+            let ahead = m2 + u * entry;
+            let front = *fitted.get_or_insert_with(|| fit_front(&self.sections, &mut self.tips));
+            let pending = self.worker.is_pending(slot);
+            let on_top = !inside
+                && self
+                    .silhouette
+                    .top_at(ahead.x)
+                    .is_some_and(|top| ahead.y >= top - side_tolerance);
+            let intact = on_top
+                && !(front.is_some()
+                    && surface_is_cut(&self.tips, ahead, 0.5 * segment.length, SURFACE_CUT * ud));
+            let target = match (order, front) {
+                // A midpoint that passed an intact surface before its
+                // section was taken (more than the take lead in one tick)
+                // still takes the section ordered for it.
+                (Some(o), _) if inside && pending && o.kind == EntryKind::Intact => {
+                    Some((o.q, EntryKind::Intact))
+                }
+                _ if intact => Some((ahead, EntryKind::Intact)),
+                (_, Some(front)) => {
                     // q: the front's crossing of the path if it lies in the
                     // material (the front is extrapolated beyond the tips
                     // here), else the entry point itself.
-                    let up = -Vector3::new(0.0, segment.normal.y, segment.normal.x);
                     let q = front
                         .intersect_nearest(ahead, u)
                         .map(|l| ahead + u * l)
@@ -887,17 +965,38 @@ impl Plant {
                                 .is_some_and(|top| q.y >= 0.0 && q.y <= top)
                         })
                         .unwrap_or(ahead);
-                    let plane = SectionPlane::normal_to_segment(Vector3::new(0.0, q.y, q.x), up);
-                    self.worker.submit(
-                        slot,
-                        SuccessorJob {
-                            plane,
-                            current: None,
-                        },
-                    );
+                    Some((q, EntryKind::BehindFront))
                 }
+                // Entering behind a crack front that does not exist yet
+                // (a side face before any section started): wait.
+                (_, None) => None,
+            };
+            let Some((q, kind)) = target else {
+                self.worker.cancel(slot);
+                self.dormant[k].order = None;
+                k += 1;
+                continue;
+            };
+            let keep = order.is_some_and(|o| {
+                o.kind == kind && (o.q - q).norm() <= kind.reorder_tolerance() * ud
+            });
+            if !keep {
+                let up = -Vector3::new(0.0, segment.normal.y, segment.normal.x);
+                let plane = SectionPlane::normal_to_segment(Vector3::new(0.0, q.y, q.x), up);
+                self.worker.submit(
+                    slot,
+                    SuccessorJob {
+                        plane,
+                        current: None,
+                    },
+                );
+                self.dormant[k].order = Some(EntryOrder { q, kind });
             }
-            if !(inside && self.worker.is_pending(slot)) {
+            let due = match kind {
+                EntryKind::Intact => entry <= TAKE_LEAD * ud,
+                EntryKind::BehindFront => inside,
+            };
+            if !(due && self.worker.is_pending(slot)) {
                 k += 1;
                 continue;
             }
@@ -907,25 +1006,40 @@ impl Plant {
             };
             let (geometry, mut section) = match prepared {
                 Preparation::New { geometry, section } => (geometry, section),
-                Preparation::Failed(e) => return Err(e),
+                Preparation::Failed(e) => return Err((slot, e)),
                 Preparation::Panicked(p) => std::panic::resume_unwind(p),
-                // No material on that plane yet: try again next tick.
+                // No material worth a section on that plane: the order
+                // stays on record (not pending), so it is re-ordered only
+                // once the predicted plane moves on.
                 Preparation::NoMaterial | Preparation::SameShape => {
                     k += 1;
                     continue;
                 }
             };
-            let o = Vector2::new(plane.origin.z, plane.origin.y);
-            let up = Vector2::new(plane.v_axis.z, plane.v_axis.y);
-            let front = *fitted.get_or_insert_with(|| fit_front(&self.sections, &mut self.tips));
-            let along = front
-                .and_then(|f| f.intersect_nearest(o, up))
-                .filter(|l| *l >= 0.0 && *l <= size)
-                .unwrap_or(m2.y / up.y);
-            let depth = (geometry.height_at_cut() - along).max(0.0);
-            // A crack already below the top of this plane went through its
-            // skin: the first fracture is done.
-            section.restart_with_crack(depth, depth > 0.0);
+            let edge = (m - plane.origin).dot(&plane.v_axis);
+            let (gap, slide_reference, successor) = match kind {
+                EntryKind::Intact => {
+                    // A fresh section: the edge has the rest of the way to
+                    // its top to travel. The slide is counted once it starts
+                    // cutting, when the midpoint is at q.
+                    self.first_contacts += 1;
+                    ((edge - geometry.height_at_cut()).max(0.0), 0.0, false)
+                }
+                EntryKind::BehindFront => {
+                    let o = Vector2::new(plane.origin.z, plane.origin.y);
+                    let up = Vector2::new(plane.v_axis.z, plane.v_axis.y);
+                    let along = front
+                        .and_then(|f| f.intersect_nearest(o, up))
+                        .filter(|l| *l >= 0.0 && *l <= size)
+                        .unwrap_or(m2.y / up.y);
+                    let depth = (geometry.height_at_cut() - along).max(0.0);
+                    // A crack already below the top of this plane went
+                    // through its skin: the first fracture is done.
+                    section.restart_with_crack(depth, depth > 0.0);
+                    self.wakes += 1;
+                    (0.0, signed_offset(&plane, &m), true)
+                }
+            };
             let at = self
                 .sections
                 .iter()
@@ -941,19 +1055,117 @@ impl Plant {
                     geometry,
                     active: true,
                     work_offset: 0.0,
-                    slide_reference: signed_offset(&plane, &m),
-                    gap: 0.0,
+                    slide_reference,
+                    gap,
                     lift: 0.0,
                     tangential_sign: 0.0,
                     predicted_sign: 0.0,
-                    successor: true,
+                    successor,
                 },
             );
             self.dormant.remove(k);
-            self.wakes += 1;
+            // A new section changes the tips: refit when next needed.
+            fitted = None;
         }
         Ok(())
     }
+}
+
+/// How far ahead [`Plant::place`] orders sections.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Lookahead {
+    /// Within `ORDER_LEAD × update_distance` of the material (every tick).
+    Lead,
+    /// Every path that meets the object (at construction, for the planned
+    /// direction).
+    Everywhere,
+}
+
+/// Where a dormant segment's midpoint path enters the material.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum EntryKind {
+    /// Through the intact surface: a fresh section (no crack) through the
+    /// entry point, taken just before the midpoint gets there.
+    Intact,
+    /// Through a side face below the top, a surface the knife has already
+    /// cut, or with the midpoint already in the material: a section through
+    /// the crack front's crossing of the path, taken when the midpoint is
+    /// in the material and restarted with the front's crack.
+    BehindFront,
+}
+
+impl EntryKind {
+    /// How far (in update distances) the predicted plane may move before
+    /// the order is renewed. An intact entry's section is fixed until its
+    /// edge starts cutting, so it is placed to a tenth of the update
+    /// distance; a section behind the front follows its segment at once
+    /// (re-chosen after one update distance of slide), so its first plane
+    /// need be no closer than that.
+    fn reorder_tolerance(self) -> f64 {
+        match self {
+            Self::Intact => 0.1,
+            Self::BehindFront => 1.0,
+        }
+    }
+}
+
+/// The order a dormant segment placed with the worker.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct EntryOrder {
+    /// The point the section's plane passes through (knife plane (z, y)).
+    q: Vector2<f64>,
+    /// How the path enters the material there.
+    kind: EntryKind,
+}
+
+/// A segment without a section yet.
+#[derive(Debug, Clone, Copy, PartialEq)]
+struct DormantSegment {
+    /// Its index in the edge's grid (the worker's slot).
+    slot: usize,
+    segment: EdgeSegment,
+    /// The last order placed for it (pending with the worker, or taken and
+    /// found without material).
+    order: Option<EntryOrder>,
+}
+
+/// How far ahead of the material (in update distances, along the direction
+/// of motion) a dormant segment orders its first section from the worker.
+const ORDER_LEAD: f64 = 2.0;
+
+/// How close to an intact surface (in update distances, along the direction
+/// of motion) a dormant segment's midpoint takes its first section.
+const TAKE_LEAD: f64 = 0.25;
+
+/// Depth below the surface (in update distances) from which the crack
+/// interpolated between the started sections' tips counts as having cut
+/// the surface. It exceeds the sag of the chord between neighbouring tips
+/// on a curved top (0.06 mm for 4.5 mm segments on a 45 mm radius), so an
+/// intact curved surface is not taken for a cut one.
+const SURFACE_CUT: f64 = 0.25;
+
+/// Whether the surface point `point` (on the silhouette's top) has been cut:
+/// the crack interpolated linearly between the started sections' tips
+/// (`tips`, any order) bracketing its z, or the nearest tip's within
+/// `margin` beyond the outermost, lies more than `depth` below it.
+fn surface_is_cut(tips: &[Vector2<f64>], point: Vector2<f64>, margin: f64, depth: f64) -> bool {
+    let (mut below, mut above): (Option<Vector2<f64>>, Option<Vector2<f64>>) = (None, None);
+    for t in tips {
+        if t.x <= point.x && below.is_none_or(|b| t.x > b.x) {
+            below = Some(*t);
+        }
+        if t.x >= point.x && above.is_none_or(|a| t.x < a.x) {
+            above = Some(*t);
+        }
+    }
+    let crack = match (below, above) {
+        (Some(b), Some(a)) if a.x > b.x => b.y + (point.x - b.x) / (a.x - b.x) * (a.y - b.y),
+        (Some(b), Some(_)) => b.y,
+        (Some(b), None) if point.x - b.x <= margin => b.y,
+        (None, Some(a)) if a.x - point.x <= margin => a.y,
+        _ => return false,
+    };
+    crack < point.y - depth
 }
 
 /// The crack front over the tips of the active started sections (`tips` is
@@ -967,10 +1179,6 @@ fn fit_front(sections: &[SegmentSection], tips: &mut Vec<Vector2<f64>>) -> Optio
     }
     CrackFront::fit(tips)
 }
-
-/// How far ahead of the material (in update distances, along the direction
-/// of motion) a dormant segment orders its first section from the worker.
-const WAKE_LEAD: f64 = 2.0;
 
 /// Whether a section has started cutting (its edge reached the material).
 fn started(s: &SegmentSection) -> bool {

@@ -230,6 +230,29 @@ impl SuccessorWorker {
         slot.result = None;
     }
 
+    /// Waits until the worker has finished every pending job (their results
+    /// wait in their slots for [`SuccessorWorker::take`]).
+    pub fn wait_idle(&self) {
+        if self.handle.is_none() {
+            return;
+        }
+        let mut slots = self.shared.lock();
+        loop {
+            let busy = self.pending.iter().zip(&slots.slots).any(|(p, s)| {
+                p.as_ref()
+                    .is_some_and(|(g, _)| s.result.as_ref().is_none_or(|(r, _)| r != g))
+            });
+            if !busy {
+                return;
+            }
+            slots = self
+                .shared
+                .result_ready
+                .wait(slots)
+                .unwrap_or_else(|e| e.into_inner());
+        }
+    }
+
     /// Takes the result of segment `index`'s pending job, waiting for the
     /// worker if it is not ready; `None` without a pending job. Allocates
     /// nothing. (Without a worker thread, which only happens when the OS
