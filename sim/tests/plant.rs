@@ -573,6 +573,20 @@ fn steep_slice_gives_near_face_segments_their_sections() {
         "contact {} vs piece length {l} (segment {seg_len})",
         m.contact_length
     );
+    // A straight edge cuts a cuboid the same way everywhere: the sections
+    // placed behind the front took over their neighbours' cut (crack, edge,
+    // first fracture, drag), so every active section is in the same state.
+    let active: Vec<f64> = plant
+        .section_planes()
+        .zip(plant.section_states())
+        .filter(|((_, _, active), _)| *active)
+        .map(|(_, st)| st.force_vertical)
+        .collect();
+    assert!(active.len() >= 5, "{active:?}");
+    let (lo, hi) = active
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(a, b), f| (a.min(*f), b.max(*f)));
+    assert!(hi - lo <= 1e-9 * hi, "active sections' forces {active:?}");
 }
 
 #[test]

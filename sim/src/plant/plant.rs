@@ -250,9 +250,13 @@ struct SegmentSection {
 ///   surface the knife has already cut, e.g. the far end of the kerf when
 ///   sawing back): q is the crack front's crossing of the path at the entry
 ///   point (or the entry point itself if that crossing is not in the
-///   material); the section is taken when the midpoint is in the material,
-///   restarted with the crack depth where the front crosses its plane, and
-///   follows its segment at once like a re-chosen one. A surface counts as
+///   material); the section is taken when the midpoint is in the material
+///   and takes over the cut like a re-chosen section
+///   ([`CrossSection::take_over`]): the crack depth where the front crosses
+///   its plane, the knife where it is (an edge below the front keeps its
+///   indentation), and the first-fracture flag and drag of the nearest
+///   started section, whose part of the edge cut this material before
+///   moving on; it then follows its segment at once. A surface counts as
 ///   cut where the crack interpolated between the started sections' tips
 ///   lies more than a quarter of an update distance below it. Without a
 ///   started section there is no front, and nothing enters behind it.
@@ -1033,11 +1037,25 @@ impl Plant {
                         .filter(|l| *l >= 0.0 && *l <= size)
                         .unwrap_or(m2.y / up.y);
                     let depth = (geometry.height_at_cut() - along).max(0.0);
-                    // A crack already below the top of this plane went
-                    // through its skin: the first fracture is done.
-                    section.restart_with_crack(depth, depth > 0.0);
+                    // The material here was cut by the neighbouring part of
+                    // the edge, which moved on: the section takes over the
+                    // state of the nearest started section (its first
+                    // fracture and drag) with the knife where it is, so an
+                    // edge already below the front keeps its indentation
+                    // (like a re-chosen section, `CrossSection::take_over`).
+                    // Without a started neighbour (cannot happen with a
+                    // front), a crack below the top still means the first
+                    // fracture is done.
+                    match nearest_started(&self.sections, slot) {
+                        Some(neighbour) => section.take_over(neighbour, depth, edge),
+                        None => section.restart_with_crack(depth, depth > 0.0),
+                    }
                     self.wakes += 1;
-                    (0.0, signed_offset(&plane, &m), true)
+                    (
+                        (edge - geometry.height_at_cut()).max(0.0),
+                        signed_offset(&plane, &m),
+                        true,
+                    )
                 }
             };
             let at = self
@@ -1090,7 +1108,7 @@ enum EntryKind {
     /// Through a side face below the top, a surface the knife has already
     /// cut, or with the midpoint already in the material: a section through
     /// the crack front's crossing of the path, taken when the midpoint is
-    /// in the material and restarted with the front's crack.
+    /// in the material and takes over the cut there.
     BehindFront,
 }
 
@@ -1178,6 +1196,15 @@ fn fit_front(sections: &[SegmentSection], tips: &mut Vec<Vector2<f64>>) -> Optio
         }
     }
     CrackFront::fit(tips)
+}
+
+/// The started active section nearest along the edge to slot `slot`.
+fn nearest_started(sections: &[SegmentSection], slot: usize) -> Option<&CrossSection> {
+    sections
+        .iter()
+        .filter(|s| s.active && started(s))
+        .min_by_key(|s| s.slot.abs_diff(slot))
+        .map(|s| &*s.section)
 }
 
 /// Whether a section has started cutting (its edge reached the material).
