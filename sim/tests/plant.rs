@@ -790,3 +790,50 @@ fn sections_go_where_the_edge_arrives_whatever_the_planned_direction() {
         assert!(close(a.crack_depth, b.crack_depth));
     }
 }
+
+#[test]
+fn the_number_of_worker_threads_changes_nothing_but_the_waits() {
+    // Sections are built by however many worker threads; each is a function
+    // of its order alone, taken at a deterministic tick: one or three
+    // workers step to the same bits. Zero workers are refused.
+    let material = MaterialPreset::PotatoWhole.material();
+    let knife = Knife::new(&KnifePreset::Chef.settings()).unwrap();
+    let object = shearcut_sim::ObjectShape::HalfPotato {
+        length: 0.08,
+        width: 0.05,
+        height: 0.03,
+    }
+    .mesh()
+    .unwrap();
+    let run = |workers: usize| {
+        let s = PlantSettings {
+            workers,
+            ..settings(6)
+        };
+        let mut plant = plant(
+            &material,
+            &knife,
+            &object,
+            0.05,
+            Vector2::new(-0.5, -1.0),
+            &s,
+            &LOOSE,
+            1,
+        );
+        let cmd = KnifeCommand {
+            velocity: Vector3::new(0.0, -SPEED, -0.5 * SPEED),
+        };
+        let out: Vec<_> = (0..1200).map(|_| plant.step(&cmd, DT).unwrap()).collect();
+        (out, plant.rebuilds())
+    };
+    let (a, rebuilds) = run(1);
+    let (b, _) = run(3);
+    assert!(rebuilds > 0);
+    assert_eq!(a, b);
+    let bad = PlantSettings {
+        workers: 0,
+        ..PlantSettings::default()
+    };
+    let e = bad.validate().unwrap_err().to_string();
+    assert!(e.contains("workers") && e.contains('0'), "{e}");
+}

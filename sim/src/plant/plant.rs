@@ -49,6 +49,10 @@ pub struct PlantSettings {
     pub update_distance: f64,
     /// The F/T sensor.
     pub sensor: FtSensorSettings,
+    /// Threads that build sections ahead of the ticks that take them
+    /// (default 2). The results do not depend on it, only how often a tick
+    /// waits for a section: give them cores of their own in real time.
+    pub workers: usize,
 }
 
 /// Largest number of edge segments (and cross sections) of a plant.
@@ -63,6 +67,7 @@ impl Default for PlantSettings {
             rim_fraction: 0.05,
             update_distance: 1e-3,
             sensor: FtSensorSettings::default(),
+            workers: 2,
         }
     }
 }
@@ -96,6 +101,13 @@ impl PlantSettings {
                 "update_distance",
                 self.update_distance,
                 "must be a finite number > 0 m",
+            ));
+        }
+        if !(1..=16).contains(&self.workers) {
+            return Err(InvalidSetting::new(
+                "workers",
+                self.workers,
+                "must be in [1, 16]",
             ));
         }
         if !(self.reach.is_finite() && self.reach >= 0.0) {
@@ -440,7 +452,7 @@ impl Plant {
             settings: *section,
             rim_fraction: settings.rim_fraction,
         });
-        let worker = SuccessorWorker::new(Arc::clone(&factory), grid.len());
+        let worker = SuccessorWorker::new(Arc::clone(&factory), grid.len(), settings.workers);
         let mut plant = Self {
             loads: Vec::with_capacity(grid.len()),
             tips: Vec::with_capacity(grid.len()),

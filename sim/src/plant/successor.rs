@@ -1,11 +1,12 @@
-//! Successor cross sections prepared ahead of time on a worker thread, so that
-//! a re-choice (seed 000 §IV, Fig. 4(b)) never meshes, factorises or condenses
-//! a section inside [`Plant::step`](super::Plant::step).
+//! Cross sections prepared ahead of time on worker threads, so that a
+//! re-choice (seed 000 §IV, Fig. 4(b)) or a segment's first contact never
+//! meshes, factorises or condenses a section inside
+//! [`Plant::step`](super::Plant::step).
 //!
 //! The plant submits a [`SuccessorJob`] (a segment's predicted plane) as soon
-//! as the segment's section has started cutting or been re-chosen, and takes
-//! the result at the re-choice, blocking only if the worker has not
-//! finished it yet. A result is a pure function of its job (the plane, the
+//! as the segment's section has started cutting or been re-chosen (or its
+//! midpoint nears the material), and takes the result when it is due,
+//! blocking only if no worker has finished it yet. A result is a pure function of its job (the plane, the
 //! current shape and the plant's fixed object, material, blade and settings),
 //! so what the plant does is independent of thread timing: two runs with the
 //! same seed are bit-identical however the worker is scheduled.
@@ -142,7 +143,8 @@ impl Shared {
 pub(crate) struct SuccessorWorker {
     shared: Arc<Shared>,
     factory: Arc<SectionFactory>,
-    handle: Option<JoinHandle<()>>,
+    /// The worker threads (none only if the OS refused to start any).
+    handles: Vec<JoinHandle<()>>,
     next_generation: u64,
     /// The jobs submitted and not yet taken, per segment (kept to clone the
     /// worker with the same pending work).
@@ -161,8 +163,10 @@ impl std::fmt::Debug for SuccessorWorker {
 }
 
 impl SuccessorWorker {
-    /// Starts the worker for `segments` segments.
-    pub fn new(factory: Arc<SectionFactory>, segments: usize) -> Self {
+    /// Starts `threads` worker threads (at least one) for `segments`
+    /// segments. Each takes the oldest job not yet taken, so several build
+    /// at once; what is built is still a function of the jobs alone.
+    pub fn new(factory: Arc<SectionFactory>, segments: usize, threads: usize) -> Self {
         let shared = Arc::new(Shared {
             slots: Mutex::new(Slots {
                 slots: (0..segments).map(|_| Slot::default()).collect(),
@@ -171,18 +175,20 @@ impl SuccessorWorker {
             job_ready: Condvar::new(),
             result_ready: Condvar::new(),
         });
-        let handle = {
-            let shared = Arc::clone(&shared);
-            let factory = Arc::clone(&factory);
-            std::thread::Builder::new()
-                .name("successor-sections".into())
-                .spawn(move || run(&shared, &factory))
-                .ok()
-        };
+        let handles = (0..threads.max(1))
+            .filter_map(|i| {
+                let shared = Arc::clone(&shared);
+                let factory = Arc::clone(&factory);
+                std::thread::Builder::new()
+                    .name(format!("successor-sections-{i}"))
+                    .spawn(move || run(&shared, &factory))
+                    .ok()
+            })
+            .collect();
         Self {
             shared,
             factory,
-            handle,
+            handles,
             next_generation: 1,
             pending: (0..segments).map(|_| None).collect(),
             waits: 0,
@@ -205,7 +211,7 @@ impl SuccessorWorker {
         let generation = self.next_generation;
         self.next_generation += 1;
         self.pending[index] = Some((generation, job.clone()));
-        if self.handle.is_none() {
+        if self.handles.is_empty() {
             return;
         }
         let mut slots = self.shared.lock();
@@ -220,7 +226,7 @@ impl SuccessorWorker {
 
     /// Drops the pending job of segment `index`, if any.
     pub fn cancel(&mut self, index: usize) {
-        if self.pending[index].take().is_none() || self.handle.is_none() {
+        if self.pending[index].take().is_none() || self.handles.is_empty() {
             return;
         }
         let mut slots = self.shared.lock();
@@ -233,7 +239,7 @@ impl SuccessorWorker {
     /// Waits until the worker has finished every pending job (their results
     /// wait in their slots for [`SuccessorWorker::take`]).
     pub fn wait_idle(&self) {
-        if self.handle.is_none() {
+        if self.handles.is_empty() {
             return;
         }
         let mut slots = self.shared.lock();
@@ -259,7 +265,7 @@ impl SuccessorWorker {
     /// refused to start one, the job is prepared here.)
     pub fn take(&mut self, index: usize) -> Option<(SectionPlane, Preparation)> {
         let (generation, job) = self.pending[index].take()?;
-        if self.handle.is_none() {
+        if self.handles.is_empty() {
             let p = self.factory.prepare(&job.plane, job.current.as_deref());
             return Some((job.plane, p));
         }
@@ -293,7 +299,11 @@ impl Clone for SuccessorWorker {
     /// A new worker with the same pending jobs: their results are functions
     /// of the jobs, so the clone adopts the same successors.
     fn clone(&self) -> Self {
-        let mut w = Self::new(Arc::clone(&self.factory), self.pending.len());
+        let mut w = Self::new(
+            Arc::clone(&self.factory),
+            self.pending.len(),
+            self.handles.len(),
+        );
         let mut jobs: Vec<_> = self
             .pending
             .iter()
@@ -313,7 +323,7 @@ impl Drop for SuccessorWorker {
     fn drop(&mut self) {
         self.shared.lock().shutdown = true;
         self.shared.job_ready.notify_all();
-        if let Some(h) = self.handle.take() {
+        for h in self.handles.drain(..) {
             let _ = h.join();
         }
     }
