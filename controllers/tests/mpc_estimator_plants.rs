@@ -57,7 +57,7 @@ const CUBOID: Setup = Setup {
             length: 0.03,
         })
     },
-    segments: 4,
+    segments: 20,
     z0: 0.02,
     depth: 0.02,
     blade_budget: 0.012,
@@ -73,7 +73,7 @@ const WHOLE: Setup = Setup {
         width: 0.06,
         height: 0.035,
     },
-    segments: 10,
+    segments: 20,
     z0: 0.02,
     depth: 0.025,
     blade_budget: 0.015,
@@ -200,6 +200,7 @@ fn end_of_cut(
     let alpha = xi.atan();
     let plant_settings = PlantSettings {
         segments: setup.segments,
+        reach: task.blade_budget,
         ..PlantSettings::default()
     };
     let mut plant = Plant::new(
