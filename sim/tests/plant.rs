@@ -71,6 +71,17 @@ fn cuboid(width: f64, height: f64, length: f64) -> TriangleMesh {
     )
 }
 
+/// The half potato (80 × 50 × 30 mm) the chef's-knife tests cut.
+fn half_potato() -> TriangleMesh {
+    shearcut_sim::ObjectShape::HalfPotato {
+        length: 0.08,
+        width: 0.05,
+        height: 0.03,
+    }
+    .mesh()
+    .unwrap()
+}
+
 const DT: f64 = 1e-3;
 const SPEED: f64 = 0.00625;
 
@@ -281,13 +292,7 @@ fn same_seed_gives_bit_identical_measurements() {
     let knife = Knife::new(&KnifePreset::Chef.settings()).unwrap();
     let mut s = settings(4);
     s.sensor = Default::default();
-    let object = shearcut_sim::ObjectShape::HalfPotato {
-        length: 0.08,
-        width: 0.05,
-        height: 0.03,
-    }
-    .mesh()
-    .unwrap();
+    let object = half_potato();
     let dir = Vector2::new(-0.5, -1.0);
     let run = || {
         let mut plant = plant(&material, &knife, &object, 0.05, dir, &s, &LOOSE, 42);
@@ -430,13 +435,7 @@ fn half_potato_sections_are_rebuilt_work_never_drops_deterministic() {
     let material = MaterialPreset::PotatoWhole.material();
     let knife = Knife::new(&KnifePreset::Chef.settings()).unwrap();
     let s = settings(4);
-    let object = shearcut_sim::ObjectShape::HalfPotato {
-        length: 0.08,
-        width: 0.05,
-        height: 0.03,
-    }
-    .mesh()
-    .unwrap();
+    let object = half_potato();
     let dir = Vector2::new(-0.5, -1.0);
     let run = || {
         let mut plant = plant(&material, &knife, &object, 0.05, dir, &s, &LOOSE, 7);
@@ -598,13 +597,7 @@ fn slice_angle_changing_mid_cut_moves_sections_along_the_executed_path() {
     // the sections stay normal to their segments, and the work never drops.
     let material = MaterialPreset::PotatoWhole.material();
     let knife = Knife::new(&KnifePreset::Chef.settings()).unwrap();
-    let object = shearcut_sim::ObjectShape::HalfPotato {
-        length: 0.08,
-        width: 0.05,
-        height: 0.03,
-    }
-    .mesh()
-    .unwrap();
+    let object = half_potato();
     let mut plant = plant(
         &material,
         &knife,
@@ -667,13 +660,7 @@ fn a_clone_with_pending_successors_runs_on_bit_identically() {
     // thread timing).
     let material = MaterialPreset::PotatoWhole.material();
     let knife = Knife::new(&KnifePreset::Chef.settings()).unwrap();
-    let object = shearcut_sim::ObjectShape::HalfPotato {
-        length: 0.08,
-        width: 0.05,
-        height: 0.03,
-    }
-    .mesh()
-    .unwrap();
+    let object = half_potato();
     let mut a = plant(
         &material,
         &knife,
@@ -747,13 +734,7 @@ fn sections_go_where_the_edge_arrives_whatever_the_planned_direction() {
     // moved by 7 % with it.
     let material = MaterialPreset::PotatoWhole.material();
     let knife = Knife::new(&KnifePreset::Chef.settings()).unwrap();
-    let object = shearcut_sim::ObjectShape::HalfPotato {
-        length: 0.08,
-        width: 0.05,
-        height: 0.03,
-    }
-    .mesh()
-    .unwrap();
+    let object = half_potato();
     let xi: f64 = 0.582;
     let u = Vector2::new(-xi, -1.0).normalize();
     // A reach that covers every plan's arc: the three grids are the same.
@@ -798,13 +779,7 @@ fn the_number_of_worker_threads_changes_nothing_but_the_waits() {
     // workers step to the same bits. Zero workers are refused.
     let material = MaterialPreset::PotatoWhole.material();
     let knife = Knife::new(&KnifePreset::Chef.settings()).unwrap();
-    let object = shearcut_sim::ObjectShape::HalfPotato {
-        length: 0.08,
-        width: 0.05,
-        height: 0.03,
-    }
-    .mesh()
-    .unwrap();
+    let object = half_potato();
     let run = |workers: usize| {
         let s = PlantSettings {
             workers,
