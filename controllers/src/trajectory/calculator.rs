@@ -28,6 +28,7 @@ use super::position_fixed_duration::fixed_duration;
 use super::position_time_optimal::{TimeOptimal, peak_parts, time_optimal, time_optimal_into};
 use super::profile::Profile;
 use super::trajectory::Trajectory;
+use super::vel_change::vel_change;
 use super::velocity;
 
 /// Per-DoF intermediate results (kept on the stack).
@@ -286,8 +287,12 @@ fn synchronize_limiting_first<const N: usize>(
             t = t.max(solve(i, &mut work)?);
         }
     }
+    // The DoFs are asked in the order of decreasing guesses: a DoF that is longer than `t`
+    // after all is then likely found before the others have been asked in vain.
+    let mut order: [usize; N] = core::array::from_fn(|i| i);
+    order.sort_unstable_by(|&a, &b| guess[b].total_cmp(&guess[a]));
     'retry: loop {
-        for i in 0..N {
+        for &i in &order {
             let out = &mut traj.profiles[i];
             let found = match &work[i] {
                 Some(w) => stretch(w, t, true, out),
@@ -340,7 +345,8 @@ const GUESS_SHARE: f64 = 0.8;
 /// the velocity limit in the direction of the displacement if its cruise time is not
 /// negative; otherwise that profile's duration without the cruise, scaled by the cube root of
 /// the ratio of the displacement to its distance (the scaling of a jerk-limited rest-to-rest
-/// move).
+/// move); and at least the duration of the time-optimal change of velocity and acceleration
+/// alone.
 pub(crate) fn duration_guess(d: &Dof) -> f64 {
     let dp = d.pf - d.p0;
     let vc = if dp >= 0.0 { d.v_max } else { d.v_min };
@@ -353,13 +359,15 @@ pub(crate) fn duration_guess(d: &Dof) -> f64 {
     let dist = c1.distance(d.v0, d.a0) + c2.distance(vc, 0.0);
     let tt = c1.duration() + c2.duration();
     let tc = (dp - dist) / vc;
-    if tc >= 0.0 {
+    let g = if tc >= 0.0 {
         tt + tc
     } else if dp / dist > 0.0 {
         tt * (dp / dist).cbrt()
     } else {
         tt
-    }
+    };
+    // Not below the time-optimal velocity change alone (a lower bound of the duration).
+    vel_change(d.v0, d.a0, d.vf, d.af, d.a_max, d.a_min, d.j).map_or(g, |c| g.max(c.duration()))
 }
 
 /// The minimal duration of DoF `d` on its own (start inside the limits, no braking), for
