@@ -72,64 +72,12 @@ pub(crate) fn calculate<const N: usize>(
     let mut work: [Option<DofWork>; N] = [None; N];
     let mut alt_work: [[Option<DofWork>; 2]; N] = [[None; 2]; N];
     let mut t_min = 0.0_f64;
-    #[allow(clippy::needless_range_loop)] // i indexes several input arrays
     for i in 0..N {
-        let l = input.limits(i);
-        let b = brake(
-            input.current_position[i],
-            input.current_velocity[i],
-            input.current_acceleration[i],
-            &l,
-            position,
-        )
-        .ok_or(TrajectoryError::NoProfile { dof: i })?;
-        braking |= b.active;
-        let alternative = if b.active && position {
-            brake_to_limit(
-                input.current_position[i],
-                input.current_velocity[i],
-                input.current_acceleration[i],
-                &l,
-            )
-        } else {
-            None
-        };
-        let total = |w: &DofWork| w.brake_t + w.cands.duration[0];
-        solve_dof(input, i, &l, &b.prefix, position, &mut work[i]);
-        // Alternative braking variants: braking to rest at the limit velocity, and holding the
-        // braking acceleration (both only when velocity braking is involved). They are kept for
-        // synchronisation: they may reach durations that the fastest one cannot (blocked
-        // intervals differ).
-        if b.active && position {
-            let held = brake_with(
-                input.current_position[i],
-                input.current_velocity[i],
-                input.current_acceleration[i],
-                &l,
-                position,
-                true,
-            )
-            .filter(|h| h.prefix.end() != b.prefix.end())
-            .map(|h| h.prefix);
-            for (k, p) in [alternative, held].into_iter().enumerate() {
-                if let Some(p) = p {
-                    solve_dof(input, i, &l, &p, position, &mut alt_work[i][k]);
-                }
-                let better = match (&work[i], &alt_work[i][k]) {
-                    (Some(bw), Some(ow)) => total(ow) < total(bw),
-                    (None, Some(_)) => true,
-                    _ => false,
-                };
-                if better {
-                    core::mem::swap(&mut work[i], &mut alt_work[i][k]);
-                }
-            }
-        }
-        let Some(best) = &work[i] else {
-            return Err(TrajectoryError::NoProfile { dof: i });
-        };
-        traj.independent_min_durations[i] = total(best);
-        t_min = t_min.max(total(best));
+        let (active, total) =
+            solve_braking_dof(input, i, position, &mut work[i], &mut alt_work[i])?;
+        braking |= active;
+        traj.independent_min_durations[i] = total;
+        t_min = t_min.max(total);
     }
     traj.braking = braking;
     let status = if braking {
@@ -224,6 +172,73 @@ pub(crate) fn calculate<const N: usize>(
     }
 }
 
+/// Braking and step 1 of DoF `i`: the fastest braking variant's solution in `work`, the other
+/// variants (braking to rest at the limit velocity, holding the braking acceleration; only
+/// when velocity braking is involved) in `alt`. Returns whether the DoF brakes and its minimal
+/// total duration.
+fn solve_braking_dof<const N: usize>(
+    input: &TrajectoryInput<N>,
+    i: usize,
+    position: bool,
+    work: &mut Option<DofWork>,
+    alt: &mut [Option<DofWork>; 2],
+) -> Result<(bool, f64), TrajectoryError> {
+    let l = input.limits(i);
+    let b = brake(
+        input.current_position[i],
+        input.current_velocity[i],
+        input.current_acceleration[i],
+        &l,
+        position,
+    )
+    .ok_or(TrajectoryError::NoProfile { dof: i })?;
+    let alternative = if b.active && position {
+        brake_to_limit(
+            input.current_position[i],
+            input.current_velocity[i],
+            input.current_acceleration[i],
+            &l,
+        )
+    } else {
+        None
+    };
+    let total = |w: &DofWork| w.brake_t + w.cands.duration[0];
+    solve_dof(input, i, &l, &b.prefix, position, work);
+    // Alternative braking variants: braking to rest at the limit velocity, and holding the
+    // braking acceleration (both only when velocity braking is involved). They are kept for
+    // synchronisation: they may reach durations that the fastest one cannot (blocked
+    // intervals differ).
+    if b.active && position {
+        let held = brake_with(
+            input.current_position[i],
+            input.current_velocity[i],
+            input.current_acceleration[i],
+            &l,
+            position,
+            true,
+        )
+        .filter(|h| h.prefix.end() != b.prefix.end())
+        .map(|h| h.prefix);
+        for (k, p) in [alternative, held].into_iter().enumerate() {
+            if let Some(p) = p {
+                solve_dof(input, i, &l, &p, position, &mut alt[k]);
+            }
+            let better = match (&*work, &alt[k]) {
+                (Some(bw), Some(ow)) => total(ow) < total(bw),
+                (None, Some(_)) => true,
+                _ => false,
+            };
+            if better {
+                core::mem::swap(work, &mut alt[k]);
+            }
+        }
+    }
+    let Some(best) = &*work else {
+        return Err(TrajectoryError::NoProfile { dof: i });
+    };
+    Ok((b.active, total(best)))
+}
+
 /// Time synchronisation that solves the step-1 problem (all extremal profiles) only for the
 /// DoFs that may be limiting; `None` to fall back to the complete search in [`calculate`].
 ///
@@ -241,19 +256,32 @@ pub(crate) fn calculate<const N: usize>(
 /// DoFs that are not solved are computed on demand by
 /// [`Trajectory::independent_min_durations`].
 ///
-/// Only for starts inside the limits (no braking pre-phase) and continuous durations.
+/// Only for continuous durations. A DoF whose start makes a violation unavoidable is solved at
+/// once with all its braking variants (and stretched like in the complete search).
 fn synchronize_limiting_first<const N: usize>(
     input: &TrajectoryInput<N>,
     traj: &mut Trajectory<N>,
 ) -> Option<TrajectoryStatus> {
+    // `dofs[i]`: the problem of a DoF that starts inside the limits (solved only if needed);
+    // a DoF that brakes is solved at once with all its braking variants, as in the complete
+    // search (its guess, +∞, puts it first in the order below).
     let mut dofs = [None; N];
-    let mut guess = [0.0; N];
+    let mut guess = [f64::INFINITY; N];
     let mut guess_max = 0.0_f64;
+    let mut work: [Option<DofWork>; N] = [None; N];
+    let mut alt_work: [[Option<DofWork>; 2]; N] = [[None; 2]; N];
+    let mut total = [f64::NAN; N];
+    let mut braking = false;
+    let mut t = 0.0_f64;
     for i in 0..N {
         let l = input.limits(i);
         let (v0, a0) = (input.current_velocity[i], input.current_acceleration[i]);
         if !is_safe(v0, a0, &l, true) {
-            return None;
+            let (_, ti) = solve_braking_dof(input, i, true, &mut work[i], &mut alt_work[i]).ok()?;
+            braking = true;
+            total[i] = ti;
+            t = t.max(ti);
+            continue;
         }
         let d = Dof {
             p0: input.current_position[i],
@@ -272,9 +300,8 @@ fn synchronize_limiting_first<const N: usize>(
         guess_max = guess_max.max(guess[i]);
         dofs[i] = Some(d);
     }
-    let mut work: [Option<DofWork>; N] = [None; N];
-    let mut t = 0.0_f64;
-    // Solves DoF `i` (all extremal profiles); its minimal duration, `None` if it has none.
+    // Solves DoF `i` (starting inside the limits; all extremal profiles); its minimal
+    // duration, `None` if it has none.
     let solve = |i: usize, work: &mut [Option<DofWork>; N]| -> Option<f64> {
         let d = dofs[i].as_ref()?;
         let prefix = Profile::new(d.p0, d.v0, d.a0);
@@ -283,8 +310,9 @@ fn synchronize_limiting_first<const N: usize>(
     };
     for (i, &g) in guess.iter().enumerate() {
         // A NaN guess counts as limiting.
-        if g.is_nan() || g >= GUESS_SHARE * guess_max {
-            t = t.max(solve(i, &mut work)?);
+        if dofs[i].is_some() && (g.is_nan() || g >= GUESS_SHARE * guess_max) {
+            total[i] = solve(i, &mut work)?;
+            t = t.max(total[i]);
         }
     }
     // The DoFs are asked in the order of decreasing guesses: a DoF that is longer than `t`
@@ -295,7 +323,13 @@ fn synchronize_limiting_first<const N: usize>(
         for &i in &order {
             let out = &mut traj.profiles[i];
             let found = match &work[i] {
-                Some(w) => stretch(w, t, true, out),
+                Some(w) => {
+                    stretch(w, t, true, out)
+                        || alt_work[i]
+                            .iter()
+                            .flatten()
+                            .any(|a| stretch(a, t, true, out))
+                }
                 None => {
                     let d = dofs[i].as_ref()?;
                     let prefix = Profile::new(d.p0, d.v0, d.a0);
@@ -310,9 +344,9 @@ fn synchronize_limiting_first<const N: usize>(
                 // `t` is blocked for a solved DoF.
                 return None;
             }
-            let ti = solve(i, &mut work)?;
-            if ti > t {
-                t = ti;
+            total[i] = solve(i, &mut work)?;
+            if total[i] > t {
+                t = total[i];
                 continue 'retry;
             }
             return None;
@@ -320,20 +354,22 @@ fn synchronize_limiting_first<const N: usize>(
         break;
     }
     for i in 0..N {
-        match &work[i] {
-            Some(w) => {
-                traj.independent_min_durations[i] = w.cands.duration[0];
-                traj.pending[i] = None;
-            }
-            None => {
-                traj.independent_min_durations[i] = f64::NAN;
-                traj.pending[i] = dofs[i];
-            }
+        if work[i].is_some() {
+            traj.independent_min_durations[i] = total[i];
+            traj.pending[i] = None;
+        } else {
+            traj.independent_min_durations[i] = f64::NAN;
+            traj.pending[i] = dofs[i];
         }
     }
     traj.duration = t;
-    traj.braking = false;
-    Some(finished_if_zero(traj, TrajectoryStatus::Working))
+    traj.braking = braking;
+    let status = if braking {
+        TrajectoryStatus::BrakingThenTarget
+    } else {
+        TrajectoryStatus::Working
+    };
+    Some(finished_if_zero(traj, status))
 }
 
 /// DoFs whose duration guess is at least this share of the largest guess are solved first by
