@@ -1,4 +1,5 @@
-//! Proves that `update()` and `calculate()` allocate nothing after construction, with a counting
+//! Proves that `update()` and `calculate()` (and the on-demand
+//! `Trajectory::independent_min_durations`) allocate nothing after construction, with a counting
 //! global allocator (this file is its own test binary, so the allocator sees only this test).
 
 use std::sync::atomic::Ordering;
@@ -64,6 +65,7 @@ fn update_and_calculate_do_not_allocate() {
     let mut finished = 0;
     for inp0 in &inputs {
         otg.calculate(inp0, &mut traj).unwrap();
+        std::hint::black_box(traj.independent_min_durations());
         let mut inp = *inp0;
         for _ in 0..2000 {
             if otg.update(&inp, &mut out).unwrap() == TrajectoryStatus::Finished {
@@ -78,7 +80,7 @@ fn update_and_calculate_do_not_allocate() {
     assert_eq!(
         after - before,
         0,
-        "update()/calculate() allocated {} times",
+        "update()/calculate()/independent_min_durations() allocated {} times",
         after - before
     );
     assert!(finished > 0);

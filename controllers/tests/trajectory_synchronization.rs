@@ -1,8 +1,15 @@
-//! Regression cases of the time synchronisation found by the randomised stress run.
+//! Regression cases of the time synchronisation found by the randomised stress run, and the
+//! equivalence of the limiting-DoF-first synchronisation with the complete search.
 
+use rand::SeedableRng;
+use rand_chacha::ChaCha8Rng;
 use shearcut_controllers::trajectory::{
     Synchronization, Trajectory, TrajectoryGenerator, TrajectoryInput, TrajectorySettings,
 };
+
+#[path = "support/random_cases.rs"]
+#[allow(dead_code)]
+mod random_cases;
 
 fn stress_case_1() -> TrajectoryInput<4> {
     TrajectoryInput {
@@ -141,4 +148,66 @@ fn oracle_case_7531_not_longer_than_ruckig() {
         assert!((e.velocity - inp.target_velocity[i]).abs() < 1e-8);
         assert!((e.acceleration - inp.target_acceleration[i]).abs() < 1e-10);
     }
+}
+
+/// Time synchronisation solves the time-optimal problem only for the DoFs that may be
+/// limiting and asks the others for a profile of that duration; the complete search solves
+/// every DoF first. Phase synchronisation of non-collinear inputs (random ones) falls back to
+/// the complete search, so the two must agree: bit-identical durations and independent
+/// minimal durations (the latter computed on demand for the DoFs not solved), and every DoF
+/// reaching its target.
+fn limiting_first_equals_complete_search<const N: usize>(rng: &mut ChaCha8Rng) -> usize {
+    let otg = TrajectoryGenerator::<N>::new(TrajectorySettings::default()).unwrap();
+    let (mut fast, mut complete) = (Trajectory::<N>::default(), Trajectory::<N>::default());
+    let mut compared = 0;
+    for _ in 0..300 {
+        let mut inp = random_cases::random_input::<N, _>(rng);
+        if inp.validate().is_err() {
+            continue;
+        }
+        inp.synchronization = Synchronization::Time;
+        let r_fast = otg.calculate(&inp, &mut fast);
+        inp.synchronization = Synchronization::Phase;
+        let r_complete = otg.calculate(&inp, &mut complete);
+        assert_eq!(r_fast, r_complete, "{inp:?}");
+        if r_fast.is_err() {
+            continue;
+        }
+        assert_eq!(
+            fast.duration().to_bits(),
+            complete.duration().to_bits(),
+            "{inp:?}"
+        );
+        let (a, b) = (
+            fast.independent_min_durations(),
+            complete.independent_min_durations(),
+        );
+        for i in 0..N {
+            assert_eq!(a[i].to_bits(), b[i].to_bits(), "DoF {i} of {inp:?}");
+            let e = fast.profile(i).end();
+            assert!(
+                (e.position - inp.target_position[i]).abs() < 1e-8,
+                "{inp:?}"
+            );
+            assert!(
+                (e.velocity - inp.target_velocity[i]).abs() < 1e-8,
+                "{inp:?}"
+            );
+            assert!(
+                (e.acceleration - inp.target_acceleration[i]).abs() < 1e-10,
+                "{inp:?}"
+            );
+        }
+        compared += 1;
+    }
+    compared
+}
+
+#[test]
+fn limiting_dof_first_equals_the_complete_search() {
+    let mut rng = ChaCha8Rng::seed_from_u64(11);
+    let compared = limiting_first_equals_complete_search::<2>(&mut rng)
+        + limiting_first_equals_complete_search::<3>(&mut rng)
+        + limiting_first_equals_complete_search::<7>(&mut rng);
+    assert!(compared > 800, "{compared}");
 }

@@ -18,16 +18,17 @@
 //! limits) and mapped to each DoF as `p_i(t) = p_i(0) + u_i s(t)`: a straight line. Otherwise
 //! (or if any DoF brakes) it falls back to time synchronisation.
 
-use super::brake::{Limits, brake, brake_to_limit, brake_with};
+use super::brake::{Limits, brake, brake_to_limit, brake_with, is_safe};
 use super::dof::{Dof, Segments};
 use super::input::{
     ControlInterface, DurationDiscretization, Synchronization, TrajectoryError, TrajectoryInput,
     TrajectorySettings, TrajectoryStatus,
 };
 use super::position_fixed_duration::fixed_duration;
-use super::position_time_optimal::{TimeOptimal, time_optimal, time_optimal_into};
+use super::position_time_optimal::{TimeOptimal, peak_parts, time_optimal, time_optimal_into};
 use super::profile::Profile;
 use super::trajectory::Trajectory;
+use super::vel_change::vel_change;
 use super::velocity;
 
 /// Per-DoF intermediate results (kept on the stack).
@@ -56,69 +57,27 @@ pub(crate) fn calculate<const N: usize>(
     let dt = settings.cycle_time;
     let position = input.interface == ControlInterface::Position;
 
+    if position
+        && !discrete
+        && N > 1
+        && input.synchronization == Synchronization::Time
+        && let Some(status) = synchronize_limiting_first(input, traj)
+    {
+        return Ok(status);
+    }
+    traj.pending = [None; N];
+
     // Braking and step 1 per DoF.
     let mut braking = false;
     let mut work: [Option<DofWork>; N] = [None; N];
     let mut alt_work: [[Option<DofWork>; 2]; N] = [[None; 2]; N];
     let mut t_min = 0.0_f64;
-    #[allow(clippy::needless_range_loop)] // i indexes several input arrays
     for i in 0..N {
-        let l = input.limits(i);
-        let b = brake(
-            input.current_position[i],
-            input.current_velocity[i],
-            input.current_acceleration[i],
-            &l,
-            position,
-        )
-        .ok_or(TrajectoryError::NoProfile { dof: i })?;
-        braking |= b.active;
-        let alternative = if b.active && position {
-            brake_to_limit(
-                input.current_position[i],
-                input.current_velocity[i],
-                input.current_acceleration[i],
-                &l,
-            )
-        } else {
-            None
-        };
-        let total = |w: &DofWork| w.brake_t + w.cands.duration[0];
-        solve_dof(input, i, &l, &b.prefix, position, &mut work[i]);
-        // Alternative braking variants: braking to rest at the limit velocity, and holding the
-        // braking acceleration (both only when velocity braking is involved). They are kept for
-        // synchronisation: they may reach durations that the fastest one cannot (blocked
-        // intervals differ).
-        if b.active && position {
-            let held = brake_with(
-                input.current_position[i],
-                input.current_velocity[i],
-                input.current_acceleration[i],
-                &l,
-                position,
-                true,
-            )
-            .filter(|h| h.prefix.end() != b.prefix.end())
-            .map(|h| h.prefix);
-            for (k, p) in [alternative, held].into_iter().enumerate() {
-                if let Some(p) = p {
-                    solve_dof(input, i, &l, &p, position, &mut alt_work[i][k]);
-                }
-                let better = match (&work[i], &alt_work[i][k]) {
-                    (Some(bw), Some(ow)) => total(ow) < total(bw),
-                    (None, Some(_)) => true,
-                    _ => false,
-                };
-                if better {
-                    core::mem::swap(&mut work[i], &mut alt_work[i][k]);
-                }
-            }
-        }
-        let Some(best) = &work[i] else {
-            return Err(TrajectoryError::NoProfile { dof: i });
-        };
-        traj.independent_min_durations[i] = total(best);
-        t_min = t_min.max(total(best));
+        let (active, total) =
+            solve_braking_dof(input, i, position, &mut work[i], &mut alt_work[i])?;
+        braking |= active;
+        traj.independent_min_durations[i] = total;
+        t_min = t_min.max(total);
     }
     traj.braking = braking;
     let status = if braking {
@@ -210,6 +169,254 @@ pub(crate) fn calculate<const N: usize>(
             return Err(TrajectoryError::Synchronization { dof: failed_dof });
         }
         t_cand = next;
+    }
+}
+
+/// Braking and step 1 of DoF `i`: the fastest braking variant's solution in `work`, the other
+/// variants (braking to rest at the limit velocity, holding the braking acceleration; only
+/// when velocity braking is involved) in `alt`. Returns whether the DoF brakes and its minimal
+/// total duration.
+fn solve_braking_dof<const N: usize>(
+    input: &TrajectoryInput<N>,
+    i: usize,
+    position: bool,
+    work: &mut Option<DofWork>,
+    alt: &mut [Option<DofWork>; 2],
+) -> Result<(bool, f64), TrajectoryError> {
+    let l = input.limits(i);
+    let b = brake(
+        input.current_position[i],
+        input.current_velocity[i],
+        input.current_acceleration[i],
+        &l,
+        position,
+    )
+    .ok_or(TrajectoryError::NoProfile { dof: i })?;
+    let alternative = if b.active && position {
+        brake_to_limit(
+            input.current_position[i],
+            input.current_velocity[i],
+            input.current_acceleration[i],
+            &l,
+        )
+    } else {
+        None
+    };
+    let total = |w: &DofWork| w.brake_t + w.cands.duration[0];
+    solve_dof(input, i, &l, &b.prefix, position, work);
+    // Alternative braking variants: braking to rest at the limit velocity, and holding the
+    // braking acceleration (both only when velocity braking is involved). They are kept for
+    // synchronisation: they may reach durations that the fastest one cannot (blocked
+    // intervals differ).
+    if b.active && position {
+        let held = brake_with(
+            input.current_position[i],
+            input.current_velocity[i],
+            input.current_acceleration[i],
+            &l,
+            position,
+            true,
+        )
+        .filter(|h| h.prefix.end() != b.prefix.end())
+        .map(|h| h.prefix);
+        for (k, p) in [alternative, held].into_iter().enumerate() {
+            if let Some(p) = p {
+                solve_dof(input, i, &l, &p, position, &mut alt[k]);
+            }
+            let better = match (&*work, &alt[k]) {
+                (Some(bw), Some(ow)) => total(ow) < total(bw),
+                (None, Some(_)) => true,
+                _ => false,
+            };
+            if better {
+                core::mem::swap(work, &mut alt[k]);
+            }
+        }
+    }
+    let Some(best) = &*work else {
+        return Err(TrajectoryError::NoProfile { dof: i });
+    };
+    Ok((b.active, total(best)))
+}
+
+/// Time synchronisation that solves the step-1 problem (all extremal profiles) only for the
+/// DoFs that may be limiting; `None` to fall back to the complete search in [`calculate`].
+///
+/// The common duration is the smallest candidate `T ≥ max_i T_i` at which every DoF has a
+/// profile (module documentation). The complete search starts at `T = max_i T_i` and, in most
+/// cases, ends there. Here the DoFs whose duration guess ([`duration_guess`]) is within
+/// [`GUESS_SHARE`] of the largest are solved, `t` is the largest of their minimal durations,
+/// and every other DoF is only asked for a fixed-duration profile of duration `t`. A DoF that
+/// has one satisfies `T_i ≤ t` (its profile is verified, and no profile is shorter than
+/// `T_i`), so if every DoF has one, `t = max_i T_i` and it is the common duration of the
+/// complete search (which would try the same fixed-duration problems at the same `t`, or
+/// the DoF's own candidate of that duration). A DoF without one is solved: if its `T_i`
+/// exceeds `t`, `t` becomes `T_i` and every DoF is asked again; otherwise `t` lies in one of
+/// its blocked intervals and the complete search takes over. The minimal durations of the
+/// DoFs that are not solved are computed on demand by
+/// [`Trajectory::independent_min_durations`].
+///
+/// Only for continuous durations. A DoF whose start makes a violation unavoidable is solved at
+/// once with all its braking variants (and stretched like in the complete search).
+fn synchronize_limiting_first<const N: usize>(
+    input: &TrajectoryInput<N>,
+    traj: &mut Trajectory<N>,
+) -> Option<TrajectoryStatus> {
+    // `dofs[i]`: the problem of a DoF that starts inside the limits (solved only if needed);
+    // a DoF that brakes is solved at once with all its braking variants, as in the complete
+    // search (its guess, +∞, puts it first in the order below).
+    let mut dofs = [None; N];
+    let mut guess = [f64::INFINITY; N];
+    let mut guess_max = 0.0_f64;
+    let mut work: [Option<DofWork>; N] = [None; N];
+    let mut alt_work: [[Option<DofWork>; 2]; N] = [[None; 2]; N];
+    let mut total = [f64::NAN; N];
+    let mut braking = false;
+    let mut t = 0.0_f64;
+    for i in 0..N {
+        let l = input.limits(i);
+        let (v0, a0) = (input.current_velocity[i], input.current_acceleration[i]);
+        if !is_safe(v0, a0, &l, true) {
+            let (_, ti) = solve_braking_dof(input, i, true, &mut work[i], &mut alt_work[i]).ok()?;
+            braking = true;
+            total[i] = ti;
+            t = t.max(ti);
+            continue;
+        }
+        let d = Dof {
+            p0: input.current_position[i],
+            v0,
+            a0,
+            pf: input.target_position[i],
+            vf: input.target_velocity[i],
+            af: input.target_acceleration[i],
+            v_max: l.v_max,
+            v_min: l.v_min,
+            a_max: l.a_max,
+            a_min: l.a_min,
+            j: l.j,
+        };
+        guess[i] = duration_guess(&d);
+        guess_max = guess_max.max(guess[i]);
+        dofs[i] = Some(d);
+    }
+    // Solves DoF `i` (starting inside the limits; all extremal profiles); its minimal
+    // duration, `None` if it has none.
+    let solve = |i: usize, work: &mut [Option<DofWork>; N]| -> Option<f64> {
+        let d = dofs[i].as_ref()?;
+        let prefix = Profile::new(d.p0, d.v0, d.a0);
+        solve_dof(input, i, &input.limits(i), &prefix, true, &mut work[i]);
+        work[i].as_ref().map(|w| w.cands.duration[0])
+    };
+    for (i, &g) in guess.iter().enumerate() {
+        // A NaN guess counts as limiting.
+        if dofs[i].is_some() && (g.is_nan() || g >= GUESS_SHARE * guess_max) {
+            total[i] = solve(i, &mut work)?;
+            t = t.max(total[i]);
+        }
+    }
+    // The DoFs are asked in the order of decreasing guesses: a DoF that is longer than `t`
+    // after all is then likely found before the others have been asked in vain.
+    let mut order: [usize; N] = core::array::from_fn(|i| i);
+    order.sort_unstable_by(|&a, &b| guess[b].total_cmp(&guess[a]));
+    'retry: loop {
+        for &i in &order {
+            let out = &mut traj.profiles[i];
+            let found = match &work[i] {
+                Some(w) => {
+                    stretch(w, t, true, out)
+                        || alt_work[i]
+                            .iter()
+                            .flatten()
+                            .any(|a| stretch(a, t, true, out))
+                }
+                None => {
+                    let d = dofs[i].as_ref()?;
+                    let prefix = Profile::new(d.p0, d.v0, d.a0);
+                    fixed_duration(d, &prefix, t)
+                        .is_some_and(|(segs, dir)| segs.append_to(&prefix, dir, out))
+                }
+            };
+            if found {
+                continue;
+            }
+            if work[i].is_some() {
+                // `t` is blocked for a solved DoF.
+                return None;
+            }
+            total[i] = solve(i, &mut work)?;
+            if total[i] > t {
+                t = total[i];
+                continue 'retry;
+            }
+            return None;
+        }
+        break;
+    }
+    for i in 0..N {
+        if work[i].is_some() {
+            traj.independent_min_durations[i] = total[i];
+            traj.pending[i] = None;
+        } else {
+            traj.independent_min_durations[i] = f64::NAN;
+            traj.pending[i] = dofs[i];
+        }
+    }
+    traj.duration = t;
+    traj.braking = braking;
+    let status = if braking {
+        TrajectoryStatus::BrakingThenTarget
+    } else {
+        TrajectoryStatus::Working
+    };
+    Some(finished_if_zero(traj, status))
+}
+
+/// DoFs whose duration guess is at least this share of the largest guess are solved first by
+/// [`synchronize_limiting_first`] (a wrong guess costs work, never a different result).
+const GUESS_SHARE: f64 = 0.8;
+
+/// A cheap guess of a DoF's minimal duration, only used to choose which DoFs
+/// [`synchronize_limiting_first`] solves first: the duration of the profile that cruises at
+/// the velocity limit in the direction of the displacement if its cruise time is not
+/// negative; otherwise that profile's duration without the cruise, scaled by the cube root of
+/// the ratio of the displacement to its distance (the scaling of a jerk-limited rest-to-rest
+/// move); and at least the duration of the time-optimal change of velocity and acceleration
+/// alone.
+pub(crate) fn duration_guess(d: &Dof) -> f64 {
+    let dp = d.pf - d.p0;
+    let vc = if dp >= 0.0 { d.v_max } else { d.v_min };
+    if vc == 0.0 {
+        return 0.0;
+    }
+    let Some((c1, c2)) = peak_parts(d, vc) else {
+        return 0.0;
+    };
+    let dist = c1.distance(d.v0, d.a0) + c2.distance(vc, 0.0);
+    let tt = c1.duration() + c2.duration();
+    let tc = (dp - dist) / vc;
+    let g = if tc >= 0.0 {
+        tt + tc
+    } else if dp / dist > 0.0 {
+        tt * (dp / dist).cbrt()
+    } else {
+        tt
+    };
+    // Not below the time-optimal velocity change alone (a lower bound of the duration).
+    vel_change(d.v0, d.a0, d.vf, d.af, d.a_max, d.a_min, d.j).map_or(g, |c| g.max(c.duration()))
+}
+
+/// The minimal duration of DoF `d` on its own (start inside the limits, no braking), for
+/// [`Trajectory::independent_min_durations`] of the DoFs that the synchronisation did not
+/// solve; NaN if no profile is found.
+pub(crate) fn independent_min_duration(d: &Dof) -> f64 {
+    let prefix = Profile::new(d.p0, d.v0, d.a0);
+    let mut cands = TimeOptimal::new();
+    time_optimal_into(d, &prefix, 1, &mut cands);
+    if cands.n > 0 {
+        cands.duration[0]
+    } else {
+        f64::NAN
     }
 }
 

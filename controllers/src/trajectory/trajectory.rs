@@ -1,5 +1,7 @@
 //! A calculated multi-DoF trajectory: one [`Profile`] per DoF, sampled at any time.
 
+use super::calculator::independent_min_duration;
+use super::dof::Dof;
 use super::profile::{DofExtrema, DofState, Profile};
 
 /// A whole trajectory of `N` DoFs, as returned by [`super::TrajectoryGenerator::calculate`].
@@ -12,6 +14,9 @@ pub struct Trajectory<const N: usize> {
     pub(crate) profiles: [Profile; N],
     pub(crate) duration: f64,
     pub(crate) independent_min_durations: [f64; N],
+    /// DoFs whose minimal duration the synchronisation did not need: computed on demand by
+    /// [`Self::independent_min_durations`] from these problems.
+    pub(crate) pending: [Option<Dof>; N],
     pub(crate) braking: bool,
 }
 
@@ -21,6 +26,7 @@ impl<const N: usize> Default for Trajectory<N> {
             profiles: [Profile::default(); N],
             duration: 0.0,
             independent_min_durations: [0.0; N],
+            pending: [None; N],
             braking: false,
         }
     }
@@ -34,9 +40,18 @@ impl<const N: usize> Trajectory<N> {
     }
 
     /// The time-optimal duration of each DoF on its own (s), braking pre-phase included.
+    ///
+    /// The time synchronisation solves the time-optimal problem only for the DoFs that may be
+    /// limiting (see `calculator::synchronize_limiting_first`); the others' durations are
+    /// computed here, on each call (no allocation; about as long as one DoF of
+    /// [`super::TrajectoryGenerator::calculate`] each). NaN for a DoF without a time-optimal
+    /// profile.
     #[must_use]
     pub fn independent_min_durations(&self) -> [f64; N] {
-        self.independent_min_durations
+        core::array::from_fn(|i| match &self.pending[i] {
+            Some(d) => independent_min_duration(d),
+            None => self.independent_min_durations[i],
+        })
     }
 
     /// True if at least one DoF starts with a braking pre-phase (a limit violation was
