@@ -268,6 +268,10 @@ pub(crate) struct FactorMemory {
     pub factor: Vec<f64>,
     /// faer's stack and its size (see [`grow_stack`]).
     pub stack: Option<(StackReq, MemBuffer)>,
+    /// The dense factor of the Schur complement (column-major).
+    pub dense: Vec<f64>,
+    /// The inverse of a block of it (column-major).
+    pub inverse: Vec<f64>,
 }
 
 impl std::fmt::Debug for FactorMemory {
