@@ -248,12 +248,11 @@ impl CondensedLine {
         })
     }
 
-    /// Entry (q1, q2) of the flexibility whose band is `band` (C or C_z):
-    /// the rows of q1 and q2 (Y/Z indices) at most one apart.
+    /// Entry (strip column c1, row index a; strip column c2, row index b)
+    /// of the flexibility whose band is `band` (C or C_z; row indices
+    /// 0..R at most one apart, see [`inverse_band`]).
     #[inline(always)]
-    fn band_entry(&self, band: &[f64], q1: usize, q2: usize) -> f64 {
-        let (c1, a) = (q1 / self.n, q1 % self.n);
-        let (c2, b) = (q2 / self.n, q2 % self.n);
+    fn band_entry(&self, band: &[f64], c1: usize, a: usize, c2: usize, b: usize) -> f64 {
         debug_assert!(
             a.abs_diff(b) <= 1,
             "only the band of the flexibility is kept"
@@ -270,9 +269,16 @@ impl CondensedLine {
     /// The (index, weight) pairs of the strip constraint of column c.
     #[inline]
     fn taps(&self, c: usize, s: &StripConstraint) -> [(usize, f64); 2] {
-        let lo = (self.yi(c, s.row), 1.0 - s.phi);
+        self.tap_rows(s).map(|(r, w)| (c * self.n + r, w))
+    }
+
+    /// The (row index 0..R, weight) pairs of the strip constraint, the same
+    /// in every strip column ([`Self::taps`] without the column).
+    #[inline]
+    fn tap_rows(&self, s: &StripConstraint) -> [(usize, f64); 2] {
+        let lo = (s.row - 1, 1.0 - s.phi);
         if s.phi > 0.0 {
-            [lo, (self.yi(c, s.row + 1), s.phi)]
+            [lo, (s.row, s.phi)]
         } else {
             [lo, (lo.0, 0.0)]
         }
@@ -281,13 +287,12 @@ impl CondensedLine {
     /// M = P F Pᵀ for flexibility F (the band of C or C_z).
     fn strip_matrix(&self, F: &[f64], s: &StripConstraint) -> [[f64; MAX_STRIP]; MAX_STRIP] {
         let mut M = [[0.0; MAX_STRIP]; MAX_STRIP];
+        let t = self.tap_rows(s);
         for (a, row) in M.iter_mut().enumerate().take(self.k) {
-            let ta = self.taps(a, s);
             for (b, m) in row.iter_mut().enumerate().take(self.k) {
-                let tb = self.taps(b, s);
-                for &(ia, wa) in &ta {
-                    for &(ib, wb) in &tb {
-                        *m += wa * wb * self.band_entry(F, ia, ib);
+                for &(ra, wa) in &t {
+                    for &(rb, wb) in &t {
+                        *m += wa * wb * self.band_entry(F, a, ra, b, rb);
                     }
                 }
             }
@@ -374,18 +379,19 @@ impl CondensedLine {
         lambda: &[f64; MAX_STRIP],
     ) -> f64 {
         let mut u = 0.0;
-        for (q, w) in self.taps(a, s) {
+        let t = self.tap_rows(s);
+        for &(r, w) in &t {
             if w == 0.0 {
                 continue;
             }
             u -= w * dot(
-                &self.Et.col_as_slice(q)[first_nonzero..],
+                &self.Et.col_as_slice(a * self.n + r)[first_nonzero..],
                 &g[first_nonzero..],
             );
             for (b, &lb) in lambda.iter().enumerate().take(self.k) {
                 if lb != 0.0 {
-                    for (qb, wb) in self.taps(b, s) {
-                        u += w * wb * lb * self.band_entry(&self.c_band, q, qb);
+                    for &(rb, wb) in &t {
+                        u += w * wb * lb * self.band_entry(&self.c_band, a, r, b, rb);
                     }
                 }
             }
@@ -1214,7 +1220,7 @@ mod tests {
             for c1 in 0..k {
                 for c2 in 0..k {
                     for b in a.saturating_sub(1)..(a + 2).min(n) {
-                        v.push(line.band_entry(band, c1 * n + a, c2 * n + b));
+                        v.push(line.band_entry(band, c1, a, c2, b));
                     }
                 }
             }
