@@ -31,8 +31,9 @@
 //! 49 of 154 builds found their topology cached (measured once; the number
 //! of builds varies by a few with the worker's timing, their results do
 //! not). The scratch
-//! memory ([`FactorMemory`]: the factor's values, 13 MB for that mesh, and
-//! faer's stack) is kept for the next build, at most [`SPARE_MEMORY`] sets.
+//! memory ([`FactorMemory`]: the factor's values, 8 MB for that mesh, faer's
+//! stack and the dense trailing factor and its inverse, 3 MB) is kept for
+//! the next build, at most [`SPARE_MEMORY`] sets.
 
 use std::sync::{Arc, Mutex, MutexGuard};
 
