@@ -169,11 +169,18 @@ impl CondensedLine {
             || nested_dissection(mesh, &index, 2, KEPT, ni),
             &mut memory,
             |add| {
-                plane_strain::assemble(mesh, e_mod, nu, |i, j, v| {
-                    if let (Some(a), Some(b)) = (position(index[i], ni), position(index[j], ni)) {
-                        add(a, b, v);
-                    }
-                });
+                // (The upper triangle's calls are skipped here already.)
+                plane_strain::assemble_mapped(
+                    mesh,
+                    e_mod,
+                    nu,
+                    |i| position(index[i], ni),
+                    |a, b, v| {
+                        if a >= b {
+                            add(a, b, v);
+                        }
+                    },
+                );
             },
         )?;
         let FactorMemory { dense, inverse, .. } = &mut memory;
@@ -225,12 +232,16 @@ impl CondensedLine {
             || nested_dissection(mesh, &zindex, 1, KEPT, nzi),
             &mut memory,
             |add| {
-                antiplane::assemble(mesh, e_mod / (2.0 * (1.0 + nu)), |i, j, v| {
-                    if let (Some(a), Some(b)) = (position(zindex[i], nzi), position(zindex[j], nzi))
-                    {
-                        add(a, b, v);
-                    }
-                });
+                antiplane::assemble_mapped(
+                    mesh,
+                    e_mod / (2.0 * (1.0 + nu)),
+                    |i| position(zindex[i], nzi),
+                    |a, b, v| {
+                        if a >= b {
+                            add(a, b, v);
+                        }
+                    },
+                );
             },
         )?;
         let FactorMemory { dense, inverse, .. } = &mut memory;
