@@ -29,13 +29,34 @@ pub(crate) fn element_stiffness(p: &[[f64; 2]; 4], g_mod: f64) -> [[f64; 4]; 4] 
     K
 }
 
-/// Calls `add(i, j, k_ij)` for every entry of the global antiplane stiffness (DOF = node).
-pub(crate) fn assemble(mesh: &SectionMesh, g_mod: f64, mut add: impl FnMut(usize, usize, f64)) {
+/// Calls `add(i, j, k_ij)` for every entry of the global antiplane stiffness
+/// (DOF = node): element by element, row a and column b of each element
+/// matrix (the reference of the section's checks; the build maps the DOFs
+/// with [`assemble_mapped`]).
+#[cfg(test)]
+pub(crate) fn assemble(mesh: &SectionMesh, g_mod: f64, add: impl FnMut(usize, usize, f64)) {
+    assemble_mapped(mesh, g_mod, Some, add);
+}
+
+/// [`assemble`] onto the positions `map(node)` of the DOFs it keeps: calls
+/// `add(map(i), map(j), k_ij)` for the entries whose DOFs both map to a
+/// position, in the same order as [`assemble`] (so sums over the calls are
+/// the same to the bit); each element's DOFs are mapped once.
+pub(crate) fn assemble_mapped(
+    mesh: &SectionMesh,
+    g_mod: f64,
+    map: impl Fn(usize) -> Option<usize>,
+    mut add: impl FnMut(usize, usize, f64),
+) {
     for e in &mesh.elements {
         let K = element_stiffness(&corners(mesh, e), g_mod);
-        for a in 0..4 {
-            for b in 0..4 {
-                add(e[a], e[b], K[a][b]);
+        let at: [Option<usize>; 4] = std::array::from_fn(|a| map(e[a]));
+        for (a, row) in K.iter().enumerate() {
+            let Some(pa) = at[a] else { continue };
+            for (b, &k) in row.iter().enumerate() {
+                if let Some(pb) = at[b] {
+                    add(pa, pb, k);
+                }
             }
         }
     }

@@ -21,17 +21,24 @@
 //! dense block L_bb = [[L_YY, 0], [L_XY, L_XX]] is the Cholesky factor of S,
 //! so C = L_YY⁻ᵀ L_YY⁻¹, Eᵀ = L_XY L_YY⁻¹ and A = L_XX L_XXᵀ (dense kernels,
 //! no sparse triangular solves). The interior is ordered by nested dissection
-//! of the mesh's node rows (the section is a tall strip a few dozen nodes
-//! wide, so a row is a small separator).
+//! of the mesh's node grid ([`nested_dissection`]).
+//!
+//! Of C the solves read only the entries between DOFs of rows at most one
+//! apart (the strip constraint taps rows j and j + 1 of every strip column)
+//! and the row of the cut line's top DOF (the surface deflection), so only
+//! those are formed: dot products of columns of L_YY⁻¹ instead of the whole
+//! product L_YY⁻ᵀ L_YY⁻¹ (a third of the dense work of a build).
 //!
 //! # Antiplane (seed 000 §III.C, ∇²u_t = 0)
 //! Kept: Z = u_t of the strip columns; only the bottom is fixed, so the
 //! flexibility C_z = S_ZZ⁻¹ is the antiplane stiffness's inverse on Z, from
-//! the same partial factorisation with Z last.
+//! the same partial factorisation with Z last; only its band (rows at most
+//! one apart) is formed, as for C.
 //!
 //! # Memory allocation
-//! Construction allocates the matrices (|Y|² + |Y|·R + R² + |Z|² doubles, a few
-//! MB for the default mesh). [`CondensedLine::solve`] allocates nothing, nor
+//! Construction allocates the matrices (|Y|·R + R² doubles and the bands,
+//! under 1 MB for the default mesh; the dense scratch of the factorisation
+//! is kept between builds by the [`factor_cache`]). [`CondensedLine::solve`] allocates nothing, nor
 //! does [`CondensedLine::solve_released`] (crack faces released from the
 //! blade: a dense Cholesky of the released rows' block of A in a
 //! [`ReleasedWorkspace`]).
@@ -41,9 +48,8 @@
 use std::sync::Arc;
 
 use faer::dyn_stack::MemStack;
-use faer::linalg::matmul::matmul;
 use faer::linalg::matmul::triangular::{self, BlockStructure};
-use faer::linalg::{triangular_inverse, triangular_solve};
+use faer::linalg::triangular_inverse;
 use faer::sparse::linalg::cholesky::SymbolicCholeskyRaw;
 use faer::sparse::linalg::cholesky::supernodal::{
     SupernodalLltRef, factorize_supernodal_numeric_llt,
@@ -52,11 +58,12 @@ use faer::sparse::linalg::cholesky::supernodal::{
 use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
 #[cfg(test)]
 use faer::sparse::{SparseColMat, SymbolicSparseColMat, Triplet};
-use faer::{Accum, Mat, MatRef, Par};
+use faer::{Accum, Mat, MatMut, MatRef, Par};
 
 use super::error::SectionError;
 use super::factor_cache::{self, FactorMemory, Problem, StiffnessPattern, Topology};
 use super::mesh::SectionMesh;
+use super::nested_dissection::nested_dissection;
 use super::{antiplane, plane_strain};
 
 /// Largest number of strip columns (strip_elements + 1).
@@ -70,14 +77,18 @@ pub(crate) struct CondensedLine {
     pub n: usize,
     /// Strip columns m + 1.
     pub k: usize,
-    /// C = S_YY⁻¹ (|Y|×|Y|).
-    C: Mat<f64>,
+    /// The band of C = S_YY⁻¹ that the solves read: the entries between
+    /// DOFs of rows at most one apart (any strip columns), see
+    /// [`inverse_band`].
+    c_band: Vec<f64>,
+    /// Row of C of the cut line's top DOF (strip column 0, row R), |Y|.
+    c_top: Vec<f64>,
     /// Eᵀ (R×|Y|): column q is row q of E.
     Et: Mat<f64>,
     /// A (R×R), symmetric.
     A: Mat<f64>,
-    /// Antiplane flexibility C_z (|Z|×|Z|).
-    Cz: Mat<f64>,
+    /// The band of the antiplane flexibility C_z = S_ZZ⁻¹ (as `c_band`).
+    cz_band: Vec<f64>,
 }
 
 /// The edge-flat constraint: the material at the crack tip's reference height,
@@ -128,7 +139,8 @@ impl CondensedLine {
     /// complement S onto Y ∪ X (Y first),
     ///
     /// ```text
-    /// S_YY = L_YY L_YYᵀ  ⇒  C = L_YY⁻ᵀ L_YY⁻¹,
+    /// S_YY = L_YY L_YYᵀ  ⇒  C = L_YY⁻ᵀ L_YY⁻¹ (its band, see
+    ///                       [`inverse_band`]),
     /// S_XY = L_XY L_YYᵀ  ⇒  Eᵀ = S_XY C = L_XY L_YY⁻¹,
     /// A = S_XX − S_XY C S_YX = L_XX L_XXᵀ.
     /// ```
@@ -148,36 +160,59 @@ impl CondensedLine {
         for r in 1..=n {
             index[2 * mesh.node(0, r)] = KEPT + ny + r - 1;
         }
-        let (ni, rows) = number_interior(&mut index, 2 * bottom);
+        let ni = number_interior(&mut index, 2 * bottom);
         let mut memory = factor_cache::take_memory();
-        let l = schur_factor(
+        schur_factor(
             Topology::of(mesh, Problem::InPlane),
             ni,
             ny + n,
-            &rows,
+            || nested_dissection(mesh, &index, 2, KEPT, ni),
             &mut memory,
             |add| {
-                plane_strain::assemble(mesh, e_mod, nu, |i, j, v| {
-                    if let (Some(a), Some(b)) = (position(index[i], ni), position(index[j], ni)) {
-                        add(a, b, v);
-                    }
-                });
+                // (The upper triangle's calls are skipped here already.)
+                plane_strain::assemble_mapped(
+                    mesh,
+                    e_mod,
+                    nu,
+                    |i| position(index[i], ni),
+                    |a, b, v| {
+                        if a >= b {
+                            add(a, b, v);
+                        }
+                    },
+                );
             },
         )?;
-        let l_yy = l.as_ref().submatrix(0, 0, ny, ny);
-        let l_xy = l.as_ref().submatrix(ny, 0, n, ny);
-        let l_xx = l.as_ref().submatrix(ny, ny, n, n);
-        let C = inverse_from_factor(l_yy);
-        // E = L_YY⁻ᵀ L_XYᵀ.
-        let mut E = l_xy.transpose().to_owned();
-        triangular_solve::solve_upper_triangular_in_place(l_yy.transpose(), E.as_mut(), Par::Seq);
-        let Et = E.transpose().to_owned();
+        let FactorMemory { dense, inverse, .. } = &mut memory;
+        let l = MatRef::from_column_major_slice(&dense[..], ny + n, ny + n);
+        let l_yy = l.submatrix(0, 0, ny, ny);
+        let l_xy = l.submatrix(ny, 0, n, ny);
+        let l_xx = l.submatrix(ny, ny, n, n);
+        let linv = lower_inverse(l_yy, inverse);
+        let (c_band, c_top) = (inverse_band(linv, n, k), inverse_row(linv, n - 1));
+        // Eᵀ = L_XY L_YY⁻¹.
+        let mut Et = Mat::<f64>::zeros(n, ny);
+        triangular::matmul(
+            Et.as_mut(),
+            BlockStructure::Rectangular,
+            Accum::Replace,
+            l_xy,
+            BlockStructure::Rectangular,
+            linv,
+            BlockStructure::TriangularLower,
+            1.0,
+            Par::Seq,
+        );
+        // A = L_XX L_XXᵀ, lower half, then mirrored.
         let mut A = Mat::<f64>::zeros(n, n);
-        matmul(
+        triangular::matmul(
             A.as_mut(),
+            BlockStructure::TriangularLower,
             Accum::Replace,
             l_xx,
+            BlockStructure::TriangularLower,
             l_xx.transpose(),
+            BlockStructure::TriangularUpper,
             1.0,
             Par::Seq,
         );
@@ -189,25 +224,51 @@ impl CondensedLine {
                 zindex[mesh.node(c, r)] = KEPT + c * n + r - 1;
             }
         }
-        let (nzi, zrows) = number_interior(&mut zindex, bottom);
-        let lz = schur_factor(
+        let nzi = number_interior(&mut zindex, bottom);
+        schur_factor(
             Topology::of(mesh, Problem::Antiplane),
             nzi,
             ny,
-            &zrows,
+            || nested_dissection(mesh, &zindex, 1, KEPT, nzi),
             &mut memory,
             |add| {
-                antiplane::assemble(mesh, e_mod / (2.0 * (1.0 + nu)), |i, j, v| {
-                    if let (Some(a), Some(b)) = (position(zindex[i], nzi), position(zindex[j], nzi))
-                    {
-                        add(a, b, v);
-                    }
-                });
+                antiplane::assemble_mapped(
+                    mesh,
+                    e_mod / (2.0 * (1.0 + nu)),
+                    |i| position(zindex[i], nzi),
+                    |a, b, v| {
+                        if a >= b {
+                            add(a, b, v);
+                        }
+                    },
+                );
             },
         )?;
+        let FactorMemory { dense, inverse, .. } = &mut memory;
+        let lz = MatRef::from_column_major_slice(&dense[..], ny, ny);
+        let cz_band = inverse_band(lower_inverse(lz, inverse), n, k);
         factor_cache::give_back(memory);
-        let Cz = inverse_from_factor(lz.as_ref());
-        Ok(Self { n, k, C, Et, A, Cz })
+        Ok(Self {
+            n,
+            k,
+            c_band,
+            c_top,
+            Et,
+            A,
+            cz_band,
+        })
+    }
+
+    /// Entry (strip column c1, row index a; strip column c2, row index b)
+    /// of the flexibility whose band is `band` (C or C_z; row indices
+    /// 0..R at most one apart, see [`inverse_band`]).
+    #[inline(always)]
+    fn band_entry(&self, band: &[f64], c1: usize, a: usize, c2: usize, b: usize) -> f64 {
+        debug_assert!(
+            a.abs_diff(b) <= 1,
+            "only the band of the flexibility is kept"
+        );
+        band[((a * self.k + c1) * self.k + c2) * 3 + b + 1 - a]
     }
 
     /// Y/Z index of strip column c, row r (1..=R).
@@ -219,24 +280,30 @@ impl CondensedLine {
     /// The (index, weight) pairs of the strip constraint of column c.
     #[inline]
     fn taps(&self, c: usize, s: &StripConstraint) -> [(usize, f64); 2] {
-        let lo = (self.yi(c, s.row), 1.0 - s.phi);
+        self.tap_rows(s).map(|(r, w)| (c * self.n + r, w))
+    }
+
+    /// The (row index 0..R, weight) pairs of the strip constraint, the same
+    /// in every strip column ([`Self::taps`] without the column).
+    #[inline]
+    fn tap_rows(&self, s: &StripConstraint) -> [(usize, f64); 2] {
+        let lo = (s.row - 1, 1.0 - s.phi);
         if s.phi > 0.0 {
-            [lo, (self.yi(c, s.row + 1), s.phi)]
+            [lo, (s.row, s.phi)]
         } else {
             [lo, (lo.0, 0.0)]
         }
     }
 
-    /// M = P F Pᵀ for flexibility F (C or C_z).
-    fn strip_matrix(&self, F: &Mat<f64>, s: &StripConstraint) -> [[f64; MAX_STRIP]; MAX_STRIP] {
+    /// M = P F Pᵀ for flexibility F (the band of C or C_z).
+    fn strip_matrix(&self, F: &[f64], s: &StripConstraint) -> [[f64; MAX_STRIP]; MAX_STRIP] {
         let mut M = [[0.0; MAX_STRIP]; MAX_STRIP];
+        let t = self.tap_rows(s);
         for (a, row) in M.iter_mut().enumerate().take(self.k) {
-            let ta = self.taps(a, s);
             for (b, m) in row.iter_mut().enumerate().take(self.k) {
-                let tb = self.taps(b, s);
-                for &(ia, wa) in &ta {
-                    for &(ib, wb) in &tb {
-                        *m += wa * wb * F[(ia, ib)];
+                for &(ra, wa) in &t {
+                    for &(rb, wb) in &t {
+                        *m += wa * wb * self.band_entry(F, a, ra, b, rb);
                     }
                 }
             }
@@ -265,7 +332,7 @@ impl CondensedLine {
         *lambda = [0.0; MAX_STRIP];
         let mut energy_strip = 0.0;
         if let Some(s) = strip {
-            let mut M = self.strip_matrix(&self.C, s);
+            let mut M = self.strip_matrix(&self.c_band, s);
             let mut rhs = [0.0; MAX_STRIP];
             for (a, r) in rhs.iter_mut().enumerate().take(self.k) {
                 *r = s.value;
@@ -323,18 +390,19 @@ impl CondensedLine {
         lambda: &[f64; MAX_STRIP],
     ) -> f64 {
         let mut u = 0.0;
-        for (q, w) in self.taps(a, s) {
+        let t = self.tap_rows(s);
+        for &(r, w) in &t {
             if w == 0.0 {
                 continue;
             }
             u -= w * dot(
-                &self.Et.col_as_slice(q)[first_nonzero..],
+                &self.Et.col_as_slice(a * self.n + r)[first_nonzero..],
                 &g[first_nonzero..],
             );
             for (b, &lb) in lambda.iter().enumerate().take(self.k) {
                 if lb != 0.0 {
-                    for (qb, wb) in self.taps(b, s) {
-                        u += w * wb * lb * self.C[(q, qb)];
+                    for &(rb, wb) in &t {
+                        u += w * wb * lb * self.band_entry(&self.c_band, a, r, b, rb);
                     }
                 }
             }
@@ -355,7 +423,7 @@ impl CondensedLine {
         if let Some(s) = strip {
             for (a, &la) in lambda.iter().enumerate().take(self.k) {
                 for (qa, w) in self.taps(a, s) {
-                    u += w * la * self.C[(q, qa)];
+                    u += w * la * self.c_top[qa];
                 }
             }
         }
@@ -366,7 +434,7 @@ impl CondensedLine {
     /// strip at the tip). Returns (energy J/m, sum of strip forces N/m) of the
     /// half model. Allocation-free.
     pub fn solve_antiplane(&self, strip: &StripConstraint) -> (f64, f64) {
-        let mut M = self.strip_matrix(&self.Cz, strip);
+        let mut M = self.strip_matrix(&self.cz_band, strip);
         let mut rhs = [0.0; MAX_STRIP];
         rhs[..self.k].fill(strip.value);
         mask_inactive(&mut M, &mut rhs, strip, self.k);
@@ -592,7 +660,7 @@ impl CondensedLine {
             }
             chol_solve_columns(l, &mut ws.z, n, m, 1 + self.k);
             let (rf, zb) = ws.z.split_at(n);
-            let mut S = self.strip_matrix(&self.C, s);
+            let mut S = self.strip_matrix(&self.c_band, s);
             let mut rhs = [0.0; MAX_STRIP];
             for a in 0..self.k {
                 rhs[a] = s.value;
@@ -705,43 +773,18 @@ const KEPT: usize = usize::MAX / 2;
 /// Numbers the DOFs from `first` on that are neither fixed nor kept (the
 /// interior) 0, 1, … in DOF order; the DOFs before `first` (the bottom row of
 /// nodes: `first` is the number of DOFs per node row) are fixed. Returns the
-/// number of interior DOFs and the boundaries of each node row's interior
-/// numbers (rows 1..=R: row r's are `rows[r − 1]..rows[r]`).
-fn number_interior(index: &mut [usize], first: usize) -> (usize, Vec<usize>) {
+/// number of interior DOFs.
+fn number_interior(index: &mut [usize], first: usize) -> usize {
     let mut ni = 0;
-    let mut rows = vec![0];
     for (dof, slot) in index.iter_mut().enumerate() {
         if dof < first {
             *slot = FIXED;
-            continue;
-        }
-        if dof > first && dof % first == 0 {
-            rows.push(ni);
-        }
-        if *slot == FIXED {
+        } else if *slot == FIXED {
             *slot = ni;
             ni += 1;
         }
     }
-    rows.push(ni);
-    (ni, rows)
-}
-
-/// Nested dissection of the node rows `lo..hi` (indices into `rows`, the
-/// boundaries of each row's interior DOFs): the two halves first, then the
-/// separating row; leaves of a few rows in natural (banded) order.
-fn dissect(rows: &[usize], lo: usize, hi: usize, order: &mut Vec<usize>) {
-    const LEAF: usize = 3;
-    if hi - lo <= LEAF {
-        for r in lo..hi {
-            order.extend(rows[r]..rows[r + 1]);
-        }
-        return;
-    }
-    let mid = (lo + hi) / 2;
-    dissect(rows, lo, mid, order);
-    dissect(rows, mid + 1, hi, order);
-    order.extend(rows[mid]..rows[mid + 1]);
+    ni
 }
 
 /// Position of a numbered DOF in the matrix of [`schur_factor`]: interior
@@ -755,7 +798,8 @@ fn position(index: usize, ni: usize) -> Option<usize> {
     }
 }
 
-/// The lower Cholesky factor L_bb (dense, `nb`×`nb`) of the Schur complement
+/// The lower Cholesky factor L_bb (dense, `nb`×`nb`, column-major into
+/// `memory.dense`) of the Schur complement
 /// S = K_bb − K_bi K_ii⁻¹ K_ib of the SPD matrix K onto its last `nb` rows
 /// and columns, after the `ni` interior ones: S = L_bb L_bbᵀ. K is given by
 /// `assemble`, which calls its argument `add(i, j, k_ij)` for every
@@ -766,11 +810,9 @@ fn position(index: usize, ni: usize) -> Option<usize> {
 /// DOFs ordered last, so the trailing block of the factor is L_bb: a partial
 /// factorisation, no triangular solves. The kept DOFs form a dense trailing
 /// front that the supernodal kernels treat with dense (BLAS-3) updates. The
-/// interior is ordered by nested dissection of its node rows (`rows`, see
-/// [`number_interior`]): on the section's tall, narrow mesh it has more
-/// fill than approximate minimum degree but larger, denser supernodes and
-/// no ordering cost, and built the `section_condense` bench's sections
-/// about 10 % faster.
+/// interior is ordered by `interior_order` (new → old interior number; a
+/// nested dissection of the mesh's node grid, [`nested_dissection`]),
+/// called only when the pattern is not cached.
 ///
 /// K's pattern, the order in which its contributions are summed and the
 /// symbolic factorisation depend only on the mesh's `topology`: they are
@@ -781,10 +823,10 @@ fn schur_factor(
     topology: Topology,
     ni: usize,
     nb: usize,
-    rows: &[usize],
+    interior_order: impl FnOnce() -> Vec<usize>,
     memory: &mut FactorMemory,
     assemble: impl FnOnce(&mut dyn FnMut(usize, usize, f64)),
-) -> Result<Mat<f64>, SectionError> {
+) -> Result<(), SectionError> {
     let cached = factor_cache::lookup(&topology).filter(|p| p.ni == ni && p.nb == nb);
     let FactorMemory {
         contributions,
@@ -810,11 +852,10 @@ fn schur_factor(
             ));
         }
         None => {
-            // Fill-reducing order of the interior: nested dissection by node
-            // rows; the kept DOFs last, in place.
+            // Fill-reducing order of the interior, the kept DOFs last, in place.
+
             let nt = ni + nb;
-            let mut fwd: Vec<usize> = Vec::with_capacity(nt);
-            dissect(rows, 0, rows.len() - 1, &mut fwd);
+            let mut fwd = interior_order();
             fwd.extend(ni..nt);
             let p = Arc::new(StiffnessPattern::new(ni, nb, pairs, &fwd)?);
             factor_cache::insert(topology, Arc::clone(&p));
@@ -832,6 +873,7 @@ fn schur_factor(
         lower,
         factor,
         stack,
+        dense,
         ..
     } = memory;
     let stack = factor_cache::grow_stack(stack, pattern.stack)?;
@@ -856,7 +898,9 @@ fn schur_factor(
     // Read L_bb off the supernodes holding columns ni.. (their rows are all
     // kept DOFs too: the kept ones come last).
     let factor = SupernodalLltRef::new(supernodal, &factor[..len]);
-    let mut L = Mat::<f64>::zeros(nb, nb);
+    dense.clear();
+    dense.resize(nb * nb, 0.0);
+    let mut L = MatMut::from_column_major_slice_mut(&mut dense[..], nb, nb);
     for s in 0..supernodal.n_supernodes() {
         let node = factor.supernode(s);
         let start = node.start();
@@ -879,7 +923,7 @@ fn schur_factor(
             }
         }
     }
-    Ok(L)
+    Ok(())
 }
 
 /// The lower triangle of the symmetric matrix given by `triplets` (both
@@ -926,27 +970,63 @@ fn lower_csc(nt: usize, triplets: &[Triplet<usize, usize, f64>]) -> SparseColMat
     SparseColMat::new(symbolic, values)
 }
 
-/// (L Lᵀ)⁻¹ = L⁻ᵀ L⁻¹ for a dense lower-triangular factor L, exactly
-/// symmetric.
-fn inverse_from_factor(L: MatRef<'_, f64>) -> Mat<f64> {
+/// L⁻¹ (lower triangular, the strictly upper part zero) of a dense
+/// lower-triangular factor L, in `memory`.
+fn lower_inverse<'a>(L: MatRef<'_, f64>, memory: &'a mut Vec<f64>) -> MatRef<'a, f64> {
     let m = L.nrows();
-    let mut Linv = Mat::<f64>::zeros(m, m);
-    triangular_inverse::invert_lower_triangular(Linv.as_mut(), L, Par::Seq);
-    let mut inv = Mat::<f64>::zeros(m, m);
-    // Lower half of L⁻ᵀ L⁻¹ (upper triangular times lower triangular).
-    triangular::matmul(
-        inv.as_mut(),
-        BlockStructure::TriangularLower,
-        Accum::Replace,
-        Linv.transpose(),
-        BlockStructure::TriangularUpper,
-        Linv.as_ref(),
-        BlockStructure::TriangularLower,
-        1.0,
-        Par::Seq,
-    );
-    symmetrise_from_lower(&mut inv);
-    inv
+    memory.clear();
+    memory.resize(m * m, 0.0);
+    let Linv = MatMut::from_column_major_slice_mut(&mut memory[..], m, m);
+    triangular_inverse::invert_lower_triangular(Linv, L, Par::Seq);
+    MatRef::from_column_major_slice(&memory[..], m, m)
+}
+
+/// The entries of F = (L Lᵀ)⁻¹ = L⁻ᵀ L⁻¹ that the solves read, from
+/// `linv` = L⁻¹ (m×m, m = k·n; index c·n + a for strip column c, row a):
+/// F[(c₁·n + a, c₂·n + b)] for |a − b| ≤ 1 at
+/// `((a·k + c₁)·k + c₂)·3 + b + 1 − a` (0 where b is out of range). Each
+/// entry is the dot product of columns q₁ and q₂ of L⁻¹ over the rows from
+/// max(q₁, q₂) on (below them L⁻¹ is zero), so F is exactly symmetric.
+fn inverse_band(linv: MatRef<'_, f64>, n: usize, k: usize) -> Vec<f64> {
+    let mut band = vec![0.0; n * k * k * 3];
+    for a in 0..n {
+        for c1 in 0..k {
+            for c2 in 0..k {
+                for b in a.saturating_sub(1)..(a + 2).min(n) {
+                    let (q1, q2) = (c1 * n + a, c2 * n + b);
+                    band[((a * k + c1) * k + c2) * 3 + b + 1 - a] = inverse_entry(linv, q1, q2);
+                }
+            }
+        }
+    }
+    band
+}
+
+/// Row q of (L Lᵀ)⁻¹ from `linv` = L⁻¹, as [`inverse_band`].
+fn inverse_row(linv: MatRef<'_, f64>, q: usize) -> Vec<f64> {
+    (0..linv.ncols())
+        .map(|p| inverse_entry(linv, q, p))
+        .collect()
+}
+
+/// Entry (q1, q2) of L⁻ᵀ L⁻¹ from `linv` = L⁻¹ (column-major, contiguous
+/// columns): symmetric in its arguments.
+#[inline]
+fn inverse_entry(linv: MatRef<'_, f64>, q1: usize, q2: usize) -> f64 {
+    let from = q1.max(q2);
+    let col = |q: usize| {
+        &linv
+            .col(q)
+            .try_as_col_major()
+            .expect("contiguous")
+            .as_slice()[from..]
+    };
+    let (x, y) = if q1 <= q2 {
+        (col(q1), col(q2))
+    } else {
+        (col(q2), col(q1))
+    };
+    dot(x, y)
 }
 
 /// Copies the strictly lower triangle of a square matrix onto its upper one.
@@ -1124,14 +1204,78 @@ mod tests {
         [C, Et, A, Cz]
     }
 
-    /// ‖new − reference‖_F / ‖reference‖_F for each of C, Eᵀ, A, C_z.
+    /// The entries of C (or C_z) that a line keeps: its band (see
+    /// [`inverse_band`]) and, for C, the row of the top DOF of column 0.
+    fn kept_entries(F: &Mat<f64>, n: usize, k: usize, top_row: bool) -> Vec<f64> {
+        let mut v = Vec::new();
+        for a in 0..n {
+            for c1 in 0..k {
+                for c2 in 0..k {
+                    for b in a.saturating_sub(1)..(a + 2).min(n) {
+                        v.push(F[(c1 * n + a, c2 * n + b)]);
+                    }
+                }
+            }
+        }
+        if top_row {
+            v.extend((0..k * n).map(|q| F[(n - 1, q)]));
+        }
+        v
+    }
+
+    /// The same entries as [`kept_entries`] from a line.
+    fn line_entries(line: &CondensedLine, band: &[f64], top_row: bool) -> Vec<f64> {
+        let (n, k) = (line.n, line.k);
+        let mut v = Vec::new();
+        for a in 0..n {
+            for c1 in 0..k {
+                for c2 in 0..k {
+                    for b in a.saturating_sub(1)..(a + 2).min(n) {
+                        v.push(line.band_entry(band, c1, a, c2, b));
+                    }
+                }
+            }
+        }
+        if top_row {
+            v.extend_from_slice(&line.c_top);
+        }
+        v
+    }
+
+    /// ‖new − reference‖ / ‖reference‖ (Euclidean) for C (its kept
+    /// entries), Eᵀ, A and C_z (its band), in that order.
     fn relative_differences(geometry: &SectionGeometry, settings: &SectionSettings) -> [f64; 4] {
         let mesh = SectionMesh::new(geometry, 1e-4, settings).unwrap();
         let (e_mod, nu) = (2.0e6, 0.4);
         let line = CondensedLine::new(&mesh, e_mod, nu).unwrap();
-        let reference = by_unit_solves(&mesh, e_mod, nu);
-        let new = [&line.C, &line.Et, &line.A, &line.Cz];
-        std::array::from_fn(|i| (new[i] - &reference[i]).norm_l2() / reference[i].norm_l2())
+        let [C, Et, A, Cz] = by_unit_solves(&mesh, e_mod, nu);
+        let (n, k) = (line.n, line.k);
+        let rel = |new: &[f64], reference: &[f64]| {
+            let d: f64 = new
+                .iter()
+                .zip(reference)
+                .map(|(a, b)| (a - b).powi(2))
+                .sum();
+            let r: f64 = reference.iter().map(|b| b * b).sum();
+            (d / r).sqrt()
+        };
+        let flat = |m: &Mat<f64>| {
+            (0..m.ncols())
+                .flat_map(|j| m.col(j).iter().copied().collect::<Vec<_>>())
+                .collect::<Vec<_>>()
+        };
+        [
+            rel(
+                &line_entries(&line, &line.c_band, true),
+                &kept_entries(&C, n, k, true),
+            ),
+            rel(&flat(&line.Et), &flat(&Et)),
+            rel(&flat(&line.A), &flat(&A)),
+            rel(
+                &line_entries(&line, &line.cz_band, false),
+                &kept_entries(&Cz, n, k, false),
+            ),
+        ]
     }
 
     fn assert_same(geometry: &SectionGeometry, settings: &SectionSettings) {
@@ -1141,21 +1285,7 @@ mod tests {
         }
     }
 
-    /// A dome (half ellipse on a low rim), like a half potato's section.
-    fn dome(half_width: f64, height: f64) -> SectionGeometry {
-        let rim = 0.05 * height;
-        let mut v = vec![[-half_width, 0.0], [half_width, 0.0]];
-        for i in 0..=32 {
-            let t = std::f64::consts::FRAC_PI_2 * i as f64 / 32.0;
-            let (x, y) = (half_width * t.cos(), rim + (height - rim) * t.sin());
-            v.push([x, y]);
-        }
-        for i in (0..32).rev() {
-            let t = std::f64::consts::FRAC_PI_2 * i as f64 / 32.0;
-            v.push([-half_width * t.cos(), rim + (height - rim) * t.sin()]);
-        }
-        SectionGeometry::from_polygon(&v).unwrap()
-    }
+    use super::tests_support::dome;
 
     #[test]
     fn partial_factorisation_matches_unit_solves_on_a_rectangle() {
@@ -1196,7 +1326,7 @@ mod tests {
         for r in 1..=n {
             index[2 * mesh.node(0, r)] = KEPT + k * n + r - 1;
         }
-        let (ni, rows) = number_interior(&mut index, 2 * mesh.columns());
+        let ni = number_interior(&mut index, 2 * mesh.columns());
         let nb = (k + 1) * n;
         let (mut triplets, mut pairs, mut contributions) = (Vec::new(), Vec::new(), Vec::new());
         plane_strain::assemble(&mesh, 2.0e6, 0.4, |i, j, v| {
@@ -1208,8 +1338,7 @@ mod tests {
                 }
             }
         });
-        let mut fwd = Vec::new();
-        dissect(&rows, 0, rows.len() - 1, &mut fwd);
+        let mut fwd = nested_dissection(&mesh, &index, 2, KEPT, ni);
         fwd.extend(ni..ni + nb);
         let pattern = StiffnessPattern::new(ni, nb, &pairs, &fwd).unwrap();
         let mut values = Vec::new();
@@ -1238,11 +1367,14 @@ mod tests {
         };
         let (e_mod, nu) = (2.0e6, 0.4);
         let bits = |line: &CondensedLine| {
-            [&line.C, &line.Et, &line.A, &line.Cz].map(|m| {
+            let dense = [&line.Et, &line.A].map(|m| {
                 (0..m.ncols())
                     .flat_map(|j| m.col_as_slice(j).iter().map(|x| x.to_bits()))
                     .collect::<Vec<_>>()
-            })
+            });
+            let kept = [&line.c_band, &line.c_top, &line.cz_band]
+                .map(|v| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>());
+            [&dense[0], &dense[1], &kept[0], &kept[1], &kept[2]].map(|v| v.clone())
         };
         let a = SectionMesh::new(&dome(0.006, 0.009), 1e-4, &settings).unwrap();
         let b = SectionMesh::new(&dome(0.0061, 0.0091), 1e-4, &settings).unwrap();
@@ -1269,5 +1401,25 @@ mod tests {
     #[ignore = "the reference takes minutes in a debug build; run with --release -- --ignored"]
     fn partial_factorisation_matches_unit_solves_on_the_default_potato_mesh() {
         assert_same(&dome(0.03, 0.035), &SectionSettings::default());
+    }
+}
+
+#[cfg(test)]
+mod tests_support {
+    use super::super::geometry::SectionGeometry;
+    /// A dome (half ellipse on a low rim), like a half potato's section.
+    pub(super) fn dome(half_width: f64, height: f64) -> SectionGeometry {
+        let rim = 0.05 * height;
+        let mut v = vec![[-half_width, 0.0], [half_width, 0.0]];
+        for i in 0..=32 {
+            let t = std::f64::consts::FRAC_PI_2 * i as f64 / 32.0;
+            let (x, y) = (half_width * t.cos(), rim + (height - rim) * t.sin());
+            v.push([x, y]);
+        }
+        for i in (0..32).rev() {
+            let t = std::f64::consts::FRAC_PI_2 * i as f64 / 32.0;
+            v.push([-half_width * t.cos(), rim + (height - rim) * t.sin()]);
+        }
+        SectionGeometry::from_polygon(&v).unwrap()
     }
 }

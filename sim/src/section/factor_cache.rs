@@ -31,8 +31,9 @@
 //! 49 of 154 builds found their topology cached (measured once; the number
 //! of builds varies by a few with the worker's timing, their results do
 //! not). The scratch
-//! memory ([`FactorMemory`]: the factor's values, 13 MB for that mesh, and
-//! faer's stack) is kept for the next build, at most [`SPARE_MEMORY`] sets.
+//! memory ([`FactorMemory`]: the factor's values, 8 MB for that mesh, faer's
+//! stack and the dense trailing factor and its inverse, 3 MB) is kept for
+//! the next build, at most [`SPARE_MEMORY`] sets.
 
 use std::sync::{Arc, Mutex, MutexGuard};
 
@@ -268,6 +269,10 @@ pub(crate) struct FactorMemory {
     pub factor: Vec<f64>,
     /// faer's stack and its size (see [`grow_stack`]).
     pub stack: Option<(StackReq, MemBuffer)>,
+    /// The dense factor of the Schur complement (column-major).
+    pub dense: Vec<f64>,
+    /// The inverse of a block of it (column-major).
+    pub inverse: Vec<f64>,
 }
 
 impl std::fmt::Debug for FactorMemory {

@@ -19,6 +19,7 @@ mod factor_cache;
 mod fracture;
 mod geometry;
 mod mesh;
+mod nested_dissection;
 mod plane_strain;
 mod settings;
 mod simulation;

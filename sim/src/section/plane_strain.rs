@@ -117,21 +117,40 @@ pub(crate) fn corners(mesh: &SectionMesh, e: &[usize; 4]) -> [[f64; 2]; 4] {
 }
 
 /// Calls `add(i, j, k_ij)` for every entry of the global in-plane stiffness
-/// (DOF 2·node + component), per unit thickness.
+/// (DOF 2·node + component), per unit thickness: element by element, row a
+/// and column b of each element matrix (the reference of the section's
+/// checks; the build maps the DOFs with [`assemble_mapped`]).
+#[cfg(test)]
 pub(crate) fn assemble(
     mesh: &SectionMesh,
     e_mod: f64,
     nu: f64,
+    add: impl FnMut(usize, usize, f64),
+) {
+    assemble_mapped(mesh, e_mod, nu, Some, add);
+}
+
+/// [`assemble`] onto the positions `map(dof)` of the DOFs it keeps: calls
+/// `add(map(i), map(j), k_ij)` for the entries whose DOFs both map to a
+/// position, in the same order as [`assemble`] (so sums over the calls are
+/// the same to the bit); each element's DOFs are mapped once.
+pub(crate) fn assemble_mapped(
+    mesh: &SectionMesh,
+    e_mod: f64,
+    nu: f64,
+    map: impl Fn(usize) -> Option<usize>,
     mut add: impl FnMut(usize, usize, f64),
 ) {
     let (lambda, mu) = lame(e_mod, nu);
     for e in &mesh.elements {
         let K = element_stiffness(&corners(mesh, e), lambda, mu);
-        for a in 0..8 {
-            let ga = 2 * e[a / 2] + a % 2;
-            for b in 0..8 {
-                let gb = 2 * e[b / 2] + b % 2;
-                add(ga, gb, K[a][b]);
+        let at: [Option<usize>; 8] = std::array::from_fn(|a| map(2 * e[a / 2] + a % 2));
+        for (a, row) in K.iter().enumerate() {
+            let Some(pa) = at[a] else { continue };
+            for (b, &k) in row.iter().enumerate() {
+                if let Some(pb) = at[b] {
+                    add(pa, pb, k);
+                }
             }
         }
     }
