@@ -1,6 +1,6 @@
 //! Cost of one `Plant::step` at 1 kHz ticks: the whole-potato, curved-knife
 //! scenario of seed 000 Fig. 10(a) (chef's knife, half potato with skin,
-//! α = 0, z₀ = 0.046 m, m = 10 sections), from the approach through the first
+//! α = 0, z₀ = 0.046 m, the default m = 20 segments over the span), from the approach through the first
 //! fractures to steady cutting, at the default section mesh and a coarser
 //! one, then Fig. 10(b)'s slice (α = 24°, z₀ = 0.087 m). Prints median, p99
 //! and worst µs per tick and
@@ -110,7 +110,8 @@ fn run(section: &SectionSettings, alpha: f64, z0: f64) {
     times.sort_by(f64::total_cmp);
     let pct = |p: f64| times[((times.len() - 1) as f64 * p).round() as usize];
     println!(
-        "plant build (10 sections): {:.0} ms; {} ticks of 1 ms: median {:.1} µs, p99 {:.1} µs, max {:.1} µs per tick; real-time factor {:.1}x (mean tick {:.1} µs)",
+        "plant build ({} segments, first sections built): {:.0} ms; {} ticks of 1 ms: median {:.1} µs, p99 {:.1} µs, max {:.1} µs per tick; real-time factor {:.1}x (mean tick {:.1} µs)",
+        plant.edge_segments().len(),
         build.as_secs_f64() * 1e3,
         ticks,
         pct(0.5),
