@@ -283,19 +283,7 @@ fn synchronize_limiting_first<const N: usize>(
             t = t.max(ti);
             continue;
         }
-        let d = Dof {
-            p0: input.current_position[i],
-            v0,
-            a0,
-            pf: input.target_position[i],
-            vf: input.target_velocity[i],
-            af: input.target_acceleration[i],
-            v_max: l.v_max,
-            v_min: l.v_min,
-            a_max: l.a_max,
-            a_min: l.a_min,
-            j: l.j,
-        };
+        let d = input.dof_from(i, (input.current_position[i], v0, a0), &l);
         guess[i] = duration_guess(&d);
         guess_max = guess_max.max(guess[i]);
         dofs[i] = Some(d);
@@ -437,19 +425,7 @@ fn solve_dof<const N: usize>(
     out: &mut Option<DofWork>,
 ) {
     let s = prefix.end();
-    let dof = Dof {
-        p0: s.position,
-        v0: s.velocity,
-        a0: s.acceleration,
-        pf: input.target_position[i],
-        vf: input.target_velocity[i],
-        af: input.target_acceleration[i],
-        v_max: l.v_max,
-        v_min: l.v_min,
-        a_max: l.a_max,
-        a_min: l.a_min,
-        j: l.j,
-    };
+    let dof = input.dof_from(i, (s.position, s.velocity, s.acceleration), l);
     let w = match out {
         Some(w) => {
             w.dof = dof;
@@ -631,19 +607,12 @@ fn phase_synchronize<const N: usize>(
     #[allow(clippy::needless_range_loop)] // i indexes several input arrays
     for i in 0..N {
         let li = input.limits(i);
-        let dof = Dof {
-            p0: input.current_position[i],
-            v0: input.current_velocity[i],
-            a0: input.current_acceleration[i],
-            pf: input.target_position[i],
-            vf: input.target_velocity[i],
-            af: input.target_acceleration[i],
-            v_max: li.v_max,
-            v_min: li.v_min,
-            a_max: li.a_max,
-            a_min: li.a_min,
-            j: li.j,
-        };
+        let start = (
+            input.current_position[i],
+            input.current_velocity[i],
+            input.current_acceleration[i],
+        );
+        let dof = input.dof_from(i, start, &li);
         let mut p = Profile::new(dof.p0, dof.v0, dof.a0);
         for k in 0..scalar.len() {
             let (t, j) = scalar.segment(k);

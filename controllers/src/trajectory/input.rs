@@ -3,6 +3,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::brake::Limits;
+use super::dof::Dof;
 
 /// What the target prescribes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Serialize, Deserialize)]
@@ -137,6 +138,25 @@ impl<const N: usize> Default for TrajectoryInput<N> {
 }
 
 impl<const N: usize> TrajectoryInput<N> {
+    /// The one-DoF problem of DoF `i` from the start state `(p0, v0, a0)`
+    /// (the current one, or the end of a braking prefix) to its target,
+    /// under the limits `l`.
+    pub(crate) fn dof_from(&self, i: usize, (p0, v0, a0): (f64, f64, f64), l: &Limits) -> Dof {
+        Dof {
+            p0,
+            v0,
+            a0,
+            pf: self.target_position[i],
+            vf: self.target_velocity[i],
+            af: self.target_acceleration[i],
+            v_max: l.v_max,
+            v_min: l.v_min,
+            a_max: l.a_max,
+            a_min: l.a_min,
+            j: l.j,
+        }
+    }
+
     /// The solver limits of DoF `i`.
     pub(crate) fn limits(&self, i: usize) -> Limits {
         Limits {
