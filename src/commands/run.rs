@@ -108,8 +108,8 @@ pub fn cut_task(s: &Scenario, knife: &Knife, mesh: &TriangleMesh) -> CutTask {
     }
 }
 
-/// The ratio the MPC's first plan starts from: what spreads the blade budget evenly over the depth, at
-/// most 1.
+/// The ratio the MPC's first plan starts from: what spreads the blade
+/// budget evenly over the depth, at most 1.
 pub fn mpc_start(task: &CutTask) -> f64 {
     (task.blade_budget / task.target_depth).min(1.0)
 }
