@@ -460,11 +460,7 @@ impl Plant {
             dormant: grid
                 .iter()
                 .enumerate()
-                .map(|(slot, segment)| DormantSegment {
-                    slot,
-                    segment: *segment,
-                    order: None,
-                })
+                .map(|(slot, _)| DormantSegment { slot, order: None })
                 .collect(),
             edge_segments: grid,
             worker,
@@ -916,16 +912,13 @@ impl Plant {
         };
         let size = self.factory.object.size();
         let side_tolerance = 1e-9 * size;
-        // The front over the started sections' tips (and the tips, sorted
-        // heel to tip in self.tips), fitted when first needed.
+        // The front over the started sections' tips (the tips stay in
+        // self.tips for `surface_is_cut`), fitted when first needed.
         let mut fitted: Option<Option<CrackFront>> = None;
         let mut k = 0;
         while k < self.dormant.len() {
-            let DormantSegment {
-                slot,
-                segment,
-                order,
-            } = self.dormant[k];
+            let DormantSegment { slot, order } = self.dormant[k];
+            let segment = self.edge_segments[slot];
             let m = midpoint_world(&position, &segment);
             let m2 = Vector2::new(m.z, m.y);
             let inside = self
@@ -1153,7 +1146,6 @@ struct EntryOrder {
 struct DormantSegment {
     /// Its index in the edge's grid (the worker's slot).
     slot: usize,
-    segment: EdgeSegment,
     /// The last order placed for it (pending with the worker, or taken and
     /// found without material).
     order: Option<EntryOrder>,
