@@ -134,3 +134,68 @@ fn a_short_blade_is_sawn_through_at_the_model_optimum_and_ratio() {
     let mean = mid_ratios.iter().sum::<f64>() / mid_ratios.len() as f64;
     assert!((mean - 4.0 / 3.0).abs() < 0.1, "mean ξ = {mean}");
 }
+
+#[test]
+fn while_estimating_the_mpc_touches_at_the_touch_speed_until_the_first_fracture() {
+    // The stiffness is identified only by the indentation before the first
+    // fracture, so with `estimate` on the knife goes down at the guarded
+    // touch speed until the material first fractures (here at 0.5 mm of
+    // depth), then at the plan's speed.
+    let profile = DepthProfile::uniform(0.03, 0.03, 0.015).unwrap();
+    let touch = 0.004;
+    let fracture_depth = 0.5e-3;
+    let settings = MpcSettings {
+        estimate: true,
+        touch_speed: touch,
+        ..MpcSettings::default()
+    };
+    let mut mpc = Mpc::new(&task(0.01, 1.0), &settings, QuadraticModel, profile, 0.5).unwrap();
+    let mut arm = SyntheticArm::new(0.0);
+    let mut m = arm.measure(PlantStatus::Moving);
+    let (mut before, mut after) = (0.0f64, 0.0f64);
+    for _ in 0..20_000 {
+        let c = mpc.tick(&m);
+        m = arm.step(&c);
+        let depth = -m.position.y;
+        if depth >= fracture_depth {
+            m.fractured_sections = 1;
+            after = after.max(-m.velocity.y);
+        } else {
+            before = before.max(-m.velocity.y);
+        }
+        if mpc.telemetry().phase == CutPhase::Done {
+            break;
+        }
+    }
+    assert_eq!(mpc.telemetry().phase, CutPhase::Done);
+    assert_eq!(arm.refused, 0);
+    // The jerk-limited shaper reaches the touch speed without overshoot.
+    assert!(
+        before <= touch * (1.0 + 1e-9),
+        "{before} m/s before the fracture"
+    );
+    assert!(before > 0.99 * touch, "{before} m/s before the fracture");
+    assert!(after > 5.0 * touch, "{after} m/s after the fracture");
+
+    // Without estimation there is no touch phase.
+    let settings = MpcSettings {
+        touch_speed: touch,
+        ..MpcSettings::default()
+    };
+    let profile = DepthProfile::uniform(0.03, 0.03, 0.015).unwrap();
+    let mut mpc = Mpc::new(&task(0.01, 1.0), &settings, QuadraticModel, profile, 0.5).unwrap();
+    let mut arm = SyntheticArm::new(0.0);
+    let mut m = arm.measure(PlantStatus::Moving);
+    let mut early = 0.0f64;
+    for _ in 0..20_000 {
+        let c = mpc.tick(&m);
+        m = arm.step(&c);
+        if -m.position.y < fracture_depth {
+            early = early.max(-m.velocity.y);
+        }
+        if mpc.telemetry().phase == CutPhase::Done {
+            break;
+        }
+    }
+    assert!(early > 2.0 * touch, "{early} m/s");
+}

@@ -337,6 +337,7 @@ impl<M: SliceModel> Mpc<M> {
             };
         }
         let l = self.task.limits;
+        let normal_limit = self.normal_speed_limit();
         // Keep what stopping at the current tangential speed needs.
         let reserve = stopping_distance(self.tangential_speed, l.acceleration, l.jerk);
         let blade = (self.budget.remaining_towards(self.stroke.direction()) - reserve).max(0.0);
@@ -361,7 +362,7 @@ impl<M: SliceModel> Mpc<M> {
         if status == QpStatus::Solved {
             self.plan_xi.copy_from_slice(&self.stroke_xi);
             let tau = self.stroke_tau[0];
-            self.normal_speed = (1.0 / tau).min(l.normal_speed);
+            self.normal_speed = (1.0 / tau).min(normal_limit);
             self.tangential_speed = (self.plan_xi[0] * self.normal_speed).min(l.tangential_speed);
         } else {
             self.stats.fallbacks += 1;
@@ -374,11 +375,23 @@ impl<M: SliceModel> Mpc<M> {
             }
             if self.normal_speed == 0.0 {
                 // No plan yet: start at the initial plan's ratio, full speed.
-                self.normal_speed = l
-                    .normal_speed
-                    .min(l.tangential_speed / self.plan_xi[0].max(1e-12));
+                self.normal_speed =
+                    normal_limit.min(l.tangential_speed / self.plan_xi[0].max(1e-12));
                 self.tangential_speed = self.plan_xi[0] * self.normal_speed;
             }
+        }
+    }
+
+    /// The normal speed allowed now, m/s: the arm's, or while estimating
+    /// before the first fracture the guarded touch's
+    /// ([`MpcSettings::touch_speed`]), so that the indentation, which alone
+    /// identifies the stiffness, spans many ticks.
+    fn normal_speed_limit(&self) -> f64 {
+        let l = self.task.limits.normal_speed;
+        if self.estimator.is_some() && self.depth_at_fracture.is_none() {
+            l.min(self.settings.touch_speed)
+        } else {
+            l
         }
     }
 

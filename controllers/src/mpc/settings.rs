@@ -49,6 +49,18 @@ pub struct MpcSettings {
     /// ticks into the factors; 0.999 remembers about half a second at
     /// 1 kHz).
     pub forgetting: f64,
+    /// Normal speed limit from the start until the first fracture while
+    /// estimating, m/s (default 0.005; only with `estimate = true`): a
+    /// guarded touch. The stiffness factor is identified only by the
+    /// indentation before the first fracture (after it, toughness and
+    /// stiffness are nearly collinear), which on potato lasts 50–120 µm of
+    /// travel: at the full 48 mm/s that is one or two 1 kHz ticks, and a
+    /// plant stiffer and less tough than the preset (R_c ×0.7, E ×1.3)
+    /// fractures on the tick after the touch, leaving the stiffness at its
+    /// prior. At 5 mm/s the indentation spans 10–25 ticks. Costs the
+    /// approach from rest at this speed (0.2 s for the loop scenarios'
+    /// 1 mm clearance).
+    pub touch_speed: f64,
     /// Sawing: the most reversals of the tangential direction the MPC may
     /// make in one cut (default 16; 0 keeps the whole cut within one stroke
     /// of the blade budget). A plan uses strokes only if their cost (the
@@ -71,6 +83,7 @@ impl Default for MpcSettings {
             max_iterations: 40,
             estimate: false,
             forgetting: 1.0,
+            touch_speed: 0.005,
             max_reversals: 16,
         }
     }
@@ -83,6 +96,7 @@ impl MpcSettings {
             ("rate_hz", self.rate_hz),
             ("max_slice_push_ratio", self.max_slice_push_ratio),
             ("trust_region", self.trust_region),
+            ("touch_speed", self.touch_speed),
         ] {
             if !(v.is_finite() && v > 0.0) {
                 return Err(InvalidSetting::new(key, v, "a finite number > 0"));
