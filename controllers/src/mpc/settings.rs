@@ -38,10 +38,9 @@ pub struct MpcSettings {
     pub max_iterations: u32,
     /// Estimate the material's scale factors online (default false: on
     /// potato plants ±30 % off the preset the stiffness comes out within
-    /// 5 %, but the toughness only within 5–15 % and the friction within
-    /// 3–9 %, and far off for R_c ×0.7, E ×1.3, where the surrogate at the
-    /// true factors is not the plant; the MPC's work gains nothing; see
-    /// docs/controllers.md).
+    /// 5 %, the toughness within 10 % and the friction within 9 %, but
+    /// 24 % off on the cuboid at R_c ×0.7, E ×1.3, where the surrogate at
+    /// the true factors is not the plant; see docs/controllers.md).
     pub estimate: bool,
     /// Forgetting factor of the estimator per row (two rows per tick), in
     /// (0, 1] (default 1: none — the material of a cut is one, and
