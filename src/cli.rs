@@ -65,6 +65,12 @@ pub enum Command {
     Compare {
         /// Scenario TOML file, or the name of a built-in scenario.
         scenario: String,
+        /// Replicas of the object per contestant (heights scaled by
+        /// 1 + k·1e-7): each row is the mean over them, with the work's
+        /// range; 1 runs the nominal object only.
+        #[arg(long, default_value_t = crate::commands::compare::DEFAULT_REPLICAS,
+              value_parser = clap::value_parser!(u64).range(1..=crate::commands::compare::MAX_REPLICAS))]
+        replicas: u64,
         /// Result directory (default: runs/<scenario>-compare-<UTC time>).
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,

@@ -11,6 +11,7 @@ pub mod cut_record;
 pub mod error;
 pub mod logging;
 pub mod object_profile;
+pub mod object_replica;
 pub mod plot;
 pub mod run_dir;
 pub mod scenario;

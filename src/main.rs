@@ -24,9 +24,11 @@ fn main() -> ExitCode {
             transport,
             out,
         }) => commands::run::run(&scenario, controller.as_deref(), transport, out.as_deref()),
-        Some(Command::Compare { scenario, out }) => {
-            commands::compare::run(&scenario, out.as_deref())
-        }
+        Some(Command::Compare {
+            scenario,
+            replicas,
+            out,
+        }) => commands::compare::run(&scenario, replicas, out.as_deref()),
         Some(Command::Trajectory { cases, out }) => {
             commands::trajectory::run(&cases, out.as_deref())
         }

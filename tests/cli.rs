@@ -152,3 +152,13 @@ fn trajectory_cases_from_jsonl() {
     assert_eq!(missing.status.code(), Some(2));
     std::fs::remove_dir_all(dir).ok();
 }
+
+#[test]
+fn compare_refuses_a_replica_count_out_of_range_in_one_line() {
+    for bad in ["0", "22"] {
+        let o = shearcut(&["compare", "loop-potato-cuboid", "--replicas", bad]);
+        assert_eq!(o.status.code(), Some(2));
+        let e = stderr(&o);
+        assert!(e.contains("--replicas") && e.contains("1..=21"), "{e}");
+    }
+}

@@ -1,15 +1,24 @@
 //! `shearcut compare`: the MPC against the baselines on one scenario — the
 //! pressing knife, the best constant slice-push ratio under the same blade
 //! budget (found by search), and the force loop — in the same closed loop.
+//!
+//! Each contestant runs on several replicas of the object (heights scaled
+//! by 1 + k·10⁻⁷, [`ObjectReplica`]) and its row is the mean over them, with
+//! the range of the work: the plant's discrete crack events move single
+//! runs by up to ~5 % on the cuboids. The search over constant ratios runs
+//! on the nominal object; its [`RESAMPLED_CANDIDATES`] cheapest ratios are
+//! then run on every replica and the best mean is the baseline, so that the
+//! baseline is not simply the luckiest of a dozen single runs.
 
 use std::path::Path;
 
 use serde::Serialize;
 
-use crate::commands::run::{LoopSetup, RunOutput, run_closed_loop};
+use crate::commands::run::{LoopSetup, RunOutput, run_closed_loop_on};
 use crate::controller_choice::ControllerChoice;
 use crate::cut_record::write_json;
 use crate::error::RunError;
+use crate::object_replica::ObjectReplica;
 use crate::plot::comparison::draw_comparison;
 use crate::render_plot;
 use crate::run_dir;
@@ -19,6 +28,13 @@ use crate::scenario::Scenario;
 const SEARCH_POINTS: usize = 6;
 /// Golden-section refinements after the coarse search.
 const REFINEMENTS: usize = 3;
+/// Constant ratios of the search (cheapest on the nominal object first)
+/// that are run on every replica to choose the best constant.
+pub const RESAMPLED_CANDIDATES: usize = 3;
+/// Replicas per contestant by default.
+pub const DEFAULT_REPLICAS: u64 = 5;
+/// Most replicas accepted.
+pub const MAX_REPLICAS: u64 = 21;
 
 /// `x` rounded to 3 decimals (ratios named in tables stay readable; the
 /// search's resolution is far coarser).
@@ -34,67 +50,97 @@ pub struct ComparisonRow {
     /// Role in the comparison: `mpc`, `press`, `best constant`, `force`, or
     /// `search` for the other constant ratios tried.
     pub role: String,
-    /// Total knife work, J.
+    /// Total knife work, J (mean over the replicas).
     pub work_j: f64,
-    /// Peak vertical force, N.
+    /// Least work of a replica, J.
+    pub work_min_j: f64,
+    /// Most work of a replica, J.
+    pub work_max_j: f64,
+    /// Replicas of the object run (1: the nominal object only).
+    pub replicas: usize,
+    /// Peak vertical force, N (mean over the replicas).
     pub peak_force_vertical_n: f64,
-    /// Largest surface deformation, mm.
+    /// Largest surface deformation, mm (mean).
     pub max_deformation_mm: f64,
-    /// Time to the target depth, s.
+    /// Time to the target depth, s (mean).
     pub duration_s: f64,
-    /// Blade used (largest tangential displacement from the start), mm.
+    /// Blade used (largest tangential displacement from the start), mm
+    /// (mean).
     pub blade_travel_mm: f64,
-    /// Tangential path over all strokes, mm.
+    /// Tangential path over all strokes, mm (mean).
     pub blade_path_mm: f64,
-    /// Reversals of the tangential direction (sawing).
+    /// Reversals of the tangential direction (sawing), on the nominal
+    /// object.
     pub reversals: u32,
-    /// Whether the target depth was reached.
+    /// Whether every replica reached the target depth.
     pub completed: bool,
-    /// Commands the arm refused.
+    /// Commands the arm refused, over all replicas.
     pub limit_faults: usize,
-    /// 99th percentile of the planning ticks' wall time, µs (0 without plans).
+    /// 99th percentile of the planning ticks' wall time, µs (0 without
+    /// plans; the largest over the replicas).
     pub plan_p99_us: f64,
 }
 
 impl ComparisonRow {
-    fn new(role: &str, run: &RunOutput) -> Self {
-        let c = &run.summary;
+    /// The row of one contestant from its runs on the replicas (the
+    /// nominal object's first).
+    fn new(role: &str, runs: &[&RunOutput]) -> Self {
+        let n = runs.len() as f64;
+        let mean = |f: fn(&RunOutput) -> f64| runs.iter().map(|r| f(r)).sum::<f64>() / n;
+        let work = runs.iter().map(|r| r.summary.work_j);
+        let nominal = runs[0];
         Self {
-            controller: run.controller.clone(),
+            controller: nominal.controller.clone(),
             role: role.to_string(),
-            work_j: c.work_j,
-            peak_force_vertical_n: c.peak_force_vertical_n,
-            max_deformation_mm: c.max_deformation_m * 1e3,
-            duration_s: c.duration_s,
-            blade_travel_mm: c.blade_travel_m * 1e3,
-            blade_path_mm: c.blade_path_m * 1e3,
-            reversals: c.reversals,
-            completed: c.completed,
-            limit_faults: run.output.limit_faults,
-            plan_p99_us: run.output.plan_times.p99_us,
+            work_j: mean(|r| r.summary.work_j),
+            work_min_j: work.clone().fold(f64::INFINITY, f64::min),
+            work_max_j: work.fold(f64::NEG_INFINITY, f64::max),
+            replicas: runs.len(),
+            peak_force_vertical_n: mean(|r| r.summary.peak_force_vertical_n),
+            max_deformation_mm: mean(|r| r.summary.max_deformation_m) * 1e3,
+            duration_s: mean(|r| r.summary.duration_s),
+            blade_travel_mm: mean(|r| r.summary.blade_travel_m) * 1e3,
+            blade_path_mm: mean(|r| r.summary.blade_path_m) * 1e3,
+            reversals: nominal.summary.reversals,
+            completed: runs.iter().all(|r| r.summary.completed),
+            limit_faults: runs.iter().map(|r| r.output.limit_faults).sum(),
+            plan_p99_us: runs
+                .iter()
+                .map(|r| r.output.plan_times.p99_us)
+                .fold(0.0, f64::max),
         }
     }
 }
 
-/// Runs `choices` on `s`, two at a time (the machine's cores).
-fn run_all(s: &Scenario, choices: &[ControllerChoice]) -> Vec<Result<RunOutput, RunError>> {
-    let mut results: Vec<Option<Result<RunOutput, RunError>>> =
-        choices.iter().map(|_| None).collect();
-    for (chunk, slots) in choices.chunks(2).zip(results.chunks_mut(2)) {
+/// Runs each (controller, replica) of `jobs` on `s`, two at a time (the
+/// machine's cores).
+fn run_all(
+    s: &Scenario,
+    jobs: &[(ControllerChoice, ObjectReplica)],
+) -> Vec<Result<RunOutput, RunError>> {
+    let mut results: Vec<Option<Result<RunOutput, RunError>>> = jobs.iter().map(|_| None).collect();
+    for (chunk, slots) in jobs.chunks(2).zip(results.chunks_mut(2)) {
         std::thread::scope(|scope| {
             let handles: Vec<_> = chunk
                 .iter()
-                .map(|&c| scope.spawn(move || run_closed_loop(s, c)))
+                .map(|&(c, replica)| scope.spawn(move || run_closed_loop_on(s, c, replica)))
                 .collect();
             for (h, slot) in handles.into_iter().zip(slots.iter_mut()) {
                 *slot = Some(h.join().expect("a closed-loop run does not panic"));
             }
         });
-        for (c, r) in chunk.iter().zip(slots.iter()) {
+        for ((c, replica), r) in chunk.iter().zip(slots.iter()) {
             if let Some(Ok(run)) = r {
+                let on = match replica.offset {
+                    0 => String::new(),
+                    k => format!(" (replica {k:+})"),
+                };
                 println!(
-                    "  {c:<12} work {:.4} J, peak Fv {:.2} N, completed {}",
-                    run.summary.work_j, run.summary.peak_force_vertical_n, run.summary.completed
+                    "  {:<25} work {:.4} J, peak Fv {:.2} N, completed {}",
+                    format!("{c}{on}"),
+                    run.summary.work_j,
+                    run.summary.peak_force_vertical_n,
+                    run.summary.completed
                 );
             }
         }
@@ -105,8 +151,19 @@ fn run_all(s: &Scenario, choices: &[ControllerChoice]) -> Vec<Result<RunOutput, 
         .collect()
 }
 
-/// The comparison for a loaded scenario.
-pub fn compare(s: &Scenario) -> Result<Vec<ComparisonRow>, RunError> {
+/// Runs `choices` on the nominal object.
+fn run_nominal(s: &Scenario, choices: &[ControllerChoice]) -> Vec<Result<RunOutput, RunError>> {
+    let jobs: Vec<_> = choices
+        .iter()
+        .map(|&c| (c, ObjectReplica::NOMINAL))
+        .collect();
+    run_all(s, &jobs)
+}
+
+/// The comparison for a loaded scenario, each contestant on `replicas`
+/// replicas of the object (1: the nominal object only).
+pub fn compare(s: &Scenario, replicas: u64) -> Result<Vec<ComparisonRow>, RunError> {
+    let replicas = replicas.clamp(1, MAX_REPLICAS) as usize;
     let task = LoopSetup::new(s, ControllerChoice::Press)?.task;
     let target = task.target_depth;
     // The largest constant ratio the blade allows over the whole cut.
@@ -117,24 +174,14 @@ pub fn compare(s: &Scenario) -> Result<Vec<ComparisonRow>, RunError> {
         task.blade_budget * 1e3,
         target * 1e3
     );
-    let mut rows = Vec::new();
     // Coarse search over constant ratios (ξ = 0 is pressing).
     let grid: Vec<f64> = (0..SEARCH_POINTS)
         .map(|i| round3(xi_cap * i as f64 / (SEARCH_POINTS - 1) as f64))
         .collect();
-    let choices: Vec<ControllerChoice> = grid
-        .iter()
-        .map(|&xi| {
-            if xi == 0.0 {
-                ControllerChoice::Press
-            } else {
-                ControllerChoice::Slice(xi)
-            }
-        })
-        .collect();
+    let choices: Vec<ControllerChoice> = grid.iter().map(|&xi| choice_at(xi)).collect();
     println!("searching the best constant ratio:");
     let mut tried: Vec<(f64, RunOutput)> = Vec::new();
-    for (xi, r) in grid.iter().zip(run_all(s, &choices)) {
+    for (xi, r) in grid.iter().zip(run_nominal(s, &choices)) {
         tried.push((*xi, r?));
     }
     // Golden-section refinement around the best completed grid point.
@@ -164,7 +211,7 @@ pub fn compare(s: &Scenario) -> Result<Vec<ComparisonRow>, RunError> {
             .filter(|x| !tried.iter().any(|(t, _)| t == x))
             .map(ControllerChoice::Slice)
             .collect();
-        for (c, r) in fresh.iter().zip(run_all(s, &fresh)) {
+        for (c, r) in fresh.iter().zip(run_nominal(s, &fresh)) {
             if let ControllerChoice::Slice(x) = c {
                 tried.push((*x, r?));
             }
@@ -181,48 +228,118 @@ pub fn compare(s: &Scenario) -> Result<Vec<ComparisonRow>, RunError> {
             lo = a;
         }
     }
-    let best = best_index(&tried);
-    // The other contestants.
+    // The cheapest ratios of the search, the MPC, pressing and the force
+    // loop on the other replicas.
+    let mut order: Vec<usize> = (0..tried.len())
+        .filter(|&i| tried[i].1.summary.completed)
+        .collect();
+    order.sort_by(|&a, &b| work(&tried[a].1).total_cmp(&work(&tried[b].1)));
+    order.truncate(RESAMPLED_CANDIDATES);
+    let press_index = tried
+        .iter()
+        .position(|(xi, _)| *xi == 0.0)
+        .expect("the grid starts at 0");
+    let mut resampled: Vec<usize> = order.clone();
+    if !resampled.contains(&press_index) {
+        resampled.push(press_index);
+    }
     let setpoint = s.controller.force_setpoint;
-    let others = run_all(
-        s,
-        &[ControllerChoice::Mpc, ControllerChoice::Force(setpoint)],
-    );
-    let mut others = others.into_iter();
-    match others.next().expect("two runs") {
-        Ok(run) => rows.push(ComparisonRow::new("mpc", &run)),
+    let (mpc, force) = (ControllerChoice::Mpc, ControllerChoice::Force(setpoint));
+    // Each job with whose row it is: None for the MPC and the force loop
+    // (told apart by the choice), Some(i) for the search's ratio i.
+    let mut jobs = vec![
+        (mpc, ObjectReplica::NOMINAL),
+        (force, ObjectReplica::NOMINAL),
+    ];
+    let mut owners = vec![None, None];
+    for index in 1..replicas {
+        let replica = ObjectReplica::nth(index);
+        jobs.extend([(mpc, replica), (force, replica)]);
+        owners.extend([None, None]);
+        for &i in &resampled {
+            jobs.push((choice_at(tried[i].0), replica));
+            owners.push(Some(i));
+        }
+    }
+    if replicas > 1 {
+        println!("the contestants on {replicas} replicas of the object:");
+    }
+    // Runs per contestant, the nominal object's first.
+    let (mut of_mpc, mut of_force) = (Vec::new(), Vec::new());
+    let mut of_tried: Vec<Vec<RunOutput>> = tried.iter().map(|_| Vec::new()).collect();
+    for ((owner, (c, _)), run) in owners.iter().zip(&jobs).zip(run_all(s, &jobs)) {
+        match (owner, c) {
+            (Some(i), _) => of_tried[*i].push(run?),
+            (None, ControllerChoice::Mpc) => of_mpc.push(run),
+            (None, _) => of_force.push(run),
+        }
+    }
+    let replicated = |i: usize| -> Vec<&RunOutput> {
+        std::iter::once(&tried[i].1)
+            .chain(of_tried[i].iter())
+            .collect()
+    };
+    let mean_work = |i: usize| {
+        let runs = replicated(i);
+        if runs.iter().all(|r| r.summary.completed) {
+            runs.iter().map(|r| r.summary.work_j).sum::<f64>() / runs.len() as f64
+        } else {
+            f64::INFINITY
+        }
+    };
+    let best = order
+        .iter()
+        .copied()
+        .min_by(|&a, &b| mean_work(a).total_cmp(&mean_work(b)))
+        .unwrap_or_else(|| best_index(&tried));
+    let mut rows = Vec::new();
+    match of_mpc.into_iter().collect::<Result<Vec<_>, _>>() {
+        Ok(runs) => rows.push(ComparisonRow::new("mpc", &runs.iter().collect::<Vec<_>>())),
         Err(e) => println!("  mpc: not run ({e})"),
     }
-    let press = tried
-        .iter()
-        .find(|(xi, _)| *xi == 0.0)
-        .map(|(_, r)| r)
-        .expect("the grid starts at 0");
-    rows.push(ComparisonRow::new("press", press));
-    rows.push(ComparisonRow::new("best constant", &tried[best].1));
+    rows.push(ComparisonRow::new("press", &replicated(press_index)));
+    rows.push(ComparisonRow::new("best constant", &replicated(best)));
+    let force = of_force.into_iter().collect::<Result<Vec<_>, _>>()?;
     rows.push(ComparisonRow::new(
         "force",
-        &others.next().expect("two runs")?,
+        &force.iter().collect::<Vec<_>>(),
     ));
     for (i, (_, r)) in tried.iter().enumerate() {
-        if i != best && r.controller != "press" {
-            rows.push(ComparisonRow::new("search", r));
+        if i != best && i != press_index {
+            let runs = if of_tried[i].is_empty() {
+                vec![r]
+            } else {
+                replicated(i)
+            };
+            rows.push(ComparisonRow::new("search", &runs));
         }
     }
     Ok(rows)
 }
 
+/// The constant-ratio controller for ratio `xi` (0: pressing).
+fn choice_at(xi: f64) -> ControllerChoice {
+    if xi == 0.0 {
+        ControllerChoice::Press
+    } else {
+        ControllerChoice::Slice(xi)
+    }
+}
+
 /// Markdown table of the main rows.
 pub fn markdown_table(rows: &[ComparisonRow]) -> String {
     let mut t = String::from(
-        "| controller | role | work (J) | peak Fv (N) | max deformation (mm) | time (s) | blade used (mm) | blade path (mm) | reversals | completed | limit faults | plan p99 (µs) |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n",
+        "| controller | role | work (J) | work range (J) | replicas | peak Fv (N) | max deformation (mm) | time (s) | blade used (mm) | blade path (mm) | reversals | completed | limit faults | plan p99 (µs) |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
     );
     for r in rows.iter().filter(|r| r.role != "search") {
         t += &format!(
-            "| {} | {} | {:.4} | {:.2} | {:.3} | {:.2} | {:.1} | {:.1} | {} | {} | {} | {:.0} |\n",
+            "| {} | {} | {:.4} | {:.4}–{:.4} | {} | {:.2} | {:.3} | {:.2} | {:.1} | {:.1} | {} | {} | {} | {:.0} |\n",
             r.controller,
             r.role,
             r.work_j,
+            r.work_min_j,
+            r.work_max_j,
+            r.replicas,
             r.peak_force_vertical_n,
             r.max_deformation_mm,
             r.duration_s,
@@ -237,11 +354,11 @@ pub fn markdown_table(rows: &[ComparisonRow]) -> String {
     t
 }
 
-/// Runs the subcommand: compare, print the table, write table, CSV, JSON
-/// and the bar plot.
-pub fn run(scenario: &str, out: Option<&Path>) -> Result<(), RunError> {
+/// Runs the subcommand: compare (each contestant on `replicas` replicas of
+/// the object), print the table, write table, CSV, JSON and the bar plot.
+pub fn run(scenario: &str, replicas: u64, out: Option<&Path>) -> Result<(), RunError> {
     let s = Scenario::load(scenario)?;
-    let rows = compare(&s)?;
+    let rows = compare(&s, replicas)?;
     let dir = run_dir::create(&format!("{}-compare", s.name), out)?;
     let table = markdown_table(&rows);
     println!("\n{table}");

@@ -20,6 +20,7 @@ use crate::controller_choice::ControllerChoice;
 use crate::cut_record::{CutSample, CutSummary, write_json, write_timeseries};
 use crate::error::{ConfigError, RunError};
 use crate::object_profile::depth_profile;
+use crate::object_replica::ObjectReplica;
 use crate::plot::control_trace::draw_control_trace;
 use crate::plot::cut_curves::draw_cut_curves;
 use crate::render_plot;
@@ -215,7 +216,17 @@ pub fn make_plant(
 
 /// Runs the closed loop for a loaded scenario (no files written).
 pub fn run_closed_loop(s: &Scenario, choice: ControllerChoice) -> Result<RunOutput, RunError> {
-    let setup = LoopSetup::new(s, choice)?;
+    run_closed_loop_on(s, choice, ObjectReplica::NOMINAL)
+}
+
+/// Runs the closed loop for a loaded scenario on a replica of its object
+/// (no files written).
+pub fn run_closed_loop_on(
+    s: &Scenario,
+    choice: ControllerChoice,
+    replica: ObjectReplica,
+) -> Result<RunOutput, RunError> {
+    let setup = LoopSetup::on_replica(s, choice, replica)?;
     let mut controller = setup.controller(s, choice)?;
     let plant = setup.plant(s)?;
     let cut = setup.cut(s);
@@ -249,11 +260,22 @@ pub struct LoopSetup {
 impl LoopSetup {
     /// The setup of `s` under the controller `choice`.
     pub fn new(s: &Scenario, choice: ControllerChoice) -> Result<Self, RunError> {
+        Self::on_replica(s, choice, ObjectReplica::NOMINAL)
+    }
+
+    /// The setup of `s` under the controller `choice`, on a replica of the
+    /// object (its heights scaled by a hair: [`ObjectReplica`]).
+    pub fn on_replica(
+        s: &Scenario,
+        choice: ControllerChoice,
+        replica: ObjectReplica,
+    ) -> Result<Self, RunError> {
         let knife = Knife::new(&s.knife).map_err(|e| invalid(s, e.prefixed("knife")))?;
         let mesh = s
             .object
             .mesh()
             .map_err(|e| invalid(s, InvalidSetting::new("object", "mesh", e.to_string())))?;
+        let mesh = replica.mesh(&mesh);
         let task = cut_task(s, &knife, &mesh);
         let xi = match choice {
             ControllerChoice::Mpc => mpc_cutting_ratio(s, &task, &mesh)?,
