@@ -65,9 +65,9 @@ pub enum Command {
     Compare {
         /// Scenario TOML file, or the name of a built-in scenario.
         scenario: String,
-        /// Replicas of the object per contestant (heights scaled by
-        /// 1 + k·1e-7): each row is the mean over them, with the work's
-        /// range; 1 runs the nominal object only.
+        /// Replicas of the object (heights scaled by 1 + k·1e-7) the MPC
+        /// and the best constant ratio's candidates run on: their rows are
+        /// the means, with the work's range; 1 runs the nominal object only.
         #[arg(long, default_value_t = crate::commands::compare::DEFAULT_REPLICAS,
               value_parser = clap::value_parser!(u64).range(1..=crate::commands::compare::MAX_REPLICAS))]
         replicas: u64,
