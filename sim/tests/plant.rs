@@ -812,3 +812,64 @@ fn the_number_of_worker_threads_changes_nothing_but_the_waits() {
     let e = bad.validate().unwrap_err().to_string();
     assert!(e.contains("workers") && e.contains('0'), "{e}");
 }
+
+#[test]
+fn sawing_back_over_a_side_face_re_enters_behind_the_current_front() {
+    // A straight edge slices a cuboid towards its tip (ξ = 0.5), so the
+    // segments at the far face slide off the piece, then saws back: they
+    // re-enter through that face while the rest of the edge has cut on.
+    // Their sections must take up the cut where it is now (the current
+    // front, the neighbours' state), not where it was when they left: a
+    // stale, shallower crack put the edge over a millimetre below the tip,
+    // whose unstable run then cut the section through to the board, and
+    // that tip dragged the fitted front down for the segments after it.
+    let material = MaterialPreset::PotatoCuboid.material();
+    let knife = Knife::new(&KnifePreset::Straight.settings()).unwrap();
+    let (w, h, l) = (0.03, 0.025, 0.03);
+    let s = PlantSettings {
+        reach: 0.006,
+        ..settings(10)
+    };
+    let xi = 0.5;
+    let mut plant = plant(
+        &material,
+        &knife,
+        &cuboid(w, h, l),
+        0.02,
+        Vector2::new(xi, -1.0).normalize(),
+        &s,
+        &LOOSE,
+        0,
+    );
+    let stroke = |sign: f64| KnifeCommand {
+        velocity: Vector3::new(0.0, -1.0, sign * xi) * SPEED,
+    };
+    let mut m = plant.step(&stroke(1.0), DT).unwrap();
+    // Down 6.25 mm with 3.1 mm of stroke, then as far down while sawing
+    // back.
+    for k in 0..2000 {
+        m = plant
+            .step(&stroke(if k < 1000 { 1.0 } else { -1.0 }), DT)
+            .unwrap();
+        let depths: Vec<f64> = plant
+            .section_planes()
+            .zip(plant.section_states())
+            .filter(|((_, _, active), st)| *active && st.knife_displacement > 0.0)
+            .map(|(_, st)| st.crack_depth)
+            .collect();
+        let (lo, hi) = depths
+            .iter()
+            .fold((f64::INFINITY, 0.0f64), |(a, b), d| (a.min(*d), b.max(*d)));
+        // Sections cut the same piece with the same edge: their cracks
+        // differ by the crack's discrete jumps (two rows of this mesh).
+        assert!(
+            hi - lo <= 1.0e-3,
+            "tick {k}: active crack depths {depths:?}"
+        );
+    }
+    assert!(
+        m.crack_depth > 0.010 && m.crack_depth < 0.0135,
+        "{}",
+        m.crack_depth
+    );
+}

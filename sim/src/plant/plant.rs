@@ -779,7 +779,9 @@ impl Plant {
         self.front = Some(front);
         let u = self.motion;
         let size = self.factory.object.size();
-        for s in self.sections.iter_mut() {
+        for i in 0..self.sections.len() {
+            let (before, rest) = self.sections.split_at_mut(i);
+            let (s, after) = rest.split_first_mut().expect("i < len");
             if !tracked(s) {
                 continue;
             }
@@ -815,22 +817,38 @@ impl Plant {
                     Preparation::New { geometry, section } => {
                         // The crack carried over: the front where it crosses
                         // the new plane (its trace in the knife plane is the
-                        // line from the board point along the segment's up),
-                        // the front shifted to pass through the
-                        // predecessor's own tip, so that the least-squares
-                        // fit's residual at that tip (millimetres where
-                        // intact flank tips and deep middle ones share one
-                        // quadratic) neither heals nor deepens the crack;
-                        // or, if it misses within the object's size, the
-                        // height of the predecessor's tip.
+                        // line from the board point along the segment's up).
+                        // From an active predecessor, the front shifted to
+                        // pass through the predecessor's own tip, so that
+                        // the least-squares fit's residual at that tip
+                        // (millimetres where intact flank tips and deep
+                        // middle ones share one quadratic) neither heals nor
+                        // deepens the crack; or, if it misses within the
+                        // object's size, the height of the predecessor's
+                        // tip. A predecessor that had slid off the piece
+                        // (sawing back over a side face) was not advanced
+                        // while the rest of the edge cut on: its tip is
+                        // stale, so the segment re-enters behind the
+                        // current front and takes over the nearest started
+                        // section's cut, as a first section entering
+                        // through a side face does (`Plant::place`).
                         let o = Vector2::new(plane.origin.z, plane.origin.y);
                         let up = Vector2::new(plane.v_axis.z, plane.v_axis.y);
-                        let mut through_tip = front;
-                        through_tip.coefficients[0] += tip.y - front.height_at(tip.x);
-                        let along = through_tip
+                        let neighbour =
+                            nearest_started_of(before.iter().chain(after.iter()), s.slot)
+                                .filter(|_| !was_active);
+                        let (through, fallback) = match neighbour {
+                            Some(n) => (front, n.state().crack_tip_height),
+                            None => {
+                                let mut through_tip = front;
+                                through_tip.coefficients[0] += tip.y - front.height_at(tip.x);
+                                (through_tip, tip.y / up.y)
+                            }
+                        };
+                        let along = through
                             .intersect_nearest(o, up)
                             .filter(|l| *l >= 0.0 && *l <= size)
-                            .unwrap_or(tip.y / up.y);
+                            .unwrap_or(fallback);
                         let depth = (geometry.height_at_cut() - along).max(0.0);
                         // The edge stays where it is: the predecessor's edge
                         // height moved to the new plane's board point (both
@@ -849,7 +867,7 @@ impl Plant {
                         // predecessor's first-fracture flag, and the knife
                         // where it is (see `CrossSection::take_over`).
                         let mut section = section;
-                        section.take_over(&s.section, depth, edge);
+                        section.take_over(neighbour.unwrap_or(&s.section), depth, edge);
                         // An edge above the new section's top (a lower shape
                         // towards the flank) has that gap to travel first.
                         s.gap = (edge - geometry.height_at_cut()).max(0.0);
@@ -1204,8 +1222,16 @@ fn fit_front(sections: &[SegmentSection], tips: &mut Vec<Vector2<f64>>) -> Optio
 
 /// The started active section nearest along the edge to slot `slot`.
 fn nearest_started(sections: &[SegmentSection], slot: usize) -> Option<&CrossSection> {
+    nearest_started_of(sections.iter(), slot)
+}
+
+/// The started active section of `sections` nearest along the edge to slot
+/// `slot`.
+fn nearest_started_of<'a>(
+    sections: impl Iterator<Item = &'a SegmentSection>,
+    slot: usize,
+) -> Option<&'a CrossSection> {
     sections
-        .iter()
         .filter(|s| s.active && started(s))
         .min_by_key(|s| s.slot.abs_diff(slot))
         .map(|s| &*s.section)
