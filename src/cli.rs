@@ -55,6 +55,11 @@ pub enum Command {
         /// How controller and plant talk.
         #[arg(long, value_enum, default_value = "inproc")]
         transport: crate::commands::run::Transport,
+        /// Run on a replica of the object, its heights scaled by
+        /// 1 + K·1e-7 (as `compare --replicas` does; in-process only).
+        #[arg(long, value_name = "K", default_value_t = 0, allow_negative_numbers = true,
+              value_parser = clap::value_parser!(i32).range(-10..=10))]
+        replica: i32,
         /// Result directory (default: runs/<scenario>-<UTC time>).
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,

@@ -6,6 +6,7 @@ use clap::Parser;
 use shearcut::cli::{Cli, Command};
 use shearcut::commands;
 use shearcut::error::RunError;
+use shearcut::object_replica::ObjectReplica;
 
 fn main() -> ExitCode {
     shearcut::logging::init();
@@ -22,8 +23,15 @@ fn main() -> ExitCode {
             scenario,
             controller,
             transport,
+            replica,
             out,
-        }) => commands::run::run(&scenario, controller.as_deref(), transport, out.as_deref()),
+        }) => commands::run::run(
+            &scenario,
+            controller.as_deref(),
+            transport,
+            ObjectReplica { offset: replica },
+            out.as_deref(),
+        ),
         Some(Command::Compare {
             scenario,
             replicas,

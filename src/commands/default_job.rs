@@ -9,6 +9,7 @@
 
 use crate::commands::run;
 use crate::error::RunError;
+use crate::object_replica::ObjectReplica;
 
 /// The default scenario of the main job.
 pub const DEFAULT_JOB_SCENARIO: &str = "loop-potato-whole";
@@ -22,6 +23,7 @@ pub fn run() -> Result<(), RunError> {
         DEFAULT_JOB_SCENARIO,
         Some("mpc"),
         run::Transport::Iceoryx2,
+        ObjectReplica::NOMINAL,
         None,
     )
 }

@@ -324,9 +324,19 @@ pub fn run(
     scenario: &str,
     controller: Option<&str>,
     transport: Transport,
+    replica: ObjectReplica,
     out: Option<&Path>,
 ) -> Result<(), RunError> {
     if transport == Transport::Iceoryx2 {
+        if replica != ObjectReplica::NOMINAL {
+            return Err(RunError::Config(ConfigError::Argument(
+                InvalidSetting::new(
+                    "--replica",
+                    replica.offset,
+                    "0 with --transport iceoryx2 (replicas run in process)",
+                ),
+            )));
+        }
         return crate::transport::run_supervisor::run_both(scenario, controller, out);
     }
     let s = Scenario::load(scenario)?;
@@ -336,7 +346,7 @@ pub fn run(
             .map_err(|e| RunError::Config(ConfigError::Argument(e.prefixed("-"))))?,
         None => s.controller.kind,
     };
-    let run = run_closed_loop(&s, choice)?;
+    let run = run_closed_loop_on(&s, choice, replica)?;
     let dir = run_dir::create(&s.name, out)?;
     write_results(&s, &run, transport, &dir)?;
     print_summary(&s, &run);
