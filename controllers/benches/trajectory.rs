@@ -57,6 +57,43 @@ fn bench_dofs<const N: usize>(cases: usize, seed: u64, update_trajectories: usiz
         errors += usize::from(r.is_err());
         times.push(dt);
     }
+    if std::env::var("OTG_BENCH_TAIL").is_ok() {
+        // The slowest 1 % (best of three timings each), calculated once more on their own (for
+        // a profiler).
+        let mut best: Vec<(f64, usize)> = inputs
+            .iter()
+            .enumerate()
+            .map(|(k, inp)| {
+                let t = (0..3)
+                    .map(|_| {
+                        let t0 = Instant::now();
+                        let _ = otg.calculate(black_box(inp), &mut traj);
+                        t0.elapsed().as_secs_f64()
+                    })
+                    .fold(f64::INFINITY, f64::min);
+                (t, k)
+            })
+            .collect();
+        best.sort_by(|a, b| b.0.total_cmp(&a.0));
+        let tail = &best[..best.len() / 100];
+        let braking = tail
+            .iter()
+            .filter(|(_, k)| !random_cases::start_is_safe(&inputs[*k]))
+            .count();
+        println!(
+            "  tail: {} cases from {:.2} us, {braking} with a braking start",
+            tail.len(),
+            tail.last().map_or(0.0, |t| t.0 * 1e6)
+        );
+        for &(_, k) in tail {
+            let _ = black_box(otg.calculate(black_box(&inputs[k]), &mut traj));
+        }
+        if std::env::var("OTG_BENCH_TAIL").is_ok_and(|v| v == "print") {
+            for &(t, k) in tail.iter().take(20) {
+                println!("  {:.2} us: {:?}", t * 1e6, inputs[k]);
+            }
+        }
+    }
     if std::env::var("OTG_BENCH_SPLIT").is_ok() {
         let mut safe: Vec<f64> = Vec::new();
         let mut brake: Vec<f64> = Vec::new();

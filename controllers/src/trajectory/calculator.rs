@@ -24,7 +24,7 @@ use super::input::{
     ControlInterface, DurationDiscretization, Synchronization, TrajectoryError, TrajectoryInput,
     TrajectorySettings, TrajectoryStatus,
 };
-use super::position_fixed_duration::fixed_duration;
+use super::position_fixed_duration::{fixed_duration, fixed_duration_then};
 use super::position_time_optimal::{
     Search, TimeOptimal, peak_parts, time_optimal, time_optimal_into,
 };
@@ -88,8 +88,15 @@ pub(crate) fn calculate<const N: usize>(
     let mut alt_work: [[Option<DofWork>; 2]; N] = [[None; 2]; N];
     let mut t_min = 0.0_f64;
     for i in 0..N {
-        let (active, total) =
-            solve_braking_dof(input, i, position, search, &mut work[i], &mut alt_work[i])?;
+        let (active, total) = solve_braking_dof(
+            input,
+            i,
+            position,
+            search,
+            search == Search::All,
+            &mut work[i],
+            &mut alt_work[i],
+        )?;
         braking |= active;
         traj.independent_min_durations[i] = total;
         t_min = t_min.max(total);
@@ -230,12 +237,16 @@ fn independent_shortest<const N: usize>(
 /// Braking and step 1 of DoF `i`: the fastest braking variant's solution in `work`, the other
 /// variants (braking to rest at the limit velocity, holding the braking acceleration; only
 /// when velocity braking is involved) in `alt`. Returns whether the DoF brakes and its minimal
-/// total duration. `search`: whether each variant needs all its extremal profiles.
+/// total duration. `search`: whether each variant needs all its extremal profiles;
+/// `variants`: whether the other variants are needed (for synchronisation) even if they
+/// cannot be faster.
+#[allow(clippy::too_many_arguments)]
 fn solve_braking_dof<const N: usize>(
     input: &TrajectoryInput<N>,
     i: usize,
     position: bool,
     search: Search,
+    variants: bool,
     work: &mut Option<DofWork>,
     alt: &mut [Option<DofWork>; 2],
 ) -> Result<(bool, f64), TrajectoryError> {
@@ -277,7 +288,26 @@ fn solve_braking_dof<const N: usize>(
         .map(|h| h.prefix);
         for (k, p) in [alternative, held].into_iter().enumerate() {
             if let Some(p) = p {
-                solve_dof(input, i, &l, &p, position, search, &mut alt[k]);
+                // Only the shortest total is wanted: a variant whose braking plus the
+                // time-optimal change of velocity and acceleration alone (a lower bound of its
+                // main profile) is not shorter than the best total cannot be better.
+                let beaten = !variants
+                    && work.as_ref().is_some_and(|bw| {
+                        let e = p.end();
+                        vel_change(
+                            e.velocity,
+                            e.acceleration,
+                            input.target_velocity[i],
+                            input.target_acceleration[i],
+                            l.a_max,
+                            l.a_min,
+                            l.j,
+                        )
+                        .is_some_and(|c| p.duration() + c.duration() >= total(bw))
+                    });
+                if !beaten {
+                    solve_dof(input, i, &l, &p, position, search, &mut alt[k]);
+                }
             }
             let better = match (&*work, &alt[k]) {
                 (Some(bw), Some(ow)) => total(ow) < total(bw),
@@ -333,9 +363,16 @@ fn synchronize_limiting_first<const N: usize>(
         let l = input.limits(i);
         let (v0, a0) = (input.current_velocity[i], input.current_acceleration[i]);
         if !is_safe(v0, a0, &l, true) {
-            let (_, ti) =
-                solve_braking_dof(input, i, true, Search::All, &mut work[i], &mut alt_work[i])
-                    .ok()?;
+            let (_, ti) = solve_braking_dof(
+                input,
+                i,
+                true,
+                Search::Shortest,
+                true,
+                &mut work[i],
+                &mut alt_work[i],
+            )
+            .ok()?;
             braking = true;
             total[i] = ti;
             t = t.max(ti);
@@ -389,8 +426,31 @@ fn synchronize_limiting_first<const N: usize>(
                 None => {
                     let d = dofs[i].as_ref()?;
                     let prefix = Profile::new(d.p0, d.v0, d.a0);
-                    fixed_duration(d, &prefix, t)
-                        .is_some_and(|(segs, dir)| segs.append_to(&prefix, dir, out))
+                    // If the peak + cruise family has no profile of duration `t`, the DoF is
+                    // solved before the held families are searched: a minimal duration above
+                    // `t` proves there is none (a wrong guess), and the costly failing search
+                    // is skipped.
+                    let (mut longer, mut no_profile) = (false, false);
+                    let found = fixed_duration_then(d, &prefix, t, || match solve(i, &mut work) {
+                        Some(ti) => {
+                            total[i] = ti;
+                            longer = ti > t;
+                            !longer
+                        }
+                        None => {
+                            no_profile = true;
+                            false
+                        }
+                    })
+                    .is_some_and(|(segs, dir)| segs.append_to(&prefix, dir, out));
+                    if no_profile {
+                        return None;
+                    }
+                    if longer {
+                        t = total[i];
+                        continue 'retry;
+                    }
+                    found
                 }
             };
             if found {
