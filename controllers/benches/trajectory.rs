@@ -6,7 +6,10 @@
 //! Environment: `OTG_BENCH_CASES` (per DoF count, default 100000), `OTG_STRESS_CASES` (default
 //! 1000000), `OTG_SEED` (default 42), `OTG_UPDATE_TRAJECTORIES` (trajectories stepped through for the
 //! `update()` timing, default 2000), `OTG_BENCH_DOFS` (comma-separated DoF counts out of 1, 3, 6
-//! and 7, default all four). Inputs are generated before timing; timing uses
+//! and 7, default all four), `OTG_BENCH_SPLIT` (set: also the median, p90 and p99 of the
+//! starts inside the limits and of the braking starts), `OTG_BENCH_TAIL` (set: the slowest 1 %,
+//! best of three timings each, is calculated once more on its own, for a profiler; `print`:
+//! and its 20 slowest inputs are printed). Inputs are generated before timing; timing uses
 //! `std::time::Instant` around each call.
 
 // A benchmark measures wall time by design.

@@ -288,12 +288,19 @@ fn solve_braking_dof<const N: usize>(
         .map(|h| h.prefix);
         for (k, p) in [alternative, held].into_iter().enumerate() {
             if let Some(p) = p {
-                // Only the shortest total is wanted: a variant whose braking plus the
-                // time-optimal change of velocity and acceleration alone (a lower bound of its
-                // main profile) is not shorter than the best total cannot be better.
+                // Only the shortest total is wanted: a variant whose braking plus a lower
+                // bound of its main profile is not shorter than the best total cannot be
+                // better. Bounds: the time-optimal change of velocity and acceleration alone,
+                // and the remaining distance at the velocity limit.
                 let beaten = !variants
                     && work.as_ref().is_some_and(|bw| {
                         let e = p.end();
+                        let rest = input.target_position[i] - e.position;
+                        let at_limit = if rest > 0.0 {
+                            rest / l.v_max
+                        } else {
+                            rest / l.v_min
+                        };
                         vel_change(
                             e.velocity,
                             e.acceleration,
@@ -303,7 +310,10 @@ fn solve_braking_dof<const N: usize>(
                             l.a_min,
                             l.j,
                         )
-                        .is_some_and(|c| p.duration() + c.duration() >= total(bw))
+                        .is_some_and(|c| {
+                            // NaN (a zero limit) compares false: not beaten.
+                            p.duration() + c.duration().max(at_limit) >= total(bw)
+                        })
                     });
                 if !beaten {
                     solve_dof(input, i, &l, &p, position, search, &mut alt[k]);
