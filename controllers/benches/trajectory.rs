@@ -5,7 +5,11 @@
 //! calculated trajectory (median and mean), and a randomised stress run (default 10⁶ cases, every result checked).
 //! Environment: `OTG_BENCH_CASES` (per DoF count, default 100000), `OTG_STRESS_CASES` (default
 //! 1000000), `OTG_SEED` (default 42), `OTG_UPDATE_TRAJECTORIES` (trajectories stepped through for the
-//! `update()` timing, default 2000). Inputs are generated before timing; timing uses
+//! `update()` timing, default 2000), `OTG_BENCH_DOFS` (comma-separated DoF counts out of 1, 3, 6
+//! and 7, default all four), `OTG_BENCH_SPLIT` (set: also the median, p90 and p99 of the
+//! starts inside the limits and of the braking starts), `OTG_BENCH_TAIL` (set: the slowest 1 %,
+//! best of three timings each, is calculated once more on its own, for a profiler; `print`:
+//! and its 20 slowest inputs are printed). Inputs are generated before timing; timing uses
 //! `std::time::Instant` around each call.
 
 // A benchmark measures wall time by design.
@@ -55,6 +59,66 @@ fn bench_dofs<const N: usize>(cases: usize, seed: u64, update_trajectories: usiz
         black_box(&traj);
         errors += usize::from(r.is_err());
         times.push(dt);
+    }
+    if std::env::var("OTG_BENCH_TAIL").is_ok() {
+        // The slowest 1 % (best of three timings each), calculated once more on their own (for
+        // a profiler).
+        let mut best: Vec<(f64, usize)> = inputs
+            .iter()
+            .enumerate()
+            .map(|(k, inp)| {
+                let t = (0..3)
+                    .map(|_| {
+                        let t0 = Instant::now();
+                        let _ = otg.calculate(black_box(inp), &mut traj);
+                        t0.elapsed().as_secs_f64()
+                    })
+                    .fold(f64::INFINITY, f64::min);
+                (t, k)
+            })
+            .collect();
+        best.sort_by(|a, b| b.0.total_cmp(&a.0));
+        let tail = &best[..best.len() / 100];
+        let braking = tail
+            .iter()
+            .filter(|(_, k)| !random_cases::start_is_safe(&inputs[*k]))
+            .count();
+        println!(
+            "  tail: {} cases from {:.2} us, {braking} with a braking start",
+            tail.len(),
+            tail.last().map_or(0.0, |t| t.0 * 1e6)
+        );
+        for &(_, k) in tail {
+            let _ = black_box(otg.calculate(black_box(&inputs[k]), &mut traj));
+        }
+        if std::env::var("OTG_BENCH_TAIL").is_ok_and(|v| v == "print") {
+            for &(t, k) in tail.iter().take(20) {
+                println!("  {:.2} us: {:?}", t * 1e6, inputs[k]);
+            }
+        }
+    }
+    if std::env::var("OTG_BENCH_SPLIT").is_ok() {
+        let mut safe: Vec<f64> = Vec::new();
+        let mut brake: Vec<f64> = Vec::new();
+        for (inp, &t) in inputs.iter().zip(&times) {
+            if random_cases::start_is_safe(inp) {
+                safe.push(t);
+            } else {
+                brake.push(t);
+            }
+        }
+        for (name, v) in [("safe", &mut safe), ("braking", &mut brake)] {
+            v.sort_by(f64::total_cmp);
+            if !v.is_empty() {
+                println!(
+                    "  {name} starts: {} cases, median {:.2} us, p90 {:.2} us, p99 {:.2} us",
+                    v.len(),
+                    percentile(v, 0.5) * 1e6,
+                    percentile(v, 0.9) * 1e6,
+                    percentile(v, 0.99) * 1e6
+                );
+            }
+        }
     }
     times.sort_by(f64::total_cmp);
     let mean = times.iter().sum::<f64>() / times.len() as f64;
@@ -173,10 +237,19 @@ fn main() {
     let stress = env("OTG_STRESS_CASES", 1_000_000);
     let seed = env("OTG_SEED", 42);
     let upd = env("OTG_UPDATE_TRAJECTORIES", 2000) as usize;
-    bench_dofs::<1>(cases, seed, upd);
-    bench_dofs::<3>(cases, seed, upd);
-    bench_dofs::<6>(cases, seed, upd);
-    bench_dofs::<7>(cases, seed, upd);
+    let dofs = std::env::var("OTG_BENCH_DOFS").unwrap_or_else(|_| "1,3,6,7".into());
+    for n in dofs
+        .split(',')
+        .filter_map(|s| s.trim().parse::<usize>().ok())
+    {
+        match n {
+            1 => bench_dofs::<1>(cases, seed, upd),
+            3 => bench_dofs::<3>(cases, seed, upd),
+            6 => bench_dofs::<6>(cases, seed, upd),
+            7 => bench_dofs::<7>(cases, seed, upd),
+            _ => eprintln!("OTG_BENCH_DOFS: {n} is not one of 1, 3, 6, 7"),
+        }
+    }
 
     let mut rng = ChaCha8Rng::seed_from_u64(seed);
     let mut tally = Tally::default();

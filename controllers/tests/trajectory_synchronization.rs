@@ -151,15 +151,31 @@ fn oracle_case_7531_not_longer_than_ruckig() {
 }
 
 /// Time synchronisation solves the time-optimal problem only for the DoFs that may be
-/// limiting and asks the others for a profile of that duration; the complete search solves
-/// every DoF first. Phase synchronisation of non-collinear inputs (random ones) falls back to
-/// the complete search, so the two must agree: bit-identical durations and independent
-/// minimal durations (the latter computed on demand for the DoFs not solved), and every DoF
-/// reaching its target.
-fn limiting_first_equals_complete_search<const N: usize>(rng: &mut ChaCha8Rng) -> usize {
+/// limiting, and only for their shortest profile, and asks the others for a profile of that
+/// duration; the complete search solves every DoF (all extremal profiles) first. Phase
+/// synchronisation of non-collinear inputs (random ones) falls back to the complete search,
+/// so the two must agree: the same durations and independent minimal durations (the latter
+/// computed on demand for the DoFs not solved), and every DoF reaching its target. The
+/// shortest-only search leaves the three-arc profiles whose acceleration changes sign to the
+/// peak family, which finds the same profiles up to its root-finding precision (one such
+/// duplicate in this test: 1.769541094857 s against 1.769541094848 s): durations agree to
+/// 1e-9·max(1, T) (the oracle's threshold for "longer"), and bit for bit in all but a few.
+/// Returns (compared, bit-identical) counts of durations.
+fn limiting_first_equals_complete_search<const N: usize>(
+    rng: &mut ChaCha8Rng,
+) -> (usize, usize, usize) {
     let otg = TrajectoryGenerator::<N>::new(TrajectorySettings::default()).unwrap();
     let (mut fast, mut complete) = (Trajectory::<N>::default(), Trajectory::<N>::default());
     let mut compared = 0;
+    let (mut durations, mut identical) = (0, 0);
+    let mut same = |a: f64, b: f64, what: &str, inp: &TrajectoryInput<N>| {
+        assert!(
+            (a - b).abs() <= 1e-9 * b.abs().max(1.0),
+            "{what}: {a} against {b} for {inp:?}"
+        );
+        durations += 1;
+        identical += usize::from(a.to_bits() == b.to_bits());
+    };
     for _ in 0..300 {
         let mut inp = random_cases::random_input::<N, _>(rng);
         if inp.validate().is_err() {
@@ -173,17 +189,13 @@ fn limiting_first_equals_complete_search<const N: usize>(rng: &mut ChaCha8Rng) -
         if r_fast.is_err() {
             continue;
         }
-        assert_eq!(
-            fast.duration().to_bits(),
-            complete.duration().to_bits(),
-            "{inp:?}"
-        );
+        same(fast.duration(), complete.duration(), "duration", &inp);
         let (a, b) = (
             fast.independent_min_durations(),
             complete.independent_min_durations(),
         );
         for i in 0..N {
-            assert_eq!(a[i].to_bits(), b[i].to_bits(), "DoF {i} of {inp:?}");
+            same(a[i], b[i], "independent duration", &inp);
             let e = fast.profile(i).end();
             assert!(
                 (e.position - inp.target_position[i]).abs() < 1e-8,
@@ -200,14 +212,24 @@ fn limiting_first_equals_complete_search<const N: usize>(rng: &mut ChaCha8Rng) -
         }
         compared += 1;
     }
-    compared
+    (compared, durations, identical)
 }
 
 #[test]
 fn limiting_dof_first_equals_the_complete_search() {
     let mut rng = ChaCha8Rng::seed_from_u64(11);
-    let compared = limiting_first_equals_complete_search::<2>(&mut rng)
-        + limiting_first_equals_complete_search::<3>(&mut rng)
-        + limiting_first_equals_complete_search::<7>(&mut rng);
+    let counts = [
+        limiting_first_equals_complete_search::<2>(&mut rng),
+        limiting_first_equals_complete_search::<3>(&mut rng),
+        limiting_first_equals_complete_search::<7>(&mut rng),
+    ];
+    let sum = |k: usize| counts.iter().map(|c| [c.0, c.1, c.2][k]).sum::<usize>();
+    let (compared, durations, identical) = (sum(0), sum(1), sum(2));
     assert!(compared > 800, "{compared}");
+    // Rounding-level duplicates are rare: at most 1 in 500 durations.
+    assert!(
+        identical * 500 >= durations * 499,
+        "{identical} of {durations} bit-identical"
+    );
+    eprintln!("{identical} of {durations} durations bit-identical");
 }

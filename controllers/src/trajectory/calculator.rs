@@ -24,8 +24,10 @@ use super::input::{
     ControlInterface, DurationDiscretization, Synchronization, TrajectoryError, TrajectoryInput,
     TrajectorySettings, TrajectoryStatus,
 };
-use super::position_fixed_duration::fixed_duration;
-use super::position_time_optimal::{TimeOptimal, peak_parts, time_optimal, time_optimal_into};
+use super::position_fixed_duration::{fixed_duration, fixed_duration_then};
+use super::position_time_optimal::{
+    Search, TimeOptimal, peak_parts, time_optimal, time_optimal_into,
+};
 use super::profile::Profile;
 use super::trajectory::Trajectory;
 use super::vel_change::vel_change;
@@ -66,6 +68,19 @@ pub(crate) fn calculate<const N: usize>(
         return Ok(status);
     }
     traj.pending = [None; N];
+    // One DoF on its own needs its shortest profile only; so do independent DoFs (continuous
+    // durations). Otherwise every extremal profile bounds a blocked interval.
+    let search =
+        if position && !discrete && (N == 1 || input.synchronization == Synchronization::None) {
+            Search::Shortest
+        } else {
+            Search::All
+        };
+    if search == Search::Shortest
+        && let Some(result) = independent_shortest(input, traj)
+    {
+        return result;
+    }
 
     // Braking and step 1 per DoF.
     let mut braking = false;
@@ -73,8 +88,15 @@ pub(crate) fn calculate<const N: usize>(
     let mut alt_work: [[Option<DofWork>; 2]; N] = [[None; 2]; N];
     let mut t_min = 0.0_f64;
     for i in 0..N {
-        let (active, total) =
-            solve_braking_dof(input, i, position, &mut work[i], &mut alt_work[i])?;
+        let (active, total) = solve_braking_dof(
+            input,
+            i,
+            position,
+            search,
+            search == Search::All,
+            &mut work[i],
+            &mut alt_work[i],
+        )?;
         braking |= active;
         traj.independent_min_durations[i] = total;
         t_min = t_min.max(total);
@@ -160,7 +182,7 @@ pub(crate) fn calculate<const N: usize>(
         if !densified[failed_dof] && position {
             densified[failed_dof] = true;
             if let Some(wi) = work[failed_dof].as_mut() {
-                let dense = time_optimal(&wi.dof, &wi.prefix, 8);
+                let dense = time_optimal(&wi.dof, &wi.prefix, 8, Search::All);
                 wi.cands.merge(&dense);
             }
             continue;
@@ -172,14 +194,59 @@ pub(crate) fn calculate<const N: usize>(
     }
 }
 
+/// One DoF, or independent DoFs with continuous durations, every one starting inside the
+/// limits: each DoF's shortest profile ([`Search::Shortest`]) written straight to `traj`, with
+/// exactly the result of the general path below (which for such inputs builds no braking
+/// prefix and uses candidate 0 of each DoF) but without its per-DoF work arrays. `None` if a
+/// DoF must brake first (the general path handles it).
+fn independent_shortest<const N: usize>(
+    input: &TrajectoryInput<N>,
+    traj: &mut Trajectory<N>,
+) -> Option<Result<TrajectoryStatus, TrajectoryError>> {
+    for i in 0..N {
+        let (v0, a0) = (input.current_velocity[i], input.current_acceleration[i]);
+        if !is_safe(v0, a0, &input.limits(i), true) {
+            return None;
+        }
+    }
+    let mut cands = TimeOptimal::new();
+    let mut t = 0.0_f64;
+    for i in 0..N {
+        let l = input.limits(i);
+        let start = (
+            input.current_position[i],
+            input.current_velocity[i],
+            input.current_acceleration[i],
+        );
+        let d = input.dof_from(i, start, &l);
+        let prefix = Profile::new(d.p0, d.v0, d.a0);
+        time_optimal_into(&d, &prefix, 1, Search::Shortest, &mut cands);
+        if cands.n == 0 {
+            return Some(Err(TrajectoryError::NoProfile { dof: i }));
+        }
+        cands.profile_into(&prefix, 0, &mut traj.profiles[i]);
+        traj.independent_min_durations[i] = cands.duration[0];
+        t = t.max(cands.duration[0]);
+    }
+    traj.duration = t;
+    traj.braking = false;
+    traj.pending = [None; N];
+    Some(Ok(finished_if_zero(traj, TrajectoryStatus::Working)))
+}
+
 /// Braking and step 1 of DoF `i`: the fastest braking variant's solution in `work`, the other
 /// variants (braking to rest at the limit velocity, holding the braking acceleration; only
 /// when velocity braking is involved) in `alt`. Returns whether the DoF brakes and its minimal
-/// total duration.
+/// total duration. `search`: whether each variant needs all its extremal profiles;
+/// `variants`: whether the other variants are needed (for synchronisation) even if they
+/// cannot be faster.
+#[allow(clippy::too_many_arguments)]
 fn solve_braking_dof<const N: usize>(
     input: &TrajectoryInput<N>,
     i: usize,
     position: bool,
+    search: Search,
+    variants: bool,
     work: &mut Option<DofWork>,
     alt: &mut [Option<DofWork>; 2],
 ) -> Result<(bool, f64), TrajectoryError> {
@@ -203,7 +270,7 @@ fn solve_braking_dof<const N: usize>(
         None
     };
     let total = |w: &DofWork| w.brake_t + w.cands.duration[0];
-    solve_dof(input, i, &l, &b.prefix, position, work);
+    solve_dof(input, i, &l, &b.prefix, position, search, work);
     // Alternative braking variants: braking to rest at the limit velocity, and holding the
     // braking acceleration (both only when velocity braking is involved). They are kept for
     // synchronisation: they may reach durations that the fastest one cannot (blocked
@@ -221,7 +288,36 @@ fn solve_braking_dof<const N: usize>(
         .map(|h| h.prefix);
         for (k, p) in [alternative, held].into_iter().enumerate() {
             if let Some(p) = p {
-                solve_dof(input, i, &l, &p, position, &mut alt[k]);
+                // Only the shortest total is wanted: a variant whose braking plus a lower
+                // bound of its main profile is not shorter than the best total cannot be
+                // better. Bounds: the time-optimal change of velocity and acceleration alone,
+                // and the remaining distance at the velocity limit.
+                let beaten = !variants
+                    && work.as_ref().is_some_and(|bw| {
+                        let e = p.end();
+                        let rest = input.target_position[i] - e.position;
+                        let at_limit = if rest > 0.0 {
+                            rest / l.v_max
+                        } else {
+                            rest / l.v_min
+                        };
+                        vel_change(
+                            e.velocity,
+                            e.acceleration,
+                            input.target_velocity[i],
+                            input.target_acceleration[i],
+                            l.a_max,
+                            l.a_min,
+                            l.j,
+                        )
+                        .is_some_and(|c| {
+                            // NaN (a zero limit) compares false: not beaten.
+                            p.duration() + c.duration().max(at_limit) >= total(bw)
+                        })
+                    });
+                if !beaten {
+                    solve_dof(input, i, &l, &p, position, search, &mut alt[k]);
+                }
             }
             let better = match (&*work, &alt[k]) {
                 (Some(bw), Some(ow)) => total(ow) < total(bw),
@@ -277,7 +373,16 @@ fn synchronize_limiting_first<const N: usize>(
         let l = input.limits(i);
         let (v0, a0) = (input.current_velocity[i], input.current_acceleration[i]);
         if !is_safe(v0, a0, &l, true) {
-            let (_, ti) = solve_braking_dof(input, i, true, &mut work[i], &mut alt_work[i]).ok()?;
+            let (_, ti) = solve_braking_dof(
+                input,
+                i,
+                true,
+                Search::Shortest,
+                true,
+                &mut work[i],
+                &mut alt_work[i],
+            )
+            .ok()?;
             braking = true;
             total[i] = ti;
             t = t.max(ti);
@@ -288,12 +393,22 @@ fn synchronize_limiting_first<const N: usize>(
         guess_max = guess_max.max(guess[i]);
         dofs[i] = Some(d);
     }
-    // Solves DoF `i` (starting inside the limits; all extremal profiles); its minimal
-    // duration, `None` if it has none.
+    // Solves DoF `i` (starting inside the limits); its minimal duration, `None` if it has
+    // none. Only its shortest profile is needed: a DoF whose extremal durations would matter
+    // (`t` in one of its blocked intervals) makes this synchronisation give up below, and the
+    // complete search takes over.
     let solve = |i: usize, work: &mut [Option<DofWork>; N]| -> Option<f64> {
         let d = dofs[i].as_ref()?;
         let prefix = Profile::new(d.p0, d.v0, d.a0);
-        solve_dof(input, i, &input.limits(i), &prefix, true, &mut work[i]);
+        solve_dof(
+            input,
+            i,
+            &input.limits(i),
+            &prefix,
+            true,
+            Search::Shortest,
+            &mut work[i],
+        );
         work[i].as_ref().map(|w| w.cands.duration[0])
     };
     for (i, &g) in guess.iter().enumerate() {
@@ -321,8 +436,31 @@ fn synchronize_limiting_first<const N: usize>(
                 None => {
                     let d = dofs[i].as_ref()?;
                     let prefix = Profile::new(d.p0, d.v0, d.a0);
-                    fixed_duration(d, &prefix, t)
-                        .is_some_and(|(segs, dir)| segs.append_to(&prefix, dir, out))
+                    // If the peak + cruise family has no profile of duration `t`, the DoF is
+                    // solved before the held families are searched: a minimal duration above
+                    // `t` proves there is none (a wrong guess), and the costly failing search
+                    // is skipped.
+                    let (mut longer, mut no_profile) = (false, false);
+                    let found = fixed_duration_then(d, &prefix, t, || match solve(i, &mut work) {
+                        Some(ti) => {
+                            total[i] = ti;
+                            longer = ti > t;
+                            !longer
+                        }
+                        None => {
+                            no_profile = true;
+                            false
+                        }
+                    })
+                    .is_some_and(|(segs, dir)| segs.append_to(&prefix, dir, out));
+                    if no_profile {
+                        return None;
+                    }
+                    if longer {
+                        t = total[i];
+                        continue 'retry;
+                    }
+                    found
                 }
             };
             if found {
@@ -400,7 +538,7 @@ pub(crate) fn duration_guess(d: &Dof) -> f64 {
 pub(crate) fn independent_min_duration(d: &Dof) -> f64 {
     let prefix = Profile::new(d.p0, d.v0, d.a0);
     let mut cands = TimeOptimal::new();
-    time_optimal_into(d, &prefix, 1, &mut cands);
+    time_optimal_into(d, &prefix, 1, Search::Shortest, &mut cands);
     if cands.n > 0 {
         cands.duration[0]
     } else {
@@ -422,6 +560,7 @@ fn solve_dof<const N: usize>(
     l: &Limits,
     prefix: &Profile,
     position: bool,
+    search: Search,
     out: &mut Option<DofWork>,
 ) {
     let s = prefix.end();
@@ -444,7 +583,7 @@ fn solve_dof<const N: usize>(
     };
     let c = &mut w.cands;
     if position {
-        time_optimal_into(&w.dof, &w.prefix, 1, c);
+        time_optimal_into(&w.dof, &w.prefix, 1, search, c);
     } else {
         c.n = 0;
         let mut found = velocity::candidates(prefix, dof.vf, dof.af, l);
@@ -587,7 +726,7 @@ fn phase_synchronize<const N: usize>(
         j: l.j,
     };
     let prefix = Profile::new(0.0, line.v0, line.a0);
-    let cands = time_optimal(&line, &prefix, 1);
+    let cands = time_optimal(&line, &prefix, 1, Search::Shortest);
     if cands.n == 0 {
         return false;
     }

@@ -173,65 +173,92 @@ impl<const N: usize> TrajectoryInput<N> {
     /// Checks finiteness, signs of the limits and reachability of the target state.
     pub fn validate(&self) -> Result<(), TrajectoryError> {
         for dof in 0..N {
-            let fields: [(&'static str, f64); 9] = [
-                ("current_position", self.current_position[dof]),
-                ("current_velocity", self.current_velocity[dof]),
-                ("current_acceleration", self.current_acceleration[dof]),
-                ("target_position", self.target_position[dof]),
-                ("target_velocity", self.target_velocity[dof]),
-                ("target_acceleration", self.target_acceleration[dof]),
-                ("max_velocity", self.max_velocity[dof]),
-                ("max_acceleration", self.max_acceleration[dof]),
-                ("max_jerk", self.max_jerk[dof]),
+            let values = [
+                self.current_position[dof],
+                self.current_velocity[dof],
+                self.current_acceleration[dof],
+                self.target_position[dof],
+                self.target_velocity[dof],
+                self.target_acceleration[dof],
+                self.max_velocity[dof],
+                self.max_acceleration[dof],
+                self.max_jerk[dof],
             ];
-            for (field, x) in fields {
-                if !x.is_finite() {
-                    return Err(TrajectoryError::NonFinite { dof, field });
-                }
+            // One branch-free test for the common case; the field is named only on failure.
+            if !values.iter().fold(true, |ok, x| ok & x.is_finite()) {
+                self.first_non_finite(dof)?;
             }
-            let l = self.limits(dof);
-            let checks: [(&'static str, f64, bool); 5] = [
-                ("max_velocity", l.v_max, l.v_max >= 0.0),
-                ("max_acceleration", l.a_max, l.a_max >= 0.0),
-                ("max_jerk", l.j, l.j >= 0.0),
-                ("min_velocity", l.v_min, l.v_min <= 0.0),
-                ("min_acceleration", l.a_min, l.a_min <= 0.0),
-            ];
-            for (field, x, ok) in checks {
-                if !x.is_finite() {
-                    return Err(TrajectoryError::NonFinite { dof, field });
-                }
-                if !ok {
-                    return Err(TrajectoryError::InvalidLimit { dof, field });
-                }
+            self.validate_limits_and_target(dof)?;
+        }
+        Ok(())
+    }
+
+    /// The error naming the first non-finite state or limit field of DoF `dof`, if any.
+    fn first_non_finite(&self, dof: usize) -> Result<(), TrajectoryError> {
+        let fields: [(&'static str, f64); 9] = [
+            ("current_position", self.current_position[dof]),
+            ("current_velocity", self.current_velocity[dof]),
+            ("current_acceleration", self.current_acceleration[dof]),
+            ("target_position", self.target_position[dof]),
+            ("target_velocity", self.target_velocity[dof]),
+            ("target_acceleration", self.target_acceleration[dof]),
+            ("max_velocity", self.max_velocity[dof]),
+            ("max_acceleration", self.max_acceleration[dof]),
+            ("max_jerk", self.max_jerk[dof]),
+        ];
+        for (field, x) in fields {
+            if !x.is_finite() {
+                return Err(TrajectoryError::NonFinite { dof, field });
             }
-            let (vf, af) = (self.target_velocity[dof], self.target_acceleration[dof]);
-            let tol = |x: f64| 1e-12 * x.abs().max(1.0);
-            if af > l.a_max + tol(l.a_max) || af < l.a_min - tol(l.a_min) {
+        }
+        Ok(())
+    }
+
+    /// Signs of the limits and reachability of the target state of DoF `dof` (whose fields
+    /// are finite).
+    fn validate_limits_and_target(&self, dof: usize) -> Result<(), TrajectoryError> {
+        let l = self.limits(dof);
+        let checks: [(&'static str, f64, bool); 5] = [
+            ("max_velocity", l.v_max, l.v_max >= 0.0),
+            ("max_acceleration", l.a_max, l.a_max >= 0.0),
+            ("max_jerk", l.j, l.j >= 0.0),
+            ("min_velocity", l.v_min, l.v_min <= 0.0),
+            ("min_acceleration", l.a_min, l.a_min <= 0.0),
+        ];
+        for (field, x, ok) in checks {
+            if !x.is_finite() {
+                return Err(TrajectoryError::NonFinite { dof, field });
+            }
+            if !ok {
+                return Err(TrajectoryError::InvalidLimit { dof, field });
+            }
+        }
+        let (vf, af) = (self.target_velocity[dof], self.target_acceleration[dof]);
+        let tol = |x: f64| 1e-12 * x.abs().max(1.0);
+        if af > l.a_max + tol(l.a_max) || af < l.a_min - tol(l.a_min) {
+            return Err(TrajectoryError::TargetOutsideLimits {
+                dof,
+                field: "target_acceleration",
+            });
+        }
+        if self.interface == ControlInterface::Position {
+            if vf > l.v_max + tol(l.v_max) || vf < l.v_min - tol(l.v_min) {
                 return Err(TrajectoryError::TargetOutsideLimits {
                     dof,
-                    field: "target_acceleration",
+                    field: "target_velocity",
                 });
             }
-            if self.interface == ControlInterface::Position {
-                if vf > l.v_max + tol(l.v_max) || vf < l.v_min - tol(l.v_min) {
+            // The target must be reachable from within the limits: arriving with af > 0 means
+            // the velocity rose by at least af²/(2J) just before.
+            if l.j > 0.0 {
+                let reach = af * af / (2.0 * l.j);
+                if (af > 0.0 && vf - reach < l.v_min - tol(l.v_min))
+                    || (af < 0.0 && vf + reach > l.v_max + tol(l.v_max))
+                {
                     return Err(TrajectoryError::TargetOutsideLimits {
                         dof,
-                        field: "target_velocity",
+                        field: "target_acceleration",
                     });
-                }
-                // The target must be reachable from within the limits: arriving with af > 0 means
-                // the velocity rose by at least af²/(2J) just before.
-                if l.j > 0.0 {
-                    let reach = af * af / (2.0 * l.j);
-                    if (af > 0.0 && vf - reach < l.v_min - tol(l.v_min))
-                        || (af < 0.0 && vf + reach > l.v_max + tol(l.v_max))
-                    {
-                        return Err(TrajectoryError::TargetOutsideLimits {
-                            dof,
-                            field: "target_acceleration",
-                        });
-                    }
                 }
             }
         }

@@ -35,6 +35,20 @@ const ARC_SAMPLES: usize = 12;
 /// its (verified) segments and direction (`−1` for the mirror frame), to be appended to `prefix`
 /// (see [`Segments::append_to`]).
 pub(crate) fn fixed_duration(d: &Dof, prefix: &Profile, t: f64) -> Option<(Segments, f64)> {
+    fixed_duration_then(d, prefix, t, || true)
+}
+
+/// [`fixed_duration`] that asks `before_held()` once the peak + cruise family (where most
+/// profiles are found) has failed, before the held families are searched, and gives up if it
+/// returns `false`. The limiting-DoF-first synchronisation solves the DoF's time-optimal
+/// problem there: if its minimal duration exceeds `t`, no profile of duration `t` exists and
+/// the held families (the most expensive part of a search that fails) need not be tried.
+pub(crate) fn fixed_duration_then(
+    d: &Dof,
+    prefix: &Profile,
+    t: f64,
+    mut before_held: impl FnMut() -> bool,
+) -> Option<(Segments, f64)> {
     if t.is_nan() || t < 0.0 {
         return None;
     }
@@ -53,6 +67,9 @@ pub(crate) fn fixed_duration(d: &Dof, prefix: &Profile, t: f64) -> Option<(Segme
     }
     if let Some(p) = peak_cruise(d, prefix, t) {
         return Some(p);
+    }
+    if !before_held() {
+        return None;
     }
     if let Some(p) = held(d, d, prefix, t, 1.0) {
         return Some(p);

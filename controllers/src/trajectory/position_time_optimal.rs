@@ -47,6 +47,20 @@ pub(crate) const MAX_CANDIDATES: usize = 12;
 /// Samples for the three-arc families.
 const ARC_SAMPLES: usize = 10;
 
+/// What a time-optimal search must find.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Search {
+    /// Every valid extremal profile (their durations bound the blocked intervals that time
+    /// synchronisation needs).
+    All,
+    /// The shortest valid profile only (one DoF on its own, or a DoF whose minimal duration is
+    /// all the synchronisation asks for): the closed-form cruise profile is tried first and
+    /// ends the search when it is provably time-optimal ([`cruise_is_time_optimal`]), and every
+    /// family or window whose duration lower bound is not below the shortest profile found so
+    /// far is skipped.
+    Shortest,
+}
+
 /// The valid candidates of one DoF, sorted by duration.
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct TimeOptimal {
@@ -54,6 +68,8 @@ pub(crate) struct TimeOptimal {
     pub duration: [f64; MAX_CANDIDATES],
     pub segs: [Segments; MAX_CANDIDATES],
     pub dir: [f64; MAX_CANDIDATES],
+    /// Only the shortest candidate is wanted ([`Search::Shortest`]).
+    shortest: bool,
 }
 
 impl TimeOptimal {
@@ -63,12 +79,26 @@ impl TimeOptimal {
             duration: [0.0; MAX_CANDIDATES],
             segs: [Segments::default(); MAX_CANDIDATES],
             dir: [1.0; MAX_CANDIDATES],
+            shortest: false,
         }
     }
 
+    /// Whether a family or window whose profiles all last at least `lower_bound` can be
+    /// skipped: only the shortest profile is wanted and one no longer than that bound is
+    /// already known. (A profile of that family would be at least as long: at most equal
+    /// within the 1e-12 of the duplicate test, and then it would be dropped by [`Self::offer`].)
+    #[inline]
+    fn beaten(&self, lower_bound: f64) -> bool {
+        self.shortest && self.n > 0 && lower_bound >= self.duration[0]
+    }
+
     /// Verifies a candidate and inserts it sorted by duration (duplicates within 1e-12 dropped).
+    /// With [`Search::Shortest`] a candidate not shorter than the best one is not verified.
     fn offer(&mut self, dof: &Dof, prefix: &Profile, segs: &Segments, dir: f64) {
         let d = segs.duration();
+        if self.beaten(d) {
+            return;
+        }
         for k in 0..self.n {
             if (self.duration[k] - d).abs() <= 1e-12 * (1.0 + d) {
                 return;
@@ -206,24 +236,36 @@ pub(crate) fn peak_segments(
 /// `v_hi T`. Outside that range (with a relative margin of 1e-9 for rounding) there is no
 /// root. On the benchmark's cases this skips most windows of long moves, whose shortest
 /// profile cruises at the velocity limit.
-fn distance_excluded(d: &Dof, dp: f64, l: f64, r: f64, at_l: (f64, f64), at_r: (f64, f64)) -> bool {
-    let (d_lo, d_hi, scale) = distance_range(d, l, r, at_l, at_r);
+///
+/// `t_cap`: only profiles not longer than this matter (the shortest profile found so far by a
+/// shortest-only search, else +∞); the durations above it are left out of the range.
+fn distance_excluded(
+    d: &Dof,
+    dp: f64,
+    (l, r): (f64, f64),
+    at_l: (f64, f64),
+    at_r: (f64, f64),
+    t_cap: f64,
+) -> bool {
+    let (d_lo, d_hi, scale) = distance_range(d, l, r, at_l, at_r, t_cap);
     let margin = 1e-9 * (dp.abs() + scale) + 1e-12;
     // NaN durations (a change impossible at an end) compare false: not excluded.
     dp > d_hi + margin || dp < d_lo - margin
 }
 
 /// The range `[D_lo, D_hi]` of the distance of the peak-family profiles with their peak in
-/// `[l, r]` (see [`distance_excluded`]), and the scale of the bound (`max |v| · T_max`).
+/// `[l, r]` and a duration of at most `t_cap` (see [`distance_excluded`]), and the scale of the
+/// bound (`max |v| · T_max`).
 fn distance_range(
     d: &Dof,
     l: f64,
     r: f64,
     (t1l, t2l): (f64, f64),
     (t1r, t2r): (f64, f64),
+    t_cap: f64,
 ) -> (f64, f64, f64) {
     let t_lo = t1l.min(t1r) + t2l.min(t2r);
-    let t_hi = t1l.max(t1r) + t2l.max(t2r);
+    let t_hi = (t1l.max(t1r) + t2l.max(t2r)).min(t_cap);
     let ov0 = d.a0 * d.a0 / (2.0 * d.j);
     let ovf = d.af * d.af / (2.0 * d.j);
     let v_lo = (d.v0 - ov0).min(l).min(d.vf - ovf);
@@ -231,6 +273,15 @@ fn distance_range(
     let d_lo = (v_lo * t_lo).min(v_lo * t_hi);
     let d_hi = (v_hi * t_lo).max(v_hi * t_hi);
     (d_lo, d_hi, v_lo.abs().max(v_hi.abs()) * t_hi.abs())
+}
+
+/// A lower bound of the duration `T₁ + T₂` of the peak-family profiles (without cruise) with
+/// their peak in a window, from the durations `(T₁, T₂)` of both velocity changes at the
+/// window's ends: each is monotone on the window (see [`distance_excluded`]), so it is at
+/// least its smaller end value. NaN (a change impossible at an end) gives NaN, which bounds
+/// nothing (`beaten` is false).
+fn window_min_duration((t1l, t2l): (f64, f64), (t1r, t2r): (f64, f64)) -> f64 {
+    t1l.min(t1r) + t2l.min(t2r)
 }
 
 /// Peak family (see the module documentation).
@@ -250,8 +301,21 @@ fn peak_family(d: &Dof, prefix: &Profile, density: usize, out: &mut TimeOptimal)
         }
     }
     let mut roots = Roots::new();
+    // The roots of each window are offered before the next window is solved (in the order of
+    // the windows, as if all were offered at the end), so that a shortest-only search can skip
+    // the windows that cannot hold a shorter profile. (Offering the cruise profiles first, and
+    // solving the windows in the order of their duration bounds, cost more than they saved.)
+    let mut offered = 0;
     for (k, w) in br[..nb].windows(2).enumerate() {
-        if density == 1 && distance_excluded(d, dp, w[0], w[1], parts[k], parts[k + 1]) {
+        let t_cap = if out.shortest && out.n > 0 {
+            out.duration[0]
+        } else {
+            f64::INFINITY
+        };
+        if density == 1
+            && (out.beaten(window_min_duration(parts[k], parts[k + 1]))
+                || distance_excluded(d, dp, (w[0], w[1]), parts[k], parts[k + 1], t_cap))
+        {
             continue;
         }
         scan_peak_window(
@@ -264,15 +328,22 @@ fn peak_family(d: &Dof, prefix: &Profile, density: usize, out: &mut TimeOptimal)
             RootSet::All,
             &mut roots,
         );
-    }
-    for &vp in roots.as_slice() {
-        if let Some((c1, c2)) = peak_parts(d, vp)
-            && let Some(s) = peak_segments(&c1, 0.0, &c2, scale)
-        {
-            out.offer(d, prefix, &s, 1.0);
+        for &vp in &roots.as_slice()[offered..] {
+            if let Some((c1, c2)) = peak_parts(d, vp)
+                && let Some(s) = peak_segments(&c1, 0.0, &c2, scale)
+            {
+                out.offer(d, prefix, &s, 1.0);
+            }
         }
+        offered = roots.as_slice().len();
     }
-    // Cruise at a velocity limit.
+    offer_cruise(d, prefix, 0.0, out);
+}
+
+/// Offers the profiles that cruise at a velocity limit for a time `t_c > rel (1 + T)` (`T`
+/// their duration).
+fn offer_cruise(d: &Dof, prefix: &Profile, rel: f64, out: &mut TimeOptimal) {
+    let dp = d.pf - d.p0;
     for vc in [d.v_max, d.v_min] {
         if vc == 0.0 {
             continue;
@@ -280,13 +351,102 @@ fn peak_family(d: &Dof, prefix: &Profile, density: usize, out: &mut TimeOptimal)
         if let Some((c1, c2)) = peak_parts(d, vc) {
             let dist = c1.distance(d.v0, d.a0) + c2.distance(vc, 0.0);
             let tc = (dp - dist) / vc;
-            if tc > 0.0
-                && let Some(s) = peak_segments(&c1, tc, &c2, scale)
+            if tc > rel * (1.0 + tc + c1.duration() + c2.duration())
+                && let Some(s) = peak_segments(&c1, tc, &c2, 1.0)
             {
                 out.offer(d, prefix, &s, 1.0);
             }
         }
     }
+}
+
+/// Offers the profile that cruises at a velocity limit if it is provably time-optimal
+/// ([`cruise_is_time_optimal`]); whether it was (then it is the only candidate in `out`).
+fn optimal_cruise(d: &Dof, prefix: &Profile, out: &mut TimeOptimal) -> bool {
+    let dp = d.pf - d.p0;
+    for vc in [d.v_max, d.v_min] {
+        if vc == 0.0 {
+            continue;
+        }
+        if let Some((c1, c2)) = peak_parts(d, vc) {
+            let dist = c1.distance(d.v0, d.a0) + c2.distance(vc, 0.0);
+            let tc = (dp - dist) / vc;
+            if cruise_is_time_optimal(d, vc, &c1, tc, &c2)
+                && let Some(s) = peak_segments(&c1, tc, &c2, 1.0)
+            {
+                out.offer(d, prefix, &s, 1.0);
+                return out.n > 0;
+            }
+        }
+    }
+    false
+}
+
+/// Whether the profile `c1`, cruise at `vc` for `tc`, `c2` (the two time-optimal velocity
+/// changes `(v0, a0) → (vc, 0) → (vf, af)`), once verified, is the shortest of all profiles.
+///
+/// In the frame where `vc > 0` (mirror otherwise), let `T₁`, `T₂` be the durations of `c1`,
+/// `c2` and `T_c = T₁ + t_c + T₂`. Any feasible trajectory `x` of duration `T` satisfies
+/// `v_x(t) ≤ v₁(t)` for `t ≤ T₁` and `v_x(t) ≤ v₂(t + T_c − T)` for `t ≥ T − T₂` (the
+/// velocities of `c1` and `c2`), and `v_x ≤ v_c` everywhere:
+///
+/// * `c1` is `+J`, a hold at `a_max`, `−J` (a `+J`-first shape): until its `−J` ramp its
+///   acceleration is `min(a₀ + J t, a_max)`, an upper bound of every trajectory's; on the
+///   ramp `v₁ + a₁²/(2J) = v_c` with `a₁ ≥ 0`, and `x` could only exceed `v₁` there at an
+///   instant with `a_x > a₁ ≥ 0`, `v_x > v₁`, i.e. `v_x + a_x²/(2J) > v_c`; from there
+///   `v + a²/(2J)` does not decrease while `a > 0` (jerk ≥ −J), so `x` exceeds `v_c` when its
+///   acceleration returns to zero, or ends with `a_f > 0`, `v_f + a_f²/(2J) > v_c`, which the
+///   condition on the target below excludes;
+/// * `c2` is `−J`, a hold at `a_min`, `+J`: after its first ramp every trajectory's
+///   acceleration is at least `c2`'s (the jerk and `a_min` bounds backwards from `a_f`); on
+///   the first ramp `v₂ = v_c − a₂²/(2J)`, and `x` could only exceed `v₂` at an instant with
+///   `a_x < a₂ ≤ 0`, `v_x + a_x²/(2J) > v_c`; backwards in time the acceleration rises by at
+///   most `J` per second, so `x` exceeded `v_c` `|a_x|/J` earlier, or that instant lies before
+///   the start and then `v₀ + a₀²/(2J) > v_c` with `a₀ < 0`, which the condition on the start
+///   below excludes.
+///
+/// Then if `T₁ + T₂ ≤ T < T_c`, `Δp = ∫ v_x ≤ D₁ + D₂ + v_c (T − T₁ − T₂) < Δp`: impossible.
+/// If `T < T₁ + T₂`, split at `u ≤ T₁` with `T − u ≤ T₂`: `∫ v_x ≤ ∫₀^u v₁ + ∫ v₂` over the
+/// last `T − u` of `c2`, and `Δp` minus that is `∫_u^{T₁} v₁ + ∫ v₂ (the rest of c2) + v_c t_c
+/// ≥ v_c t_c − T₁ n₁ − T₂ n₂`, where `n₁`, `n₂` bound the negative velocities of `c1`, `c2`
+/// (`n₁ = max(0, −min v₁)`, `min v₁ = v₀ − a₀²/(2J)` if `a₀ < 0`, else `v₀`; `min v₂ =
+/// v_f − a_f²/(2J)` if `a_f > 0`, else `v_f`). So `v_c t_c > T₁ n₁ + T₂ n₂` makes every
+/// shorter duration infeasible. Conditions (in the frame `vc > 0`): the shapes above,
+/// `a₀ ≥ 0` or `v₀ + a₀²/(2J) ≤ v_c`, `a_f ≤ 0` or `v_f + a_f²/(2J) ≤ v_c`, and
+/// `v_c t_c > T₁ n₁ + T₂ n₂`, with `t_c > 1e-9 (1 + T_c)` so that no profile without cruise
+/// (whose duration would differ by `t_c`) can be a rounding-level duplicate of this one.
+fn cruise_is_time_optimal(d: &Dof, vc: f64, c1: &VelChange, tc: f64, c2: &VelChange) -> bool {
+    let s = vc.signum();
+    let (v0, a0, vf, af, j) = (s * d.v0, s * d.a0, s * d.vf, s * d.af, d.j);
+    let vc = s * vc;
+    let (t1, t2) = (c1.duration(), c2.duration());
+    if tc.is_nan() || tc <= 1e-9 * (1.0 + t1 + t2 + tc) {
+        return false;
+    }
+    let (hold_up, hold_down) = if s > 0.0 {
+        (d.a_max, d.a_min)
+    } else {
+        (d.a_min, d.a_max)
+    };
+    let shapes = (c1.t1 == 0.0 || s * c1.j1 > 0.0)
+        && (c1.t2 == 0.0 || c1.peak == hold_up)
+        && (c1.t3 == 0.0 || s * c1.j3 < 0.0)
+        && (c2.t1 == 0.0 || s * c2.j1 < 0.0)
+        && (c2.t2 == 0.0 || c2.peak == hold_down)
+        && (c2.t3 == 0.0 || s * c2.j3 > 0.0);
+    let start = a0 >= 0.0 || v0 + a0 * a0 / (2.0 * j) <= vc;
+    let target = af <= 0.0 || vf + af * af / (2.0 * j) <= vc;
+    let min1 = if a0 < 0.0 {
+        v0 - a0 * a0 / (2.0 * j)
+    } else {
+        v0
+    };
+    let min2 = if af > 0.0 {
+        vf - af * af / (2.0 * j)
+    } else {
+        vf
+    };
+    shapes && start && target && vc * tc > t1 * (-min1).max(0.0) + t2 * (-min2).max(0.0)
 }
 
 /// Parameters of the three-arc family's closed-form coefficients
@@ -316,6 +476,53 @@ fn reach(v0: f64, a0: f64, segs: &[(f64, f64)]) -> f64 {
     }
     let _ = (v, a);
     p
+}
+
+/// For a shortest-only search that has a profile of duration `T*` already: whether a
+/// three-arc variant of `d` whose durations are at least `t_lb` holds no shorter profile
+/// that the peak family does not hold too. Either `t_lb ≥ T*`, or no duration in
+/// `[t_lb, T*]` fits the distance of a three-arc profile whose acceleration keeps its sign
+/// between the first and the last ramp (the others pass through `a = 0` at a velocity peak
+/// and are peak-family profiles, which the peak family finds up to the precision of its root
+/// finding: such a duplicate may differ from the three-arc solution by ~1e-11 s, see
+/// `tests/trajectory_synchronization.rs`). In every variant the jerk is `+J` only on the
+/// first ramp (from `a0`) and the last one (to `af`), so the velocity has local minima only
+/// where these pass upwards through `a = 0`, at `v0 − a0²/(2J)` (if `a0 < 0`) and
+/// `vf − af²/(2J)` (if `af > 0`); its only local maximum is where the `−J` ramp passes
+/// downwards through `a = 0`, which a profile that keeps the sign of its acceleration does
+/// not do. So its velocity stays in `[min(v0, v0 − a0²/(2J) if a0 < 0, vf, vf − af²/(2J) if
+/// af > 0), max(v0, vf)]`, and the distance `D = ∫ v dt` of a profile of duration `T` lies
+/// between `T` times these bounds (relative margin 1e-9 for rounding, as in
+/// [`distance_excluded`]).
+fn three_arc_skip(d: &Dof, out: &TimeOptimal) -> impl Fn(f64) -> bool + use<> {
+    let cap = (out.shortest && out.n > 0).then(|| out.duration[0]);
+    let dp = d.pf - d.p0;
+    let r0 = if d.a0 < 0.0 {
+        d.a0 * d.a0 / (2.0 * d.j)
+    } else {
+        0.0
+    };
+    let rf = if d.af > 0.0 {
+        d.af * d.af / (2.0 * d.j)
+    } else {
+        0.0
+    };
+    let v_lo = (d.v0 - r0).min(d.vf - rf);
+    let v_hi = d.v0.max(d.vf);
+    move |t_lb: f64| {
+        let Some(t_cap) = cap else {
+            return false;
+        };
+        if t_lb >= t_cap {
+            return true;
+        }
+        let t_lo = t_lb.max(0.0);
+        let d_lo = (v_lo * t_lo).min(v_lo * t_cap);
+        let d_hi = (v_hi * t_lo).max(v_hi * t_cap);
+        let margin = 1e-9 * (dp.abs() + v_lo.abs().max(v_hi.abs()) * t_cap) + 1e-12;
+        // A NaN bound compares false: not skipped.
+        dp > d_hi + margin || dp < d_lo - margin
+    }
 }
 
 /// Three-arc family in the frame of `d` (call with the mirror image for DUUD shapes).
@@ -355,11 +562,15 @@ fn three_arc_family(
     };
     let disc1 = amax * amax - k;
     let disc2 = amin * amin + k;
-    if disc1 >= 0.0 && disc2 >= 0.0 && (af > 0.0 || a0 < 0.0) {
-        let lo = (amax - disc1.sqrt())
-            .max(-amin - disc2.sqrt())
-            .max(1e-9 * (amax - amin));
-        let hi = (amax + disc1.sqrt()).min(-amin + disc2.sqrt());
+    let skip = three_arc_skip(d, out);
+    // Its duration (a1 − a0 + s + af − a2)/J = (2s + af − a0)/J grows with s: at least its
+    // value at the range's lower end.
+    let lo = (amax - disc1.sqrt())
+        .max(-amin - disc2.sqrt())
+        .max(1e-9 * (amax - amin));
+    let hi1 = (amax + disc1.sqrt()).min(-amin + disc2.sqrt());
+    if disc1 >= 0.0 && disc2 >= 0.0 && (af > 0.0 || a0 < 0.0) && !skip((2.0 * lo + af - a0) / j) {
+        let hi = hi1;
         let times = |s: f64| {
             let a1 = 0.5 * (s + k / s);
             let a2 = 0.5 * (k / s - s);
@@ -399,6 +610,16 @@ fn three_arc_family(
     };
     let (lo2, hi2) = (-1e-12 * amax, af.min(amax));
     let x2 = hold_max_range(lo2, hi2);
+    let times2 = |a2: f64| {
+        let t2 = (dv - (2.0 * amax * amax - a0 * a0 - 2.0 * a2 * a2 + af * af) / (2.0 * j)) / amax;
+        ((amax - a0) / j, t2, (amax - a2) / j, (af - a2) / j)
+    };
+    // Its duration (2 a+ − a0 + af − 2 a2)/J + t2(a2) has the derivative (2/J)(a2/a+ − 1) ≤ 0
+    // on the range (a2 ≤ a+): at least its value at the range's upper end.
+    let duration2 = |a2: f64| {
+        let (t1, t2, t3, t4) = times2(a2);
+        t1 + t2 + t3 + t4
+    };
     if amax > 0.0
         && af > 0.0
         && feasible_hold(
@@ -406,12 +627,9 @@ fn three_arc_family(
             dv.abs() + (2.0 * amax * amax + a0 * a0 + 2.0 * x2 + af * af) / (2.0 * j),
             amax,
         )
+        && !skip(duration2(hi2))
     {
-        let times = |a2: f64| {
-            let t2 =
-                (dv - (2.0 * amax * amax - a0 * a0 - 2.0 * a2 * a2 + af * af) / (2.0 * j)) / amax;
-            ((amax - a0) / j, t2, (amax - a2) / j, (af - a2) / j)
-        };
+        let times = times2;
         let mut f = |a2: f64| {
             let (t1, t2, t3, t4) = times(a2);
             reach(d.v0, a0, &[(t1, j), (t2, 0.0), (t3, -j), (t4, j)]) - dp
@@ -443,6 +661,16 @@ fn three_arc_family(
     // Likewise t6(a1) = (Δv − (2 a1² − a0² − 2 a−² + af²)/(2J))/a− (a− < 0) grows with a1².
     let (lo3, hi3) = (a0.max(amin), -1e-12 * amin);
     let x3 = hold_max_range(lo3, hi3);
+    let times3 = |a1: f64| {
+        let t6 = (dv - (2.0 * a1 * a1 - a0 * a0 - 2.0 * amin * amin + af * af) / (2.0 * j)) / amin;
+        ((a1 - a0) / j, (a1 - amin) / j, t6, (af - amin) / j)
+    };
+    // Its duration (2 a1 − a0 − 2 a− + af)/J + t6(a1) has the derivative (2/J)(1 − a1/a−) ≥ 0
+    // on the range (a1 ≥ a−): at least its value at the range's lower end.
+    let duration3 = |a1: f64| {
+        let (t1, t2, t3, t4) = times3(a1);
+        t1 + t2 + t3 + t4
+    };
     if amin < 0.0
         && a0 < 0.0
         && feasible_hold(
@@ -450,12 +678,9 @@ fn three_arc_family(
             dv.abs() + (2.0 * x3 + a0 * a0 + 2.0 * amin * amin + af * af) / (2.0 * j),
             amin,
         )
+        && !skip(duration3(lo3))
     {
-        let times = |a1: f64| {
-            let t6 =
-                (dv - (2.0 * a1 * a1 - a0 * a0 - 2.0 * amin * amin + af * af) / (2.0 * j)) / amin;
-            ((a1 - a0) / j, (a1 - amin) / j, t6, (af - amin) / j)
-        };
+        let times = times3;
         let mut f = |a1: f64| {
             let (t1, t2, t3, t4) = times(a1);
             reach(d.v0, a0, &[(t1, j), (t2, -j), (t3, 0.0), (t4, j)]) - dp
@@ -487,20 +712,35 @@ fn three_arc_family(
 /// appended on top of the braking `prefix`.
 /// `density` multiplies the number of samples of every scan (1 normally; larger to recover an
 /// extremal profile missed between samples, see the calculator).
-pub(crate) fn time_optimal(d: &Dof, prefix: &Profile, density: usize) -> TimeOptimal {
+pub(crate) fn time_optimal(
+    d: &Dof,
+    prefix: &Profile,
+    density: usize,
+    search: Search,
+) -> TimeOptimal {
     let mut out = TimeOptimal::new();
-    time_optimal_into(d, prefix, density, &mut out);
+    time_optimal_into(d, prefix, density, search, &mut out);
     out
 }
 
 /// [`time_optimal`] written to `out` (which is cleared first), without moving the result.
-pub(crate) fn time_optimal_into(d: &Dof, prefix: &Profile, density: usize, out: &mut TimeOptimal) {
+pub(crate) fn time_optimal_into(
+    d: &Dof,
+    prefix: &Profile,
+    density: usize,
+    search: Search,
+    out: &mut TimeOptimal,
+) {
     out.n = 0;
+    out.shortest = search == Search::Shortest;
     if d.at_target() {
         out.offer(d, prefix, &Segments::default(), 1.0);
         return;
     }
     if d.j <= 0.0 {
+        return;
+    }
+    if out.shortest && density == 1 && optimal_cruise(d, prefix, out) {
         return;
     }
     peak_family(d, prefix, density, out);
@@ -513,6 +753,123 @@ mod tests {
     use super::*;
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
+
+    /// A random problem with asymmetric limits and a safe start (states anywhere inside the
+    /// limits; `None` if the start makes a violation unavoidable or the target is not
+    /// reachable within the limits).
+    fn random_problem(rng: &mut ChaCha8Rng, spread: f64) -> Option<Dof> {
+        let mut u = |a: f64, b: f64| rng.random_range(a..b);
+        let (v_max, v_min) = (u(0.1, 12.0), -u(0.1, 12.0));
+        let (a_max, a_min) = (u(0.1, 12.0), -u(0.1, 12.0));
+        let j = u(0.1, 12.0);
+        let d = Dof {
+            p0: 0.0,
+            v0: u(v_min, v_max),
+            a0: u(a_min, a_max),
+            pf: u(-spread, spread),
+            vf: u(v_min, v_max),
+            af: u(a_min, a_max),
+            v_max,
+            v_min,
+            a_max,
+            a_min,
+            j,
+        };
+        let r0 = d.a0 * d.a0 / (2.0 * j);
+        let rf = d.af * d.af / (2.0 * j);
+        let safe = (d.a0 <= 0.0 || d.v0 + r0 <= v_max) && (d.a0 >= 0.0 || d.v0 - r0 >= v_min);
+        let reachable = (d.af <= 0.0 || d.vf - rf >= v_min) && (d.af >= 0.0 || d.vf + rf <= v_max);
+        (safe && reachable).then_some(d)
+    }
+
+    /// The shortest-only search ([`Search::Shortest`]: the provably time-optimal cruise
+    /// profile first, then the families and windows whose duration bound can still beat the
+    /// best profile) finds exactly (bit for bit) the minimal duration of the complete search,
+    /// on 6000 random problems with asymmetric limits (short and long moves); the cruise
+    /// proof ends the search in a good part of them.
+    #[test]
+    fn shortest_search_equals_the_complete_search() {
+        let mut rng = ChaCha8Rng::seed_from_u64(11);
+        let (mut compared, mut cruise_proved) = (0, 0);
+        for k in 0..6000 {
+            let spread = if k % 2 == 0 { 3.0 } else { 40.0 };
+            let Some(d) = random_problem(&mut rng, spread) else {
+                continue;
+            };
+            let prefix = Profile::new(d.p0, d.v0, d.a0);
+            let all = time_optimal(&d, &prefix, 1, Search::All);
+            let shortest = time_optimal(&d, &prefix, 1, Search::Shortest);
+            assert_eq!(all.n > 0, shortest.n > 0, "{d:?}");
+            if all.n == 0 {
+                continue;
+            }
+            assert_eq!(
+                all.duration[0].to_bits(),
+                shortest.duration[0].to_bits(),
+                "{d:?}: complete {} shortest {}",
+                all.duration[0],
+                shortest.duration[0]
+            );
+            let mut probe = TimeOptimal::new();
+            probe.shortest = true;
+            cruise_proved += usize::from(optimal_cruise(&d, &prefix, &mut probe));
+            compared += 1;
+        }
+        assert!(compared > 3000, "{compared}");
+        assert!(
+            cruise_proved > compared / 10,
+            "{cruise_proved} of {compared}"
+        );
+        eprintln!("{compared} compared, cruise proved optimal in {cruise_proved}");
+    }
+
+    /// The cruise proof never claims a profile that a complete search beats, including on
+    /// problems built to tempt it: start and target velocities far below zero (negative
+    /// velocities of both changes, the case that the `n₁`, `n₂` terms exist for) and
+    /// accelerations that point away from the cruise.
+    #[test]
+    fn cruise_proof_is_never_beaten() {
+        let mut rng = ChaCha8Rng::seed_from_u64(12);
+        let (mut proved, mut tried) = (0, 0);
+        for _ in 0..6000 {
+            let Some(mut d) = random_problem(&mut rng, 30.0) else {
+                continue;
+            };
+            // Push the velocities towards the limit opposite to the move.
+            let toward = if d.pf > 0.0 { d.v_min } else { d.v_max };
+            let w: f64 = rng.random_range(0.0..0.95);
+            d.v0 = (1.0 - w) * d.v0 + w * toward;
+            d.vf = (1.0 - w) * d.vf + w * toward;
+            if random_problem_is_valid(&d) {
+                tried += 1;
+                let prefix = Profile::new(d.p0, d.v0, d.a0);
+                let mut probe = TimeOptimal::new();
+                probe.shortest = true;
+                if optimal_cruise(&d, &prefix, &mut probe) {
+                    proved += 1;
+                    let all = time_optimal(&d, &prefix, 1, Search::All);
+                    assert_eq!(
+                        all.duration[0].to_bits(),
+                        probe.duration[0].to_bits(),
+                        "{d:?}: complete {} cruise {}",
+                        all.duration[0],
+                        probe.duration[0]
+                    );
+                }
+            }
+        }
+        assert!(tried > 2000 && proved > 200, "{proved} of {tried}");
+        eprintln!("cruise proved optimal in {proved} of {tried}");
+    }
+
+    fn random_problem_is_valid(d: &Dof) -> bool {
+        let r0 = d.a0 * d.a0 / (2.0 * d.j);
+        let rf = d.af * d.af / (2.0 * d.j);
+        (d.a0 <= 0.0 || d.v0 + r0 <= d.v_max)
+            && (d.a0 >= 0.0 || d.v0 - r0 >= d.v_min)
+            && (d.af <= 0.0 || d.vf - rf >= d.v_min)
+            && (d.af >= 0.0 || d.vf + rf <= d.v_max)
+    }
 
     /// The distance bound of [`distance_excluded`] holds on every window: 400 random problems
     /// (asymmetric limits, states anywhere inside them), 200 peaks per window, every distance
@@ -547,7 +904,8 @@ mod tests {
             };
             for w in br[..nb].windows(2) {
                 let (l, r) = (w[0], w[1]);
-                let (d_lo, d_hi, scale) = distance_range(&d, l, r, durations(l), durations(r));
+                let (d_lo, d_hi, scale) =
+                    distance_range(&d, l, r, durations(l), durations(r), f64::INFINITY);
                 if !(d_lo.is_finite() && d_hi.is_finite()) {
                     continue;
                 }
