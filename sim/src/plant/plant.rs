@@ -274,17 +274,13 @@ struct SegmentSection {
 ///   started section there is no front, and nothing enters behind it.
 ///
 /// A segment whose path never meets the object never gets a section.
-/// [`Plant::new`] orders the sections of the segments whose paths along the
-/// planned direction reach the material within two update distances (the
-/// first contacts) and waits for them; every other section is ordered as
-/// its segment approaches along the executed direction. (Ordering at
-/// construction every section the planned direction would need built 20
-/// sections in the default closed loop, `loop-potato-whole`, that its MPC,
-/// slicing along other directions, never took: each was re-ordered or
-/// cancelled on the way.) The results depend on the planned direction only
-/// through the first contacts' orders and the tenth-of-an-update-distance
-/// tolerance on renewing an order ([`Plant::first_contacts`],
-/// [`Plant::woken_segments`], [`Plant::dormant_segments`]).
+/// [`Plant::new`] orders the sections for the planned direction and waits
+/// for them, so that a knife moving along it finds them built; along
+/// another direction they are re-ordered (and the plant may wait for the
+/// worker on the first ticks). The results depend on the planned direction
+/// only through the tenth-of-an-update-distance tolerance on renewing an
+/// order ([`Plant::first_contacts`], [`Plant::woken_segments`],
+/// [`Plant::dormant_segments`]).
 ///
 /// # Moving cross sections (seed 000 §IV, Fig. 4(b))
 /// After each tick the plant measures, for every section that has started
@@ -386,8 +382,7 @@ impl Plant {
     /// along z, seed 000 Fig. 6(b)), with the lowest point of its edge over
     /// the object `start_gap` above it. `direction` is the planned direction
     /// of motion (knife plane (z, y), pointing down into the object): the
-    /// first contacts' sections are built for it here (see the type's
-    /// docs), and the
+    /// first sections are built for it here (see the type's docs), and the
     /// sections follow it until the knife first moves. `section` configures
     /// every cross section; `arm_limits` are the reflexes checked on every
     /// command.
@@ -486,11 +481,10 @@ impl Plant {
             time: 0.0,
             work: 0.0,
         };
-        // Prepare the sections of the first contacts along the planned
-        // direction (within the order lead), so that a knife moving along
-        // it finds them built (a real-time loop must not wait for them),
-        // and place those whose midpoints are already at the surface. The
-        // others are ordered on the way, along the executed direction.
+        // Prepare the first sections for the planned direction, so that a
+        // knife moving along it finds them built (a real-time loop must not
+        // wait for them), and place those whose midpoints are already at
+        // the surface.
         let hits = plant
             .edge_segments
             .iter()
@@ -500,9 +494,9 @@ impl Plant {
             return Err(PlantError::NoContact);
         }
         let section_error = |(index, source)| PlantError::Section { index, source };
-        plant.place().map_err(section_error)?;
+        plant.place(Lookahead::Everywhere).map_err(section_error)?;
         plant.worker.wait_idle();
-        plant.place().map_err(section_error)?;
+        plant.place(Lookahead::Lead).map_err(section_error)?;
         Ok(plant)
     }
 
@@ -733,7 +727,7 @@ impl Plant {
         }
         self.work = work;
         self.rechoose()?;
-        self.place().map_err(|(_, e)| e)?;
+        self.place(Lookahead::Lead).map_err(|(_, e)| e)?;
         let sensor_origin = self.position + self.sensor_offset;
         let true_wrench = wrench_at(&sensor_origin, &self.loads);
         let wrench = self.sensor.read(self.time, &true_wrench.to_array());
@@ -901,16 +895,21 @@ impl Plant {
     /// plane moves by more than the tolerance of its kind, and takes it
     /// (waiting if the worker is late): an intact surface's section when the
     /// midpoint is within `TAKE_LEAD × update_distance` of it, one behind
-    /// the crack front when the midpoint is in the material. Allocates
-    /// nothing; an error names the segment's slot.
-    fn place(&mut self) -> Result<(), (usize, SectionError)> {
+    /// the crack front when the midpoint is in the material. `lookahead`
+    /// [`Lookahead::Everywhere`] orders every intact entry whatever its
+    /// distance (at construction). Allocates nothing; an error names the
+    /// segment's slot.
+    fn place(&mut self, lookahead: Lookahead) -> Result<(), (usize, SectionError)> {
         if self.dormant.is_empty() {
             return Ok(());
         }
         let position = self.position;
         let u = self.motion;
         let ud = self.update_distance;
-        let lead = ORDER_LEAD * ud;
+        let lead = match lookahead {
+            Lookahead::Lead => ORDER_LEAD * ud,
+            Lookahead::Everywhere => f64::INFINITY,
+        };
         let size = self.factory.object.size();
         let side_tolerance = 1e-9 * size;
         // The front over the started sections' tips (the tips stay in
@@ -1093,6 +1092,16 @@ impl Plant {
         }
         Ok(())
     }
+}
+
+/// How far ahead [`Plant::place`] orders sections.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+enum Lookahead {
+    /// Within `ORDER_LEAD × update_distance` of the material (every tick).
+    Lead,
+    /// Every path that meets the object (at construction, for the planned
+    /// direction).
+    Everywhere,
 }
 
 /// Where a dormant segment's midpoint path enters the material.
