@@ -184,7 +184,7 @@ impl CondensedLine {
             },
         )?;
         let FactorMemory { dense, inverse, .. } = &mut memory;
-        let l = MatRef::from_column_major_slice(&dense[..], ny + n, ny + n);
+        let l = MatRef::from_column_major_slice(&dense[..(ny + n) * (ny + n)], ny + n, ny + n);
         let l_yy = l.submatrix(0, 0, ny, ny);
         let l_xy = l.submatrix(ny, 0, n, ny);
         let l_xx = l.submatrix(ny, ny, n, n);
@@ -245,7 +245,7 @@ impl CondensedLine {
             },
         )?;
         let FactorMemory { dense, inverse, .. } = &mut memory;
-        let lz = MatRef::from_column_major_slice(&dense[..], ny, ny);
+        let lz = MatRef::from_column_major_slice(&dense[..ny * ny], ny, ny);
         let cz_band = inverse_band(lower_inverse(lz, inverse), n, k);
         factor_cache::give_back(memory);
         Ok(Self {
@@ -898,9 +898,16 @@ fn schur_factor(
     // Read L_bb off the supernodes holding columns ni.. (their rows are all
     // kept DOFs too: the kept ones come last).
     let factor = SupernodalLltRef::new(supernodal, &factor[..len]);
-    dense.clear();
-    dense.resize(nb * nb, 0.0);
-    let mut L = MatMut::from_column_major_slice_mut(&mut dense[..], nb, nb);
+    // Only the lower triangle is read (as L's blocks, or lower-triangular
+    // ones): zero it (the entries outside the supernodes' patterns are
+    // the factor's structural zeros) and leave the upper one as it was.
+    if dense.len() < nb * nb {
+        dense.resize(nb * nb, 0.0);
+    }
+    for j in 0..nb {
+        dense[j * nb + j..(j + 1) * nb].fill(0.0);
+    }
+    let mut L = MatMut::from_column_major_slice_mut(&mut dense[..nb * nb], nb, nb);
     for s in 0..supernodal.n_supernodes() {
         let node = factor.supernode(s);
         let start = node.start();
@@ -970,15 +977,18 @@ fn lower_csc(nt: usize, triplets: &[Triplet<usize, usize, f64>]) -> SparseColMat
     SparseColMat::new(symbolic, values)
 }
 
-/// L⁻¹ (lower triangular, the strictly upper part zero) of a dense
-/// lower-triangular factor L, in `memory`.
+/// L⁻¹ of a dense lower-triangular factor L (its lower triangle only), in
+/// `memory`: the strictly upper part is whatever `memory` held (faer writes
+/// and reads only the lower triangle, and so do the users of the result:
+/// [`inverse_entry`] and the lower-triangular product of Eᵀ).
 fn lower_inverse<'a>(L: MatRef<'_, f64>, memory: &'a mut Vec<f64>) -> MatRef<'a, f64> {
     let m = L.nrows();
-    memory.clear();
-    memory.resize(m * m, 0.0);
-    let Linv = MatMut::from_column_major_slice_mut(&mut memory[..], m, m);
+    if memory.len() < m * m {
+        memory.resize(m * m, 0.0);
+    }
+    let Linv = MatMut::from_column_major_slice_mut(&mut memory[..m * m], m, m);
     triangular_inverse::invert_lower_triangular(Linv, L, Par::Seq);
-    MatRef::from_column_major_slice(&memory[..], m, m)
+    MatRef::from_column_major_slice(&memory[..m * m], m, m)
 }
 
 /// The entries of F = (L Lᵀ)⁻¹ = L⁻ᵀ L⁻¹ that the solves read, from
