@@ -54,6 +54,8 @@ pub struct RunOutput {
     pub summary: CutSummary,
     /// Target crack depth, m.
     pub target_depth_m: f64,
+    /// The replica of the object cut (nominal unless `--replica`).
+    pub replica: ObjectReplica,
 }
 
 /// The summary file's content.
@@ -62,6 +64,9 @@ struct SummaryFile<'a> {
     scenario: &'a str,
     controller: &'a str,
     transport: Transport,
+    /// The object's replica: its heights were scaled by 1 + this × 1e-7
+    /// (0: the object as the scenario gives it).
+    object_replica: i32,
     end: &'a LoopEnd,
     target_depth_m: f64,
     cut: &'a CutSummary,
@@ -238,6 +243,7 @@ pub fn run_closed_loop_on(
         output,
         summary,
         target_depth_m: setup.task.target_depth,
+        replica,
     })
 }
 
@@ -375,6 +381,7 @@ pub(crate) fn write_results(
             scenario: &s.name,
             controller: &run.controller,
             transport,
+            object_replica: run.replica.offset,
             end: &o.end,
             target_depth_m: run.target_depth_m,
             cut: &run.summary,
