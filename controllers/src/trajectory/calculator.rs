@@ -212,13 +212,7 @@ fn independent_shortest<const N: usize>(
     let mut cands = TimeOptimal::new();
     let mut t = 0.0_f64;
     for i in 0..N {
-        let l = input.limits(i);
-        let start = (
-            input.current_position[i],
-            input.current_velocity[i],
-            input.current_acceleration[i],
-        );
-        let d = input.dof_from(i, start, &l);
+        let d = input.current_dof(i, &input.limits(i));
         let prefix = Profile::new(d.p0, d.v0, d.a0);
         time_optimal_into(&d, &prefix, 1, Search::Shortest, &mut cands);
         if cands.n == 0 {
@@ -745,13 +739,7 @@ fn phase_synchronize<const N: usize>(
     }
     #[allow(clippy::needless_range_loop)] // i indexes several input arrays
     for i in 0..N {
-        let li = input.limits(i);
-        let start = (
-            input.current_position[i],
-            input.current_velocity[i],
-            input.current_acceleration[i],
-        );
-        let dof = input.dof_from(i, start, &li);
+        let dof = input.current_dof(i, &input.limits(i));
         let mut p = Profile::new(dof.p0, dof.v0, dof.a0);
         for k in 0..scalar.len() {
             let (t, j) = scalar.segment(k);

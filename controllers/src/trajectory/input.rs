@@ -157,6 +157,17 @@ impl<const N: usize> TrajectoryInput<N> {
         }
     }
 
+    /// The one-DoF problem of DoF `i` from its current state to its target,
+    /// under the limits `l`.
+    pub(crate) fn current_dof(&self, i: usize, l: &Limits) -> Dof {
+        let start = (
+            self.current_position[i],
+            self.current_velocity[i],
+            self.current_acceleration[i],
+        );
+        self.dof_from(i, start, l)
+    }
+
     /// The solver limits of DoF `i`.
     pub(crate) fn limits(&self, i: usize) -> Limits {
         Limits {

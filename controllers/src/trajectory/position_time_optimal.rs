@@ -340,22 +340,29 @@ fn peak_family(d: &Dof, prefix: &Profile, density: usize, out: &mut TimeOptimal)
     offer_cruise(d, prefix, 0.0, out);
 }
 
+/// The profiles that cruise at a velocity limit: for each nonzero limit `vc` whose two
+/// time-optimal velocity changes `(v0, a0) → (vc, 0) → (vf, af)` exist, `(vc, c1, t_c, c2)`
+/// with `t_c` the cruise time that covers the displacement (negative if none does).
+fn cruises(d: &Dof) -> impl Iterator<Item = (f64, VelChange, f64, VelChange)> + '_ {
+    let dp = d.pf - d.p0;
+    [d.v_max, d.v_min]
+        .into_iter()
+        .filter(|&vc| vc != 0.0)
+        .filter_map(move |vc| {
+            let (c1, c2) = peak_parts(d, vc)?;
+            let dist = c1.distance(d.v0, d.a0) + c2.distance(vc, 0.0);
+            Some((vc, c1, (dp - dist) / vc, c2))
+        })
+}
+
 /// Offers the profiles that cruise at a velocity limit for a time `t_c > rel (1 + T)` (`T`
 /// their duration).
 fn offer_cruise(d: &Dof, prefix: &Profile, rel: f64, out: &mut TimeOptimal) {
-    let dp = d.pf - d.p0;
-    for vc in [d.v_max, d.v_min] {
-        if vc == 0.0 {
-            continue;
-        }
-        if let Some((c1, c2)) = peak_parts(d, vc) {
-            let dist = c1.distance(d.v0, d.a0) + c2.distance(vc, 0.0);
-            let tc = (dp - dist) / vc;
-            if tc > rel * (1.0 + tc + c1.duration() + c2.duration())
-                && let Some(s) = peak_segments(&c1, tc, &c2, 1.0)
-            {
-                out.offer(d, prefix, &s, 1.0);
-            }
+    for (_, c1, tc, c2) in cruises(d) {
+        if tc > rel * (1.0 + tc + c1.duration() + c2.duration())
+            && let Some(s) = peak_segments(&c1, tc, &c2, 1.0)
+        {
+            out.offer(d, prefix, &s, 1.0);
         }
     }
 }
@@ -363,20 +370,12 @@ fn offer_cruise(d: &Dof, prefix: &Profile, rel: f64, out: &mut TimeOptimal) {
 /// Offers the profile that cruises at a velocity limit if it is provably time-optimal
 /// ([`cruise_is_time_optimal`]); whether it was (then it is the only candidate in `out`).
 fn optimal_cruise(d: &Dof, prefix: &Profile, out: &mut TimeOptimal) -> bool {
-    let dp = d.pf - d.p0;
-    for vc in [d.v_max, d.v_min] {
-        if vc == 0.0 {
-            continue;
-        }
-        if let Some((c1, c2)) = peak_parts(d, vc) {
-            let dist = c1.distance(d.v0, d.a0) + c2.distance(vc, 0.0);
-            let tc = (dp - dist) / vc;
-            if cruise_is_time_optimal(d, vc, &c1, tc, &c2)
-                && let Some(s) = peak_segments(&c1, tc, &c2, 1.0)
-            {
-                out.offer(d, prefix, &s, 1.0);
-                return out.n > 0;
-            }
+    for (vc, c1, tc, c2) in cruises(d) {
+        if cruise_is_time_optimal(d, vc, &c1, tc, &c2)
+            && let Some(s) = peak_segments(&c1, tc, &c2, 1.0)
+        {
+            out.offer(d, prefix, &s, 1.0);
+            return out.n > 0;
         }
     }
     false
@@ -754,15 +753,14 @@ mod tests {
     use rand::{Rng, SeedableRng};
     use rand_chacha::ChaCha8Rng;
 
-    /// A random problem with asymmetric limits and a safe start (states anywhere inside the
-    /// limits; `None` if the start makes a violation unavoidable or the target is not
-    /// reachable within the limits).
-    fn random_problem(rng: &mut ChaCha8Rng, spread: f64) -> Option<Dof> {
+    /// A random problem with asymmetric limits: limits and jerk U(0.1, 12), start and target
+    /// velocity and acceleration anywhere inside the limits, target position U(±`spread`).
+    fn random_dof(rng: &mut ChaCha8Rng, spread: f64) -> Dof {
         let mut u = |a: f64, b: f64| rng.random_range(a..b);
         let (v_max, v_min) = (u(0.1, 12.0), -u(0.1, 12.0));
         let (a_max, a_min) = (u(0.1, 12.0), -u(0.1, 12.0));
         let j = u(0.1, 12.0);
-        let d = Dof {
+        Dof {
             p0: 0.0,
             v0: u(v_min, v_max),
             a0: u(a_min, a_max),
@@ -774,12 +772,13 @@ mod tests {
             a_max,
             a_min,
             j,
-        };
-        let r0 = d.a0 * d.a0 / (2.0 * j);
-        let rf = d.af * d.af / (2.0 * j);
-        let safe = (d.a0 <= 0.0 || d.v0 + r0 <= v_max) && (d.a0 >= 0.0 || d.v0 - r0 >= v_min);
-        let reachable = (d.af <= 0.0 || d.vf - rf >= v_min) && (d.af >= 0.0 || d.vf + rf <= v_max);
-        (safe && reachable).then_some(d)
+        }
+    }
+
+    /// A random problem ([`random_dof`]) with a safe start (`None` if the start makes a
+    /// violation unavoidable or the target is not reachable within the limits).
+    fn random_problem(rng: &mut ChaCha8Rng, spread: f64) -> Option<Dof> {
+        Some(random_dof(rng, spread)).filter(random_problem_is_valid)
     }
 
     /// The shortest-only search ([`Search::Shortest`]: the provably time-optimal cruise
@@ -862,6 +861,8 @@ mod tests {
         eprintln!("cruise proved optimal in {proved} of {tried}");
     }
 
+    /// Whether the start is safe (no violation unavoidable) and the target reachable within
+    /// the limits.
     fn random_problem_is_valid(d: &Dof) -> bool {
         let r0 = d.a0 * d.a0 / (2.0 * d.j);
         let rf = d.af * d.af / (2.0 * d.j);
@@ -879,22 +880,7 @@ mod tests {
         let mut rng = ChaCha8Rng::seed_from_u64(5);
         let mut checked = 0;
         for _ in 0..400 {
-            let mut u = |a: f64, b: f64| rng.random_range(a..b);
-            let (v_max, v_min) = (u(0.1, 12.0), -u(0.1, 12.0));
-            let (a_max, a_min) = (u(0.1, 12.0), -u(0.1, 12.0));
-            let d = Dof {
-                p0: 0.0,
-                v0: u(v_min, v_max),
-                a0: u(a_min, a_max),
-                pf: u(-6.0, 6.0),
-                vf: u(v_min, v_max),
-                af: u(a_min, a_max),
-                v_max,
-                v_min,
-                a_max,
-                a_min,
-                j: u(0.1, 12.0),
-            };
+            let d = random_dof(&mut rng, 6.0);
             let mut br = [0.0; 8];
             let nb = peak_breaks(&d, &mut br);
             let durations = |vp: f64| {
