@@ -249,3 +249,34 @@ fn three_arc_profile_matches_ruckig() {
     assert!((e.position - input.target_position[0]).abs() < 1e-8);
     assert!((e.velocity - input.target_velocity[0]).abs() < 1e-8);
 }
+
+#[test]
+fn after_a_failed_update_the_old_plan_is_recalculated_not_followed_half_overwritten() {
+    // Two identical DoFs without synchronisation on their way to 1. A new input whose second
+    // DoF has no profile (zero jerk, motion asked) fails after the first DoF's new profile
+    // (towards −3) may already be written; re-sending the running plan's continuation must
+    // recalculate it, so both DoFs keep moving alike towards 1.
+    let mut otg = otg::<2>();
+    let mut input = TrajectoryInput::<2>::default();
+    input.synchronization = Synchronization::None;
+    input.target_position = [1.0, 1.0];
+    let mut out = shearcut_controllers::trajectory::TrajectoryOutput::default();
+    for _ in 0..100 {
+        otg.update(&input, &mut out).unwrap();
+        out.pass_to_input(&mut input);
+    }
+    let running = input;
+    let mut bad = running;
+    bad.target_position = [-3.0, 1.0];
+    bad.max_jerk = [1.0, 0.0];
+    assert!(matches!(
+        otg.update(&bad, &mut out),
+        Err(TrajectoryError::NoProfile { dof: 1 })
+    ));
+    let status = otg.update(&running, &mut out).unwrap();
+    assert_eq!(status, TrajectoryStatus::Working);
+    assert!(out.new_calculation);
+    assert_eq!(out.new_velocity[0], out.new_velocity[1]);
+    assert_eq!(out.new_position[0], out.new_position[1]);
+    assert!(out.new_velocity[0] > 0.0);
+}

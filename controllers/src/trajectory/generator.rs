@@ -85,7 +85,8 @@ impl<const N: usize> TrajectoryGenerator<N> {
     }
 
     /// Calculates the whole trajectory for `input` into `trajectory` (offline use; does not
-    /// change the state of the online interface).
+    /// change the state of the online interface). On error `trajectory` may be partly
+    /// overwritten (some DoFs' profiles already written): do not sample it.
     pub fn calculate(
         &self,
         input: &TrajectoryInput<N>,
@@ -98,7 +99,9 @@ impl<const N: usize> TrajectoryGenerator<N> {
     /// (new target, limits, or a current state not equal to the last command), then advances one
     /// cycle and writes the next command. Returns `Finished` once the target is reached,
     /// `BrakingThenTarget` while an unavoidable-violation braking pre-phase runs, `Working`
-    /// otherwise. On error the output is left unchanged.
+    /// otherwise. On error the output is left unchanged, and the next call recalculates
+    /// whatever its input (the failed calculation may have overwritten part of the running
+    /// trajectory, which must not be followed on).
     pub fn update(
         &mut self,
         input: &TrajectoryInput<N>,
@@ -106,7 +109,10 @@ impl<const N: usize> TrajectoryGenerator<N> {
     ) -> Result<TrajectoryStatus, TrajectoryError> {
         output.new_calculation = false;
         if self.expected.as_ref() != Some(input) {
-            calculator::calculate(input, &self.settings, &mut self.trajectory)?;
+            if let Err(e) = calculator::calculate(input, &self.settings, &mut self.trajectory) {
+                self.expected = None;
+                return Err(e);
+            }
             self.time = 0.0;
             output.new_calculation = true;
         }
