@@ -154,28 +154,24 @@ fn oracle_case_7531_not_longer_than_ruckig() {
 /// limiting, and only for their shortest profile, and asks the others for a profile of that
 /// duration; the complete search solves every DoF (all extremal profiles) first. Phase
 /// synchronisation of non-collinear inputs (random ones) falls back to the complete search,
-/// so the two must agree: the same durations and independent minimal durations (the latter
-/// computed on demand for the DoFs not solved), and every DoF reaching its target. The
-/// shortest-only search leaves the three-arc profiles whose acceleration changes sign to the
-/// peak family, which finds the same profiles up to its root-finding precision (one such
-/// duplicate in this test: 1.769541094857 s against 1.769541094848 s): durations agree to
-/// 1e-11·max(1, T) (the roots' precision; the oracle's threshold for "longer" is 1e-9), and
-/// bit for bit in all but a few.
-/// Returns (compared, bit-identical) counts of durations.
-fn limiting_first_equals_complete_search<const N: usize>(
-    rng: &mut ChaCha8Rng,
-) -> (usize, usize, usize) {
+/// so the two must agree bit for bit: the same durations and independent minimal durations
+/// (the latter computed on demand for the DoFs not solved), and every DoF reaching its
+/// target. (The three-arc family scans only profiles whose acceleration keeps its sign; when
+/// it also scanned the others, duplicates of peak-family profiles found by another root
+/// solve, the two searches once differed by 9e-12 s.)
+/// Returns (compared, durations) counts.
+fn limiting_first_equals_complete_search<const N: usize>(rng: &mut ChaCha8Rng) -> (usize, usize) {
     let otg = TrajectoryGenerator::<N>::new(TrajectorySettings::default()).unwrap();
     let (mut fast, mut complete) = (Trajectory::<N>::default(), Trajectory::<N>::default());
     let mut compared = 0;
-    let (mut durations, mut identical) = (0, 0);
+    let mut durations = 0;
     let mut same = |a: f64, b: f64, what: &str, inp: &TrajectoryInput<N>| {
-        assert!(
-            (a - b).abs() <= 1e-11 * b.abs().max(1.0),
+        assert_eq!(
+            a.to_bits(),
+            b.to_bits(),
             "{what}: {a} against {b} for {inp:?}"
         );
         durations += 1;
-        identical += usize::from(a.to_bits() == b.to_bits());
     };
     for _ in 0..300 {
         let mut inp = random_cases::random_input::<N, _>(rng);
@@ -213,7 +209,7 @@ fn limiting_first_equals_complete_search<const N: usize>(
         }
         compared += 1;
     }
-    (compared, durations, identical)
+    (compared, durations)
 }
 
 #[test]
@@ -224,13 +220,8 @@ fn limiting_dof_first_equals_the_complete_search() {
         limiting_first_equals_complete_search::<3>(&mut rng),
         limiting_first_equals_complete_search::<7>(&mut rng),
     ];
-    let sum = |k: usize| counts.iter().map(|c| [c.0, c.1, c.2][k]).sum::<usize>();
-    let (compared, durations, identical) = (sum(0), sum(1), sum(2));
+    let compared: usize = counts.iter().map(|c| c.0).sum();
+    let durations: usize = counts.iter().map(|c| c.1).sum();
     assert!(compared > 800, "{compared}");
-    // Rounding-level duplicates are rare: at most 1 in 500 durations.
-    assert!(
-        identical * 500 >= durations * 499,
-        "{identical} of {durations} bit-identical"
-    );
-    eprintln!("{identical} of {durations} durations bit-identical");
+    eprintln!("{durations} durations bit-identical");
 }

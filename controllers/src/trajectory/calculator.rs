@@ -305,7 +305,8 @@ fn solve_braking_dof<const N: usize>(
                             l.j,
                         )
                         .is_some_and(|c| {
-                            // NaN (a zero limit) compares false: not beaten.
+                            // A zero limit makes `at_limit` NaN, which `max` ignores:
+                            // the change's own duration still bounds the total.
                             p.duration() + c.duration().max(at_limit) >= total(bw)
                         })
                     });
@@ -329,7 +330,7 @@ fn solve_braking_dof<const N: usize>(
     Ok((b.active, total(best)))
 }
 
-/// Time synchronisation that solves the step-1 problem (all extremal profiles) only for the
+/// Time synchronisation that solves the step-1 problem (the shortest profile) only for the
 /// DoFs that may be limiting; `None` to fall back to the complete search in [`calculate`].
 ///
 /// The common duration is the smallest candidate `T ≥ max_i T_i` at which every DoF has a

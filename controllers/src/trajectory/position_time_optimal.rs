@@ -264,14 +264,14 @@ fn distance_range(
     (t1r, t2r): (f64, f64),
     t_cap: f64,
 ) -> (f64, f64, f64) {
-    let t_lo = t1l.min(t1r) + t2l.min(t2r);
-    let t_hi = (t1l.max(t1r) + t2l.max(t2r)).min(t_cap);
+    let t_lo = nan_min(t1l, t1r) + nan_min(t2l, t2r);
+    let t_hi = nan_min(nan_max(t1l, t1r) + nan_max(t2l, t2r), t_cap);
     let ov0 = d.a0 * d.a0 / (2.0 * d.j);
     let ovf = d.af * d.af / (2.0 * d.j);
     let v_lo = (d.v0 - ov0).min(l).min(d.vf - ovf);
     let v_hi = (d.v0 + ov0).max(r).max(d.vf + ovf);
-    let d_lo = (v_lo * t_lo).min(v_lo * t_hi);
-    let d_hi = (v_hi * t_lo).max(v_hi * t_hi);
+    let d_lo = nan_min(v_lo * t_lo, v_lo * t_hi);
+    let d_hi = nan_max(v_hi * t_lo, v_hi * t_hi);
     (d_lo, d_hi, v_lo.abs().max(v_hi.abs()) * t_hi.abs())
 }
 
@@ -281,7 +281,25 @@ fn distance_range(
 /// least its smaller end value. NaN (a change impossible at an end) gives NaN, which bounds
 /// nothing (`beaten` is false).
 fn window_min_duration((t1l, t2l): (f64, f64), (t1r, t2r): (f64, f64)) -> f64 {
-    t1l.min(t1r) + t2l.min(t2r)
+    nan_min(t1l, t1r) + nan_min(t2l, t2r)
+}
+
+/// The smaller of `a` and `b`, NaN if either is (`f64::min` returns the other operand).
+fn nan_min(a: f64, b: f64) -> f64 {
+    if a.is_nan() || b.is_nan() {
+        f64::NAN
+    } else {
+        a.min(b)
+    }
+}
+
+/// The larger of `a` and `b`, NaN if either is (`f64::max` returns the other operand).
+fn nan_max(a: f64, b: f64) -> f64 {
+    if a.is_nan() || b.is_nan() {
+        f64::NAN
+    } else {
+        a.max(b)
+    }
 }
 
 /// Peak family (see the module documentation).
@@ -337,7 +355,7 @@ fn peak_family(d: &Dof, prefix: &Profile, density: usize, out: &mut TimeOptimal)
         }
         offered = roots.as_slice().len();
     }
-    offer_cruise(d, prefix, 0.0, out);
+    offer_cruise(d, prefix, out);
 }
 
 /// The profiles that cruise at a velocity limit: for each nonzero limit `vc` whose two
@@ -355,11 +373,10 @@ fn cruises(d: &Dof) -> impl Iterator<Item = (f64, VelChange, f64, VelChange)> + 
         })
 }
 
-/// Offers the profiles that cruise at a velocity limit for a time `t_c > rel (1 + T)` (`T`
-/// their duration).
-fn offer_cruise(d: &Dof, prefix: &Profile, rel: f64, out: &mut TimeOptimal) {
+/// Offers the profiles that cruise at a velocity limit for a positive time.
+fn offer_cruise(d: &Dof, prefix: &Profile, out: &mut TimeOptimal) {
     for (_, c1, tc, c2) in cruises(d) {
-        if tc > rel * (1.0 + tc + c1.duration() + c2.duration())
+        if tc > 0.0
             && let Some(s) = peak_segments(&c1, tc, &c2, 1.0)
         {
             out.offer(d, prefix, &s, 1.0);
@@ -569,7 +586,10 @@ fn three_arc_family(
         .max(1e-9 * (amax - amin));
     let hi1 = (amax + disc1.sqrt()).min(-amin + disc2.sqrt());
     if disc1 >= 0.0 && disc2 >= 0.0 && (af > 0.0 || a0 < 0.0) && !skip((2.0 * lo + af - a0) / j) {
-        let hi = hi1;
+        // Keeping the sign (a2 > 0 for K > 0, a1 < 0 for K < 0) is s² < |K|; beyond it the
+        // profile passes through a = 0 and the peak family finds it (with a margin for
+        // rounding: a duplicate costs only its verification).
+        let hi = hi1.min(k.abs().sqrt() * (1.0 + 1e-9));
         let times = |s: f64| {
             let a1 = 0.5 * (s + k / s);
             let a2 = 0.5 * (k / s - s);
