@@ -1,7 +1,8 @@
 //! The controller's iceoryx2 link against a plant served from a thread of
 //! this process: answers are matched to their commands by sequence number,
 //! a late answer to a command given up on is discarded, and the run still
-//! ends cleanly; a second plant for a served run is refused.
+//! ends cleanly; the end of the run is acknowledged even when the plant
+//! leaves right after answering; a second plant for a served run is refused.
 
 #[path = "support/echo_plant.rs"]
 mod echo_plant;
@@ -89,6 +90,47 @@ fn a_late_answer_is_discarded_and_the_run_still_ends_cleanly() {
         remove_shm_files(&prefix);
         assert_eq!(report.end, PlantEnd::Ended, "{wait:?}");
         assert_eq!(report.commands, 3, "{wait:?}");
+    }
+}
+
+/// The plant exits as soon as it has acknowledged the end of the run. A
+/// controller that looks at the plant's liveness between two reads of the
+/// board may find it gone although its answer is there; the answer (with the
+/// plant's final count of missed commands) must still be taken. Liveness is
+/// checked on every wait here (`check_every` zero) to make that interleaving
+/// likely; repeated because it is a race.
+#[test]
+fn the_end_of_the_run_is_acknowledged_even_when_the_plant_leaves_at_once() {
+    for wait in [WaitMode::Blocking, WaitMode::BusyPoll] {
+        for round in 0..10 {
+            let prefix = format!("sce{}{wait:?}{round}_", std::process::id());
+            let plant_prefix = prefix.clone();
+            let server = std::thread::spawn(move || {
+                let services = LoopServices::open(Role::Plant, "leave", &plant_prefix).unwrap();
+                let mut settings = PlantServerSettings::new(ClockMode::Lockstep, 20);
+                settings.wait = wait;
+                let mut plant = EchoPlant::new();
+                // The services (and the plant's node) are dropped on return.
+                serve_plant(&services, &mut plant, &settings).unwrap()
+            });
+            let services = LoopServices::open(Role::Controller, "leave", &prefix).unwrap();
+            let timeouts = LinkTimeouts {
+                check_every: Duration::ZERO,
+                ..LinkTimeouts::default()
+            };
+            let mut link = Iceoryx2PlantLink::new(services, 1e-3, timeouts, wait, 16).unwrap();
+            link.wait_for_plant().unwrap();
+            link.exchange(&KnifeCommand {
+                velocity: Vector3::new(0.0, -0.005, 0.0),
+            })
+            .unwrap();
+            let finished = link.finish();
+            let report = server.join().unwrap();
+            remove_shm_files(&prefix);
+            assert!(finished.is_ok(), "{wait:?}, round {round}: {finished:?}");
+            assert_eq!(report.end, PlantEnd::Ended, "{wait:?}");
+            assert_eq!(link.missed_commands(), report.missed_commands);
+        }
     }
 }
 

@@ -233,6 +233,11 @@ impl Iceoryx2PlantLink {
         }
         let mut next_check = self.timeouts.check_every;
         let mut spins = 0u32;
+        // Set when the plant was found gone; the board is read once more
+        // before giving up, since a plant answers before it leaves (it exits
+        // right after acknowledging the end of the run) and may have done so
+        // since the last read.
+        let mut lost = None;
         loop {
             // The entry holds the previous answer until the plant writes
             // this command's.
@@ -241,6 +246,9 @@ impl Iceoryx2PlantLink {
                 self.round_trips_us
                     .push(started.elapsed().as_secs_f64() * 1e6);
                 return Ok(m);
+            }
+            if let Some(lost) = lost {
+                return Err(lost);
             }
             match self.wait {
                 WaitMode::Blocking => {
@@ -257,7 +265,10 @@ impl Iceoryx2PlantLink {
             }
             let elapsed = started.elapsed();
             if elapsed >= next_check {
-                self.check_plant()?;
+                if let Err(e) = self.check_plant() {
+                    lost = Some(e);
+                    continue;
+                }
                 next_check = elapsed + self.timeouts.check_every;
                 if elapsed > self.timeouts.response {
                     return Err(LinkError::Lost(format!(
