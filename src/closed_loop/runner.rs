@@ -40,6 +40,19 @@ pub struct LoopOutput {
     pub plan_times: TickTimes,
     /// Plans that fell back to the previous plan.
     pub fallbacks: u64,
+    /// Wall-clock time of the loop, s: from the first command to the last
+    /// answer (the plant's and controller's construction before it not
+    /// included).
+    pub wall_s: f64,
+}
+
+impl LoopOutput {
+    /// Simulated time over wall-clock time ([`ticks`](Self::ticks) ×
+    /// `period` over [`wall_s`](Self::wall_s)): at least 1 when the loop
+    /// keeps up with real time.
+    pub fn real_time_factor(&self, period: f64) -> f64 {
+        self.ticks as f64 * period / self.wall_s
+    }
 }
 
 /// The cut a loop makes and how its samples are labelled.
@@ -76,9 +89,10 @@ pub fn run_loop(
     let mut plan_durations = Vec::new();
     let mut limit_faults = 0;
     let mut end = LoopEnd::TimedOut;
+    let loop_started = std::time::Instant::now();
     let mut measurement = match link.exchange(&KnifeCommand::default()) {
         Ok(m) => m,
-        Err(e) => return failed(e),
+        Err(e) => return failed(e, loop_started.elapsed().as_secs_f64()),
     };
     let mut ticks = 0;
     while ticks < max_ticks {
@@ -121,10 +135,11 @@ pub fn run_loop(
         tick_times: TickTimes::from_durations(&mut durations),
         plan_times: TickTimes::from_durations(&mut plan_durations),
         fallbacks: controller.telemetry().fallbacks,
+        wall_s: loop_started.elapsed().as_secs_f64(),
     }
 }
 
-fn failed(e: LinkError) -> LoopOutput {
+fn failed(e: LinkError, wall_s: f64) -> LoopOutput {
     LoopOutput {
         samples: Vec::new(),
         control: Vec::new(),
@@ -134,5 +149,6 @@ fn failed(e: LinkError) -> LoopOutput {
         tick_times: TickTimes::from_durations(&mut []),
         plan_times: TickTimes::from_durations(&mut []),
         fallbacks: 0,
+        wall_s,
     }
 }

@@ -75,6 +75,11 @@ struct SummaryFile<'a> {
     controller_tick: TickTimes,
     plan_tick: TickTimes,
     plan_fallbacks: u64,
+    /// Wall-clock time of the loop (first command to last answer), s.
+    wall_s: f64,
+    /// Simulated over wall-clock time: at least 1 when the loop keeps up
+    /// with real time.
+    real_time_factor: f64,
 }
 
 fn invalid(scenario: &Scenario, setting: InvalidSetting) -> RunError {
@@ -390,6 +395,8 @@ pub(crate) fn write_results(
             controller_tick: o.tick_times,
             plan_tick: o.plan_times,
             plan_fallbacks: o.fallbacks,
+            wall_s: o.wall_s,
+            real_time_factor: o.real_time_factor(1.0 / s.control_loop.rate_hz),
         },
     )?;
     let resolved = crate::commands::check::resolved_toml(s);
@@ -434,8 +441,13 @@ pub(crate) fn print_summary(s: &Scenario, run: &RunOutput) {
         s.name, s.description, run.controller
     );
     println!(
-        "end: {:?} after {} ticks ({:.3} s simulated); limit faults: {}",
-        o.end, o.ticks, c.duration_s, o.limit_faults
+        "end: {:?} after {} ticks ({:.3} s simulated in {:.2} s of wall clock: real-time factor {:.2}); limit faults: {}",
+        o.end,
+        o.ticks,
+        c.duration_s,
+        o.wall_s,
+        o.real_time_factor(1.0 / s.control_loop.rate_hz),
+        o.limit_faults
     );
     println!(
         "work {:.4} J, peak Fv {:.3} N, peak Fh {:.3} N, max deformation {:.3} mm, depth {:.2} mm of {:.2} mm, blade used {:.1} mm (path {:.1} mm, {} reversals)",
