@@ -7,7 +7,8 @@
 //! the real-time factor (1 ms of simulated time per wall-clock tick time),
 //! the condensed-line solves per tick (the sections' cost counter: the
 //! compute a tick needs, free of the machine's load), and the re-choices,
-//! rebuilds (on the plant's worker thread) and ticks that waited for it.
+//! rebuilds (on the plant's worker thread), ticks that waited for it and
+//! sections it built for orders renewed or dropped before they were taken.
 //!
 //! Run: `cargo bench -p shearcut-sim --bench plant`.
 
@@ -127,10 +128,11 @@ fn run(section: &SectionSettings, alpha: f64, z0: f64) {
         m.true_wrench.force.y
     );
     println!(
-        "re-choices {}, rebuilds {} (built on the worker thread), unforeseen {}, ticks that waited for the worker {}",
+        "re-choices {}, rebuilds {} (built on the worker thread), unforeseen {}, ticks that waited for the worker {}, sections built and dropped untaken {}",
         plant.rechoices(),
         plant.rebuilds(),
         plant.unforeseen_rechoices(),
-        plant.successor_waits()
+        plant.successor_waits(),
+        plant.wasted_builds()
     );
 }

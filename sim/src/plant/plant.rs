@@ -612,6 +612,17 @@ impl Plant {
         self.worker.waits()
     }
 
+    /// Number of sections the worker built for orders that were renewed or
+    /// dropped before they were taken (a predicted plane that moved, a
+    /// motion that reversed, the orders [`Plant::new`] placed for the
+    /// planned direction when the knife goes elsewhere): CPU spent on
+    /// nothing. A diagnostic like [`Plant::successor_waits`]: it depends on
+    /// thread timing (an order renewed before a worker started it costs
+    /// nothing), the plant's results do not.
+    pub fn wasted_builds(&self) -> usize {
+        self.worker.wasted_builds()
+    }
+
     /// Direction of motion the re-choices follow, in the knife plane (world
     /// z, y), unit: that of the last nonzero executed velocity, or the
     /// planned direction before the knife first moves.

@@ -120,6 +120,15 @@ struct Slot {
 struct Slots {
     slots: Vec<Slot>,
     shutdown: bool,
+    /// Sections built for a job that was superseded or cancelled before its
+    /// result was taken (see [`SuccessorWorker::wasted_builds`]).
+    wasted: usize,
+}
+
+/// Whether `result` holds a section the worker built (not a shape it only
+/// cut and found empty or the same).
+fn built(result: &Option<(u64, Preparation)>) -> bool {
+    matches!(result, Some((_, Preparation::New { .. })))
 }
 
 #[derive(Debug)]
@@ -171,6 +180,7 @@ impl SuccessorWorker {
             slots: Mutex::new(Slots {
                 slots: (0..segments).map(|_| Slot::default()).collect(),
                 shutdown: false,
+                wasted: 0,
             }),
             job_ready: Condvar::new(),
             result_ready: Condvar::new(),
@@ -205,6 +215,15 @@ impl SuccessorWorker {
         self.waits
     }
 
+    /// Number of sections built for jobs that were superseded or cancelled
+    /// before their results were taken: CPU spent on nothing. Like
+    /// [`Self::waits`] it depends on thread timing (a job superseded before
+    /// a worker started it costs nothing); results pending when the plant
+    /// is dropped are not counted. Locks the slots.
+    pub fn wasted_builds(&self) -> usize {
+        self.shared.lock().wasted
+    }
+
     /// Submits `job` for segment `index`, superseding any pending one.
     /// Allocates nothing.
     pub fn submit(&mut self, index: usize, job: SuccessorJob) {
@@ -219,7 +238,9 @@ impl SuccessorWorker {
         slot.wanted = generation;
         slot.job = Some((generation, job));
         // A superseded result is dropped here (frees only).
+        let wasted = built(&slot.result);
         slot.result = None;
+        slots.wasted += usize::from(wasted);
         drop(slots);
         self.shared.job_ready.notify_one();
     }
@@ -233,7 +254,9 @@ impl SuccessorWorker {
         let slot = &mut slots.slots[index];
         slot.wanted = 0;
         slot.job = None;
+        let wasted = built(&slot.result);
         slot.result = None;
+        slots.wasted += usize::from(wasted);
     }
 
     /// Waits until the worker has finished every pending job (their results
@@ -315,6 +338,7 @@ impl Clone for SuccessorWorker {
             w.submit(i, j);
         }
         w.waits = self.waits;
+        w.shared.lock().wasted = self.wasted_builds();
         w
     }
 }
@@ -362,6 +386,9 @@ fn run(shared: &Shared, factory: &SectionFactory) {
         if slot.wanted == generation {
             slot.result = Some((generation, prepared));
             shared.result_ready.notify_all();
+        } else if matches!(prepared, Preparation::New { .. }) {
+            // Superseded or cancelled while it was being built.
+            slots.wasted += 1;
         }
     }
 }
@@ -380,4 +407,67 @@ pub(crate) fn same_geometry(a: &SectionGeometry, b: &SectionGeometry) -> bool {
         let x = a.half_width() * k as f64 / SAMPLES as f64;
         close(a.top_at(x), b.top_at(x))
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use nalgebra::Vector3;
+
+    use super::*;
+    use crate::material::MaterialPreset;
+
+    /// A worker over a 30 × 20 × 30 mm potato cuboid (coarse sections).
+    fn worker(segments: usize) -> SuccessorWorker {
+        let factory = SectionFactory {
+            object: TriangleMesh::cuboid(
+                Vector3::new(-0.015, 0.0, 0.0),
+                Vector3::new(0.015, 0.02, 0.03),
+            ),
+            material: MaterialPreset::PotatoCuboid.material(),
+            blade: BladeSection::default(),
+            settings: SectionSettings {
+                row_spacing: 1e-3,
+                ..SectionSettings::default()
+            },
+            rim_fraction: 0.05,
+        };
+        SuccessorWorker::new(Arc::new(factory), segments, 1)
+    }
+
+    /// A vertical plane across the cuboid at z (m).
+    fn job(z: f64) -> SuccessorJob {
+        SuccessorJob {
+            plane: SectionPlane::normal_to_segment(Vector3::new(0.0, 0.01, z), Vector3::y()),
+            current: None,
+        }
+    }
+
+    #[test]
+    fn built_sections_dropped_before_they_are_taken_count_as_wasted() {
+        let mut w = worker(2);
+        // Built and taken: not wasted.
+        w.submit(0, job(0.01));
+        w.wait_idle();
+        assert!(matches!(w.take(0), Some((_, Preparation::New { .. }))));
+        assert_eq!(w.wasted_builds(), 0);
+        // Built, then renewed: wasted; the renewed one is taken.
+        w.submit(0, job(0.01));
+        w.wait_idle();
+        w.submit(0, job(0.012));
+        assert_eq!(w.wasted_builds(), 1);
+        assert!(matches!(w.take(0), Some((_, Preparation::New { .. }))));
+        assert_eq!(w.wasted_builds(), 1);
+        // Built, then cancelled: wasted.
+        w.submit(1, job(0.02));
+        w.wait_idle();
+        w.cancel(1);
+        assert_eq!(w.wasted_builds(), 2);
+        // A plane that misses the object builds nothing: not wasted.
+        w.submit(1, job(0.05));
+        w.wait_idle();
+        w.cancel(1);
+        assert_eq!(w.wasted_builds(), 2);
+        // A clone keeps the count.
+        assert_eq!(w.clone().wasted_builds(), 2);
+    }
 }
