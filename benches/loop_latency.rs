@@ -3,9 +3,10 @@
 //! 100 000 ticks against an echo plant with busy polling and with blocking
 //! waits; then the real plant (fig7-potato, `slice:0.75`, lockstep) closed by
 //! the real controller, with its real-time factor; then the main job's
-//! scenario (`loop-potato-whole`, MPC, lockstep) in process and over
-//! iceoryx2, with their real-time factors (the transport's share is their
-//! difference).
+//! scenario (`loop-potato-whole-realtime`, MPC, lockstep) in process and
+//! over iceoryx2, with their real-time factors (the transport's share is
+//! their difference), and the same cut on the reference discretisation
+//! (`loop-potato-whole`) in process.
 //!
 //! `cargo bench -p shearcut --bench loop_latency` (add `-- --ticks N` to
 //! change the echo tick count, `-- --skip-default` to leave out the main
@@ -156,6 +157,8 @@ fn main() {
         // over iceoryx2 with blocking waits as `shearcut run` uses them.
         closed_loop(DEFAULT_JOB_SCENARIO, "mpc", None, "");
         closed_loop(DEFAULT_JOB_SCENARIO, "mpc", Some(WaitMode::Blocking), "dw");
+        // The same cut on the reference discretisation, in process.
+        closed_loop("loop-potato-whole", "mpc", None, "");
     }
     // Each prefix keeps a 16-byte management file by design: remove ours.
     remove_shm_files(&format!("scb{}", std::process::id()));

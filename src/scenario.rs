@@ -183,7 +183,7 @@ pub struct Scenario {
 }
 
 /// Scenarios shipped with shearcut, available by name as well as by path.
-pub const BUILT_IN_SCENARIOS: [(&str, &str); 6] = [
+pub const BUILT_IN_SCENARIOS: [(&str, &str); 7] = [
     (
         "fig7-potato",
         include_str!("../config/scenarios/fig7-potato.toml"),
@@ -203,6 +203,10 @@ pub const BUILT_IN_SCENARIOS: [(&str, &str); 6] = [
     (
         "loop-potato-whole",
         include_str!("../config/scenarios/loop-potato-whole.toml"),
+    ),
+    (
+        "loop-potato-whole-realtime",
+        include_str!("../config/scenarios/loop-potato-whole-realtime.toml"),
     ),
     (
         "loop-eggplant-whole",
@@ -565,6 +569,22 @@ mod tests {
             let s = Scenario::parse(text, name, name).unwrap();
             assert_eq!(s.name, name);
         }
+    }
+
+    /// The main job's scenario is the reference whole-potato cut on a
+    /// coarser discretisation, nothing else: the same object, knife,
+    /// material, motion, loop and controller.
+    #[test]
+    fn the_real_time_whole_potato_differs_from_the_reference_only_in_discretisation() {
+        let reference = Scenario::load("loop-potato-whole").unwrap();
+        let mut fast = Scenario::load("loop-potato-whole-realtime").unwrap();
+        assert!(fast.section.row_spacing > reference.section.row_spacing);
+        assert!(fast.plant.update_distance > reference.plant.update_distance);
+        fast.name.clone_from(&reference.name);
+        fast.description.clone_from(&reference.description);
+        fast.section = reference.section.clone();
+        fast.plant.update_distance = reference.plant.update_distance;
+        assert_eq!(fast, reference);
     }
 
     #[test]

@@ -44,14 +44,17 @@ pub struct LoopOutput {
     /// answer (the plant's and controller's construction before it not
     /// included).
     pub wall_s: f64,
+    /// The plant's time at the last answer, s (in lockstep one period per
+    /// command; a realtime plant also steps through missed commands).
+    pub simulated_s: f64,
 }
 
 impl LoopOutput {
-    /// Simulated time over wall-clock time ([`ticks`](Self::ticks) ×
-    /// `period` over [`wall_s`](Self::wall_s)): at least 1 when the loop
-    /// keeps up with real time.
-    pub fn real_time_factor(&self, period: f64) -> f64 {
-        self.ticks as f64 * period / self.wall_s
+    /// Simulated over wall-clock time ([`simulated_s`](Self::simulated_s)
+    /// over [`wall_s`](Self::wall_s)): at least 1 when the loop keeps up
+    /// with real time.
+    pub fn real_time_factor(&self) -> f64 {
+        self.simulated_s / self.wall_s
     }
 }
 
@@ -136,6 +139,7 @@ pub fn run_loop(
         plan_times: TickTimes::from_durations(&mut plan_durations),
         fallbacks: controller.telemetry().fallbacks,
         wall_s: loop_started.elapsed().as_secs_f64(),
+        simulated_s: measurement.time,
     }
 }
 
@@ -150,5 +154,6 @@ fn failed(e: LinkError, wall_s: f64) -> LoopOutput {
         plan_times: TickTimes::from_durations(&mut []),
         fallbacks: 0,
         wall_s,
+        simulated_s: 0.0,
     }
 }

@@ -77,6 +77,8 @@ struct SummaryFile<'a> {
     plan_fallbacks: u64,
     /// Wall-clock time of the loop (first command to last answer), s.
     wall_s: f64,
+    /// The plant's time at the last answer, s.
+    simulated_s: f64,
     /// Simulated over wall-clock time: at least 1 when the loop keeps up
     /// with real time.
     real_time_factor: f64,
@@ -396,7 +398,8 @@ pub(crate) fn write_results(
             plan_tick: o.plan_times,
             plan_fallbacks: o.fallbacks,
             wall_s: o.wall_s,
-            real_time_factor: o.real_time_factor(1.0 / s.control_loop.rate_hz),
+            simulated_s: o.simulated_s,
+            real_time_factor: o.real_time_factor(),
         },
     )?;
     let resolved = crate::commands::check::resolved_toml(s);
@@ -444,9 +447,9 @@ pub(crate) fn print_summary(s: &Scenario, run: &RunOutput) {
         "end: {:?} after {} ticks ({:.3} s simulated in {:.2} s of wall clock: real-time factor {:.2}); limit faults: {}",
         o.end,
         o.ticks,
-        c.duration_s,
+        o.simulated_s,
         o.wall_s,
-        o.real_time_factor(1.0 / s.control_loop.rate_hz),
+        o.real_time_factor(),
         o.limit_faults
     );
     println!(
