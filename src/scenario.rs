@@ -582,7 +582,7 @@ mod tests {
         assert!(fast.plant.update_distance > reference.plant.update_distance);
         fast.name.clone_from(&reference.name);
         fast.description.clone_from(&reference.description);
-        fast.section = reference.section.clone();
+        fast.section = reference.section;
         fast.plant.update_distance = reference.plant.update_distance;
         assert_eq!(fast, reference);
     }
