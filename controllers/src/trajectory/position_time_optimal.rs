@@ -302,20 +302,52 @@ fn nan_max(a: f64, b: f64) -> f64 {
     }
 }
 
+/// The peak family's two velocity changes with the peak at each velocity limit, computed once
+/// per search: they are the parts of the cruise profiles ([`cruises`]) and the outermost break
+/// points of the peak family ([`peak_breaks`] starts at `v_min` and ends at `v_max`).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct LimitParts {
+    /// `peak_parts(d, v_max)`.
+    at_max: Option<(VelChange, VelChange)>,
+    /// `peak_parts(d, v_min)`.
+    at_min: Option<(VelChange, VelChange)>,
+}
+
+impl LimitParts {
+    pub fn new(d: &Dof) -> Self {
+        Self {
+            at_max: peak_parts(d, d.v_max),
+            at_min: peak_parts(d, d.v_min),
+        }
+    }
+}
+
+/// Durations `(T₁, T₂)` of both velocity changes, NaN if they do not exist.
+fn part_durations(parts: Option<(VelChange, VelChange)>) -> (f64, f64) {
+    parts.map_or((f64::NAN, f64::NAN), |(c1, c2)| (c1.duration(), c2.duration()))
+}
+
 /// Peak family (see the module documentation).
-fn peak_family(d: &Dof, prefix: &Profile, density: usize, out: &mut TimeOptimal) {
+fn peak_family(
+    d: &Dof,
+    prefix: &Profile,
+    density: usize,
+    limit_parts: &LimitParts,
+    out: &mut TimeOptimal,
+) {
     let dp = d.pf - d.p0;
     let scale = 1.0;
     let mut f = |vp: f64| peak_distance(d, vp).0 - dp;
     let mut br = [0.0; 8];
     let nb = peak_breaks(d, &mut br);
-    // The durations of both velocity changes at the break points, for the distance bound.
+    // The durations of both velocity changes at the break points, for the distance bound
+    // (at the outermost ones, the velocity limits, known already).
     let mut parts = [(f64::NAN, f64::NAN); 8];
     if density == 1 {
-        for (p, &vp) in parts.iter_mut().zip(&br[..nb]) {
-            if let Some((c1, c2)) = peak_parts(d, vp) {
-                *p = (c1.duration(), c2.duration());
-            }
+        parts[0] = part_durations(limit_parts.at_min);
+        parts[nb - 1] = part_durations(limit_parts.at_max);
+        for (p, &vp) in parts[1..nb - 1].iter_mut().zip(&br[1..nb - 1]) {
+            *p = part_durations(peak_parts(d, vp));
         }
     }
     let mut roots = Roots::new();
@@ -355,27 +387,31 @@ fn peak_family(d: &Dof, prefix: &Profile, density: usize, out: &mut TimeOptimal)
         }
         offered = roots.as_slice().len();
     }
-    offer_cruise(d, prefix, out);
+    offer_cruise(d, prefix, limit_parts, out);
 }
 
 /// The profiles that cruise at a velocity limit: for each nonzero limit `vc` whose two
-/// time-optimal velocity changes `(v0, a0) → (vc, 0) → (vf, af)` exist, `(vc, c1, t_c, c2)`
-/// with `t_c` the cruise time that covers the displacement (negative if none does).
-fn cruises(d: &Dof) -> impl Iterator<Item = (f64, VelChange, f64, VelChange)> + '_ {
+/// time-optimal velocity changes `(v0, a0) → (vc, 0) → (vf, af)` exist (`limit_parts`),
+/// `(vc, c1, t_c, c2)` with `t_c` the cruise time that covers the displacement (negative if
+/// none does).
+fn cruises<'a>(
+    d: &'a Dof,
+    limit_parts: &'a LimitParts,
+) -> impl Iterator<Item = (f64, VelChange, f64, VelChange)> + 'a {
     let dp = d.pf - d.p0;
-    [d.v_max, d.v_min]
+    [(d.v_max, limit_parts.at_max), (d.v_min, limit_parts.at_min)]
         .into_iter()
-        .filter(|&vc| vc != 0.0)
-        .filter_map(move |vc| {
-            let (c1, c2) = peak_parts(d, vc)?;
+        .filter(|&(vc, _)| vc != 0.0)
+        .filter_map(move |(vc, parts)| {
+            let (c1, c2) = parts?;
             let dist = c1.distance(d.v0, d.a0) + c2.distance(vc, 0.0);
             Some((vc, c1, (dp - dist) / vc, c2))
         })
 }
 
 /// Offers the profiles that cruise at a velocity limit for a positive time.
-fn offer_cruise(d: &Dof, prefix: &Profile, out: &mut TimeOptimal) {
-    for (_, c1, tc, c2) in cruises(d) {
+fn offer_cruise(d: &Dof, prefix: &Profile, limit_parts: &LimitParts, out: &mut TimeOptimal) {
+    for (_, c1, tc, c2) in cruises(d, limit_parts) {
         if tc > 0.0
             && let Some(s) = peak_segments(&c1, tc, &c2, 1.0)
         {
@@ -386,8 +422,13 @@ fn offer_cruise(d: &Dof, prefix: &Profile, out: &mut TimeOptimal) {
 
 /// Offers the profile that cruises at a velocity limit if it is provably time-optimal
 /// ([`cruise_is_time_optimal`]); whether it was (then it is the only candidate in `out`).
-fn optimal_cruise(d: &Dof, prefix: &Profile, out: &mut TimeOptimal) -> bool {
-    for (vc, c1, tc, c2) in cruises(d) {
+fn optimal_cruise(
+    d: &Dof,
+    prefix: &Profile,
+    limit_parts: &LimitParts,
+    out: &mut TimeOptimal,
+) -> bool {
+    for (vc, c1, tc, c2) in cruises(d, limit_parts) {
         if cruise_is_time_optimal(d, vc, &c1, tc, &c2)
             && let Some(s) = peak_segments(&c1, tc, &c2, 1.0)
         {
@@ -759,10 +800,11 @@ pub(crate) fn time_optimal_into(
     if d.j <= 0.0 {
         return;
     }
-    if out.shortest && density == 1 && optimal_cruise(d, prefix, out) {
+    let limit_parts = LimitParts::new(d);
+    if out.shortest && density == 1 && optimal_cruise(d, prefix, &limit_parts, out) {
         return;
     }
-    peak_family(d, prefix, density, out);
+    peak_family(d, prefix, density, &limit_parts, out);
     three_arc_family(d, d, prefix, 1.0, density, out);
     three_arc_family(d, &d.mirrored(), prefix, -1.0, density, out);
 }
@@ -831,7 +873,7 @@ mod tests {
             );
             let mut probe = TimeOptimal::new();
             probe.shortest = true;
-            cruise_proved += usize::from(optimal_cruise(&d, &prefix, &mut probe));
+            cruise_proved += usize::from(optimal_cruise(&d, &prefix, &LimitParts::new(&d), &mut probe));
             compared += 1;
         }
         assert!(compared > 3000, "{compared}");
@@ -864,7 +906,7 @@ mod tests {
                 let prefix = Profile::new(d.p0, d.v0, d.a0);
                 let mut probe = TimeOptimal::new();
                 probe.shortest = true;
-                if optimal_cruise(&d, &prefix, &mut probe) {
+                if optimal_cruise(&d, &prefix, &LimitParts::new(&d), &mut probe) {
                     proved += 1;
                     let all = time_optimal(&d, &prefix, 1, Search::All);
                     assert_eq!(
