@@ -322,11 +322,6 @@ impl LimitParts {
     }
 }
 
-/// Durations `(T₁, T₂)` of both velocity changes, NaN if they do not exist.
-fn part_durations(parts: Option<(VelChange, VelChange)>) -> (f64, f64) {
-    parts.map_or((f64::NAN, f64::NAN), |(c1, c2)| (c1.duration(), c2.duration()))
-}
-
 /// Peak family (see the module documentation).
 fn peak_family(
     d: &Dof,
@@ -340,16 +335,29 @@ fn peak_family(
     let mut f = |vp: f64| peak_distance(d, vp).0 - dp;
     let mut br = [0.0; 8];
     let nb = peak_breaks(d, &mut br);
-    // The durations of both velocity changes at the break points, for the distance bound
-    // (at the outermost ones, the velocity limits, known already).
+    // The durations of both velocity changes at the break points and the residual `D − Δp`
+    // there, for the bounds below (at the outermost ones, the velocity limits, the changes
+    // are known already).
     let mut parts = [(f64::NAN, f64::NAN); 8];
+    let mut residual = [f64::NAN; 8];
     if density == 1 {
-        parts[0] = part_durations(limit_parts.at_min);
-        parts[nb - 1] = part_durations(limit_parts.at_max);
-        for (p, &vp) in parts[1..nb - 1].iter_mut().zip(&br[1..nb - 1]) {
-            *p = part_durations(peak_parts(d, vp));
+        for k in 0..nb {
+            let vp = br[k];
+            let changes = if k == 0 {
+                limit_parts.at_min
+            } else if k == nb - 1 {
+                limit_parts.at_max
+            } else {
+                peak_parts(d, vp)
+            };
+            if let Some((c1, c2)) = changes {
+                parts[k] = (c1.duration(), c2.duration());
+                // Exactly the arithmetic of `peak_distance`.
+                residual[k] = c1.distance(d.v0, d.a0) + c2.distance(vp, 0.0) - dp;
+            }
         }
     }
+    let (v_stop1, v_stop2) = peak_direction_breaks(d);
     let mut roots = Roots::new();
     // The roots of each window are offered before the next window is solved (in the order of
     // the windows, as if all were offered at the end), so that a shortest-only search can skip
@@ -362,11 +370,24 @@ fn peak_family(
         } else {
             f64::INFINITY
         };
-        if density == 1
-            && (out.beaten(window_min_duration(parts[k], parts[k + 1]))
-                || distance_excluded(d, dp, (w[0], w[1]), parts[k], parts[k + 1], t_cap))
-        {
-            continue;
+        let mut set = RootSet::All;
+        if density == 1 {
+            if out.beaten(window_min_duration(parts[k], parts[k + 1]))
+                || distance_excluded(d, dp, (w[0], w[1]), parts[k], parts[k + 1], t_cap)
+            {
+                continue;
+            }
+            if distance_increasing(w[0], w[1], v_stop1, v_stop2) {
+                let (res_l, res_r) = (residual[k], residual[k + 1]);
+                let margin = residual_margin(d, dp, (w[0], w[1]), parts[k], parts[k + 1]);
+                // NaN compares false throughout: neither skipped nor `Single`.
+                if (res_l > margin && res_r > margin) || (res_l < -margin && res_r < -margin) {
+                    continue;
+                }
+                if (res_l > margin && res_r < -margin) || (res_l < -margin && res_r > margin) {
+                    set = RootSet::Single;
+                }
+            }
         }
         scan_peak_window(
             d,
@@ -375,7 +396,7 @@ fn peak_family(
             w[1],
             density,
             PeakResidual::Distance { dp },
-            RootSet::All,
+            set,
             &mut roots,
         );
         for &vp in &roots.as_slice()[offered..] {
@@ -388,6 +409,61 @@ fn peak_family(
         offered = roots.as_slice().len();
     }
     offer_cruise(d, prefix, limit_parts, out);
+}
+
+/// The peak velocities where the first and the second velocity change of the peak family
+/// switch direction, `v₀ + a₀|a₀|/(2J)` and `v_f − a_f|a_f|/(2J)` (the first change starts
+/// with `+J` above the first, the second change starts with `+J` below the second; both are
+/// break points of [`peak_breaks`], computed with the same arithmetic).
+fn peak_direction_breaks(d: &Dof) -> (f64, f64) {
+    (
+        d.v0 + d.a0 * d.a0.abs() / (2.0 * d.j),
+        d.vf - d.af * d.af.abs() / (2.0 * d.j),
+    )
+}
+
+/// Whether the peak family's distance `D(v_p)` is strictly increasing on the window `[l, r]`.
+///
+/// Let `X`, `Y > 0` be the peak acceleration magnitudes of the two changes (the held limit, or
+/// the ramp peaks `x`, `y` of [`super::peak_window`]) and `s₁`, `s₂` the signs of their first
+/// jerks. For the first change `(v₀, a₀) → (v_p, 0)`, `dD₁/dv_p = s₁ (v_p + s₁ X²/(2J))/X`:
+/// with `s₁ = +1` and a hold, raising `v_p` by `δ` lengthens the hold by `δ/X` at the
+/// velocity `v_p − X²/(2J)` and raises the final ramp (`X/J` long) by `δ`, so the derivative
+/// is `(v_p − X²/(2J))/X + X/J`; a ramp pair gives the same with `x` (`t₁ = (x − a₀)/J`,
+/// `t₃ = x/J`, `dD₁/dx = 2(v_p + x²/(2J))/J`, `dx/dv_p = J/(2x)`); `s₁ = −1` is the mirror
+/// image. The second change read backwards in time is a first change from `(v_f, −a_f)` to
+/// `(v_p, 0)` with the opposite sign and the same distance, so `dD₂/dv_p = −s₂ (v_p − s₂
+/// Y²/(2J))/Y`. Together
+///
+/// ```text
+///   dD/dv_p = s₁ v_p/X − s₂ v_p/Y + (X + Y)/(2J),
+/// ```
+///
+/// positive where `s₁ = +1, s₂ = −1, v_p ≥ 0` or `s₁ = −1, s₂ = +1, v_p ≤ 0`. On a window
+/// both signs are constant (`v_stop1`, `v_stop2` from [`peak_direction_breaks`] are break
+/// points): `s₁ = +1` above `v_stop1`, `s₂ = +1` below `v_stop2`.
+fn distance_increasing(l: f64, r: f64, v_stop1: f64, v_stop2: f64) -> bool {
+    let mid = 0.5 * (l + r);
+    let (up1, up2) = (mid > v_stop1, mid < v_stop2);
+    (up1 && !up2 && l >= 0.0) || (!up1 && up2 && r <= 0.0)
+}
+
+/// The margin `1e-8 (1 + |Δp| + |v|_max T_max)` of the residuals `D − Δp` at the ends of a
+/// window whose distance is increasing ([`distance_increasing`]), far above their rounding:
+/// if both exceed it with the same sign, every peak-family profile of the window misses the
+/// target position by more than that, none would pass the verification (tolerance 1e-9 on
+/// the final position), and skipping the window changes no result; if they exceed it with
+/// opposite signs, the window holds exactly one root ([`RootSet::Single`]). NaN (a change
+/// impossible at an end) if the window's duration bound is NaN.
+fn residual_margin(
+    d: &Dof,
+    dp: f64,
+    (l, r): (f64, f64),
+    at_l: (f64, f64),
+    at_r: (f64, f64),
+) -> f64 {
+    let (_, _, scale) = distance_range(d, l, r, at_l, at_r, f64::INFINITY);
+    1e-8 * (1.0 + dp.abs() + scale)
 }
 
 /// The profiles that cruise at a velocity limit: for each nonzero limit `vc` whose two
@@ -873,7 +949,12 @@ mod tests {
             );
             let mut probe = TimeOptimal::new();
             probe.shortest = true;
-            cruise_proved += usize::from(optimal_cruise(&d, &prefix, &LimitParts::new(&d), &mut probe));
+            cruise_proved += usize::from(optimal_cruise(
+                &d,
+                &prefix,
+                &LimitParts::new(&d),
+                &mut probe,
+            ));
             compared += 1;
         }
         assert!(compared > 3000, "{compared}");
@@ -932,6 +1013,59 @@ mod tests {
             && (d.a0 >= 0.0 || d.v0 - r0 >= d.v_min)
             && (d.af <= 0.0 || d.vf - rf >= d.v_min)
             && (d.af >= 0.0 || d.vf + rf <= d.v_max)
+    }
+
+    /// The peak family's distance is increasing on every window that [`distance_increasing`]
+    /// says it is (400 random problems with asymmetric limits, states anywhere inside them,
+    /// 400 peaks per window, rounding allowed), and the windows it applies to are a good part
+    /// of all; and the duration bound of [`window_min_duration`] never exceeds the duration
+    /// of a profile in its window.
+    #[test]
+    fn window_bounds_hold_on_every_window() {
+        let mut rng = ChaCha8Rng::seed_from_u64(21);
+        let (mut windows, mut increasing, mut checked) = (0, 0, 0);
+        for _ in 0..400 {
+            let d = random_dof(&mut rng, 6.0);
+            let mut br = [0.0; 8];
+            let nb = peak_breaks(&d, &mut br);
+            let (v_stop1, v_stop2) = peak_direction_breaks(&d);
+            let durations = |vp: f64| {
+                peak_parts(&d, vp).map_or((f64::NAN, f64::NAN), |(c1, c2)| {
+                    (c1.duration(), c2.duration())
+                })
+            };
+            for w in br[..nb].windows(2) {
+                let (l, r) = (w[0], w[1]);
+                windows += 1;
+                let t_lb = window_min_duration(durations(l), durations(r));
+                let inc = distance_increasing(l, r, v_stop1, v_stop2);
+                increasing += usize::from(inc);
+                let mut last = f64::NEG_INFINITY;
+                for k in 0..=400 {
+                    let vp = l + (r - l) * k as f64 / 400.0;
+                    let (dist, t) = peak_distance(&d, vp);
+                    if dist.is_nan() {
+                        continue;
+                    }
+                    checked += 1;
+                    assert!(
+                        !(t < t_lb - 1e-12 * (1.0 + t)),
+                        "duration {t} below the bound {t_lb} at v_p = {vp} in [{l}, {r}] of {d:?}"
+                    );
+                    if inc {
+                        let tol = 1e-12 * (1.0 + dist.abs() + t * (l.abs() + r.abs()));
+                        assert!(
+                            dist >= last - tol,
+                            "distance {dist} after {last} at v_p = {vp} in [{l}, {r}] of {d:?}"
+                        );
+                        last = dist;
+                    }
+                }
+            }
+        }
+        assert!(checked > 100_000, "{checked}");
+        assert!(increasing * 4 > windows, "{increasing} of {windows}");
+        eprintln!("{increasing} of {windows} windows increasing");
     }
 
     /// The distance bound of [`distance_excluded`] holds on every window: 400 random problems
