@@ -39,7 +39,7 @@ use super::peak_window::{PeakResidual, scan_peak_window};
 use super::polynomial::{RootSet, closed_form_roots, polynomial_roots};
 use super::profile::{Profile, integrate};
 use super::roots::{Roots, scan};
-use super::vel_change::{VelChange, vel_change};
+use super::vel_change::{VelChange, vel_change_at_rest_end};
 
 /// Maximum number of distinct valid candidates kept.
 pub(crate) const MAX_CANDIDATES: usize = 12;
@@ -161,8 +161,11 @@ fn push_change(s: &mut Segments, c: &VelChange, scale: f64) -> bool {
 /// The two velocity changes of the peak family at peak velocity `vp`.
 #[inline(always)]
 pub(crate) fn peak_parts(d: &Dof, vp: f64) -> Option<(VelChange, VelChange)> {
-    let c1 = vel_change(d.v0, d.a0, vp, 0.0, d.a_max, d.a_min, d.j)?;
-    let c2 = vel_change(vp, 0.0, d.vf, d.af, d.a_max, d.a_min, d.j)?;
+    // Exactly `vel_change` of both parts, computing one shape each where only one can be
+    // valid (the direction breaks of `peak_direction_breaks`).
+    let (v_stop1, v_stop2) = peak_direction_breaks(d);
+    let c1 = vel_change_at_rest_end(d.v0, d.a0, vp, 0.0, d.a_max, d.a_min, d.j, true, v_stop1)?;
+    let c2 = vel_change_at_rest_end(vp, 0.0, d.vf, d.af, d.a_max, d.a_min, d.j, false, v_stop2)?;
     Some((c1, c2))
 }
 
