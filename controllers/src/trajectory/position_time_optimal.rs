@@ -184,11 +184,12 @@ pub(crate) fn peak_distance(d: &Dof, vp: f64) -> (f64, f64) {
 /// Sorted break points of the peak family's residual inside `[v_min, v_max]` (both included).
 pub(crate) fn peak_breaks(d: &Dof, out: &mut [f64; 8]) -> usize {
     let j = d.j;
+    let (v_stop1, v_stop2) = peak_direction_breaks(d);
     let cands = [
-        d.v0 + d.a0 * d.a0.abs() / (2.0 * j),
+        v_stop1,
         d.v0 + (d.a_max * d.a_max - 0.5 * d.a0 * d.a0) / j,
         d.v0 - (d.a_min * d.a_min - 0.5 * d.a0 * d.a0) / j,
-        d.vf - d.af * d.af.abs() / (2.0 * j),
+        v_stop2,
         d.vf - (d.a_max * d.a_max - 0.5 * d.af * d.af) / j,
         d.vf + (d.a_min * d.a_min - 0.5 * d.af * d.af) / j,
     ];
@@ -269,8 +270,8 @@ fn distance_range(
 ) -> (f64, f64, f64) {
     let t_lo = nan_min(t1l, t1r) + nan_min(t2l, t2r);
     let t_hi = nan_min(nan_max(t1l, t1r) + nan_max(t2l, t2r), t_cap);
-    let ov0 = d.a0 * d.a0 / (2.0 * d.j);
-    let ovf = d.af * d.af / (2.0 * d.j);
+    let ov0 = ramp_out_velocity(d.a0, d.j);
+    let ovf = ramp_out_velocity(d.af, d.j);
     let v_lo = (d.v0 - ov0).min(l).min(d.vf - ovf);
     let v_hi = (d.v0 + ov0).max(r).max(d.vf + ovf);
     let d_lo = nan_min(v_lo * t_lo, v_lo * t_hi);
@@ -412,6 +413,14 @@ fn peak_family(
         offered = roots.as_slice().len();
     }
     offer_cruise(d, prefix, limit_parts, out);
+}
+
+/// The velocity change `a²/(2J)` while an acceleration `a` is brought to zero with the full
+/// jerk `J` (in the direction of `a`): the distance from a state `(v, a)` to the velocity at
+/// which it comes to rest in acceleration at once.
+#[inline(always)]
+fn ramp_out_velocity(a: f64, j: f64) -> f64 {
+    a * a / (2.0 * j)
 }
 
 /// The peak velocities where the first and the second velocity change of the peak family
@@ -570,15 +579,15 @@ fn cruise_is_time_optimal(d: &Dof, vc: f64, c1: &VelChange, tc: f64, c2: &VelCha
         && (c2.t1 == 0.0 || s * c2.j1 < 0.0)
         && (c2.t2 == 0.0 || c2.peak == hold_down)
         && (c2.t3 == 0.0 || s * c2.j3 > 0.0);
-    let start = a0 >= 0.0 || v0 + a0 * a0 / (2.0 * j) <= vc;
-    let target = af <= 0.0 || vf + af * af / (2.0 * j) <= vc;
+    let start = a0 >= 0.0 || v0 + ramp_out_velocity(a0, j) <= vc;
+    let target = af <= 0.0 || vf + ramp_out_velocity(af, j) <= vc;
     let min1 = if a0 < 0.0 {
-        v0 - a0 * a0 / (2.0 * j)
+        v0 - ramp_out_velocity(a0, j)
     } else {
         v0
     };
     let min2 = if af > 0.0 {
-        vf - af * af / (2.0 * j)
+        vf - ramp_out_velocity(af, j)
     } else {
         vf
     };
@@ -634,12 +643,12 @@ fn three_arc_skip(d: &Dof, out: &TimeOptimal) -> impl Fn(f64) -> bool + use<> {
     let cap = (out.shortest && out.n > 0).then(|| out.duration[0]);
     let dp = d.pf - d.p0;
     let r0 = if d.a0 < 0.0 {
-        d.a0 * d.a0 / (2.0 * d.j)
+        ramp_out_velocity(d.a0, d.j)
     } else {
         0.0
     };
     let rf = if d.af > 0.0 {
-        d.af * d.af / (2.0 * d.j)
+        ramp_out_velocity(d.af, d.j)
     } else {
         0.0
     };
@@ -1060,8 +1069,8 @@ mod tests {
     /// Whether the start is safe (no violation unavoidable) and the target reachable within
     /// the limits.
     fn random_problem_is_valid(d: &Dof) -> bool {
-        let r0 = d.a0 * d.a0 / (2.0 * d.j);
-        let rf = d.af * d.af / (2.0 * d.j);
+        let r0 = ramp_out_velocity(d.a0, d.j);
+        let rf = ramp_out_velocity(d.af, d.j);
         (d.a0 <= 0.0 || d.v0 + r0 <= d.v_max)
             && (d.a0 >= 0.0 || d.v0 - r0 >= d.v_min)
             && (d.af <= 0.0 || d.vf - rf >= d.v_min)
