@@ -33,6 +33,8 @@
 //! ([`Dof::check`]). The shortest valid one is time-optimal; the other valid durations are
 //! kept, since they bound the blocked intervals used by synchronisation.
 
+use core::cell::Cell;
+
 use super::dof::{Dof, Segments};
 use super::peak_polynomials as pp;
 use super::peak_window::{PeakResidual, scan_peak_window};
@@ -336,7 +338,17 @@ fn peak_family(
 ) {
     let dp = d.pf - d.p0;
     let scale = 1.0;
-    let mut f = |vp: f64| peak_distance(d, vp).0 - dp;
+    // The residual (exactly `peak_distance(d, vp).0 - dp`), remembering the velocity changes
+    // of its last evaluation: a root is usually last evaluated by its polishing, and its
+    // profile is built from the same changes.
+    let last = Cell::new(None::<(f64, VelChange, VelChange)>);
+    let mut f = |vp: f64| match peak_parts(d, vp) {
+        Some((c1, c2)) => {
+            last.set(Some((vp, c1, c2)));
+            c1.distance(d.v0, d.a0) + c2.distance(vp, 0.0) - dp
+        }
+        None => f64::NAN,
+    };
     let mut br = [0.0; 8];
     let nb = peak_breaks(d, &mut br);
     // The durations of both velocity changes at the break points and the residual `D − Δp`
@@ -404,7 +416,11 @@ fn peak_family(
             &mut roots,
         );
         for &vp in &roots.as_slice()[offered..] {
-            if let Some((c1, c2)) = peak_parts(d, vp)
+            let parts = match last.get() {
+                Some((v, c1, c2)) if v.to_bits() == vp.to_bits() => Some((c1, c2)),
+                _ => peak_parts(d, vp),
+            };
+            if let Some((c1, c2)) = parts
                 && let Some(s) = peak_segments(&c1, 0.0, &c2, scale)
             {
                 out.offer(d, prefix, &s, 1.0);
@@ -685,11 +701,16 @@ fn three_arc_family(
     density: usize,
     out: &mut TimeOptimal,
 ) {
+    let (a0, af, amax, amin) = (d.a0, d.af, d.a_max, d.a_min);
+    // Every variant below needs `af > 0` or `a0 < 0` (the unlimited one either, the held
+    // ones `af > 0` and `a0 < 0` respectively).
+    if !(af > 0.0 || a0 < 0.0) {
+        return;
+    }
     let arc_samples = ARC_SAMPLES * density;
     let j = d.j;
     let dp = d.pf - d.p0;
     let dv = d.vf - d.v0;
-    let (a0, af, amax, amin) = (d.a0, d.af, d.a_max, d.a_min);
     let scale = 1.0;
 
     // (1) no acceleration limit: +J (a0→a1), −J (a1→a2), +J (a2→af), a1² − a2² = K.
