@@ -317,13 +317,26 @@ pub(crate) struct LimitParts {
     at_max: Option<(VelChange, VelChange)>,
     /// `peak_parts(d, v_min)`.
     at_min: Option<(VelChange, VelChange)>,
+    /// Their distance (exactly `peak_distance(d, v_max).0`; NaN if they do not exist).
+    dist_at_max: f64,
+    /// Likewise at `v_min`.
+    dist_at_min: f64,
 }
 
 impl LimitParts {
     pub fn new(d: &Dof) -> Self {
+        let at_max = peak_parts(d, d.v_max);
+        let at_min = peak_parts(d, d.v_min);
+        let dist = |parts: Option<(VelChange, VelChange)>, vp: f64| {
+            parts.map_or(f64::NAN, |(c1, c2)| {
+                c1.distance(d.v0, d.a0) + c2.distance(vp, 0.0)
+            })
+        };
         Self {
-            at_max: peak_parts(d, d.v_max),
-            at_min: peak_parts(d, d.v_min),
+            at_max,
+            at_min,
+            dist_at_max: dist(at_max, d.v_max),
+            dist_at_min: dist(at_min, d.v_min),
         }
     }
 }
@@ -359,17 +372,21 @@ fn peak_family(
     if density == 1 {
         for k in 0..nb {
             let vp = br[k];
-            let changes = if k == 0 {
-                limit_parts.at_min
+            let (changes, dist) = if k == 0 {
+                (limit_parts.at_min, limit_parts.dist_at_min)
             } else if k == nb - 1 {
-                limit_parts.at_max
+                (limit_parts.at_max, limit_parts.dist_at_max)
             } else {
-                peak_parts(d, vp)
+                let changes = peak_parts(d, vp);
+                // Exactly the arithmetic of `peak_distance`.
+                let dist = changes.map_or(f64::NAN, |(c1, c2)| {
+                    c1.distance(d.v0, d.a0) + c2.distance(vp, 0.0)
+                });
+                (changes, dist)
             };
             if let Some((c1, c2)) = changes {
                 parts[k] = (c1.duration(), c2.duration());
-                // Exactly the arithmetic of `peak_distance`.
-                residual[k] = c1.distance(d.v0, d.a0) + c2.distance(vp, 0.0) - dp;
+                residual[k] = dist - dp;
             }
         }
     }
@@ -503,14 +520,16 @@ fn cruises<'a>(
     limit_parts: &'a LimitParts,
 ) -> impl Iterator<Item = (f64, VelChange, f64, VelChange)> + 'a {
     let dp = d.pf - d.p0;
-    [(d.v_max, limit_parts.at_max), (d.v_min, limit_parts.at_min)]
-        .into_iter()
-        .filter(|&(vc, _)| vc != 0.0)
-        .filter_map(move |(vc, parts)| {
-            let (c1, c2) = parts?;
-            let dist = c1.distance(d.v0, d.a0) + c2.distance(vc, 0.0);
-            Some((vc, c1, (dp - dist) / vc, c2))
-        })
+    [
+        (d.v_max, limit_parts.at_max, limit_parts.dist_at_max),
+        (d.v_min, limit_parts.at_min, limit_parts.dist_at_min),
+    ]
+    .into_iter()
+    .filter(|&(vc, _, _)| vc != 0.0)
+    .filter_map(move |(vc, parts, dist)| {
+        let (c1, c2) = parts?;
+        Some((vc, c1, (dp - dist) / vc, c2))
+    })
 }
 
 /// Offers the profiles that cruise at a velocity limit for a positive time.
