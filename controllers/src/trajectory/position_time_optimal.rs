@@ -410,7 +410,7 @@ fn peak_family(
             {
                 continue;
             }
-            if distance_increasing(w[0], w[1], v_stop1, v_stop2) {
+            if distance_increasing(d, w[0], w[1], v_stop1, v_stop2) {
                 let (res_l, res_r) = (residual[k], residual[k + 1]);
                 let margin = residual_margin(d, dp, (w[0], w[1]), parts[k], parts[k + 1]);
                 // NaN compares false throughout: neither skipped nor `Single`.
@@ -484,13 +484,43 @@ fn peak_direction_breaks(d: &Dof) -> (f64, f64) {
 ///   dD/dv_p = s₁ v_p/X − s₂ v_p/Y + (X + Y)/(2J),
 /// ```
 ///
-/// positive where `s₁ = +1, s₂ = −1, v_p ≥ 0` or `s₁ = −1, s₂ = +1, v_p ≤ 0`. On a window
-/// both signs are constant (`v_stop1`, `v_stop2` from [`peak_direction_breaks`] are break
-/// points): `s₁ = +1` above `v_stop1`, `s₂ = +1` below `v_stop2`.
-fn distance_increasing(l: f64, r: f64, v_stop1: f64, v_stop2: f64) -> bool {
+/// positive where `s₁ = +1, s₂ = −1, v_p ≥ 0` or `s₁ = −1, s₂ = +1, v_p ≤ 0`. Where `v_p` has
+/// the other sign, it is positive as long as `|v_p| < XY/(2J)` (`(X + Y)/(2J) > |v_p|
+/// (1/X + 1/Y)`). On a window both signs are constant (`v_stop1`, `v_stop2` from
+/// [`peak_direction_breaks`] are break points): `s₁ = +1` above `v_stop1`, `s₂ = +1` below
+/// `v_stop2`. With `s₁ = +1, s₂ = −1`, `X = min(√(J (v_p − v₀) + a₀²/2), a_max)` and `Y =
+/// min(√(J (v_p − v_f) + a_f²/2), −a_min)` both grow with `v_p`, so on the part `v_p < 0`
+/// of a window `[l, r]`, `XY ≥ X(l) Y(l)`, and `2J |l| < X(l) Y(l)` (with a relative margin
+/// of 1e-9 for rounding) makes the derivative positive there; the mirror image for `s₁ =
+/// −1, s₂ = +1` uses the end `r`.
+fn distance_increasing(d: &Dof, l: f64, r: f64, v_stop1: f64, v_stop2: f64) -> bool {
     let mid = 0.5 * (l + r);
     let (up1, up2) = (mid > v_stop1, mid < v_stop2);
-    (up1 && !up2 && l >= 0.0) || (!up1 && up2 && r <= 0.0)
+    if up1 == up2 {
+        return false;
+    }
+    // The end where |v_p| is largest on the side of the "wrong" sign.
+    let (v, hold) = if up1 {
+        if l >= 0.0 {
+            return true;
+        }
+        (l, (d.a_max, -d.a_min))
+    } else {
+        if r <= 0.0 {
+            return true;
+        }
+        (r, (-d.a_min, d.a_max))
+    };
+    let s1 = if up1 { 1.0 } else { -1.0 };
+    let x = (s1 * d.j * (v - d.v0) + 0.5 * d.a0 * d.a0)
+        .max(0.0)
+        .sqrt()
+        .min(hold.0);
+    let y = (s1 * d.j * (v - d.vf) + 0.5 * d.af * d.af)
+        .max(0.0)
+        .sqrt()
+        .min(hold.1);
+    2.0 * d.j * v.abs() * (1.0 + 1e-9) < x * y
 }
 
 /// The margin `1e-8 (1 + |Δp| + |v|_max T_max)` of the residuals `D − Δp` at the ends of a
@@ -1140,7 +1170,7 @@ mod tests {
                 let (l, r) = (w[0], w[1]);
                 windows += 1;
                 let t_lb = window_min_duration(durations(l), durations(r));
-                let inc = distance_increasing(l, r, v_stop1, v_stop2);
+                let inc = distance_increasing(&d, l, r, v_stop1, v_stop2);
                 increasing += usize::from(inc);
                 let mut last = f64::NEG_INFINITY;
                 for k in 0..=400 {
