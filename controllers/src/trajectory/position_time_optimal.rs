@@ -342,13 +342,15 @@ impl LimitParts {
 }
 
 /// Peak family (see the module documentation).
+/// Returns whether a shortest-only search found a provably time-optimal profile
+/// ([`peak_is_time_optimal`]) and may end.
 fn peak_family(
     d: &Dof,
     prefix: &Profile,
     density: usize,
     limit_parts: &LimitParts,
     out: &mut TimeOptimal,
-) {
+) -> bool {
     let dp = d.pf - d.p0;
     let scale = 1.0;
     // The residual (exactly `peak_distance(d, vp).0 - dp`), remembering the velocity changes
@@ -441,11 +443,91 @@ fn peak_family(
                 && let Some(s) = peak_segments(&c1, 0.0, &c2, scale)
             {
                 out.offer(d, prefix, &s, 1.0);
+                // A verified profile that is the best so far and provably time-optimal ends
+                // a shortest-only search.
+                if out.shortest
+                    && density == 1
+                    && out.n > 0
+                    && out.duration[0].to_bits() == s.duration().to_bits()
+                    && peak_is_time_optimal(d, vp, &c1, &c2)
+                {
+                    return true;
+                }
             }
         }
         offered = roots.as_slice().len();
     }
     offer_cruise(d, prefix, limit_parts, out);
+    false
+}
+
+/// Whether the peak-family profile `c1`, `c2` (the two time-optimal velocity changes
+/// `(v0, a0) → (v_p, 0) → (vf, af)`, no cruise), once verified, is the shortest of all
+/// profiles.
+///
+/// In the frame where `v_p > 0` (mirror otherwise) let the first change be `+J`, a hold at
+/// `a_max`, `−J` and the second `−J`, a hold at `a_min`, `+J` (phases may be empty), with
+/// `a₀ ≥ 0` or `v₀ + a₀²/(2J) ≤ v_p`, `a_f ≤ 0` or `v_f + a_f²/(2J) ≤ v_p`, `Δp > 0`, and
+/// let the profile's velocity be negative at most on an initial and a final stretch: the
+/// first change's velocity falls (while `a < 0`) and then rises to `v_p`, so it is negative
+/// only on an initial stretch if `v₀ ≤ 0` or its minimum (`v₀ − a₀²/(2J)` if `a₀ < 0`, else
+/// `v₀`) is `≥ 0`; likewise the second change with `v_f` and `v_f − a_f²/(2J)` (if `a_f >
+/// 0`). Take any feasible trajectory `x` of duration `T < T_P = T₁ + T₂` and let `w` be its
+/// largest velocity.
+///
+/// * `w > v_p`: the conditions give `v₀, v_f ≤ v_p`, so `x` reaches `w` inside, with `a = 0`,
+///   and needs at least the time-optimal changes `(v₀, a₀) → (w, 0)` and `(w, 0) → (v_f,
+///   a_f)`, `T₁(w) + T₂(w)`. Above `v_p` the first change stays `+J`-first (above its
+///   direction break) and the second `−J`-first, and both last longer the higher `w` is (a
+///   longer hold, or a higher ramp peak): `T ≥ T₁(w) + T₂(w) > T_P`, a contradiction.
+/// * `w ≤ v_p`: the pointwise bounds of [`cruise_is_time_optimal`] hold with `v_c = v_p`
+///   (their only way out, `x` exceeding `v_c`, is the case above): `v_x ≤ v₁` on the first
+///   `u ≤ T₁` seconds and `v_x ≤ v₂` (the second change's velocity, aligned with the end) on
+///   the last `T − u ≤ T₂`. So `∫ v_x ≤ Δp − ∫ v_P` over the stretch of `P` of length
+///   `L = T_P − T > 0` between them, `[u, u + L]`, which contains the peak `T₁`, and `u`
+///   may be chosen: if `L` fits into the middle part where `v_P ≥ 0`, a stretch there
+///   around the peak (`v = v_p > 0`) has a positive integral; otherwise a stretch that covers
+///   the whole middle part and only parts of the negative ends has an integral of at least
+///   `∫ v_P = Δp > 0`. Either way `x` falls short of the target.
+///
+/// So no trajectory is shorter. (A profile of equal duration within rounding is a duplicate
+/// that the complete search would drop too.)
+fn peak_is_time_optimal(d: &Dof, vp: f64, c1: &VelChange, c2: &VelChange) -> bool {
+    if vp == 0.0 || vp.is_nan() {
+        return false;
+    }
+    let s = vp.signum();
+    let (v0, a0, vf, af, j) = (s * d.v0, s * d.a0, s * d.vf, s * d.af, d.j);
+    let vp = s * vp;
+    let (hold_up, hold_down) = if s > 0.0 {
+        (d.a_max, d.a_min)
+    } else {
+        (d.a_min, d.a_max)
+    };
+    let shapes = (c1.t1 == 0.0 || s * c1.j1 > 0.0)
+        && (c1.t2 == 0.0 || c1.peak == hold_up)
+        && (c1.t3 == 0.0 || s * c1.j3 < 0.0)
+        && (c2.t1 == 0.0 || s * c2.j1 < 0.0)
+        && (c2.t2 == 0.0 || c2.peak == hold_down)
+        && (c2.t3 == 0.0 || s * c2.j3 > 0.0);
+    let start = a0 >= 0.0 || v0 + ramp_out_velocity(a0, j) <= vp;
+    let target = af <= 0.0 || vf + ramp_out_velocity(af, j) <= vp;
+    let min1 = if a0 < 0.0 {
+        v0 - ramp_out_velocity(a0, j)
+    } else {
+        v0
+    };
+    let min2 = if af > 0.0 {
+        vf - ramp_out_velocity(af, j)
+    } else {
+        vf
+    };
+    shapes
+        && start
+        && target
+        && s * (d.pf - d.p0) > 0.0
+        && (min1 >= 0.0 || v0 <= 0.0)
+        && (min2 >= 0.0 || vf <= 0.0)
 }
 
 /// The velocity change `a²/(2J)` while an acceleration `a` is brought to zero with the full
@@ -962,7 +1044,9 @@ pub(crate) fn time_optimal_into(
     if out.shortest && density == 1 && optimal_cruise(d, prefix, &limit_parts, out) {
         return;
     }
-    peak_family(d, prefix, density, &limit_parts, out);
+    if peak_family(d, prefix, density, &limit_parts, out) {
+        return;
+    }
     three_arc_family(d, d, prefix, 1.0, density, out);
     three_arc_family(d, &d.mirrored(), prefix, -1.0, density, out);
 }
@@ -1134,6 +1218,53 @@ mod tests {
         }
         assert!(tried > 2000 && proved > 200, "{proved} of {tried}");
         eprintln!("cruise proved optimal in {proved} of {tried}");
+    }
+
+    /// The peak proof ([`peak_is_time_optimal`]) never ends a search with a profile that the
+    /// complete search beats: random problems with asymmetric limits, short and long moves,
+    /// half of them with the start and target velocities pulled towards zero (where the
+    /// velocity of the profile comes close to changing sign) and the accelerations left
+    /// anywhere; every search the proof ends returns the complete search's minimum, bit for
+    /// bit, and it ends a good part of them.
+    #[test]
+    fn peak_proof_is_never_beaten() {
+        let mut rng = ChaCha8Rng::seed_from_u64(17);
+        let (mut proved, mut tried) = (0, 0);
+        for k in 0..12_000 {
+            let spread = if k % 2 == 0 { 3.0 } else { 40.0 };
+            let Some(mut d) = random_problem(&mut rng, spread) else {
+                continue;
+            };
+            if k % 4 < 2 {
+                let w: f64 = rng.random_range(0.0..1.0);
+                d.v0 *= 0.1 * w;
+                d.vf *= 0.1 * w;
+            }
+            if !random_problem_is_valid(&d) {
+                continue;
+            }
+            tried += 1;
+            let prefix = Profile::new(d.p0, d.v0, d.a0);
+            let mut probe = TimeOptimal::new();
+            probe.shortest = true;
+            let limit_parts = LimitParts::new(&d);
+            if optimal_cruise(&d, &prefix, &limit_parts, &mut probe) {
+                continue;
+            }
+            if peak_family(&d, &prefix, 1, &limit_parts, &mut probe) {
+                proved += 1;
+                let all = time_optimal(&d, &prefix, 1, Search::All);
+                assert_eq!(
+                    all.duration[0].to_bits(),
+                    probe.duration[0].to_bits(),
+                    "{d:?}: complete {} peak {}",
+                    all.duration[0],
+                    probe.duration[0]
+                );
+            }
+        }
+        assert!(tried > 5000 && proved > 1000, "{proved} of {tried}");
+        eprintln!("peak proof in {proved} of {tried}");
     }
 
     /// Whether the start is safe (no violation unavoidable) and the target reachable within
