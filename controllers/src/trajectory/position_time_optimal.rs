@@ -394,12 +394,19 @@ fn peak_family(
     }
     let (v_stop1, v_stop2) = peak_direction_breaks(d);
     let mut roots = Roots::new();
-    // The roots of each window are offered before the next window is solved (in the order of
-    // the windows, as if all were offered at the end), so that a shortest-only search can skip
-    // the windows that cannot hold a shorter profile. (Offering the cruise profiles first, and
-    // solving the windows in the order of their duration bounds, cost more than they saved.)
+    // The roots of each window are offered before the next window is solved, so that a
+    // shortest-only search can skip the windows that cannot hold a shorter profile and end at
+    // a provably time-optimal one. The windows are visited from the side of the move's
+    // direction (downwards from `v_max` if `Δp > 0`, upwards from `v_min` otherwise): there
+    // the distance usually increases and the windows beyond the root are skipped by the
+    // residuals at their ends, and the first root found is usually the one that
+    // `peak_is_time_optimal` proves. (Offering the cruise profiles first, and solving the
+    // windows in the order of their duration bounds, cost more than they saved.)
     let mut offered = 0;
-    for (k, w) in br[..nb].windows(2).enumerate() {
+    let downwards = dp > 0.0;
+    for step in 0..nb - 1 {
+        let k = if downwards { nb - 2 - step } else { step };
+        let w = [br[k], br[k + 1]];
         let t_cap = if out.shortest && out.n > 0 {
             out.duration[0]
         } else {
