@@ -367,31 +367,35 @@ fn peak_family(
     let mut br = [0.0; 8];
     let nb = peak_breaks(d, &mut br);
     // The durations of both velocity changes at the break points and the residual `D − Δp`
-    // there, for the bounds below (at the outermost ones, the velocity limits, the changes
-    // are known already).
+    // there, for the bounds below, computed when a window first needs them (a search that
+    // ends early leaves the far break points alone; at the outermost ones, the velocity
+    // limits, the changes are known already).
     let mut parts = [(f64::NAN, f64::NAN); 8];
     let mut residual = [f64::NAN; 8];
-    if density == 1 {
-        for k in 0..nb {
-            let vp = br[k];
-            let (changes, dist) = if k == 0 {
-                (limit_parts.at_min, limit_parts.dist_at_min)
-            } else if k == nb - 1 {
-                (limit_parts.at_max, limit_parts.dist_at_max)
-            } else {
-                let changes = peak_parts(d, vp);
-                // Exactly the arithmetic of `peak_distance`.
-                let dist = changes.map_or(f64::NAN, |(c1, c2)| {
-                    c1.distance(d.v0, d.a0) + c2.distance(vp, 0.0)
-                });
-                (changes, dist)
-            };
-            if let Some((c1, c2)) = changes {
-                parts[k] = (c1.duration(), c2.duration());
-                residual[k] = dist - dp;
-            }
+    let mut known = [false; 8];
+    let mut at_break = |k: usize, parts: &mut [(f64, f64); 8], residual: &mut [f64; 8]| {
+        if known[k] {
+            return;
         }
-    }
+        known[k] = true;
+        let vp = br[k];
+        let (changes, dist) = if k == 0 {
+            (limit_parts.at_min, limit_parts.dist_at_min)
+        } else if k == nb - 1 {
+            (limit_parts.at_max, limit_parts.dist_at_max)
+        } else {
+            let changes = peak_parts(d, vp);
+            // Exactly the arithmetic of `peak_distance`.
+            let dist = changes.map_or(f64::NAN, |(c1, c2)| {
+                c1.distance(d.v0, d.a0) + c2.distance(vp, 0.0)
+            });
+            (changes, dist)
+        };
+        if let Some((c1, c2)) = changes {
+            parts[k] = (c1.duration(), c2.duration());
+            residual[k] = dist - dp;
+        }
+    };
     let (v_stop1, v_stop2) = peak_direction_breaks(d);
     let mut roots = Roots::new();
     // The roots of each window are offered before the next window is solved, so that a
@@ -414,6 +418,8 @@ fn peak_family(
         };
         let mut set = RootSet::All;
         if density == 1 {
+            at_break(k, &mut parts, &mut residual);
+            at_break(k + 1, &mut parts, &mut residual);
             if out.beaten(window_min_duration(parts[k], parts[k + 1]))
                 || distance_excluded(d, dp, (w[0], w[1]), parts[k], parts[k + 1], t_cap)
             {
