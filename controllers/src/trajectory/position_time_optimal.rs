@@ -57,7 +57,8 @@ pub(crate) enum Search {
     All,
     /// The shortest valid profile only (one DoF on its own, or a DoF whose minimal duration is
     /// all the synchronisation asks for): the closed-form cruise profile is tried first and
-    /// ends the search when it is provably time-optimal ([`cruise_is_time_optimal`]), and every
+    /// ends the search when it is provably time-optimal ([`cruise_is_time_optimal`]), so does
+    /// a provably time-optimal peak-family profile ([`peak_is_time_optimal`]), and every
     /// family or window whose duration lower bound is not below the shortest profile found so
     /// far is skipped.
     Shortest,
