@@ -97,23 +97,27 @@ impl TimeOptimal {
 
     /// Verifies a candidate and inserts it sorted by duration (duplicates within 1e-12 dropped).
     /// With [`Search::Shortest`] a candidate not shorter than the best one is not verified.
-    fn offer(&mut self, dof: &Dof, prefix: &Profile, segs: &Segments, dir: f64) {
+    ///
+    /// Returns `false` only if the candidate was checked and failed the verification (a
+    /// candidate that is beaten, a duplicate or too long to keep is not checked: `true`).
+    fn offer(&mut self, dof: &Dof, prefix: &Profile, segs: &Segments, dir: f64) -> bool {
         let d = segs.duration();
         if self.beaten(d) {
-            return;
+            return true;
         }
         for k in 0..self.n {
             if (self.duration[k] - d).abs() <= 1e-12 * (1.0 + d) {
-                return;
+                return true;
             }
         }
         if self.n == MAX_CANDIDATES && d >= self.duration[self.n - 1] {
-            return;
+            return true;
         }
         if !dof.check(prefix, segs, dir) {
-            return;
+            return false;
         }
         self.insert(d, segs, dir);
+        true
     }
 
     /// Adds the (already verified) candidates of `other` that are not yet present.
@@ -448,25 +452,55 @@ fn peak_family(
             set,
             &mut roots,
         );
-        for &vp in &roots.as_slice()[offered..] {
-            let parts = match last.get() {
-                Some((v, c1, c2)) if v.to_bits() == vp.to_bits() => Some((c1, c2)),
-                _ => peak_parts(d, vp),
-            };
-            if let Some((c1, c2)) = parts
-                && let Some(s) = peak_segments(&c1, 0.0, &c2, scale)
-            {
-                out.offer(d, prefix, &s, 1.0);
-                // A verified profile that is the best so far and provably time-optimal ends
-                // a shortest-only search.
-                if out.shortest
-                    && density == 1
-                    && out.n > 0
-                    && out.duration[0].to_bits() == s.duration().to_bits()
-                    && peak_is_time_optimal(d, vp, &c1, &c2)
+        // Offers the roots, returning (whether one was offered and passed or was not needed,
+        // whether a shortest-only search may end at it).
+        let offer_roots = |found: &[f64], out: &mut TimeOptimal| {
+            let mut usable = false;
+            for &vp in found {
+                let parts = match last.get() {
+                    Some((v, c1, c2)) if v.to_bits() == vp.to_bits() => Some((c1, c2)),
+                    _ => peak_parts(d, vp),
+                };
+                if let Some((c1, c2)) = parts
+                    && let Some(s) = peak_segments(&c1, 0.0, &c2, scale)
                 {
-                    return true;
+                    usable |= out.offer(d, prefix, &s, 1.0);
+                    // A verified profile that is the best so far and provably time-optimal
+                    // ends a shortest-only search.
+                    if out.shortest
+                        && density == 1
+                        && out.n > 0
+                        && out.duration[0].to_bits() == s.duration().to_bits()
+                        && peak_is_time_optimal(d, vp, &c1, &c2, (v_stop1, v_stop2))
+                    {
+                        return (true, true);
+                    }
                 }
+            }
+            (usable, false)
+        };
+        let (usable, proven) = offer_roots(&roots.as_slice()[offered..], out);
+        if proven {
+            return true;
+        }
+        if set == RootSet::Single && !usable {
+            // The single root, refined over the whole window, can sit a few ulps from the
+            // one the isolating search finds and fail the verification where |Δp| is so large
+            // that its tolerance is below an ulp of Δp: solve the window again in full
+            // (into its own root list, where the near-equal root is not a duplicate).
+            let mut again = Roots::new();
+            scan_peak_window(
+                d,
+                &mut f,
+                w[0],
+                w[1],
+                density,
+                PeakResidual::Distance { dp },
+                RootSet::All,
+                &mut again,
+            );
+            if offer_roots(again.as_slice(), out).1 {
+                return true;
             }
         }
         offered = roots.as_slice().len();
@@ -504,10 +538,22 @@ fn peak_family(
 ///   the whole middle part and only parts of the negative ends has an integral of at least
 ///   `∫ v_P = Δp > 0`. Either way `x` falls short of the target.
 ///
-/// So no trajectory is shorter. (A profile of equal duration within rounding is a duplicate
-/// that the complete search would drop too.)
-fn peak_is_time_optimal(d: &Dof, vp: f64, c1: &VelChange, c2: &VelChange) -> bool {
+/// So no trajectory is shorter. In floating point, though, the adjacent windows of a
+/// direction break `v_stop1`, `v_stop2` ([`peak_direction_breaks`]) can hold two valid roots
+/// a few 1e-12 s apart, more than the duplicate test drops: within a relative 1e-9 of a
+/// direction break the proof is not claimed, and the search goes on.
+fn peak_is_time_optimal(
+    d: &Dof,
+    vp: f64,
+    c1: &VelChange,
+    c2: &VelChange,
+    (v_stop1, v_stop2): (f64, f64),
+) -> bool {
     if vp == 0.0 || vp.is_nan() {
+        return false;
+    }
+    let near = |b: f64| (vp - b).abs() <= 1e-9 * vp.abs().max(b.abs());
+    if near(v_stop1) || near(v_stop2) {
         return false;
     }
     let s = vp.signum();
