@@ -146,10 +146,17 @@ def main():
     ap.add_argument("--timing-only", action="store_true",
                     help="only time ruckig per DoF count (to measure it back to back with "
                          "`cargo bench -p shearcut-controllers --bench trajectory`)")
+    ap.add_argument("--dump-timing-cases", metavar="FILE",
+                    help="only write the cases that --timing-only would time (same seed, same order) "
+                         "to FILE, one per line: DoF count, then the nine input vectors (for "
+                         "scripts/ruckig_cpp_timing.sh)")
     ap.add_argument("shearcut", nargs="+", help="command that runs the shearcut binary")
     args = ap.parse_args()
     os.makedirs(args.workdir, exist_ok=True)
     rng = np.random.default_rng(args.seed)
+    if args.dump_timing_cases:
+        dump_timing_cases(rng, args.timing_cases, args.dump_timing_cases)
+        return 0
     if args.timing_only:
         ruckig_timing(rng, args.timing_cases)
         return 0
@@ -230,6 +237,20 @@ def main():
 
     ruckig_timing(rng, args.timing_cases)
     return 1 if longer or shorter_bad or o_err else 0
+
+
+TIMING_FIELDS = ("current_position", "current_velocity", "current_acceleration", "target_position",
+                 "target_velocity", "target_acceleration", "max_velocity", "max_acceleration", "max_jerk")
+
+
+def dump_timing_cases(rng, timing_cases, path):
+    """Writes the cases of `ruckig_timing` (same rng sequence) as plain text lines."""
+    with open(path, "w") as f:
+        for dofs in (1, 3, 6, 7):
+            for k in range(timing_cases):
+                c = gen_case(rng, dofs, k)
+                vals = [repr(float(x)) for key in TIMING_FIELDS for x in c[key]]
+                f.write(f"{dofs} " + " ".join(vals) + "\n")
 
 
 def ruckig_timing(rng, timing_cases):

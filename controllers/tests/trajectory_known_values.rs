@@ -280,3 +280,86 @@ fn after_a_failed_update_the_old_plan_is_recalculated_not_followed_half_overwrit
     assert_eq!(out.new_position[0], out.new_position[1]);
     assert!(out.new_velocity[0] > 0.0);
 }
+
+/// Inputs on which a faster search once went wrong (found in review, durations as the
+/// complete search of the previous release gives them): a single-root peak window whose
+/// root, refined over the whole window, failed the verification where |Δp| ≈ 2e7 and 5e5
+/// (no profile at all, or one twice as long), and a peak profile next to a direction break
+/// whose optimality proof ended the search 9.5e-12 s above the shortest profile.
+#[test]
+fn extreme_scales_and_direction_breaks_keep_the_shortest_profile() {
+    // p0, v0, a0, pf, vf, af, v_max, v_min, a_max, a_min, j; expected duration.
+    let cases: [([f64; 11], f64); 3] = [
+        (
+            [
+                0.0,
+                15.404718015144594,
+                -0.45036788447797527,
+                21828918.284791138,
+                267.35972640302236,
+                -1.1181699872671604,
+                591.7405986028746,
+                -0.12351666299752795,
+                0.0021141151507994556,
+                -3.806123329700056,
+                240.2163728327707,
+            ],
+            136602.1074469732,
+        ),
+        (
+            [
+                0.0,
+                -125.38087933287073,
+                0.026440912456322005,
+                -537460.4742482668,
+                -62.7903638360373,
+                0.06205937891627923,
+                0.2527798050728118,
+                -177.35167912669738,
+                0.06425412128792182,
+                -0.0015795354805801947,
+                0.31365105910501667,
+            ],
+            4455.29217874976,
+        ),
+        (
+            [
+                -0.0,
+                -0.14709115904308623,
+                1.4258060587297052,
+                0.3637056756137954,
+                1.2019236254475945,
+                -4.440892098500626e-16,
+                5.336416414616348,
+                -0.3743020486972627,
+                4.258349369325071,
+                -9.025978014243284,
+                11.724357769294846,
+            ],
+            0.5782646457100484,
+        ),
+    ];
+    for (c, expected) in cases {
+        let mut input = TrajectoryInput::<1>::default();
+        input.current_position = [c[0]];
+        input.current_velocity = [c[1]];
+        input.current_acceleration = [c[2]];
+        input.target_position = [c[3]];
+        input.target_velocity = [c[4]];
+        input.target_acceleration = [c[5]];
+        input.max_velocity = [c[6]];
+        input.min_velocity = Some([c[7]]);
+        input.max_acceleration = [c[8]];
+        input.min_acceleration = Some([c[9]]);
+        input.max_jerk = [c[10]];
+        let mut t = Trajectory::default();
+        let status = otg().calculate(&input, &mut t);
+        assert!(status.is_ok(), "{c:?}: {status:?}");
+        // Within the duplicate tolerance of the candidate list, far below 9.5e-12 s at 0.58 s.
+        assert!(
+            (t.duration() - expected).abs() <= 1e-12 * (1.0 + expected),
+            "{c:?}: {} against {expected}",
+            t.duration()
+        );
+    }
+}

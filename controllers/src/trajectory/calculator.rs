@@ -754,3 +754,104 @@ fn phase_synchronize<const N: usize>(
     traj.duration = scalar.duration();
     true
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    /// A random one-DoF input from ruckig's test distributions with the start velocity and
+    /// acceleration scaled up, so that most starts make a violation unavoidable (braking);
+    /// `None` if the input is invalid.
+    fn random_braking_input(rng: &mut ChaCha8Rng) -> Option<TrajectoryInput<1>> {
+        let mut u = |a: f64, b: f64| rng.random_range(a..b);
+        let mut input = TrajectoryInput::<1>::default();
+        input.current_position = [u(-8.0, 8.0)];
+        input.target_position = [u(-8.0, 8.0)];
+        input.max_velocity = [u(0.1, 12.0)];
+        input.max_acceleration = [u(0.1, 12.0)];
+        input.max_jerk = [u(0.1, 12.0)];
+        input.current_velocity = [u(-2.0, 2.0) * input.max_velocity[0]];
+        input.current_acceleration = [u(-2.0, 2.0) * input.max_acceleration[0]];
+        input.target_velocity = [u(-0.9, 0.9) * input.max_velocity[0]];
+        input.target_acceleration = [u(-0.9, 0.9) * input.max_acceleration[0]];
+        input.validate().is_ok().then_some(input)
+    }
+
+    /// The braking variants' pruning is exact: on random one-DoF starts outside the limits,
+    /// the shortest total duration with the pruning (`variants = false`) equals, bit for bit,
+    /// the one found by solving every variant; and the lower bound that prunes (braking time
+    /// plus the time-optimal change of velocity and acceleration alone, or the remaining
+    /// distance at the velocity limit) never exceeds the total of the variant it bounds.
+    #[test]
+    fn braking_pruning_equals_the_unpruned_search() {
+        let mut rng = ChaCha8Rng::seed_from_u64(41);
+        let (mut compared, mut bounded) = (0, 0);
+        for _ in 0..4000 {
+            let Some(input) = random_braking_input(&mut rng) else {
+                continue;
+            };
+            let mut pruned = (None, [None; 2]);
+            let mut full = (None, [None; 2]);
+            let a = solve_braking_dof(
+                &input,
+                0,
+                true,
+                Search::Shortest,
+                false,
+                &mut pruned.0,
+                &mut pruned.1,
+            );
+            let b = solve_braking_dof(
+                &input,
+                0,
+                true,
+                Search::Shortest,
+                true,
+                &mut full.0,
+                &mut full.1,
+            );
+            match (a, b) {
+                (Ok((braking_a, ta)), Ok((braking_b, tb))) => {
+                    assert_eq!(braking_a, braking_b);
+                    assert_eq!(ta.to_bits(), tb.to_bits(), "{input:?}: {ta} against {tb}");
+                    compared += usize::from(braking_a);
+                }
+                (a, b) => assert_eq!(a.is_err(), b.is_err(), "{input:?}"),
+            }
+            // The bound against every variant the complete run solved.
+            let l = input.limits(0);
+            for w in full.1.iter().chain([&full.0]).flatten() {
+                if w.cands.n == 0 {
+                    continue;
+                }
+                let e = w.prefix.end();
+                let rest = input.target_position[0] - e.position;
+                let at_limit = if rest > 0.0 {
+                    rest / l.v_max
+                } else {
+                    rest / l.v_min
+                };
+                if let Some(c) = vel_change(
+                    e.velocity,
+                    e.acceleration,
+                    input.target_velocity[0],
+                    input.target_acceleration[0],
+                    l.a_max,
+                    l.a_min,
+                    l.j,
+                ) {
+                    let bound = w.brake_t + c.duration().max(at_limit);
+                    let total = w.brake_t + w.cands.duration[0];
+                    assert!(
+                        bound <= total + 1e-12 * (1.0 + total),
+                        "{input:?}: bound {bound} above the total {total}"
+                    );
+                    bounded += 1;
+                }
+            }
+        }
+        assert!(compared > 1000 && bounded > 2000, "{compared} {bounded}");
+    }
+}

@@ -175,7 +175,12 @@ impl Segments {
     /// Writes `prefix` followed by these segments (jerks multiplied by `dir`) to `out`; `false`
     /// if a segment does not fit (never the case for checked segments, see [`Dof::check`]).
     pub fn append_to(&self, prefix: &Profile, dir: f64, out: &mut Profile) -> bool {
-        *out = *prefix;
+        if prefix.is_empty() {
+            let s = prefix.start();
+            out.restart(s.position, s.velocity, s.acceleration);
+        } else {
+            *out = *prefix;
+        }
         for k in 0..self.n {
             if !out.push(self.t[k], dir * self.j[k]) {
                 return false;

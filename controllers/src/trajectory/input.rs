@@ -184,19 +184,12 @@ impl<const N: usize> TrajectoryInput<N> {
     /// Checks finiteness, signs of the limits and reachability of the target state.
     pub fn validate(&self) -> Result<(), TrajectoryError> {
         for dof in 0..N {
-            let values = [
-                self.current_position[dof],
-                self.current_velocity[dof],
-                self.current_acceleration[dof],
-                self.target_position[dof],
-                self.target_velocity[dof],
-                self.target_acceleration[dof],
-                self.max_velocity[dof],
-                self.max_acceleration[dof],
-                self.max_jerk[dof],
-            ];
             // One branch-free test for the common case; the field is named only on failure.
-            if !values.iter().fold(true, |ok, x| ok & x.is_finite()) {
+            if !self
+                .finite_fields(dof)
+                .iter()
+                .fold(true, |ok, (_, x)| ok & x.is_finite())
+            {
                 self.first_non_finite(dof)?;
             }
             self.validate_limits_and_target(dof)?;
@@ -204,9 +197,10 @@ impl<const N: usize> TrajectoryInput<N> {
         Ok(())
     }
 
-    /// The error naming the first non-finite state or limit field of DoF `dof`, if any.
-    fn first_non_finite(&self, dof: usize) -> Result<(), TrajectoryError> {
-        let fields: [(&'static str, f64); 9] = [
+    /// The state and limit fields of DoF `dof` that must be finite, with their names.
+    #[inline(always)]
+    fn finite_fields(&self, dof: usize) -> [(&'static str, f64); 9] {
+        [
             ("current_position", self.current_position[dof]),
             ("current_velocity", self.current_velocity[dof]),
             ("current_acceleration", self.current_acceleration[dof]),
@@ -216,8 +210,12 @@ impl<const N: usize> TrajectoryInput<N> {
             ("max_velocity", self.max_velocity[dof]),
             ("max_acceleration", self.max_acceleration[dof]),
             ("max_jerk", self.max_jerk[dof]),
-        ];
-        for (field, x) in fields {
+        ]
+    }
+
+    /// The error naming the first non-finite state or limit field of DoF `dof`, if any.
+    fn first_non_finite(&self, dof: usize) -> Result<(), TrajectoryError> {
+        for (field, x) in self.finite_fields(dof) {
             if !x.is_finite() {
                 return Err(TrajectoryError::NonFinite { dof, field });
             }

@@ -481,6 +481,12 @@ pub(crate) enum RootSet {
     /// it is a root of the polynomial, not polished on the residual. A caller whose single
     /// root does not give a valid profile asks again with [`Self::All`].
     AnyOne,
+    /// The caller has proved that the residual has exactly one root in the window and
+    /// changes sign between its ends (a monotone residual): if the polynomial changes sign
+    /// over the window too, that root is bracketed by the window's end points and refined
+    /// without isolating critical points, then polished on the residual like every root of
+    /// [`Self::All`]; otherwise every root, as [`Self::All`].
+    Single,
 }
 
 /// [`closed_form_roots`] with the guard value supplied by the caller: `check = (w, f(w))` for
@@ -577,6 +583,17 @@ pub(crate) fn closed_form_roots_checked<F: FnMut(f64) -> f64>(
                 fr,
                 4.0 * f64::EPSILON,
             )));
+            return true;
+        }
+    }
+    if set == RootSet::Single && half > 0.0 {
+        let (fl, fr) = (q.eval(-1.0), q.eval(1.0));
+        if fl != 0.0 && fr != 0.0 && (fl > 0.0) != (fr > 0.0) {
+            let tr = monotone_root(&q, -1.0, fl, 1.0, fr, 4.0 * f64::EPSILON);
+            let Some(w) = polish(tr) else {
+                return false;
+            };
+            out.push(w);
             return true;
         }
     }

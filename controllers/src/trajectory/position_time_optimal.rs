@@ -33,13 +33,15 @@
 //! ([`Dof::check`]). The shortest valid one is time-optimal; the other valid durations are
 //! kept, since they bound the blocked intervals used by synchronisation.
 
+use core::cell::Cell;
+
 use super::dof::{Dof, Segments};
 use super::peak_polynomials as pp;
 use super::peak_window::{PeakResidual, scan_peak_window};
 use super::polynomial::{RootSet, closed_form_roots, polynomial_roots};
 use super::profile::{Profile, integrate};
 use super::roots::{Roots, scan};
-use super::vel_change::{VelChange, vel_change};
+use super::vel_change::{VelChange, vel_change_at_rest_end};
 
 /// Maximum number of distinct valid candidates kept.
 pub(crate) const MAX_CANDIDATES: usize = 12;
@@ -55,7 +57,8 @@ pub(crate) enum Search {
     All,
     /// The shortest valid profile only (one DoF on its own, or a DoF whose minimal duration is
     /// all the synchronisation asks for): the closed-form cruise profile is tried first and
-    /// ends the search when it is provably time-optimal ([`cruise_is_time_optimal`]), and every
+    /// ends the search when it is provably time-optimal ([`cruise_is_time_optimal`]), so does
+    /// a provably time-optimal peak-family profile ([`peak_is_time_optimal`]), and every
     /// family or window whose duration lower bound is not below the shortest profile found so
     /// far is skipped.
     Shortest,
@@ -94,23 +97,27 @@ impl TimeOptimal {
 
     /// Verifies a candidate and inserts it sorted by duration (duplicates within 1e-12 dropped).
     /// With [`Search::Shortest`] a candidate not shorter than the best one is not verified.
-    fn offer(&mut self, dof: &Dof, prefix: &Profile, segs: &Segments, dir: f64) {
+    ///
+    /// Returns `false` only if the candidate was checked and failed the verification (a
+    /// candidate that is beaten, a duplicate or too long to keep is not checked: `true`).
+    fn offer(&mut self, dof: &Dof, prefix: &Profile, segs: &Segments, dir: f64) -> bool {
         let d = segs.duration();
         if self.beaten(d) {
-            return;
+            return true;
         }
         for k in 0..self.n {
             if (self.duration[k] - d).abs() <= 1e-12 * (1.0 + d) {
-                return;
+                return true;
             }
         }
         if self.n == MAX_CANDIDATES && d >= self.duration[self.n - 1] {
-            return;
+            return true;
         }
         if !dof.check(prefix, segs, dir) {
-            return;
+            return false;
         }
         self.insert(d, segs, dir);
+        true
     }
 
     /// Adds the (already verified) candidates of `other` that are not yet present.
@@ -161,8 +168,11 @@ fn push_change(s: &mut Segments, c: &VelChange, scale: f64) -> bool {
 /// The two velocity changes of the peak family at peak velocity `vp`.
 #[inline(always)]
 pub(crate) fn peak_parts(d: &Dof, vp: f64) -> Option<(VelChange, VelChange)> {
-    let c1 = vel_change(d.v0, d.a0, vp, 0.0, d.a_max, d.a_min, d.j)?;
-    let c2 = vel_change(vp, 0.0, d.vf, d.af, d.a_max, d.a_min, d.j)?;
+    // Exactly `vel_change` of both parts, computing one shape each where only one can be
+    // valid (the direction breaks of `peak_direction_breaks`).
+    let (v_stop1, v_stop2) = peak_direction_breaks(d);
+    let c1 = vel_change_at_rest_end(d.v0, d.a0, vp, 0.0, d.a_max, d.a_min, d.j, true, v_stop1)?;
+    let c2 = vel_change_at_rest_end(vp, 0.0, d.vf, d.af, d.a_max, d.a_min, d.j, false, v_stop2)?;
     Some((c1, c2))
 }
 
@@ -181,11 +191,12 @@ pub(crate) fn peak_distance(d: &Dof, vp: f64) -> (f64, f64) {
 /// Sorted break points of the peak family's residual inside `[v_min, v_max]` (both included).
 pub(crate) fn peak_breaks(d: &Dof, out: &mut [f64; 8]) -> usize {
     let j = d.j;
+    let (v_stop1, v_stop2) = peak_direction_breaks(d);
     let cands = [
-        d.v0 + d.a0 * d.a0.abs() / (2.0 * j),
+        v_stop1,
         d.v0 + (d.a_max * d.a_max - 0.5 * d.a0 * d.a0) / j,
         d.v0 - (d.a_min * d.a_min - 0.5 * d.a0 * d.a0) / j,
-        d.vf - d.af * d.af.abs() / (2.0 * j),
+        v_stop2,
         d.vf - (d.a_max * d.a_max - 0.5 * d.af * d.af) / j,
         d.vf + (d.a_min * d.a_min - 0.5 * d.af * d.af) / j,
     ];
@@ -266,8 +277,8 @@ fn distance_range(
 ) -> (f64, f64, f64) {
     let t_lo = nan_min(t1l, t1r) + nan_min(t2l, t2r);
     let t_hi = nan_min(nan_max(t1l, t1r) + nan_max(t2l, t2r), t_cap);
-    let ov0 = d.a0 * d.a0 / (2.0 * d.j);
-    let ovf = d.af * d.af / (2.0 * d.j);
+    let ov0 = ramp_out_velocity(d.a0, d.j);
+    let ovf = ramp_out_velocity(d.af, d.j);
     let v_lo = (d.v0 - ov0).min(l).min(d.vf - ovf);
     let v_hi = (d.v0 + ov0).max(r).max(d.vf + ovf);
     let d_lo = nan_min(v_lo * t_lo, v_lo * t_hi);
@@ -302,39 +313,134 @@ fn nan_max(a: f64, b: f64) -> f64 {
     }
 }
 
-/// Peak family (see the module documentation).
-fn peak_family(d: &Dof, prefix: &Profile, density: usize, out: &mut TimeOptimal) {
-    let dp = d.pf - d.p0;
-    let scale = 1.0;
-    let mut f = |vp: f64| peak_distance(d, vp).0 - dp;
-    let mut br = [0.0; 8];
-    let nb = peak_breaks(d, &mut br);
-    // The durations of both velocity changes at the break points, for the distance bound.
-    let mut parts = [(f64::NAN, f64::NAN); 8];
-    if density == 1 {
-        for (p, &vp) in parts.iter_mut().zip(&br[..nb]) {
-            if let Some((c1, c2)) = peak_parts(d, vp) {
-                *p = (c1.duration(), c2.duration());
-            }
+/// The peak family's two velocity changes with the peak at each velocity limit, computed once
+/// per search: they are the parts of the cruise profiles ([`cruises`]) and the outermost break
+/// points of the peak family ([`peak_breaks`] starts at `v_min` and ends at `v_max`).
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct LimitParts {
+    /// `peak_parts(d, v_max)`.
+    at_max: Option<(VelChange, VelChange)>,
+    /// `peak_parts(d, v_min)`.
+    at_min: Option<(VelChange, VelChange)>,
+    /// Their distance (exactly `peak_distance(d, v_max).0`; NaN if they do not exist).
+    dist_at_max: f64,
+    /// Likewise at `v_min`.
+    dist_at_min: f64,
+}
+
+impl LimitParts {
+    pub fn new(d: &Dof) -> Self {
+        let at_max = peak_parts(d, d.v_max);
+        let at_min = peak_parts(d, d.v_min);
+        let dist = |parts: Option<(VelChange, VelChange)>, vp: f64| {
+            parts.map_or(f64::NAN, |(c1, c2)| {
+                c1.distance(d.v0, d.a0) + c2.distance(vp, 0.0)
+            })
+        };
+        Self {
+            at_max,
+            at_min,
+            dist_at_max: dist(at_max, d.v_max),
+            dist_at_min: dist(at_min, d.v_min),
         }
     }
+}
+
+/// Peak family (see the module documentation).
+/// Returns whether a shortest-only search found a provably time-optimal profile
+/// ([`peak_is_time_optimal`]) and may end.
+fn peak_family(
+    d: &Dof,
+    prefix: &Profile,
+    density: usize,
+    limit_parts: &LimitParts,
+    out: &mut TimeOptimal,
+) -> bool {
+    let dp = d.pf - d.p0;
+    let scale = 1.0;
+    // The residual (exactly `peak_distance(d, vp).0 - dp`), remembering the velocity changes
+    // of its last evaluation: a root is usually last evaluated by its polishing, and its
+    // profile is built from the same changes.
+    let last = Cell::new(None::<(f64, VelChange, VelChange)>);
+    let mut f = |vp: f64| match peak_parts(d, vp) {
+        Some((c1, c2)) => {
+            last.set(Some((vp, c1, c2)));
+            c1.distance(d.v0, d.a0) + c2.distance(vp, 0.0) - dp
+        }
+        None => f64::NAN,
+    };
+    let mut br = [0.0; 8];
+    let nb = peak_breaks(d, &mut br);
+    // The durations of both velocity changes at the break points and the residual `D − Δp`
+    // there, for the bounds below, computed when a window first needs them (a search that
+    // ends early leaves the far break points alone; at the outermost ones, the velocity
+    // limits, the changes are known already).
+    let mut parts = [(f64::NAN, f64::NAN); 8];
+    let mut residual = [f64::NAN; 8];
+    let mut known = [false; 8];
+    let mut at_break = |k: usize, parts: &mut [(f64, f64); 8], residual: &mut [f64; 8]| {
+        if known[k] {
+            return;
+        }
+        known[k] = true;
+        let vp = br[k];
+        let (changes, dist) = if k == 0 {
+            (limit_parts.at_min, limit_parts.dist_at_min)
+        } else if k == nb - 1 {
+            (limit_parts.at_max, limit_parts.dist_at_max)
+        } else {
+            let changes = peak_parts(d, vp);
+            // Exactly the arithmetic of `peak_distance`.
+            let dist = changes.map_or(f64::NAN, |(c1, c2)| {
+                c1.distance(d.v0, d.a0) + c2.distance(vp, 0.0)
+            });
+            (changes, dist)
+        };
+        if let Some((c1, c2)) = changes {
+            parts[k] = (c1.duration(), c2.duration());
+            residual[k] = dist - dp;
+        }
+    };
+    let (v_stop1, v_stop2) = peak_direction_breaks(d);
     let mut roots = Roots::new();
-    // The roots of each window are offered before the next window is solved (in the order of
-    // the windows, as if all were offered at the end), so that a shortest-only search can skip
-    // the windows that cannot hold a shorter profile. (Offering the cruise profiles first, and
-    // solving the windows in the order of their duration bounds, cost more than they saved.)
+    // The roots of each window are offered before the next window is solved, so that a
+    // shortest-only search can skip the windows that cannot hold a shorter profile and end at
+    // a provably time-optimal one. The windows are visited from the side of the move's
+    // direction (downwards from `v_max` if `Δp > 0`, upwards from `v_min` otherwise): there
+    // the distance usually increases and the windows beyond the root are skipped by the
+    // residuals at their ends, and the first root found is usually the one that
+    // `peak_is_time_optimal` proves. (Offering the cruise profiles first, and solving the
+    // windows in the order of their duration bounds, cost more than they saved.)
     let mut offered = 0;
-    for (k, w) in br[..nb].windows(2).enumerate() {
+    let downwards = dp > 0.0;
+    for step in 0..nb - 1 {
+        let k = if downwards { nb - 2 - step } else { step };
+        let w = [br[k], br[k + 1]];
         let t_cap = if out.shortest && out.n > 0 {
             out.duration[0]
         } else {
             f64::INFINITY
         };
-        if density == 1
-            && (out.beaten(window_min_duration(parts[k], parts[k + 1]))
-                || distance_excluded(d, dp, (w[0], w[1]), parts[k], parts[k + 1], t_cap))
-        {
-            continue;
+        let mut set = RootSet::All;
+        if density == 1 {
+            at_break(k, &mut parts, &mut residual);
+            at_break(k + 1, &mut parts, &mut residual);
+            if out.beaten(window_min_duration(parts[k], parts[k + 1]))
+                || distance_excluded(d, dp, (w[0], w[1]), parts[k], parts[k + 1], t_cap)
+            {
+                continue;
+            }
+            if distance_increasing(d, w[0], w[1], v_stop1, v_stop2) {
+                let (res_l, res_r) = (residual[k], residual[k + 1]);
+                let margin = residual_margin(d, dp, (w[0], w[1]), parts[k], parts[k + 1]);
+                // NaN compares false throughout: neither skipped nor `Single`.
+                if (res_l > margin && res_r > margin) || (res_l < -margin && res_r < -margin) {
+                    continue;
+                }
+                if (res_l > margin && res_r < -margin) || (res_l < -margin && res_r > margin) {
+                    set = RootSet::Single;
+                }
+            }
         }
         scan_peak_window(
             d,
@@ -343,39 +449,264 @@ fn peak_family(d: &Dof, prefix: &Profile, density: usize, out: &mut TimeOptimal)
             w[1],
             density,
             PeakResidual::Distance { dp },
-            RootSet::All,
+            set,
             &mut roots,
         );
-        for &vp in &roots.as_slice()[offered..] {
-            if let Some((c1, c2)) = peak_parts(d, vp)
-                && let Some(s) = peak_segments(&c1, 0.0, &c2, scale)
-            {
-                out.offer(d, prefix, &s, 1.0);
+        // Offers the roots, returning (whether one was offered and passed or was not needed,
+        // whether a shortest-only search may end at it).
+        let offer_roots = |found: &[f64], out: &mut TimeOptimal| {
+            let mut usable = false;
+            for &vp in found {
+                let parts = match last.get() {
+                    Some((v, c1, c2)) if v.to_bits() == vp.to_bits() => Some((c1, c2)),
+                    _ => peak_parts(d, vp),
+                };
+                if let Some((c1, c2)) = parts
+                    && let Some(s) = peak_segments(&c1, 0.0, &c2, scale)
+                {
+                    usable |= out.offer(d, prefix, &s, 1.0);
+                    // A verified profile that is the best so far and provably time-optimal
+                    // ends a shortest-only search.
+                    if out.shortest
+                        && density == 1
+                        && out.n > 0
+                        && out.duration[0].to_bits() == s.duration().to_bits()
+                        && peak_is_time_optimal(d, vp, &c1, &c2, (v_stop1, v_stop2))
+                    {
+                        return (true, true);
+                    }
+                }
+            }
+            (usable, false)
+        };
+        let (usable, proven) = offer_roots(&roots.as_slice()[offered..], out);
+        if proven {
+            return true;
+        }
+        if set == RootSet::Single && !usable {
+            // The single root, refined over the whole window, can sit a few ulps from the
+            // one the isolating search finds and fail the verification where |Δp| is so large
+            // that its tolerance is below an ulp of Δp: solve the window again in full
+            // (into its own root list, where the near-equal root is not a duplicate).
+            let mut again = Roots::new();
+            scan_peak_window(
+                d,
+                &mut f,
+                w[0],
+                w[1],
+                density,
+                PeakResidual::Distance { dp },
+                RootSet::All,
+                &mut again,
+            );
+            if offer_roots(again.as_slice(), out).1 {
+                return true;
             }
         }
         offered = roots.as_slice().len();
     }
-    offer_cruise(d, prefix, out);
+    offer_cruise(d, prefix, limit_parts, out);
+    false
+}
+
+/// Whether the peak-family profile `c1`, `c2` (the two time-optimal velocity changes
+/// `(v0, a0) → (v_p, 0) → (vf, af)`, no cruise), once verified, is the shortest of all
+/// profiles.
+///
+/// In the frame where `v_p > 0` (mirror otherwise) let the first change be `+J`, a hold at
+/// `a_max`, `−J` and the second `−J`, a hold at `a_min`, `+J` (phases may be empty), with
+/// `a₀ ≥ 0` or `v₀ + a₀²/(2J) ≤ v_p`, `a_f ≤ 0` or `v_f + a_f²/(2J) ≤ v_p`, `Δp > 0`, and
+/// let the profile's velocity be negative at most on an initial and a final stretch: the
+/// first change's velocity falls (while `a < 0`) and then rises to `v_p`, so it is negative
+/// only on an initial stretch if `v₀ ≤ 0` or its minimum (`v₀ − a₀²/(2J)` if `a₀ < 0`, else
+/// `v₀`) is `≥ 0`; likewise the second change with `v_f` and `v_f − a_f²/(2J)` (if `a_f >
+/// 0`). Take any feasible trajectory `x` of duration `T < T_P = T₁ + T₂` and let `w` be its
+/// largest velocity.
+///
+/// * `w > v_p`: the conditions give `v₀, v_f ≤ v_p`, so `x` reaches `w` inside, with `a = 0`,
+///   and needs at least the time-optimal changes `(v₀, a₀) → (w, 0)` and `(w, 0) → (v_f,
+///   a_f)`, `T₁(w) + T₂(w)`. Above `v_p` the first change stays `+J`-first (above its
+///   direction break) and the second `−J`-first, and both last longer the higher `w` is (a
+///   longer hold, or a higher ramp peak): `T ≥ T₁(w) + T₂(w) > T_P`, a contradiction.
+/// * `w ≤ v_p`: the pointwise bounds of [`cruise_is_time_optimal`] hold with `v_c = v_p`
+///   (their only way out, `x` exceeding `v_c`, is the case above): `v_x ≤ v₁` on the first
+///   `u ≤ T₁` seconds and `v_x ≤ v₂` (the second change's velocity, aligned with the end) on
+///   the last `T − u ≤ T₂`. So `∫ v_x ≤ Δp − ∫ v_P` over the stretch of `P` of length
+///   `L = T_P − T > 0` between them, `[u, u + L]`, which contains the peak `T₁`, and `u`
+///   may be chosen: if `L` fits into the middle part where `v_P ≥ 0`, a stretch there
+///   around the peak (`v = v_p > 0`) has a positive integral; otherwise a stretch that covers
+///   the whole middle part and only parts of the negative ends has an integral of at least
+///   `∫ v_P = Δp > 0`. Either way `x` falls short of the target.
+///
+/// So no trajectory is shorter. In floating point, though, the adjacent windows of a
+/// direction break `v_stop1`, `v_stop2` ([`peak_direction_breaks`]) can hold two valid roots
+/// a few 1e-12 s apart, more than the duplicate test drops: within a relative 1e-9 of a
+/// direction break the proof is not claimed, and the search goes on.
+fn peak_is_time_optimal(
+    d: &Dof,
+    vp: f64,
+    c1: &VelChange,
+    c2: &VelChange,
+    (v_stop1, v_stop2): (f64, f64),
+) -> bool {
+    if vp == 0.0 || vp.is_nan() {
+        return false;
+    }
+    let near = |b: f64| (vp - b).abs() <= 1e-9 * vp.abs().max(b.abs());
+    if near(v_stop1) || near(v_stop2) {
+        return false;
+    }
+    let s = vp.signum();
+    let (v0, a0, vf, af, j) = (s * d.v0, s * d.a0, s * d.vf, s * d.af, d.j);
+    let vp = s * vp;
+    let (hold_up, hold_down) = if s > 0.0 {
+        (d.a_max, d.a_min)
+    } else {
+        (d.a_min, d.a_max)
+    };
+    let shapes = (c1.t1 == 0.0 || s * c1.j1 > 0.0)
+        && (c1.t2 == 0.0 || c1.peak == hold_up)
+        && (c1.t3 == 0.0 || s * c1.j3 < 0.0)
+        && (c2.t1 == 0.0 || s * c2.j1 < 0.0)
+        && (c2.t2 == 0.0 || c2.peak == hold_down)
+        && (c2.t3 == 0.0 || s * c2.j3 > 0.0);
+    let start = a0 >= 0.0 || v0 + ramp_out_velocity(a0, j) <= vp;
+    let target = af <= 0.0 || vf + ramp_out_velocity(af, j) <= vp;
+    let min1 = if a0 < 0.0 {
+        v0 - ramp_out_velocity(a0, j)
+    } else {
+        v0
+    };
+    let min2 = if af > 0.0 {
+        vf - ramp_out_velocity(af, j)
+    } else {
+        vf
+    };
+    shapes
+        && start
+        && target
+        && s * (d.pf - d.p0) > 0.0
+        && (min1 >= 0.0 || v0 <= 0.0)
+        && (min2 >= 0.0 || vf <= 0.0)
+}
+
+/// The velocity change `a²/(2J)` while an acceleration `a` is brought to zero with the full
+/// jerk `J` (in the direction of `a`): the distance from a state `(v, a)` to the velocity at
+/// which it comes to rest in acceleration at once.
+#[inline(always)]
+fn ramp_out_velocity(a: f64, j: f64) -> f64 {
+    a * a / (2.0 * j)
+}
+
+/// The peak velocities where the first and the second velocity change of the peak family
+/// switch direction, `v₀ + a₀|a₀|/(2J)` and `v_f − a_f|a_f|/(2J)` (the first change starts
+/// with `+J` above the first, the second change starts with `+J` below the second; both are
+/// break points of [`peak_breaks`], computed with the same arithmetic).
+fn peak_direction_breaks(d: &Dof) -> (f64, f64) {
+    (
+        d.v0 + d.a0 * d.a0.abs() / (2.0 * d.j),
+        d.vf - d.af * d.af.abs() / (2.0 * d.j),
+    )
+}
+
+/// Whether the peak family's distance `D(v_p)` is strictly increasing on the window `[l, r]`.
+///
+/// Let `X`, `Y > 0` be the peak acceleration magnitudes of the two changes (the held limit, or
+/// the ramp peaks `x`, `y` of [`super::peak_window`]) and `s₁`, `s₂` the signs of their first
+/// jerks. For the first change `(v₀, a₀) → (v_p, 0)`, `dD₁/dv_p = s₁ (v_p + s₁ X²/(2J))/X`:
+/// with `s₁ = +1` and a hold, raising `v_p` by `δ` lengthens the hold by `δ/X` at the
+/// velocity `v_p − X²/(2J)` and raises the final ramp (`X/J` long) by `δ`, so the derivative
+/// is `(v_p − X²/(2J))/X + X/J`; a ramp pair gives the same with `x` (`t₁ = (x − a₀)/J`,
+/// `t₃ = x/J`, `dD₁/dx = 2(v_p + x²/(2J))/J`, `dx/dv_p = J/(2x)`); `s₁ = −1` is the mirror
+/// image. The second change read backwards in time is a first change from `(v_f, −a_f)` to
+/// `(v_p, 0)` with the opposite sign and the same distance, so `dD₂/dv_p = −s₂ (v_p − s₂
+/// Y²/(2J))/Y`. Together
+///
+/// ```text
+///   dD/dv_p = s₁ v_p/X − s₂ v_p/Y + (X + Y)/(2J),
+/// ```
+///
+/// positive where `s₁ = +1, s₂ = −1, v_p ≥ 0` or `s₁ = −1, s₂ = +1, v_p ≤ 0`. Where `v_p` has
+/// the other sign, it is positive as long as `|v_p| < XY/(2J)` (`(X + Y)/(2J) > |v_p|
+/// (1/X + 1/Y)`). On a window both signs are constant (`v_stop1`, `v_stop2` from
+/// [`peak_direction_breaks`] are break points): `s₁ = +1` above `v_stop1`, `s₂ = +1` below
+/// `v_stop2`. With `s₁ = +1, s₂ = −1`, `X = min(√(J (v_p − v₀) + a₀²/2), a_max)` and `Y =
+/// min(√(J (v_p − v_f) + a_f²/2), −a_min)` both grow with `v_p`, so on the part `v_p < 0`
+/// of a window `[l, r]`, `XY ≥ X(l) Y(l)`, and `2J |l| < X(l) Y(l)` (with a relative margin
+/// of 1e-9 for rounding) makes the derivative positive there; the mirror image for `s₁ =
+/// −1, s₂ = +1` uses the end `r`.
+fn distance_increasing(d: &Dof, l: f64, r: f64, v_stop1: f64, v_stop2: f64) -> bool {
+    let mid = 0.5 * (l + r);
+    let (up1, up2) = (mid > v_stop1, mid < v_stop2);
+    if up1 == up2 {
+        return false;
+    }
+    // The end where |v_p| is largest on the side of the "wrong" sign.
+    let (v, hold) = if up1 {
+        if l >= 0.0 {
+            return true;
+        }
+        (l, (d.a_max, -d.a_min))
+    } else {
+        if r <= 0.0 {
+            return true;
+        }
+        (r, (-d.a_min, d.a_max))
+    };
+    let s1 = if up1 { 1.0 } else { -1.0 };
+    let x = (s1 * d.j * (v - d.v0) + 0.5 * d.a0 * d.a0)
+        .max(0.0)
+        .sqrt()
+        .min(hold.0);
+    let y = (s1 * d.j * (v - d.vf) + 0.5 * d.af * d.af)
+        .max(0.0)
+        .sqrt()
+        .min(hold.1);
+    2.0 * d.j * v.abs() * (1.0 + 1e-9) < x * y
+}
+
+/// The margin `1e-8 (1 + |Δp| + |v|_max T_max)` of the residuals `D − Δp` at the ends of a
+/// window whose distance is increasing ([`distance_increasing`]), far above their rounding:
+/// if both exceed it with the same sign, every peak-family profile of the window misses the
+/// target position by more than that, none would pass the verification (tolerance 1e-9 on
+/// the final position), and skipping the window changes no result; if they exceed it with
+/// opposite signs, the window holds exactly one root ([`RootSet::Single`]). NaN (a change
+/// impossible at an end) if the window's duration bound is NaN.
+fn residual_margin(
+    d: &Dof,
+    dp: f64,
+    (l, r): (f64, f64),
+    at_l: (f64, f64),
+    at_r: (f64, f64),
+) -> f64 {
+    let (_, _, scale) = distance_range(d, l, r, at_l, at_r, f64::INFINITY);
+    1e-8 * (1.0 + dp.abs() + scale)
 }
 
 /// The profiles that cruise at a velocity limit: for each nonzero limit `vc` whose two
-/// time-optimal velocity changes `(v0, a0) → (vc, 0) → (vf, af)` exist, `(vc, c1, t_c, c2)`
-/// with `t_c` the cruise time that covers the displacement (negative if none does).
-fn cruises(d: &Dof) -> impl Iterator<Item = (f64, VelChange, f64, VelChange)> + '_ {
+/// time-optimal velocity changes `(v0, a0) → (vc, 0) → (vf, af)` exist (`limit_parts`),
+/// `(vc, c1, t_c, c2)` with `t_c` the cruise time that covers the displacement (negative if
+/// none does).
+fn cruises<'a>(
+    d: &'a Dof,
+    limit_parts: &'a LimitParts,
+) -> impl Iterator<Item = (f64, VelChange, f64, VelChange)> + 'a {
     let dp = d.pf - d.p0;
-    [d.v_max, d.v_min]
-        .into_iter()
-        .filter(|&vc| vc != 0.0)
-        .filter_map(move |vc| {
-            let (c1, c2) = peak_parts(d, vc)?;
-            let dist = c1.distance(d.v0, d.a0) + c2.distance(vc, 0.0);
-            Some((vc, c1, (dp - dist) / vc, c2))
-        })
+    [
+        (d.v_max, limit_parts.at_max, limit_parts.dist_at_max),
+        (d.v_min, limit_parts.at_min, limit_parts.dist_at_min),
+    ]
+    .into_iter()
+    .filter(|&(vc, _, _)| vc != 0.0)
+    .filter_map(move |(vc, parts, dist)| {
+        let (c1, c2) = parts?;
+        Some((vc, c1, (dp - dist) / vc, c2))
+    })
 }
 
 /// Offers the profiles that cruise at a velocity limit for a positive time.
-fn offer_cruise(d: &Dof, prefix: &Profile, out: &mut TimeOptimal) {
-    for (_, c1, tc, c2) in cruises(d) {
+fn offer_cruise(d: &Dof, prefix: &Profile, limit_parts: &LimitParts, out: &mut TimeOptimal) {
+    for (_, c1, tc, c2) in cruises(d, limit_parts) {
         if tc > 0.0
             && let Some(s) = peak_segments(&c1, tc, &c2, 1.0)
         {
@@ -386,8 +717,13 @@ fn offer_cruise(d: &Dof, prefix: &Profile, out: &mut TimeOptimal) {
 
 /// Offers the profile that cruises at a velocity limit if it is provably time-optimal
 /// ([`cruise_is_time_optimal`]); whether it was (then it is the only candidate in `out`).
-fn optimal_cruise(d: &Dof, prefix: &Profile, out: &mut TimeOptimal) -> bool {
-    for (vc, c1, tc, c2) in cruises(d) {
+fn optimal_cruise(
+    d: &Dof,
+    prefix: &Profile,
+    limit_parts: &LimitParts,
+    out: &mut TimeOptimal,
+) -> bool {
+    for (vc, c1, tc, c2) in cruises(d, limit_parts) {
         if cruise_is_time_optimal(d, vc, &c1, tc, &c2)
             && let Some(s) = peak_segments(&c1, tc, &c2, 1.0)
         {
@@ -450,15 +786,15 @@ fn cruise_is_time_optimal(d: &Dof, vc: f64, c1: &VelChange, tc: f64, c2: &VelCha
         && (c2.t1 == 0.0 || s * c2.j1 < 0.0)
         && (c2.t2 == 0.0 || c2.peak == hold_down)
         && (c2.t3 == 0.0 || s * c2.j3 > 0.0);
-    let start = a0 >= 0.0 || v0 + a0 * a0 / (2.0 * j) <= vc;
-    let target = af <= 0.0 || vf + af * af / (2.0 * j) <= vc;
+    let start = a0 >= 0.0 || v0 + ramp_out_velocity(a0, j) <= vc;
+    let target = af <= 0.0 || vf + ramp_out_velocity(af, j) <= vc;
     let min1 = if a0 < 0.0 {
-        v0 - a0 * a0 / (2.0 * j)
+        v0 - ramp_out_velocity(a0, j)
     } else {
         v0
     };
     let min2 = if af > 0.0 {
-        vf - af * af / (2.0 * j)
+        vf - ramp_out_velocity(af, j)
     } else {
         vf
     };
@@ -514,12 +850,12 @@ fn three_arc_skip(d: &Dof, out: &TimeOptimal) -> impl Fn(f64) -> bool + use<> {
     let cap = (out.shortest && out.n > 0).then(|| out.duration[0]);
     let dp = d.pf - d.p0;
     let r0 = if d.a0 < 0.0 {
-        d.a0 * d.a0 / (2.0 * d.j)
+        ramp_out_velocity(d.a0, d.j)
     } else {
         0.0
     };
     let rf = if d.af > 0.0 {
-        d.af * d.af / (2.0 * d.j)
+        ramp_out_velocity(d.af, d.j)
     } else {
         0.0
     };
@@ -556,11 +892,16 @@ fn three_arc_family(
     density: usize,
     out: &mut TimeOptimal,
 ) {
+    let (a0, af, amax, amin) = (d.a0, d.af, d.a_max, d.a_min);
+    // Every variant below needs `af > 0` or `a0 < 0` (the unlimited one either, the held
+    // ones `af > 0` and `a0 < 0` respectively).
+    if !(af > 0.0 || a0 < 0.0) {
+        return;
+    }
     let arc_samples = ARC_SAMPLES * density;
     let j = d.j;
     let dp = d.pf - d.p0;
     let dv = d.vf - d.v0;
-    let (a0, af, amax, amin) = (d.a0, d.af, d.a_max, d.a_min);
     let scale = 1.0;
 
     // (1) no acceleration limit: +J (a0→a1), −J (a1→a2), +J (a2→af), a1² − a2² = K.
@@ -759,10 +1100,13 @@ pub(crate) fn time_optimal_into(
     if d.j <= 0.0 {
         return;
     }
-    if out.shortest && density == 1 && optimal_cruise(d, prefix, out) {
+    let limit_parts = LimitParts::new(d);
+    if out.shortest && density == 1 && optimal_cruise(d, prefix, &limit_parts, out) {
         return;
     }
-    peak_family(d, prefix, density, out);
+    if peak_family(d, prefix, density, &limit_parts, out) {
+        return;
+    }
     three_arc_family(d, d, prefix, 1.0, density, out);
     three_arc_family(d, &d.mirrored(), prefix, -1.0, density, out);
 }
@@ -831,7 +1175,12 @@ mod tests {
             );
             let mut probe = TimeOptimal::new();
             probe.shortest = true;
-            cruise_proved += usize::from(optimal_cruise(&d, &prefix, &mut probe));
+            cruise_proved += usize::from(optimal_cruise(
+                &d,
+                &prefix,
+                &LimitParts::new(&d),
+                &mut probe,
+            ));
             compared += 1;
         }
         assert!(compared > 3000, "{compared}");
@@ -840,6 +1189,56 @@ mod tests {
             "{cruise_proved} of {compared}"
         );
         eprintln!("{compared} compared, cruise proved optimal in {cruise_proved}");
+    }
+
+    /// The three-arc skip ([`three_arc_skip`] with the duration bounds of each variant) never
+    /// drops a profile shorter than the best one so far: for every three-arc profile that the
+    /// complete search finds on random problems (asymmetric limits, short and long moves), a
+    /// shortest-only search whose best duration so far lies just above that profile's still
+    /// finds it or a shorter one (the search drops whatever is not shorter than its best);
+    /// and the bound skips variants in a good part of the problems.
+    #[test]
+    fn three_arc_skip_never_drops_a_shorter_profile() {
+        let mut rng = ChaCha8Rng::seed_from_u64(13);
+        let (mut checked, mut skipped) = (0, 0);
+        for k in 0..20_000 {
+            let spread = if k % 2 == 0 { 3.0 } else { 40.0 };
+            let Some(d) = random_problem(&mut rng, spread) else {
+                continue;
+            };
+            let prefix = Profile::new(d.p0, d.v0, d.a0);
+            let arcs = |out: &mut TimeOptimal| {
+                three_arc_family(&d, &d, &prefix, 1.0, 1, out);
+                three_arc_family(&d, &d.mirrored(), &prefix, -1.0, 1, out);
+            };
+            let mut all = TimeOptimal::new();
+            arcs(&mut all);
+            for c in 0..all.n {
+                let t = all.duration[c];
+                // A shortest-only search that has a (fictitious) profile just above `t`.
+                let mut short = TimeOptimal::new();
+                short.shortest = true;
+                short.insert(t + 1e-9 * (1.0 + t), &Segments::default(), 1.0);
+                arcs(&mut short);
+                assert!(
+                    short.duration[0] <= t + 1e-12 * (1.0 + t),
+                    "{d:?}: three-arc profile of {t} s dropped, best {}",
+                    short.duration[0]
+                );
+                checked += 1;
+            }
+            // How often the skip fires against the complete search's best profile.
+            let best = time_optimal(&d, &prefix, 1, Search::All);
+            if best.n > 0 {
+                let mut short = TimeOptimal::new();
+                short.shortest = true;
+                short.insert(best.duration[0], &Segments::default(), 1.0);
+                let skip = three_arc_skip(&d, &short);
+                skipped += usize::from(skip(0.0));
+            }
+        }
+        assert!(checked > 300 && skipped > 2000, "{checked} {skipped}");
+        eprintln!("{checked} three-arc profiles kept, skip fired in {skipped} problems");
     }
 
     /// The cruise proof never claims a profile that a complete search beats, including on
@@ -864,7 +1263,7 @@ mod tests {
                 let prefix = Profile::new(d.p0, d.v0, d.a0);
                 let mut probe = TimeOptimal::new();
                 probe.shortest = true;
-                if optimal_cruise(&d, &prefix, &mut probe) {
+                if optimal_cruise(&d, &prefix, &LimitParts::new(&d), &mut probe) {
                     proved += 1;
                     let all = time_optimal(&d, &prefix, 1, Search::All);
                     assert_eq!(
@@ -881,15 +1280,115 @@ mod tests {
         eprintln!("cruise proved optimal in {proved} of {tried}");
     }
 
+    /// The peak proof ([`peak_is_time_optimal`]) never ends a search with a profile that the
+    /// complete search beats: random problems with asymmetric limits, short and long moves,
+    /// half of them with the start and target velocities pulled towards zero (where the
+    /// velocity of the profile comes close to changing sign) and the accelerations left
+    /// anywhere; every search the proof ends returns the complete search's minimum, bit for
+    /// bit, and it ends a good part of them.
+    #[test]
+    fn peak_proof_is_never_beaten() {
+        let mut rng = ChaCha8Rng::seed_from_u64(17);
+        let (mut proved, mut tried) = (0, 0);
+        for k in 0..12_000 {
+            let spread = if k % 2 == 0 { 3.0 } else { 40.0 };
+            let Some(mut d) = random_problem(&mut rng, spread) else {
+                continue;
+            };
+            if k % 4 < 2 {
+                let w: f64 = rng.random_range(0.0..1.0);
+                d.v0 *= 0.1 * w;
+                d.vf *= 0.1 * w;
+            }
+            if !random_problem_is_valid(&d) {
+                continue;
+            }
+            tried += 1;
+            let prefix = Profile::new(d.p0, d.v0, d.a0);
+            let mut probe = TimeOptimal::new();
+            probe.shortest = true;
+            let limit_parts = LimitParts::new(&d);
+            if optimal_cruise(&d, &prefix, &limit_parts, &mut probe) {
+                continue;
+            }
+            if peak_family(&d, &prefix, 1, &limit_parts, &mut probe) {
+                proved += 1;
+                let all = time_optimal(&d, &prefix, 1, Search::All);
+                assert_eq!(
+                    all.duration[0].to_bits(),
+                    probe.duration[0].to_bits(),
+                    "{d:?}: complete {} peak {}",
+                    all.duration[0],
+                    probe.duration[0]
+                );
+            }
+        }
+        assert!(tried > 5000 && proved > 1000, "{proved} of {tried}");
+        eprintln!("peak proof in {proved} of {tried}");
+    }
+
     /// Whether the start is safe (no violation unavoidable) and the target reachable within
     /// the limits.
     fn random_problem_is_valid(d: &Dof) -> bool {
-        let r0 = d.a0 * d.a0 / (2.0 * d.j);
-        let rf = d.af * d.af / (2.0 * d.j);
+        let r0 = ramp_out_velocity(d.a0, d.j);
+        let rf = ramp_out_velocity(d.af, d.j);
         (d.a0 <= 0.0 || d.v0 + r0 <= d.v_max)
             && (d.a0 >= 0.0 || d.v0 - r0 >= d.v_min)
             && (d.af <= 0.0 || d.vf - rf >= d.v_min)
             && (d.af >= 0.0 || d.vf + rf <= d.v_max)
+    }
+
+    /// The peak family's distance is increasing on every window that [`distance_increasing`]
+    /// says it is (400 random problems with asymmetric limits, states anywhere inside them,
+    /// 400 peaks per window, rounding allowed), and the windows it applies to are a good part
+    /// of all; and the duration bound of [`window_min_duration`] never exceeds the duration
+    /// of a profile in its window.
+    #[test]
+    fn window_bounds_hold_on_every_window() {
+        let mut rng = ChaCha8Rng::seed_from_u64(21);
+        let (mut windows, mut increasing, mut checked) = (0, 0, 0);
+        for _ in 0..400 {
+            let d = random_dof(&mut rng, 6.0);
+            let mut br = [0.0; 8];
+            let nb = peak_breaks(&d, &mut br);
+            let (v_stop1, v_stop2) = peak_direction_breaks(&d);
+            let durations = |vp: f64| {
+                peak_parts(&d, vp).map_or((f64::NAN, f64::NAN), |(c1, c2)| {
+                    (c1.duration(), c2.duration())
+                })
+            };
+            for w in br[..nb].windows(2) {
+                let (l, r) = (w[0], w[1]);
+                windows += 1;
+                let t_lb = window_min_duration(durations(l), durations(r));
+                let inc = distance_increasing(&d, l, r, v_stop1, v_stop2);
+                increasing += usize::from(inc);
+                let mut last = f64::NEG_INFINITY;
+                for k in 0..=400 {
+                    let vp = l + (r - l) * k as f64 / 400.0;
+                    let (dist, t) = peak_distance(&d, vp);
+                    if dist.is_nan() {
+                        continue;
+                    }
+                    checked += 1;
+                    assert!(
+                        t_lb.is_nan() || t >= t_lb - 1e-12 * (1.0 + t),
+                        "duration {t} below the bound {t_lb} at v_p = {vp} in [{l}, {r}] of {d:?}"
+                    );
+                    if inc {
+                        let tol = 1e-12 * (1.0 + dist.abs() + t * (l.abs() + r.abs()));
+                        assert!(
+                            dist >= last - tol,
+                            "distance {dist} after {last} at v_p = {vp} in [{l}, {r}] of {d:?}"
+                        );
+                        last = dist;
+                    }
+                }
+            }
+        }
+        assert!(checked > 100_000, "{checked}");
+        assert!(increasing * 4 > windows, "{increasing} of {windows}");
+        eprintln!("{increasing} of {windows} windows increasing");
     }
 
     /// The distance bound of [`distance_excluded`] holds on every window: 400 random problems

@@ -125,6 +125,18 @@ impl Profile {
         s
     }
 
+    /// Makes this an empty profile resting at `(p, v, a)` like [`Self::new`], without clearing
+    /// the segment arrays beyond the start state (nothing reads past [`Self::len`]); cheaper
+    /// than overwriting the whole profile when a calculation writes its result in place.
+    pub(crate) fn restart(&mut self, p: f64, v: f64, a: f64) {
+        self.len = 0;
+        self.brake_len = 0;
+        self.t0[0] = 0.0;
+        self.p[0] = p;
+        self.v[0] = v;
+        self.a[0] = a;
+    }
+
     /// Appends a segment of `duration` seconds with constant `jerk`; zero-length segments are
     /// skipped. Returns `false` if the profile is full or the duration is negative or not finite.
     pub fn push(&mut self, duration: f64, jerk: f64) -> bool {
@@ -166,7 +178,7 @@ impl Profile {
         self.len == 0
     }
 
-    /// Segment `k` as `(duration, jerk)`.
+    /// Segment `k` as `(duration, jerk)`, for `k <` [`Self::len`].
     #[must_use]
     pub fn segment(&self, k: usize) -> (f64, f64) {
         (self.t[k], self.j[k])

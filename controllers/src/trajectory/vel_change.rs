@@ -95,6 +95,67 @@ fn up(vs: f64, a_s: f64, ve: f64, ae: f64, a_max: f64, j: f64) -> Option<VelChan
     })
 }
 
+/// The "down" shape (−J, hold, +J), the mirror image of [`up`]. `None` if it cannot realise
+/// the change.
+#[inline(always)]
+fn down(vs: f64, a_s: f64, ve: f64, ae: f64, a_min: f64, j: f64) -> Option<VelChange> {
+    up(-vs, -a_s, -ve, -ae, -a_min, j).map(|c| VelChange {
+        t1: c.t1,
+        j1: -c.j1,
+        t2: c.t2,
+        peak: -c.peak,
+        t3: c.t3,
+        j3: -c.j3,
+    })
+}
+
+/// [`vel_change`] with one end at rest in acceleration (`ae = 0` if `rest_at_end`, else
+/// `a_s = 0`), computing only the shape that can be valid when the change lies clearly on one
+/// side of its direction break `v_stop`: if `ae = 0`, the end velocity reached from `(vs,
+/// a_s)` by bringing the acceleration to zero at once, `vs + a_s|a_s|/(2J)`; if `a_s = 0`,
+/// the start velocity from which `(ve, ae)` is reached that way, `ve − ae|ae|/(2J)`. With `ae
+/// = 0`, [`up`] needs `J (ve − vs) ≥ a_s²/2` if `a_s ≥ 0` (`J (ve − vs) + a_s²/2 ≥ 0` if `a_s <
+/// 0`), i.e. `ve ≥ v_stop` up to its `1e-12` slack, and [`down`] the mirror condition `ve ≤
+/// v_stop`; with `a_s = 0`, `up` needs `vs ≤ v_stop` and `down` `vs ≥ v_stop`. So outside a
+/// band around the break (relative `1e-9`, far wider than the slack and the rounding) at most
+/// one shape is valid, and it is what [`vel_change`] returns: the result is exactly
+/// [`vel_change`]'s, for half the work. Inside the band, or if that shape is not valid,
+/// [`vel_change`] itself.
+#[inline(always)]
+#[allow(clippy::too_many_arguments)]
+pub(crate) fn vel_change_at_rest_end(
+    vs: f64,
+    a_s: f64,
+    ve: f64,
+    ae: f64,
+    a_max: f64,
+    a_min: f64,
+    j: f64,
+    rest_at_end: bool,
+    v_stop: f64,
+) -> Option<VelChange> {
+    debug_assert!(if rest_at_end { ae == 0.0 } else { a_s == 0.0 });
+    if j > 0.0 {
+        // The free velocity (the end if ae = 0, else the start) above or below the break;
+        // "up" is valid above it for ae = 0, below it for a_s = 0.
+        let (free, a) = if rest_at_end { (ve, a_s) } else { (vs, ae) };
+        let band = 1e-9 * (1.0 + free.abs() + v_stop.abs() + (1.0 + a * a) / j);
+        let above = free > v_stop + band;
+        let below = free < v_stop - band;
+        if above || below {
+            let c = if above == rest_at_end {
+                up(vs, a_s, ve, ae, a_max, j)
+            } else {
+                down(vs, a_s, ve, ae, a_min, j)
+            };
+            if c.is_some() {
+                return c;
+            }
+        }
+    }
+    vel_change(vs, a_s, ve, ae, a_max, a_min, j)
+}
+
 /// Time-optimal velocity change from `(vs, a_s)` to `(ve, ae)` with accelerations in
 /// `[a_min, a_max]` (`a_min ≤ 0 ≤ a_max`) and jerk magnitude `j > 0`.
 #[inline(always)]
@@ -243,6 +304,55 @@ pub(crate) fn vel_change_timed(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use rand::{Rng, SeedableRng};
+    use rand_chacha::ChaCha8Rng;
+
+    /// The one-shape shortcut equals the full time-optimal change bit for bit (or both are
+    /// `None`), with either end at rest, on random changes including ones right at and near
+    /// the direction break (asymmetric limits, accelerations inside them).
+    #[test]
+    fn at_rest_end_equals_vel_change() {
+        let mut rng = ChaCha8Rng::seed_from_u64(31);
+        let (mut compared, mut some) = (0, 0);
+        for k in 0..200_000 {
+            let mut u = |a: f64, b: f64| rng.random_range(a..b);
+            let (a_max, a_min, j) = (u(0.1, 12.0), -u(0.1, 12.0), u(0.1, 12.0));
+            let a = u(a_min, a_max);
+            let v = u(-10.0, 10.0);
+            let rest_at_end = k % 2 == 0;
+            let v_stop = if rest_at_end {
+                v + a * a.abs() / (2.0 * j)
+            } else {
+                v - a * a.abs() / (2.0 * j)
+            };
+            // The free velocity: anywhere, or at the break up to a few ulps or a tiny offset.
+            let free = match k % 5 {
+                0 => v_stop,
+                1 => v_stop * (1.0 + u(-1e-15, 1e-15)),
+                2 => v_stop + u(-1e-8, 1e-8),
+                _ => u(-10.0, 10.0),
+            };
+            let (vs, a_s, ve, ae) = if rest_at_end {
+                (v, a, free, 0.0)
+            } else {
+                (free, 0.0, v, a)
+            };
+            let full = vel_change(vs, a_s, ve, ae, a_max, a_min, j);
+            let fast =
+                vel_change_at_rest_end(vs, a_s, ve, ae, a_max, a_min, j, rest_at_end, v_stop);
+            let bits = |c: Option<VelChange>| {
+                c.map(|c| [c.t1, c.j1, c.t2, c.peak, c.t3, c.j3].map(f64::to_bits))
+            };
+            assert_eq!(
+                bits(full),
+                bits(fast),
+                "{vs} {a_s} {ve} {ae} {a_max} {a_min} {j}"
+            );
+            compared += 1;
+            some += usize::from(full.is_some());
+        }
+        assert!(some > compared / 2, "{some} of {compared}");
+    }
 
     #[test]
     fn rest_to_rest_without_limit() {
