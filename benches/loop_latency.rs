@@ -1,7 +1,7 @@
 //! Round-trip latency of the loop over iceoryx2 (controller → plant →
 //! controller), in one process with the plant served from a second thread:
 //! 100 000 ticks against an echo plant with busy polling and with blocking
-//! waits; then the real plant (fig7-potato, `slice:0.75`, lockstep) closed by
+//! waits; then the real plant (loop-potato-cuboid, `slice:0.75`, lockstep) closed by
 //! the real controller, with its real-time factor; then the main job's
 //! scenario (`loop-potato-whole-realtime`, MPC, lockstep) in process and
 //! over iceoryx2, with their real-time factors (the transport's share is
@@ -150,8 +150,18 @@ fn main() {
     std::thread::sleep(Duration::from_millis(100));
     echo(WaitMode::BusyPoll, ticks);
     echo(WaitMode::Blocking, ticks);
-    closed_loop("fig7-potato", "slice:0.75", Some(WaitMode::BusyPoll), "rb");
-    closed_loop("fig7-potato", "slice:0.75", Some(WaitMode::Blocking), "rw");
+    closed_loop(
+        "loop-potato-cuboid",
+        "slice:0.75",
+        Some(WaitMode::BusyPoll),
+        "rb",
+    );
+    closed_loop(
+        "loop-potato-cuboid",
+        "slice:0.75",
+        Some(WaitMode::Blocking),
+        "rw",
+    );
     if !args.iter().any(|a| a == "--skip-default") {
         // The main job's scenario (about a minute in all): in process, then
         // over iceoryx2 with blocking waits as `shearcut run` uses them.
