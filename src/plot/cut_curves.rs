@@ -93,7 +93,11 @@ pub fn draw_cut_curves<DB: DrawingBackend>(
                         .map(|s| (s.displacement_m * 1e3, (panel.value)(s))),
                     color.stroke_width(2),
                 ))?
-                .label(format!("ξ = {xi}, z0 = {z0} m"))
+                // Three decimals at most: a controller's nominal ratio is not a round number.
+                .label(format!(
+                    "ξ = {}, z0 = {z0} m",
+                    (xi * 1000.0).round() / 1000.0
+                ))
                 .legend(move |(x, y)| {
                     PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
                 });
