@@ -556,38 +556,71 @@ fn peak_is_time_optimal(
     if near(v_stop1) || near(v_stop2) {
         return false;
     }
-    let s = vp.signum();
-    let (v0, a0, vf, af, j) = (s * d.v0, s * d.a0, s * d.vf, s * d.af, d.j);
-    let vp = s * vp;
-    let (hold_up, hold_down) = if s > 0.0 {
-        (d.a_max, d.a_min)
-    } else {
-        (d.a_min, d.a_max)
-    };
-    let shapes = (c1.t1 == 0.0 || s * c1.j1 > 0.0)
-        && (c1.t2 == 0.0 || c1.peak == hold_up)
-        && (c1.t3 == 0.0 || s * c1.j3 < 0.0)
-        && (c2.t1 == 0.0 || s * c2.j1 < 0.0)
-        && (c2.t2 == 0.0 || c2.peak == hold_down)
-        && (c2.t3 == 0.0 || s * c2.j3 > 0.0);
-    let start = a0 >= 0.0 || v0 + ramp_out_velocity(a0, j) <= vp;
-    let target = af <= 0.0 || vf + ramp_out_velocity(af, j) <= vp;
-    let min1 = if a0 < 0.0 {
-        v0 - ramp_out_velocity(a0, j)
-    } else {
-        v0
-    };
-    let min2 = if af > 0.0 {
-        vf - ramp_out_velocity(af, j)
-    } else {
-        vf
-    };
-    shapes
-        && start
-        && target
-        && s * (d.pf - d.p0) > 0.0
-        && (min1 >= 0.0 || v0 <= 0.0)
-        && (min2 >= 0.0 || vf <= 0.0)
+    EnvelopeFrame::of(d, vp, c1, c2).is_some_and(|e| {
+        e.sign * (d.pf - d.p0) > 0.0
+            && (e.min1 >= 0.0 || e.v0 <= 0.0)
+            && (e.min2 >= 0.0 || e.vf <= 0.0)
+    })
+}
+
+/// What both optimality proofs ([`cruise_is_time_optimal`], [`peak_is_time_optimal`]) ask of
+/// the two velocity changes `c1`: `(v₀, a₀) → (v_top, 0)` and `c2`: `(v_top, 0) → (v_f, a_f)`,
+/// in the frame where the top velocity `v_top` (the cruise or the peak) is positive.
+struct EnvelopeFrame {
+    /// The frame's sign (`v_top`'s).
+    sign: f64,
+    /// Start and target velocities in the frame.
+    v0: f64,
+    vf: f64,
+    /// The lowest velocities of the first and the second change in the frame
+    /// (`v₀ − a₀²/(2J)` if `a₀ < 0`, else `v₀`; `v_f − a_f²/(2J)` if `a_f > 0`, else `v_f`).
+    min1: f64,
+    min2: f64,
+}
+
+impl EnvelopeFrame {
+    /// The frame of `v_top`, if the changes have the shapes the proofs need (the first
+    /// `+J`-first with a hold at the upper acceleration limit, the second `−J`-first with a
+    /// hold at the lower one, in the frame) and the start and target lie below `v_top`
+    /// (`a₀ ≥ 0` or `v₀ + a₀²/(2J) ≤ v_top`, `a_f ≤ 0` or `v_f + a_f²/(2J) ≤ v_top`).
+    fn of(d: &Dof, v_top: f64, c1: &VelChange, c2: &VelChange) -> Option<Self> {
+        let s = v_top.signum();
+        let (v0, a0, vf, af, j) = (s * d.v0, s * d.a0, s * d.vf, s * d.af, d.j);
+        let v_top = s * v_top;
+        let (hold_up, hold_down) = if s > 0.0 {
+            (d.a_max, d.a_min)
+        } else {
+            (d.a_min, d.a_max)
+        };
+        let shapes = (c1.t1 == 0.0 || s * c1.j1 > 0.0)
+            && (c1.t2 == 0.0 || c1.peak == hold_up)
+            && (c1.t3 == 0.0 || s * c1.j3 < 0.0)
+            && (c2.t1 == 0.0 || s * c2.j1 < 0.0)
+            && (c2.t2 == 0.0 || c2.peak == hold_down)
+            && (c2.t3 == 0.0 || s * c2.j3 > 0.0);
+        let start = a0 >= 0.0 || v0 + ramp_out_velocity(a0, j) <= v_top;
+        let target = af <= 0.0 || vf + ramp_out_velocity(af, j) <= v_top;
+        if !(shapes && start && target) {
+            return None;
+        }
+        let min1 = if a0 < 0.0 {
+            v0 - ramp_out_velocity(a0, j)
+        } else {
+            v0
+        };
+        let min2 = if af > 0.0 {
+            vf - ramp_out_velocity(af, j)
+        } else {
+            vf
+        };
+        Some(Self {
+            sign: s,
+            v0,
+            vf,
+            min1,
+            min2,
+        })
+    }
 }
 
 /// The velocity change `a²/(2J)` while an acceleration `a` is brought to zero with the full
@@ -768,37 +801,12 @@ fn optimal_cruise(
 /// `v_c t_c > T₁ n₁ + T₂ n₂`, with `t_c > 1e-9 (1 + T_c)` so that no profile without cruise
 /// (whose duration would differ by `t_c`) can be a rounding-level duplicate of this one.
 fn cruise_is_time_optimal(d: &Dof, vc: f64, c1: &VelChange, tc: f64, c2: &VelChange) -> bool {
-    let s = vc.signum();
-    let (v0, a0, vf, af, j) = (s * d.v0, s * d.a0, s * d.vf, s * d.af, d.j);
-    let vc = s * vc;
     let (t1, t2) = (c1.duration(), c2.duration());
     if tc.is_nan() || tc <= 1e-9 * (1.0 + t1 + t2 + tc) {
         return false;
     }
-    let (hold_up, hold_down) = if s > 0.0 {
-        (d.a_max, d.a_min)
-    } else {
-        (d.a_min, d.a_max)
-    };
-    let shapes = (c1.t1 == 0.0 || s * c1.j1 > 0.0)
-        && (c1.t2 == 0.0 || c1.peak == hold_up)
-        && (c1.t3 == 0.0 || s * c1.j3 < 0.0)
-        && (c2.t1 == 0.0 || s * c2.j1 < 0.0)
-        && (c2.t2 == 0.0 || c2.peak == hold_down)
-        && (c2.t3 == 0.0 || s * c2.j3 > 0.0);
-    let start = a0 >= 0.0 || v0 + ramp_out_velocity(a0, j) <= vc;
-    let target = af <= 0.0 || vf + ramp_out_velocity(af, j) <= vc;
-    let min1 = if a0 < 0.0 {
-        v0 - ramp_out_velocity(a0, j)
-    } else {
-        v0
-    };
-    let min2 = if af > 0.0 {
-        vf - ramp_out_velocity(af, j)
-    } else {
-        vf
-    };
-    shapes && start && target && vc * tc > t1 * (-min1).max(0.0) + t2 * (-min2).max(0.0)
+    EnvelopeFrame::of(d, vc, c1, c2)
+        .is_some_and(|e| e.sign * vc * tc > t1 * (-e.min1).max(0.0) + t2 * (-e.min2).max(0.0))
 }
 
 /// Parameters of the three-arc family's closed-form coefficients
