@@ -183,14 +183,7 @@ pub(crate) fn vel_change(
         };
     }
     let u = up(vs, a_s, ve, ae, a_max, j);
-    let d = up(-vs, -a_s, -ve, -ae, -a_min, j).map(|c| VelChange {
-        t1: c.t1,
-        j1: -c.j1,
-        t2: c.t2,
-        peak: -c.peak,
-        t3: c.t3,
-        j3: -c.j3,
-    });
+    let d = down(vs, a_s, ve, ae, a_min, j);
     match (u, d) {
         (Some(u), Some(d)) => Some(if d.duration() < u.duration() { d } else { u }),
         (u, None) => u,
@@ -213,14 +206,7 @@ pub(crate) fn vel_change_both(
         return [vel_change(vs, a_s, ve, ae, a_max, a_min, j), None];
     }
     let u = up(vs, a_s, ve, ae, a_max, j);
-    let d = up(-vs, -a_s, -ve, -ae, -a_min, j).map(|c| VelChange {
-        t1: c.t1,
-        j1: -c.j1,
-        t2: c.t2,
-        peak: -c.peak,
-        t3: c.t3,
-        j3: -c.j3,
-    });
+    let d = down(vs, a_s, ve, ae, a_min, j);
     [u, d]
 }
 
