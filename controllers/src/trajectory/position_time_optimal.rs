@@ -583,6 +583,7 @@ impl EnvelopeFrame {
     /// `+J`-first with a hold at the upper acceleration limit, the second `−J`-first with a
     /// hold at the lower one, in the frame) and the start and target lie below `v_top`
     /// (`a₀ ≥ 0` or `v₀ + a₀²/(2J) ≤ v_top`, `a_f ≤ 0` or `v_f + a_f²/(2J) ≤ v_top`).
+    #[inline(always)]
     fn of(d: &Dof, v_top: f64, c1: &VelChange, c2: &VelChange) -> Option<Self> {
         let s = v_top.signum();
         let (v0, a0, vf, af, j) = (s * d.v0, s * d.a0, s * d.vf, s * d.af, d.j);
