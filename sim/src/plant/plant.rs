@@ -56,7 +56,7 @@ pub struct PlantSettings {
 }
 
 /// Largest number of edge segments (and cross sections) of a plant.
-pub const MAX_SEGMENTS: usize = 128;
+pub const MAX_SEGMENTS: usize = 256;
 
 impl Default for PlantSettings {
     fn default() -> Self {
