@@ -1154,6 +1154,24 @@ mod tests {
         Some(random_dof(rng, spread)).filter(random_problem_is_valid)
     }
 
+    /// [`random_problem`] with short moves (spread 3) for even `k`, long ones (40) for odd.
+    fn short_or_long_problem(rng: &mut ChaCha8Rng, k: usize) -> Option<Dof> {
+        random_problem(rng, if k.is_multiple_of(2) { 3.0 } else { 40.0 })
+    }
+
+    /// Asserts that the duration a proof ended `probe`'s search with is the complete
+    /// search's minimum, bit for bit.
+    fn assert_complete_search_agrees(d: &Dof, prefix: &Profile, probe: &TimeOptimal, what: &str) {
+        let all = time_optimal(d, prefix, 1, Search::All);
+        assert_eq!(
+            all.duration[0].to_bits(),
+            probe.duration[0].to_bits(),
+            "{d:?}: complete {} {what} {}",
+            all.duration[0],
+            probe.duration[0]
+        );
+    }
+
     /// The shortest-only search ([`Search::Shortest`]: the provably time-optimal cruise
     /// profile first, then the families and windows whose duration bound can still beat the
     /// best profile) finds exactly (bit for bit) the minimal duration of the complete search,
@@ -1164,8 +1182,7 @@ mod tests {
         let mut rng = ChaCha8Rng::seed_from_u64(11);
         let (mut compared, mut cruise_proved) = (0, 0);
         for k in 0..6000 {
-            let spread = if k % 2 == 0 { 3.0 } else { 40.0 };
-            let Some(d) = random_problem(&mut rng, spread) else {
+            let Some(d) = short_or_long_problem(&mut rng, k) else {
                 continue;
             };
             let prefix = Profile::new(d.p0, d.v0, d.a0);
@@ -1211,8 +1228,7 @@ mod tests {
         let mut rng = ChaCha8Rng::seed_from_u64(13);
         let (mut checked, mut skipped) = (0, 0);
         for k in 0..20_000 {
-            let spread = if k % 2 == 0 { 3.0 } else { 40.0 };
-            let Some(d) = random_problem(&mut rng, spread) else {
+            let Some(d) = short_or_long_problem(&mut rng, k) else {
                 continue;
             };
             let prefix = Profile::new(d.p0, d.v0, d.a0);
@@ -1274,14 +1290,7 @@ mod tests {
                 probe.shortest = true;
                 if optimal_cruise(&d, &prefix, &LimitParts::new(&d), &mut probe) {
                     proved += 1;
-                    let all = time_optimal(&d, &prefix, 1, Search::All);
-                    assert_eq!(
-                        all.duration[0].to_bits(),
-                        probe.duration[0].to_bits(),
-                        "{d:?}: complete {} cruise {}",
-                        all.duration[0],
-                        probe.duration[0]
-                    );
+                    assert_complete_search_agrees(&d, &prefix, &probe, "cruise");
                 }
             }
         }
@@ -1300,8 +1309,7 @@ mod tests {
         let mut rng = ChaCha8Rng::seed_from_u64(17);
         let (mut proved, mut tried) = (0, 0);
         for k in 0..12_000 {
-            let spread = if k % 2 == 0 { 3.0 } else { 40.0 };
-            let Some(mut d) = random_problem(&mut rng, spread) else {
+            let Some(mut d) = short_or_long_problem(&mut rng, k) else {
                 continue;
             };
             if k % 4 < 2 {
@@ -1322,14 +1330,7 @@ mod tests {
             }
             if peak_family(&d, &prefix, 1, &limit_parts, &mut probe) {
                 proved += 1;
-                let all = time_optimal(&d, &prefix, 1, Search::All);
-                assert_eq!(
-                    all.duration[0].to_bits(),
-                    probe.duration[0].to_bits(),
-                    "{d:?}: complete {} peak {}",
-                    all.duration[0],
-                    probe.duration[0]
-                );
+                assert_complete_search_agrees(&d, &prefix, &probe, "peak");
             }
         }
         assert!(tried > 5000 && proved > 1000, "{proved} of {tried}");
