@@ -12,9 +12,7 @@ use std::path::{Path, PathBuf};
 
 use indicatif::{ProgressBar, ProgressStyle};
 use shearcut_sim::surrogate::{
-    AccuracyReport, FIT_SECTION_SIZES, FIT_SLICE_PUSH_RATIOS, HELD_OUT_SECTION_SIZES,
-    HELD_OUT_SLICE_PUSH_RATIOS, RunComparison, Surrogate, SweepSettings, compare_run,
-    fit_surrogate, grid, run_sweep,
+    AccuracyReport, RunComparison, Surrogate, SweepSettings, fit_campaign, fit_run_count,
 };
 use shearcut_sim::{EdgeShape, InvalidSetting, KnifePreset, MaterialPreset};
 
@@ -87,40 +85,30 @@ pub fn fit(
     knife: KnifePreset,
     progress: &(dyn Fn() + Sync),
 ) -> Result<FitOutput, RunError> {
-    let m = material.material();
-    let blade = knife.settings().blade;
-    let settings = SweepSettings::default();
-    let mut cases = grid(&FIT_SLICE_PUSH_RATIOS, &FIT_SECTION_SIZES);
-    let fit_count = cases.len();
-    cases.extend(grid(&HELD_OUT_SLICE_PUSH_RATIOS, &HELD_OUT_SECTION_SIZES));
     let threads = std::thread::available_parallelism()
         .map_or(1, |n| n.get())
         .min(SWEEP_THREADS);
-    let runs = run_sweep(&m, &blade, &cases, &settings, threads, progress)
-        .map_err(|e| RunError::write("full-model sweep", e))?;
-    let (fit_runs, held_out) = runs.split_at(fit_count);
-    let surrogate = fit_surrogate(&m, &blade, material.name(), knife.name(), fit_runs)
-        .map_err(|e| RunError::write("surrogate fit", e))?;
-    let comparisons: Vec<RunComparison> = held_out
-        .iter()
-        .map(|r| compare_run(&surrogate, r))
-        .collect();
-    let report = AccuracyReport::new(
+    let f = fit_campaign(
+        &material.material(),
+        &knife.settings().blade,
         material.name(),
         knife.name(),
-        comparisons.iter().map(|c| c.accuracy).collect(),
-    );
+        &SweepSettings::default(),
+        threads,
+        progress,
+    )
+    .map_err(|e| RunError::write("surrogate fit", e))?;
     Ok(FitOutput {
-        surrogate,
-        report,
-        comparisons,
+        surrogate: f.surrogate,
+        report: f.report,
+        comparisons: f.comparisons,
     })
 }
 
-/// Number of full-model runs of a fit (sweeps plus held-out).
+/// Number of full-model runs of a fit (sweeps, ratio sweeps, held-out runs
+/// nominal and at scaled materials).
 pub fn run_count() -> usize {
-    FIT_SLICE_PUSH_RATIOS.len() * FIT_SECTION_SIZES.len()
-        + HELD_OUT_SLICE_PUSH_RATIOS.len() * HELD_OUT_SECTION_SIZES.len()
+    fit_run_count()
 }
 
 /// The surrogate file's text: a header comment, then the data.

@@ -13,6 +13,7 @@
 use serde::{Deserialize, Serialize};
 
 use super::model::Surrogate;
+use super::ratio::RatioCorrection;
 use super::state::{CutState, ScaleFactors};
 use super::sweep::{SweepCase, SweepRun};
 
@@ -117,6 +118,17 @@ fn rms_pct(a: &[f64], b: &[f64]) -> f64 {
 
 /// Compares `surrogate` (nominal scale) with the full-model `run`.
 pub fn compare_run(surrogate: &Surrogate, run: &SweepRun) -> RunComparison {
+    compare_run_scaled(surrogate, run, &ScaleFactors::default())
+}
+
+/// Compares `surrogate` at the scale factors `scale` with the full-model
+/// `run` of the correspondingly scaled material (R_c and R'_c × toughness,
+/// E × stiffness, μ × friction).
+pub fn compare_run_scaled(
+    surrogate: &Surrogate,
+    run: &SweepRun,
+    scale: &ScaleFactors,
+) -> RunComparison {
     let c = run.case;
     let n = run.samples.len();
     let depth: Vec<f64> = run.samples.iter().map(|s| s.depth).collect();
@@ -125,7 +137,6 @@ pub fn compare_run(surrogate: &Surrogate, run: &SweepRun) -> RunComparison {
     let first = run.samples.iter().position(|s| s.fractured).unwrap_or(n);
     let f_n_s = window_mean(&depth, &f_n, first, SMOOTHING_WINDOW);
     let f_t_s = window_mean(&depth, &f_t, first, SMOOTHING_WINDOW);
-    let scale = ScaleFactors::default();
     let mut state = CutState {
         depth: 0.0,
         height: c.height,
@@ -133,9 +144,7 @@ pub fn compare_run(surrogate: &Surrogate, run: &SweepRun) -> RunComparison {
         fractured: false,
         travel_since_fracture: 0.0,
     };
-    let onset_sur = surrogate
-        .evaluate(c.xi, &state, &scale)
-        .fracture_onset_depth;
+    let onset_sur = surrogate.evaluate(c.xi, &state, scale).fracture_onset_depth;
     let onset_full = run
         .onset_depth
         .map_or(f64::NAN, |d| d - 0.5 * run.onset_resolution);
@@ -145,7 +154,7 @@ pub fn compare_run(surrogate: &Surrogate, run: &SweepRun) -> RunComparison {
         state.depth = s.depth;
         state.fractured = s.depth >= onset_sur;
         state.travel_since_fracture = (s.depth - onset_sur).max(0.0);
-        let o = surrogate.evaluate(c.xi, &state, &scale);
+        let o = surrogate.evaluate(c.xi, &state, scale);
         w_sur += 0.5 * (last_rate + o.work_per_depth) * (s.depth - last_d);
         last_d = s.depth;
         last_rate = o.work_per_depth;
@@ -210,6 +219,116 @@ pub struct AccuracyReport {
     pub worst_onset_depth_error_pct: f64,
     /// The held-out runs.
     pub runs: Vec<RunAccuracy>,
+    /// The held-out runs at other stiffness-to-toughness ratios, with and
+    /// without the ratio corrections (absent in reports before format 4).
+    #[serde(default)]
+    pub scaled: Vec<RatioAccuracy>,
+}
+
+/// One held-out run at scale factors (T, S) ≠ (1, 1): the surrogate with its
+/// ratio corrections and with them zeroed (linear scaling, format 3).
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RatioRunAccuracy {
+    /// Slice-push ratio of the run.
+    pub xi: f64,
+    /// Section height, m.
+    pub height: f64,
+    /// Section half width, m.
+    pub half_width: f64,
+    /// RMS error of F_n with the corrections, % of the full model's range.
+    pub force_normal_rms_pct: f64,
+    /// RMS error of F_t with the corrections, % of range.
+    pub force_tangential_rms_pct: f64,
+    /// RMS error of the cumulative work with the corrections, % of range.
+    pub work_rms_pct: f64,
+    /// RMS error of F_n scaled linearly (no correction), % of range.
+    pub force_normal_rms_pct_linear: f64,
+    /// RMS error of F_t scaled linearly, % of range.
+    pub force_tangential_rms_pct_linear: f64,
+    /// RMS error of the cumulative work scaled linearly, % of range.
+    pub work_rms_pct_linear: f64,
+}
+
+/// The held-out runs of a material scaled by (T, S): the worst and mean
+/// force errors with and without the ratio corrections.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RatioAccuracy {
+    /// Toughness factor T (R_c and R'_c).
+    pub toughness: f64,
+    /// Stiffness factor S (E).
+    pub stiffness: f64,
+    /// Largest F_n RMS error with the corrections, % of range.
+    pub worst_force_normal_rms_pct: f64,
+    /// Largest F_t RMS error with the corrections, % of range.
+    pub worst_force_tangential_rms_pct: f64,
+    /// Largest F_n RMS error scaled linearly, % of range.
+    pub worst_force_normal_rms_pct_linear: f64,
+    /// Largest F_t RMS error scaled linearly, % of range.
+    pub worst_force_tangential_rms_pct_linear: f64,
+    /// Mean F_n RMS error with the corrections, % of range.
+    pub mean_force_normal_rms_pct: f64,
+    /// Mean F_t RMS error with the corrections, % of range.
+    pub mean_force_tangential_rms_pct: f64,
+    /// Mean F_n RMS error scaled linearly, % of range.
+    pub mean_force_normal_rms_pct_linear: f64,
+    /// Mean F_t RMS error scaled linearly, % of range.
+    pub mean_force_tangential_rms_pct_linear: f64,
+    /// Run by run.
+    pub runs: Vec<RatioRunAccuracy>,
+}
+
+impl RatioAccuracy {
+    /// Compares `surrogate` at (T, S) = (`toughness`, `stiffness`), F = 1,
+    /// with and without its ratio corrections, against `runs` of the
+    /// correspondingly scaled material.
+    pub fn new(surrogate: &Surrogate, toughness: f64, stiffness: f64, runs: &[SweepRun]) -> Self {
+        let scale = ScaleFactors {
+            toughness,
+            stiffness,
+            friction: 1.0,
+        };
+        let linear = Surrogate {
+            ratio: RatioCorrection::default(),
+            ..surrogate.clone()
+        };
+        let runs: Vec<RatioRunAccuracy> = runs
+            .iter()
+            .map(|run| {
+                let a = compare_run_scaled(surrogate, run, &scale).accuracy;
+                let b = compare_run_scaled(&linear, run, &scale).accuracy;
+                RatioRunAccuracy {
+                    xi: a.xi,
+                    height: a.height,
+                    half_width: a.half_width,
+                    force_normal_rms_pct: a.force_normal_rms_pct,
+                    force_tangential_rms_pct: a.force_tangential_rms_pct,
+                    work_rms_pct: a.work_rms_pct,
+                    force_normal_rms_pct_linear: b.force_normal_rms_pct,
+                    force_tangential_rms_pct_linear: b.force_tangential_rms_pct,
+                    work_rms_pct_linear: b.work_rms_pct,
+                }
+            })
+            .collect();
+        let worst = |f: fn(&RatioRunAccuracy) -> f64| runs.iter().map(f).fold(0.0, f64::max);
+        let mean = |f: fn(&RatioRunAccuracy) -> f64| {
+            runs.iter().map(f).sum::<f64>() / runs.len().max(1) as f64
+        };
+        Self {
+            toughness,
+            stiffness,
+            worst_force_normal_rms_pct: worst(|r| r.force_normal_rms_pct),
+            worst_force_tangential_rms_pct: worst(|r| r.force_tangential_rms_pct),
+            worst_force_normal_rms_pct_linear: worst(|r| r.force_normal_rms_pct_linear),
+            worst_force_tangential_rms_pct_linear: worst(|r| r.force_tangential_rms_pct_linear),
+            mean_force_normal_rms_pct: mean(|r| r.force_normal_rms_pct),
+            mean_force_tangential_rms_pct: mean(|r| r.force_tangential_rms_pct),
+            mean_force_normal_rms_pct_linear: mean(|r| r.force_normal_rms_pct_linear),
+            mean_force_tangential_rms_pct_linear: mean(|r| r.force_tangential_rms_pct_linear),
+            runs,
+        }
+    }
 }
 
 impl AccuracyReport {
@@ -226,6 +345,7 @@ impl AccuracyReport {
             worst_peak_force_error_pct: worst(|r| r.peak_force_error_pct),
             worst_onset_depth_error_pct: worst(|r| r.onset_depth_error_pct),
             runs,
+            scaled: Vec::new(),
         }
     }
 
@@ -258,6 +378,37 @@ impl AccuracyReport {
             self.worst_peak_force_error_pct,
             self.worst_onset_depth_error_pct
         );
+        for a in &self.scaled {
+            s += &format!(
+                "at T = {:.2}, S = {:.2} (rho = {:.3}): Fn rms % corrected/linear, Ft rms % corrected/linear\n",
+                a.toughness,
+                a.stiffness,
+                a.stiffness / a.toughness
+            );
+            for r in &a.runs {
+                s += &format!(
+                    "{:5.2}  {:6.1}  {:8.1}  {:6.2} / {:6.2}  {:6.2} / {:6.2}\n",
+                    r.xi,
+                    1e3 * r.height,
+                    1e3 * r.half_width,
+                    r.force_normal_rms_pct,
+                    r.force_normal_rms_pct_linear,
+                    r.force_tangential_rms_pct,
+                    r.force_tangential_rms_pct_linear,
+                );
+            }
+            s += &format!(
+                "worst: Fn {:.2} % (linear {:.2} %), Ft {:.2} % (linear {:.2} %); mean: Fn {:.2} % (linear {:.2} %), Ft {:.2} % (linear {:.2} %)\n",
+                a.worst_force_normal_rms_pct,
+                a.worst_force_normal_rms_pct_linear,
+                a.worst_force_tangential_rms_pct,
+                a.worst_force_tangential_rms_pct_linear,
+                a.mean_force_normal_rms_pct,
+                a.mean_force_normal_rms_pct_linear,
+                a.mean_force_tangential_rms_pct,
+                a.mean_force_tangential_rms_pct_linear,
+            );
+        }
         s
     }
 }

@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 use crate::invalid_setting::InvalidSetting;
 
-use super::model::{SURROGATE_FORMAT_VERSION, Surrogate};
+use super::model::{OLDEST_READ_FORMAT_VERSION, SURROGATE_FORMAT_VERSION, Surrogate};
 
 /// Why a surrogate file was refused. Each message names the key or value.
 #[derive(Debug, thiserror::Error)]
@@ -21,19 +21,25 @@ pub enum SurrogateFileError {
     #[error("surrogate file: {0}")]
     Format(String),
     /// The key `version` is missing or not an integer.
-    #[error("surrogate file: missing integer key `version` (this build reads version {expected})")]
+    #[error(
+        "surrogate file: missing integer key `version` (this build reads versions {oldest} to {expected})"
+    )]
     MissingVersion {
-        /// The version this build reads.
+        /// The oldest version this build reads.
+        oldest: u32,
+        /// The version this build writes (the newest it reads).
         expected: u32,
     },
     /// The file is of another format version.
     #[error(
-        "surrogate file: `version` = {found}, but this build reads version {expected}; refit with `shearcut fit`"
+        "surrogate file: `version` = {found}, but this build reads versions {oldest} to {expected}; refit with `shearcut fit`"
     )]
     WrongVersion {
         /// The version in the file.
         found: i64,
-        /// The version this build reads.
+        /// The oldest version this build reads.
+        oldest: u32,
+        /// The version this build writes (the newest it reads).
         expected: u32,
     },
     /// A material or blade constant is out of its range.
@@ -62,20 +68,30 @@ impl Surrogate {
     }
 
     /// Parses a surrogate from TOML: the `version` must be
-    /// [`SURROGATE_FORMAT_VERSION`], every key present and known, every
-    /// coefficient finite and the material and blade constants positive.
+    /// [`SURROGATE_FORMAT_VERSION`] (4) or [`OLDEST_READ_FORMAT_VERSION`]
+    /// (3, whose missing `[ratio]` table reads as zero correction: the
+    /// format-3 surrogate exactly), every key present and known (the
+    /// `[ratio]` table whole or not at all), every coefficient finite and the
+    /// material and blade constants positive. The version read is kept, so a
+    /// format-3 file written back says 3 only if it was read as 3.
     pub fn from_toml_str(text: &str) -> Result<Self, SurrogateFileError> {
         let table: toml::Table =
             toml::from_str(text).map_err(|e| SurrogateFileError::Format(one_line(&e)))?;
         match table.get("version").and_then(toml::Value::as_integer) {
             None => {
                 return Err(SurrogateFileError::MissingVersion {
+                    oldest: OLDEST_READ_FORMAT_VERSION,
                     expected: SURROGATE_FORMAT_VERSION,
                 });
             }
-            Some(v) if v != i64::from(SURROGATE_FORMAT_VERSION) => {
+            Some(v)
+                if !(i64::from(OLDEST_READ_FORMAT_VERSION)
+                    ..=i64::from(SURROGATE_FORMAT_VERSION))
+                    .contains(&v) =>
+            {
                 return Err(SurrogateFileError::WrongVersion {
                     found: v,
+                    oldest: OLDEST_READ_FORMAT_VERSION,
                     expected: SURROGATE_FORMAT_VERSION,
                 });
             }
@@ -136,6 +152,20 @@ impl Surrogate {
         arr("post_fracture.face_reaction", &post.face_reaction);
         arr("post_fracture.strain_energy_rate", &post.strain_energy_rate);
         arr("post_fracture.deflection", &post.deflection);
+        let ratio = &self.ratio;
+        arr(
+            "ratio.strain_energy_rate_linear",
+            &ratio.strain_energy_rate_linear,
+        );
+        arr(
+            "ratio.strain_energy_rate_quadratic",
+            &ratio.strain_energy_rate_quadratic,
+        );
+        arr("ratio.face_reaction_linear", &ratio.face_reaction_linear);
+        arr(
+            "ratio.face_reaction_quadratic",
+            &ratio.face_reaction_quadratic,
+        );
         v.push(("post_fracture.knee_lead".to_string(), post.knee_lead));
         v
     }

@@ -12,6 +12,8 @@ use super::catch_up::{catch_up_values, knee_values};
 use super::model::{
     FitRange, FittedBlade, PostFracture, PreFracture, SURROGATE_FORMAT_VERSION, Surrogate,
 };
+use super::ratio::{RatioCorrection, log_ratio};
+use super::state::CutState;
 use super::sweep::SweepRun;
 use super::toughness::ToughnessRatio;
 use crate::blade::BladeSection;
@@ -222,6 +224,7 @@ pub fn fit_surrogate(
             strain_energy_rate: [0.0; STRAIN_TERMS],
             deflection: [0.0; DEFLECTION_TERMS],
         },
+        ratio: RatioCorrection::default(),
     };
     // The knee's shape [κ, β, a]: the candidates whose fit follows the fit's
     // own runs best (sum of the F_n and F_t RMS errors over the runs, as
@@ -402,4 +405,103 @@ fn fit_post_fracture(
         strain_energy_rate,
         deflection: defl_post.solve()?,
     })
+}
+
+/// Full-model sweeps of the fit's grid at a material whose stiffness (E)
+/// is scaled by `stiffness` and whose toughness (R_c, R'_c) by `toughness`.
+#[derive(Debug, Clone, Copy)]
+pub struct ScaledSweep<'a> {
+    /// The toughness factor T of the sweep's material.
+    pub toughness: f64,
+    /// The stiffness factor S of the sweep's material.
+    pub stiffness: f64,
+    /// Its runs.
+    pub runs: &'a [SweepRun],
+}
+
+/// Fits the ratio corrections of `surrogate` (its nominal part fitted, its
+/// `ratio` ignored) to sweeps at other stiffness-to-toughness ratios
+/// ρ = S/T (`ratio` module), by least squares on the residuals against the
+/// nominal surrogate evaluated at their ρ, with the nominal fit's targets:
+/// - the faces' normal reaction N = (F_n^f + ξF_t^f)/(μ₀√(1+ξ²)) over
+///   S·E₀·Δ, minus the nominal N₀/(E₀Δ), on [ℓ·b_N, ℓ²·b_N];
+/// - the knife's non-friction work per depth beyond T·r(ξ,ν)·R_c₀·g over
+///   S·E₀·Δ², minus the nominal U̇₀/(E₀Δ²), on [ℓ·b_U, ℓ²·b_U];
+///
+/// with b_N, b_U the nominal terms' bases as the surrogate takes them (its
+/// own catch-up length and knee gate g), ℓ = ln ρ, and each run's own onset
+/// (fractured samples, travel since its first fracture). With sweeps at a
+/// single ρ the ℓ² terms are not observable apart from the ℓ terms and the
+/// SVD's minimum-norm solution splits them; use two ratios on either side
+/// of 1.
+pub fn fit_ratio_correction(
+    surrogate: &Surrogate,
+    sweeps: &[ScaledSweep<'_>],
+) -> Result<RatioCorrection, FitError> {
+    let m = &surrogate.material;
+    let e0 = m.youngs_modulus;
+    let mu0 = m.friction_coefficient;
+    let delta = 0.5 * surrogate.blade.thickness;
+    let p = &surrogate.post_fracture;
+    let mut face = Rows::<{ 2 * FRICTION_TERMS }>::new("ratio.face_reaction");
+    let mut strain = Rows::<{ 2 * STRAIN_TERMS }>::new("ratio.strain_energy_rate");
+    for sweep in sweeps {
+        let l = log_ratio(sweep.toughness, sweep.stiffness);
+        let (t, s) = (sweep.toughness, sweep.stiffness);
+        for run in sweep.runs {
+            let c = run.case;
+            let xi = c.xi;
+            let r = ToughnessRatio::at(xi, m.poisson_ratio).value;
+            let root = (1.0 + xi * xi).sqrt();
+            for sample in run.samples.iter().filter(|x| x.fractured) {
+                let state = CutState {
+                    depth: sample.depth,
+                    height: c.height,
+                    half_width: c.half_width,
+                    fractured: true,
+                    travel_since_fracture: sample.travel_since_fracture,
+                };
+                let bases = surrogate.wedge_bases(xi, &state);
+                if mu0 > 0.0 {
+                    let n = (sample.force_normal_friction + xi * sample.force_tangential_friction)
+                        / (mu0 * root);
+                    let mut row = [0.0; 2 * FRICTION_TERMS];
+                    for (k, b) in bases.face.iter().enumerate() {
+                        row[k] = l * b;
+                        row[FRICTION_TERMS + k] = l * l * b;
+                    }
+                    face.push(
+                        row,
+                        n / (s * e0 * delta) - dot(&p.face_reaction, &bases.face),
+                    );
+                }
+                let f_n = sample.force_normal - sample.force_normal_friction;
+                let f_t = sample.force_tangential - sample.force_tangential_friction;
+                let beyond = f_n + xi * f_t - t * r * m.fracture_toughness * bases.gate;
+                let mut row = [0.0; 2 * STRAIN_TERMS];
+                for (k, b) in bases.strain.iter().enumerate() {
+                    row[k] = l * b;
+                    row[STRAIN_TERMS + k] = l * l * b;
+                }
+                strain.push(
+                    row,
+                    beyond / (s * e0 * delta * delta) - dot(&p.strain_energy_rate, &bases.strain),
+                );
+            }
+        }
+    }
+    let mut out = RatioCorrection::default();
+    let u = strain.solve()?;
+    out.strain_energy_rate_linear
+        .copy_from_slice(&u[..STRAIN_TERMS]);
+    out.strain_energy_rate_quadratic
+        .copy_from_slice(&u[STRAIN_TERMS..]);
+    if mu0 > 0.0 {
+        let n = face.solve()?;
+        out.face_reaction_linear
+            .copy_from_slice(&n[..FRICTION_TERMS]);
+        out.face_reaction_quadratic
+            .copy_from_slice(&n[FRICTION_TERMS..]);
+    }
+    Ok(out)
 }

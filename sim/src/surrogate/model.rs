@@ -7,16 +7,23 @@ use super::basis::{
     deflection_basis, dot, drag_basis, friction_basis, knee_derivatives, onset_basis, ramps,
     size_basis, size_features, split_basis, split_basis_slope, strain_basis_rate,
 };
-use super::catch_up::{CATCH_UP_TERMS, catch_up_basis, dot_jet, knee_terms};
+use super::catch_up::{CATCH_UP_TERMS, KNEE_TERMS, catch_up_basis, dot_jet, knee_terms};
 use super::jet::Jet;
 use super::output::{QuadraticModel, ScaledParts, SurrogateOutput};
+use super::ratio::{RatioCorrection, corrected, log_ratio};
 use super::state::{CutState, ScaleFactors};
 use super::toughness::ToughnessRatio;
 use crate::blade::BladeSection;
 use crate::material::Material;
 
-/// Version of the surrogate file format this build reads and writes.
-pub const SURROGATE_FORMAT_VERSION: u32 = 3;
+/// Version of the surrogate file format this build writes (and reads, with
+/// [`OLDEST_READ_FORMAT_VERSION`]).
+pub const SURROGATE_FORMAT_VERSION: u32 = 4;
+
+/// The oldest surrogate file format this build reads: format 3 lacks the
+/// ratio corrections (`[ratio]`), which then read as zero (the surrogate is
+/// linear in the scale factors, as format 3 was).
+pub const OLDEST_READ_FORMAT_VERSION: u32 = 3;
 
 /// The blade section a surrogate was fitted for (all fields required in a file).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -110,6 +117,33 @@ pub struct PostFracture {
     pub deflection: [f64; DEFLECTION_TERMS],
 }
 
+/// What `evaluate` builds on after fracture (see `Surrogate::post_features`).
+struct PostFeatures {
+    /// The travel ramps ρ_k(s).
+    ramp: [f64; RAMPS],
+    /// r(ξ,ν) as a jet in ξ.
+    r_jet: Jet,
+    /// The onset stiffness y(ξ) as a jet.
+    y_jet: Jet,
+    /// The catch-up terms (the knee gate g first), jets in ξ.
+    knee: [Jet; KNEE_TERMS],
+    /// The face reaction's basis.
+    face_basis: [f64; FRICTION_TERMS],
+    /// The strain-energy rate's basis.
+    strain_basis: [f64; STRAIN_TERMS],
+}
+
+/// The wedge's bases after fracture at one ξ and state, for the fit of the
+/// ratio corrections.
+pub(super) struct WedgeBases {
+    /// The face reaction's basis (`basis::friction_basis`).
+    pub face: [f64; FRICTION_TERMS],
+    /// The strain-energy rate's basis (`basis::strain_basis_rate`).
+    pub strain: [f64; STRAIN_TERMS],
+    /// The knee gate g.
+    pub gate: f64,
+}
+
 /// A fitted surrogate of the cross-section model for one material and blade
 /// (DESIGN §3.4). Stored as TOML (see [`Surrogate::from_path`]); evaluated by
 /// [`Surrogate::evaluate`] without allocating.
@@ -133,6 +167,10 @@ pub struct Surrogate {
     pub pre_fracture: PreFracture,
     /// After the first fracture.
     pub post_fracture: PostFracture,
+    /// Corrections of the wedge's terms for the stiffness-to-toughness ratio
+    /// ρ = S/T (`ratio` module; format 4, zero when absent).
+    #[serde(default)]
+    pub ratio: RatioCorrection,
 }
 
 impl Surrogate {
@@ -195,55 +233,44 @@ impl Surrogate {
         }
         let p = &self.post_fracture;
         let delta = self.half_thickness();
-        let travel = state.travel_since_fracture.max(0.0);
-        let (ramp, ramp_slope) = ramps(travel, self.bevel_height());
-        let (ramp_depth, _) = ramps(state.depth, self.bevel_height());
-        let height = state.height.max(b);
-        let depth_ratio = (state.depth / height).clamp(0.0, 1.0);
-        // Catch-up after the crack's jump (`catch_up`): L = d*₀(ξ)·ℓ(ξ) at
-        // nominal material (so the parts stay linear in the factors), with
-        // d*₀ = r·R'_c₀/(E₀·y), y = A + ξ²B; the knee gate g(s) and the
-        // catch-up terms of the face reaction, as jets in ξ.
-        let r_jet = Jet::new(r.value, r.slope, r.curvature);
-        let o = &self.pre_fracture.onset;
-        let onset_b = o[3] + o[4] * lh + o[5] * lw;
-        let y_jet = Jet::new(
-            onset_stiffness.max(f64::MIN_POSITIVE),
-            2.0 * xi * onset_b,
-            2.0 * onset_b,
-        );
-        let onset0 = r_jet
-            .mul(y_jet.recip())
-            .scale(m.initial_fracture_toughness / e0);
-        let length = onset0.mul(dot_jet(&p.catch_up, &catch_up_basis(xi, lh, lw)));
-        let knee_width = [
-            p.knee_width[0],
-            p.knee_width[1] * self.bevel_height(),
-            p.knee_lead * self.bevel_height(),
-        ];
-        let knee = knee_terms(travel, xi, length, knee_width, lh, lw);
-        let knee_v = knee.map(|j| j.v);
+        let PostFeatures {
+            ramp,
+            r_jet,
+            y_jet,
+            knee,
+            face_basis,
+            strain_basis,
+        } = self.post_features(xi, state, lh, lw, &r, onset_stiffness);
         // Nominal face reaction N₀ (a jet: only its catch-up terms depend
         // on ξ) and strain-energy rate U̇₀ per unit travel.
-        let (nd, ndd) = knee_derivatives(&p.face_reaction, &knee);
+        // Both are corrected for the stiffness-to-toughness ratio ρ = S/T by
+        // ℓ = ln ρ (`ratio` module): x₀ + ℓ·x₁ + ℓ²·x₂ with x₁, x₂ on the
+        // same bases; exactly x₀ at ℓ = 0.
+        let l = log_ratio(t, s);
+        let rc = &self.ratio;
         let n_scale = e0 * delta;
-        let n0 = Jet::new(
-            dot(
-                &p.face_reaction,
-                &friction_basis(&ramp_depth, depth_ratio, &knee_v, lh, lw),
-            ),
-            nd,
-            ndd,
-        )
-        .scale(n_scale);
-        let n0 = if n0.v > 0.0 { n0 } else { Jet::default() };
-        let u_rate0 = e0
-            * delta
-            * delta
-            * dot(
-                &p.strain_energy_rate,
-                &strain_basis_rate(&ramp_slope, depth_ratio, height, lh, lw),
-            );
+        let face_jet = |c: &[f64; FRICTION_TERMS]| {
+            let (d, dd) = knee_derivatives(c, &knee);
+            Jet::new(dot(c, &face_basis), d, dd).scale(n_scale)
+        };
+        let n0 = face_jet(&p.face_reaction);
+        let n1 = face_jet(&rc.face_reaction_linear);
+        let n2 = face_jet(&rc.face_reaction_quadratic);
+        let (nv, n_l) = corrected(n0.v, n1.v, n2.v, l);
+        let (nd, _) = corrected(n0.d, n1.d, n2.d, l);
+        let (ndd, _) = corrected(n0.dd, n1.dd, n2.dd, l);
+        let (n0, n_l) = if nv > 0.0 {
+            (Jet::new(nv, nd, ndd), n_l)
+        } else {
+            (Jet::default(), 0.0)
+        };
+        let u_scale = e0 * delta * delta;
+        let (u_rate0, u_l) = corrected(
+            u_scale * dot(&p.strain_energy_rate, &strain_basis),
+            u_scale * dot(&rc.strain_energy_rate_linear, &strain_basis),
+            u_scale * dot(&rc.strain_energy_rate_quadratic, &strain_basis),
+            l,
+        );
         // Crack growth only once the edge has caught up: r·R_c₀·g.
         let fracture0 = r_jet.mul(knee[0]).scale(m.fracture_toughness);
         let mu0 = m.friction_coefficient;
@@ -295,23 +322,101 @@ impl Surrogate {
             pj.dd + fs * (fr0.dd * root + 2.0 * fr0.d * xi / root + fr0.v / root3);
         out.deformation = delta * dot(&p.deflection, &deflection_basis(&ramp, lw));
         let (fracture0, fr0) = (fracture0.v, fr0.v);
+        let fr_l = mu0 * n_l;
         let fn_t = (fracture0 - xi * drag0) / den;
         out.force_normal_parts = ScaledParts {
             by_toughness: fn_t,
             by_stiffness: u_rate0,
             by_friction_stiffness: fr0 / root,
+            by_stiffness_log_ratio_slope: u_l,
+            by_friction_stiffness_log_ratio_slope: fr_l / root,
         };
         out.force_tangential_parts = ScaledParts {
             by_toughness: sigma * fn_t + drag0,
             by_stiffness: 0.0,
             by_friction_stiffness: fr0 * xi / root,
+            by_stiffness_log_ratio_slope: 0.0,
+            by_friction_stiffness_log_ratio_slope: fr_l * xi / root,
         };
         out.work_per_depth_parts = ScaledParts {
             by_toughness: fracture0,
             by_stiffness: u_rate0,
             by_friction_stiffness: fr0 * root,
+            by_stiffness_log_ratio_slope: u_l,
+            by_friction_stiffness_log_ratio_slope: fr_l * root,
         };
         out
+    }
+
+    /// The features after fracture that `evaluate` builds on, at one ξ and
+    /// state (`lh`, `lw` the size features, `r` eq. 6 at ξ, `onset_stiffness`
+    /// y(ξ) of the onset).
+    #[inline]
+    fn post_features(
+        &self,
+        xi: f64,
+        state: &CutState,
+        lh: f64,
+        lw: f64,
+        r: &ToughnessRatio,
+        onset_stiffness: f64,
+    ) -> PostFeatures {
+        let m = &self.material;
+        let p = &self.post_fracture;
+        let b = self.blade.edge_width;
+        let e0 = m.youngs_modulus;
+        let travel = state.travel_since_fracture.max(0.0);
+        let (ramp, ramp_slope) = ramps(travel, self.bevel_height());
+        let (ramp_depth, _) = ramps(state.depth, self.bevel_height());
+        let height = state.height.max(b);
+        let depth_ratio = (state.depth / height).clamp(0.0, 1.0);
+        // Catch-up after the crack's jump (`catch_up`): L = d*₀(ξ)·ℓ(ξ) at
+        // nominal material (so the parts stay linear in the factors), with
+        // d*₀ = r·R'_c₀/(E₀·y), y = A + ξ²B; the knee gate g(s) and the
+        // catch-up terms of the face reaction, as jets in ξ.
+        let r_jet = Jet::new(r.value, r.slope, r.curvature);
+        let o = &self.pre_fracture.onset;
+        let onset_b = o[3] + o[4] * lh + o[5] * lw;
+        let y_jet = Jet::new(
+            onset_stiffness.max(f64::MIN_POSITIVE),
+            2.0 * xi * onset_b,
+            2.0 * onset_b,
+        );
+        let onset0 = r_jet
+            .mul(y_jet.recip())
+            .scale(m.initial_fracture_toughness / e0);
+        let length = onset0.mul(dot_jet(&p.catch_up, &catch_up_basis(xi, lh, lw)));
+        let knee_width = [
+            p.knee_width[0],
+            p.knee_width[1] * self.bevel_height(),
+            p.knee_lead * self.bevel_height(),
+        ];
+        let knee = knee_terms(travel, xi, length, knee_width, lh, lw);
+        let knee_v = knee.map(|j| j.v);
+        PostFeatures {
+            ramp,
+            r_jet,
+            y_jet,
+            knee,
+            face_basis: friction_basis(&ramp_depth, depth_ratio, &knee_v, lh, lw),
+            strain_basis: strain_basis_rate(&ramp_slope, depth_ratio, height, lh, lw),
+        }
+    }
+
+    /// The bases of the wedge's terms after fracture as `evaluate` takes
+    /// them at ξ and `state` (its own catch-up length and knee), with the
+    /// knee gate g: the rows of the ratio corrections' fit.
+    pub(super) fn wedge_bases(&self, xi: f64, state: &CutState) -> WedgeBases {
+        let xi = xi.abs();
+        let (lh, lw) = size_features(state.height, state.half_width, self.blade.edge_width);
+        let r = ToughnessRatio::at(xi, self.material.poisson_ratio);
+        let onset_stiffness = dot(&self.pre_fracture.onset, &onset_basis(xi, lh, lw));
+        let f = self.post_features(xi, state, lh, lw, &r, onset_stiffness);
+        WedgeBases {
+            face: f.face_basis,
+            strain: f.strain_basis,
+            gate: f.knee[0].v,
+        }
     }
 
     /// The quadratic model of work per depth in ξ around `xi` (value, slope,

@@ -1,15 +1,27 @@
 //! What one surrogate evaluation returns.
 
-/// An output that is linear in the scale factors, split into the parts
-/// multiplied by each:
+/// An output split into the parts multiplied by each scale factor, at the
+/// scale factors it was evaluated at:
 /// `value = toughness·by_toughness + stiffness·by_stiffness + friction·stiffness·by_friction_stiffness`
 /// (friction forces are μ times a normal reaction that scales with E, so
-/// their part is bilinear).
+/// their part is bilinear). [`combine`](Self::combine) with the same factors
+/// returns the output exactly.
 ///
-/// Holds exactly after fracture. Before the first fracture the forces are
-/// `stiffness·by_stiffness` (the other parts 0) but whether the section has
-/// fractured, and the onset depth ∝ toughness/stiffness, are not linear: an
-/// estimator uses the parts at the current phase.
+/// The parts multiplied by the stiffness depend on the ratio ρ = S/T through
+/// ℓ = ln ρ (the wedge's strain-energy rate and the faces' reaction, module
+/// `ratio`; zero dependence in a format-3 surrogate), so the output is linear
+/// in the factors only along a ray of constant ρ. The `*_log_ratio_slope`
+/// fields are ∂/∂ℓ of those parts, from which an estimator that
+/// re-linearises at its current factors forms ∂value/∂T and ∂value/∂S
+/// ([`toughness_derivative`](Self::toughness_derivative),
+/// [`stiffness_derivative`](Self::stiffness_derivative)). The toughness part
+/// does not depend on ρ (the fracture work T·r·R_c·g and the drag held at
+/// the onset are exactly ∝ T).
+///
+/// Before the first fracture the forces are `stiffness·by_stiffness` (the
+/// other parts and the slopes 0) but whether the section has fractured, and
+/// the onset depth ∝ toughness/stiffness, are not linear: an estimator uses
+/// the parts at the current phase.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct ScaledParts {
     /// Part multiplied by the toughness factor.
@@ -18,15 +30,55 @@ pub struct ScaledParts {
     pub by_stiffness: f64,
     /// Part multiplied by the product friction × stiffness.
     pub by_friction_stiffness: f64,
+    /// ∂by_stiffness/∂ℓ, ℓ = ln(stiffness/toughness), same unit as the part.
+    pub by_stiffness_log_ratio_slope: f64,
+    /// ∂by_friction_stiffness/∂ℓ, ℓ = ln(stiffness/toughness), same unit as
+    /// the part.
+    pub by_friction_stiffness_log_ratio_slope: f64,
 }
 
 impl ScaledParts {
-    /// The output for the given factors.
+    /// The output for the given factors, with the parts as evaluated (exact
+    /// at the factors of the evaluation; elsewhere the linearisation that
+    /// holds ρ's effect fixed).
     #[inline]
     pub fn combine(&self, toughness: f64, stiffness: f64, friction: f64) -> f64 {
         toughness * self.by_toughness
             + stiffness * self.by_stiffness
             + friction * stiffness * self.by_friction_stiffness
+    }
+
+    /// ∂value/∂ℓ at the factors of the evaluation: S·∂by_stiffness/∂ℓ +
+    /// F·S·∂by_friction_stiffness/∂ℓ.
+    #[inline]
+    fn log_ratio_slope(&self, stiffness: f64, friction: f64) -> f64 {
+        stiffness
+            * (self.by_stiffness_log_ratio_slope
+                + friction * self.by_friction_stiffness_log_ratio_slope)
+    }
+
+    /// ∂value/∂T at the factors (T, S, F) of the evaluation:
+    /// by_toughness − (1/T)·∂value/∂ℓ (ℓ = ln S − ln T).
+    #[inline]
+    pub fn toughness_derivative(&self, toughness: f64, stiffness: f64, friction: f64) -> f64 {
+        self.by_toughness - self.log_ratio_slope(stiffness, friction) / toughness
+    }
+
+    /// ∂value/∂S at the factors (T, S, F) of the evaluation (independent of S):
+    /// by_stiffness + F·by_friction_stiffness + (1/S)·∂value/∂ℓ.
+    #[inline]
+    pub fn stiffness_derivative(&self, friction: f64) -> f64 {
+        self.by_stiffness
+            + friction * self.by_friction_stiffness
+            + self.by_stiffness_log_ratio_slope
+            + friction * self.by_friction_stiffness_log_ratio_slope
+    }
+
+    /// ∂value/∂F at the factors of the evaluation: S·by_friction_stiffness
+    /// (μ enters the faces' reaction only as a multiplier).
+    #[inline]
+    pub fn friction_derivative(&self, stiffness: f64) -> f64 {
+        stiffness * self.by_friction_stiffness
     }
 }
 

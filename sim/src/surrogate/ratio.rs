@@ -1,0 +1,86 @@
+//! The stiffness-to-toughness ratio: how the wedge's strain-energy rate and
+//! the faces' reaction depart from linear scaling when E/R_c changes.
+//!
+//! The scale factors T (R_c, R'_c), S (E) and F (μ) enter the surrogate as
+//! multipliers, which would make every output after fracture linear in
+//! them. That holds for the fracture work (T·r(ξ,ν)·R_c·g, seed 000 eq. 1
+//! and 6) but not for the wedge's terms: the faces' reaction and the strain
+//! energy the wedge stores depend on how far the crack runs ahead of the
+//! edge, which grows with E·Δ/R_c (a wedge-split crack's lead is of order
+//! (E·δ²/R_c)^¼). Dimensional analysis of the section (linear elasticity,
+//! the Griffith balance G = R_c of seed 000 eq. 1, Coulomb friction, a fixed
+//! blade): scaling E and R_c by the same k scales every force by k, so the
+//! departure from linearity is a function of ρ = S/T alone. The surrogate
+//! carries it as a polynomial in ℓ = ln ρ:
+//!
+//!   U̇₀(ρ) = U̇₀ + ℓ·U̇₁ + ℓ²·U̇₂,  N₀(ρ) = N₀ + ℓ·N₁ + ℓ²·N₂,
+//!
+//! each correction with its own coefficients on the nominal term's basis
+//! (the strain-energy rate's and the face reaction's, `basis`), fitted to
+//! the residuals of full-model sweeps at E × 0.5 and E × 2 against the
+//! nominal surrogate (`fit::fit_ratio_correction`). At ρ = 1 (ℓ = 0, any
+//! T = S) the corrections vanish and the surrogate is the nominal one bit
+//! for bit.
+
+use serde::{Deserialize, Serialize};
+
+use super::basis::{FRICTION_TERMS, STRAIN_TERMS};
+
+/// The corrections of the wedge's terms for the stiffness-to-toughness
+/// ratio ρ = S/T, as coefficients on the nominal terms' bases (file format
+/// 4, table `[ratio]`; absent in a format-3 file, which reads as zero
+/// correction).
+#[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RatioCorrection {
+    /// U̇₁/(E·Δ²): the strain-energy rate's coefficient of ℓ = ln ρ, on the
+    /// basis of `post_fracture.strain_energy_rate` (1/m).
+    pub strain_energy_rate_linear: [f64; STRAIN_TERMS],
+    /// U̇₂/(E·Δ²): its coefficient of ℓ², same basis (1/m).
+    pub strain_energy_rate_quadratic: [f64; STRAIN_TERMS],
+    /// N₁/(E·Δ): the faces' normal reaction's coefficient of ℓ, on the
+    /// basis of `post_fracture.face_reaction` (dimensionless).
+    pub face_reaction_linear: [f64; FRICTION_TERMS],
+    /// N₂/(E·Δ): its coefficient of ℓ², same basis (dimensionless).
+    pub face_reaction_quadratic: [f64; FRICTION_TERMS],
+}
+
+impl RatioCorrection {
+    /// Whether every coefficient is zero (a format-3 file, or a fit without
+    /// off-nominal sweeps): the surrogate is then linear in T, S and F·S.
+    pub fn is_zero(&self) -> bool {
+        self.strain_energy_rate_linear
+            .iter()
+            .chain(&self.strain_energy_rate_quadratic)
+            .chain(&self.face_reaction_linear)
+            .chain(&self.face_reaction_quadratic)
+            .all(|&c| c == 0.0)
+    }
+}
+
+/// ℓ = ln(S/T), the log of the stiffness-to-toughness ratio of the scale
+/// factors: exactly 0 whenever `stiffness == toughness` (including the
+/// default factors), so the ratio terms then drop out bit for bit.
+#[inline]
+pub fn log_ratio(toughness: f64, stiffness: f64) -> f64 {
+    if stiffness == toughness {
+        0.0
+    } else {
+        (stiffness / toughness).ln()
+    }
+}
+
+/// A nominal term x₀ corrected for the ratio, x₀ + ℓ·x₁ + ℓ²·x₂, and its
+/// ℓ-derivative x₁ + 2ℓ·x₂. At ℓ = 0 the value is x₀ itself (not x₀ + 0,
+/// which would turn −0 into +0).
+#[inline]
+pub fn corrected(nominal: f64, linear: f64, quadratic: f64, l: f64) -> (f64, f64) {
+    if l == 0.0 {
+        (nominal, linear)
+    } else {
+        (
+            nominal + l * (linear + l * quadratic),
+            linear + 2.0 * l * quadratic,
+        )
+    }
+}
