@@ -4,7 +4,10 @@
 
 use std::path::PathBuf;
 
-use shearcut_sim::surrogate::{SURROGATE_FORMAT_VERSION, Surrogate, SurrogateFileError};
+use shearcut_sim::surrogate::{
+    OLDEST_READ_FORMAT_VERSION, RatioCorrection, SURROGATE_FORMAT_VERSION, Surrogate,
+    SurrogateFileError,
+};
 use shearcut_sim::{KnifePreset, MaterialPreset};
 
 fn shipped(material: &str, knife: &str) -> PathBuf {
@@ -181,4 +184,69 @@ fn negative_knee_lead_is_refused_and_named() {
     let t = text.replace(line, "knee_lead = -0.1");
     let e = Surrogate::from_toml_str(&t).unwrap_err();
     assert!(e.to_string().contains("post_fracture.knee_lead"), "{e}");
+}
+
+/// The potato file as format 3: version 3 and no `[ratio]` table.
+fn format_3_text() -> String {
+    let text = potato_text();
+    let start = text
+        .find("[ratio]")
+        .expect("a format-4 file has a [ratio] table");
+    let end = text[start + 1..]
+        .find("\n[")
+        .map_or(text.len(), |i| start + 2 + i);
+    format!("{}{}", &text[..start], &text[end..]).replace(
+        &format!("version = {SURROGATE_FORMAT_VERSION}"),
+        &format!("version = {OLDEST_READ_FORMAT_VERSION}"),
+    )
+}
+
+#[test]
+fn format_3_reads_as_zero_ratio_correction() {
+    let text = format_3_text();
+    assert!(!text.contains("[ratio]") && !text.contains("face_reaction_linear"));
+    let old = Surrogate::from_toml_str(&text).unwrap();
+    assert_eq!(old.version, 3);
+    assert_eq!(old.ratio, RatioCorrection::default());
+    assert!(old.ratio.is_zero());
+    let new = Surrogate::from_toml_str(&potato_text()).unwrap();
+    assert_eq!(old.pre_fracture, new.pre_fracture);
+    assert_eq!(old.post_fracture, new.post_fracture);
+}
+
+#[test]
+fn ratio_arrays_are_validated_and_named() {
+    let text = potato_text();
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("face_reaction_linear = "))
+        .unwrap();
+    // Too short.
+    let t = text.replace(line, "face_reaction_linear = [0.0, 1.0]");
+    let e = Surrogate::from_toml_str(&t).unwrap_err();
+    assert!(e.to_string().contains("face_reaction_linear"), "{e}");
+    // Not finite.
+    let bad = line.replacen('[', "[nan, ", 1);
+    let bad = {
+        // Keep the length: drop the last element.
+        let cut = bad.rfind(',').unwrap();
+        format!("{}]", &bad[..cut])
+    };
+    let t = text.replace(line, &bad);
+    let e = Surrogate::from_toml_str(&t).unwrap_err();
+    assert!(
+        e.to_string().contains("ratio.face_reaction_linear[0]"),
+        "{e}"
+    );
+    // A table missing one of its keys is refused and the key named.
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("strain_energy_rate_quadratic = "))
+        .unwrap();
+    let t = text.replace(line, "");
+    let e = Surrogate::from_toml_str(&t).unwrap_err();
+    assert!(
+        e.to_string().contains("strain_energy_rate_quadratic"),
+        "{e}"
+    );
 }

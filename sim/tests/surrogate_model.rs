@@ -138,13 +138,24 @@ fn outputs_are_consistent_and_linear_in_the_scale_factors() {
                 let o: SurrogateOutput = s.evaluate(xi, &state, &scale);
                 assert_linear(&o, xi, &scale);
                 let t = scale.toughness;
-                // The parts do not depend on the factors after fracture
-                // (linearity), and r is exact.
+                // The parts after fracture depend on the factors only
+                // through the ratio ρ = S/T (the toughness part not at
+                // all), and r is exact.
                 if state.fractured {
                     let n = s.evaluate(xi, &state, &ScaleFactors::default());
+                    let same_ratio = ScaleFactors {
+                        toughness: 1.0,
+                        stiffness: scale.stiffness / scale.toughness,
+                        friction: 1.0,
+                    };
+                    let m = s.evaluate(xi, &state, &same_ratio);
                     assert!(close(
                         o.force_normal_parts.by_friction_stiffness,
-                        n.force_normal_parts.by_friction_stiffness
+                        m.force_normal_parts.by_friction_stiffness
+                    ));
+                    assert!(close(
+                        o.force_normal_parts.by_stiffness,
+                        m.force_normal_parts.by_stiffness
                     ));
                     assert!(close(
                         o.work_per_depth_parts.by_toughness,
