@@ -36,12 +36,14 @@ fn estimator_ticks_allocate_nothing() {
     for k in 0..400 {
         let depth = k as f64 * 5e-5;
         let fractured = depth > 2e-4;
-        let (n, t) = model.force_parts(0.7, &state(depth, fractured)).unwrap();
-        let f = [n.iter().sum::<f64>(), t.iter().sum::<f64>()];
+        let seen = model
+            .force_model(0.7, &state(depth, fractured), e.factors())
+            .unwrap();
+        let f = [1.1 * seen[0].nominal, 0.9 * seen[1].nominal];
         if fractured {
-            e.observe_cut([Some(f[0]), Some(f[1])], (n, t));
+            e.observe_cut([Some(f[0]), Some(f[1])], seen);
         } else {
-            e.observe_indentation(0.03, f, (n, t));
+            e.observe_indentation(0.03, f, seen);
         }
     }
     TRACK.with(|t| t.set(false));

@@ -147,13 +147,12 @@ impl ModelCheck {
             fractured: true,
             travel_since_fracture: since,
         };
-        let (n, t) = model.force_parts(xi, &state).unwrap();
-        let at = |p: [f64; 3]| p[0] * truth[0] + p[1] * truth[1] + p[2] * truth[1] * truth[2];
+        let [n, t] = model.force_model(xi, &state, truth).unwrap();
         let v_t = m.velocity.z.abs();
         self.measured[0] += m.wrench[1] * v_n;
-        self.modelled[0] += l * at(n) * v_n;
+        self.modelled[0] += l * n.value * v_n;
         self.measured[1] += -m.wrench[2] * m.velocity.z.signum() * v_t;
-        self.modelled[1] += l * at(t) * v_t;
+        self.modelled[1] += l * t.value * v_t;
     }
 
     fn ratios(&self) -> [f64; 2] {

@@ -64,8 +64,9 @@ pub const FIRST_PLAN_ITERATIONS: usize = 50;
 /// previous plan (the knife keeps its velocity target) and is counted.
 ///
 /// With `estimate` on, every tick in contact feeds the measured forces per
-/// unit length to a [`ScaleEstimator`] with the model's parts at the
-/// executed ξ, and each plan uses the latest scale factors.
+/// unit length to a [`ScaleEstimator`] with the model of them at the
+/// executed ξ, linearised at the estimator's factors, and each plan uses
+/// the latest scale factors.
 ///
 /// Sawing: with `max_reversals` > 0, each plan is solved twice when the
 /// blade budget binds — within what is left of the current stroke, and with
@@ -209,12 +210,12 @@ impl<M: SliceModel> Mpc<M> {
     pub fn scale(&self) -> [f64; 3] {
         self.estimator
             .as_ref()
-            .map_or([1.0; 3], |e| [e.toughness(), e.stiffness(), e.friction()])
+            .map_or([1.0; 3], ScaleEstimator::factors)
     }
 
     /// Feeds the measured forces per unit length of edge in contact to the
-    /// estimator, with the model's parts at the executed ξ and the current
-    /// state: as changes from tick to tick during the indentation (which
+    /// estimator, with the model of them at the executed ξ, the current
+    /// state and the estimator's factors: as changes from tick to tick during the indentation (which
     /// identifies the stiffness), as they are after the first fracture.
     fn estimate(&mut self, m: &Measurement) {
         let Some(estimator) = self.estimator.as_mut() else {
@@ -249,7 +250,7 @@ impl<M: SliceModel> Mpc<M> {
             fractured,
             travel_since_fracture: since,
         };
-        let Some(parts) = self.model.force_parts(xi, &state) else {
+        let Some(model) = self.model.force_model(xi, &state, estimator.factors()) else {
             return;
         };
         // Measured resistance: up, and against the tangential motion.
@@ -259,9 +260,9 @@ impl<M: SliceModel> Mpc<M> {
                 Some(force[0] / l),
                 (m.velocity.z != 0.0).then(|| force[1] / l),
             ];
-            estimator.observe_cut(per_length, parts);
+            estimator.observe_cut(per_length, model);
         } else {
-            estimator.observe_indentation(l, force.map(|f| f / l), parts);
+            estimator.observe_indentation(l, force.map(|f| f / l), model);
         }
     }
 

@@ -21,5 +21,5 @@ pub use depth_profile::DepthProfile;
 pub use depth_qp::{DepthQp, QpLimits, QpStatus, StageData};
 pub use scale_estimator::ScaleEstimator;
 pub use settings::MpcSettings;
-pub use slice_model::{SliceModel, StageCost, StageState};
+pub use slice_model::{ForceModel, SliceModel, StageCost, StageState};
 pub use surrogate_model::SurrogateModel;

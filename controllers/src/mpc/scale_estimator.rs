@@ -1,17 +1,27 @@
 //! Online estimation of the material's scale factors from the measured
-//! forces (recursive least squares with forgetting).
+//! forces (recursive least squares with forgetting, re-linearised at the
+//! current estimate: an extended Kalman filter on constant parameters).
 
 use nalgebra::{Matrix3, Vector3};
 
+use super::slice_model::ForceModel;
+
 /// Estimates θ = (toughness, stiffness, friction × stiffness) in
 ///
-///   F = θ₁·a + θ₂·b + θ₃·c
+///   F = θ₁·a + θ₂·b(ℓ) + θ₃·c(ℓ),  ℓ = ln(θ₂/θ₁),
 ///
 /// where (a, b, c) are the model's parts of a force per unit length at the
 /// current state (the surrogate's `ScaledParts`: what multiplies R_c, E and
-/// μ·E) and F the measured force per unit length. Each tick brings two such
-/// rows (normal and tangential force): during the indentation before the
-/// first fracture as changes from the previous tick
+/// μ·E) and F the measured force per unit length. The wedge's parts b and c
+/// depend on E/R_c (the crack runs further ahead of a stiffer, less tough
+/// material's wedge; `docs/surrogates.md`), so F is not linear in θ: each
+/// row is linearised at the current estimate ([`ForceModel`]: the value
+/// there and its gradient), the innovation is the measured force minus that
+/// value, and the update is recursive least squares on the gradient (an
+/// extended Kalman filter on constant parameters; with b and c independent
+/// of ℓ, plain recursive least squares). Each tick brings two such rows
+/// (normal and tangential force): during the indentation before the first
+/// fracture as changes from the previous tick
 /// ([`Self::observe_indentation`]; only the stiffness part is non-zero, so
 /// only θ₂ moves), after it as they are, weighed by the model's relative
 /// error ([`Self::observe_cut`]). Recursive least squares, with an optional
@@ -28,8 +38,8 @@ pub struct ScaleEstimator {
     updates: u64,
     relative_error: f64,
     /// The last indentation tick: contact length, measured normal and
-    /// tangential forces per unit length, and the model's parts of them.
-    last_indentation: Option<(f64, [f64; 2], [[f64; 3]; 2])>,
+    /// tangential forces per unit length, and the model of them.
+    last_indentation: Option<(f64, [f64; 2], [ForceModel; 2])>,
 }
 
 impl ScaleEstimator {
@@ -59,10 +69,16 @@ impl ScaleEstimator {
         }
     }
 
+    /// The factors (toughness, stiffness, friction) believed now: those to
+    /// linearise the model at for the next rows.
+    pub fn factors(&self) -> [f64; 3] {
+        [self.toughness(), self.stiffness(), self.friction()]
+    }
+
     /// One tick of the cut after the first fracture: the measured normal
     /// and tangential forces per unit length `force` (N/m; the tangential
     /// one `None` when the knife does not move along its edge) and the
-    /// model's parts of them.
+    /// model of them at [`Self::factors`].
     ///
     /// Each row's standard deviation is the model's relative error times
     /// the force the model predicts for the nominal material (not at the
@@ -76,23 +92,23 @@ impl ScaleEstimator {
     /// keeps the tangential row from dominating. The crack-jump sawtooth is
     /// zero-mean noise on these rows: least squares without forgetting
     /// averages it over the cut.
-    pub fn observe_cut(&mut self, force: [Option<f64>; 2], parts: ([f64; 3], [f64; 3])) {
-        let normal = parts.0.iter().sum::<f64>().abs();
-        for (measured, row) in force.into_iter().zip([parts.0, parts.1]) {
+    pub fn observe_cut(&mut self, force: [Option<f64>; 2], model: [ForceModel; 2]) {
+        let normal = model[0].nominal.abs();
+        for (measured, row) in force.into_iter().zip(model) {
             let Some(measured) = measured else {
                 continue;
             };
-            let predicted = row.iter().sum::<f64>().abs();
-            let noise = self.relative_error * predicted + Self::LATERAL_FORCE * normal;
+            let noise = self.relative_error * row.nominal.abs() + Self::LATERAL_FORCE * normal;
             if noise > 0.0 {
-                self.update(row, measured, noise);
+                self.update_linearised(row.gradient, row.value, measured, noise);
             }
         }
     }
 
     /// One tick of the indentation before the first fracture: the measured
     /// normal and tangential forces per unit length `force` (N/m) with
-    /// `contact` metres of edge in contact, and the model's parts of them.
+    /// `contact` metres of edge in contact, and the model of them at
+    /// [`Self::factors`].
     ///
     /// The rows are the changes from the previous tick, not the forces
     /// themselves: the edge touches within a tick, so the knife's travel
@@ -101,40 +117,56 @@ impl ScaleEstimator {
     /// amount (and so does a sensor bias); differences cancel both. Ticks
     /// where the contact length changed (another part of the edge touched,
     /// with no indentation yet) are skipped: the force per unit length of
-    /// the model is not the plant's across them.
-    pub fn observe_indentation(
-        &mut self,
-        contact: f64,
-        force: [f64; 2],
-        parts: ([f64; 3], [f64; 3]),
-    ) {
-        let now = (contact, force, [parts.0, parts.1]);
+    /// the model is not the plant's across them. Before the fracture the
+    /// forces are linear in the stiffness alone (the gradient is the parts),
+    /// so the change of the gradients is the row, predicted at the current
+    /// θ (the two ticks' values were predicted at different estimates).
+    pub fn observe_indentation(&mut self, contact: f64, force: [f64; 2], model: [ForceModel; 2]) {
+        let now = (contact, force, model);
         if let Some((l, f, p)) = self.last_indentation.replace(now)
             && (l - contact).abs() <= 1e-9 * contact
         {
             for i in 0..2 {
-                let row = [0, 1, 2].map(|k| now.2[i][k] - p[i][k]);
-                let predicted = row.iter().sum::<f64>().abs();
-                if predicted > 0.0 {
-                    self.update(row, force[i] - f[i], self.relative_error * predicted);
+                let (m, q) = (model[i], p[i]);
+                let change = (m.nominal - q.nominal).abs();
+                if change > 0.0 {
+                    self.update(
+                        [0, 1, 2].map(|k| m.gradient[k] - q.gradient[k]),
+                        force[i] - f[i],
+                        self.relative_error * change,
+                    );
                 }
             }
         }
     }
 
-    /// One measurement row: `parts` = (a, b, c) of the model, `measured` F.
-    /// `noise` is the row's standard deviation (the same units as F): rows
-    /// are weighted by 1/noise², so normal and tangential forces, or
-    /// sensors of different quality, combine correctly.
+    /// One measurement row of a model linear in θ: `parts` = (a, b, c),
+    /// `measured` F. `noise` is the row's standard deviation (the same
+    /// units as F): rows are weighted by 1/noise², so normal and tangential
+    /// forces, or sensors of different quality, combine correctly.
     pub fn update(&mut self, parts: [f64; 3], measured: f64, noise: f64) {
-        let phi = Vector3::from(parts) / noise;
-        let y = measured / noise;
-        if !(phi.iter().all(|x| x.is_finite()) && y.is_finite()) || phi.norm() < 1e-9 {
+        let predicted = Vector3::from(parts).dot(&self.theta);
+        self.update_linearised(parts, predicted, measured, noise);
+    }
+
+    /// One measurement row linearised at the current θ: the model's
+    /// `gradient` ∂F/∂θ and `predicted` F there, `measured` F, `noise` its
+    /// standard deviation. Rows that are not finite or carry no
+    /// information (gradient ≈ 0) are skipped.
+    pub fn update_linearised(
+        &mut self,
+        gradient: [f64; 3],
+        predicted: f64,
+        measured: f64,
+        noise: f64,
+    ) {
+        let phi = Vector3::from(gradient) / noise;
+        let innovation = (measured - predicted) / noise;
+        if !(phi.iter().all(|x| x.is_finite()) && innovation.is_finite()) || phi.norm() < 1e-9 {
             return;
         }
         let p_phi = self.covariance * phi;
         let gain = p_phi / (self.forgetting + phi.dot(&p_phi));
-        let innovation = y - phi.dot(&self.theta);
         self.theta += gain * innovation;
         self.covariance = (self.covariance - gain * p_phi.transpose()) / self.forgetting;
         // Keep P symmetric against rounding.

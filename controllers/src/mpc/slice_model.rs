@@ -52,6 +52,23 @@ pub struct StageCost {
     pub onset_work_curvature: f64,
 }
 
+/// A force per unit length of edge the model predicts at given scale
+/// factors, linearised in them (for the [`super::ScaleEstimator`]).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ForceModel {
+    /// At the nominal material (all factors 1), N/m: the scale the
+    /// estimator weighs the row's error by.
+    pub nominal: f64,
+    /// At the factors asked for, N/m.
+    pub value: f64,
+    /// Its derivatives with respect to (T, S, F·S) there: toughness,
+    /// stiffness and friction × stiffness, N/m per unit factor. Equal to
+    /// the parts each factor multiplies where the force is linear in them;
+    /// where the wedge's terms depend on E/R_c (S/T), the derivatives carry
+    /// that dependence.
+    pub gradient: [f64; 3],
+}
+
 /// A cutting model the MPC can plan with: cost and force per unit length
 /// of edge as functions of the slice-push ratio ξ at a stage. Evaluation
 /// must not allocate (it runs inside the controller's tick).
@@ -69,11 +86,16 @@ pub trait SliceModel {
         0.0
     }
 
-    /// The parts of the normal and tangential forces per unit length at
-    /// `xi` in `state` that multiply the toughness, stiffness and
-    /// friction × stiffness factors (for the [`super::ScaleEstimator`]);
-    /// `None` if the model cannot tell (no online estimation).
-    fn force_parts(&self, _xi: f64, _state: &StageState) -> Option<([f64; 3], [f64; 3])> {
+    /// The normal and tangential forces per unit length at `xi` in `state`
+    /// for the scale factors `scale` (toughness, stiffness, friction),
+    /// linearised in them (for the [`super::ScaleEstimator`]); `None` if the
+    /// model cannot tell (no online estimation).
+    fn force_model(
+        &self,
+        _xi: f64,
+        _state: &StageState,
+        _scale: [f64; 3],
+    ) -> Option<[ForceModel; 2]> {
         None
     }
 

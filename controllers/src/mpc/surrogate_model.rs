@@ -1,8 +1,8 @@
 //! The fitted surrogate as the MPC's [`SliceModel`].
 
-use shearcut_sim::surrogate::{CutState, ScaleFactors, Surrogate};
+use shearcut_sim::surrogate::{CutState, ScaleFactors, ScaledParts, Surrogate};
 
-use super::slice_model::{SliceModel, StageCost, StageState};
+use super::slice_model::{ForceModel, SliceModel, StageCost, StageState};
 
 /// Step of the differences in ξ of the onset quantities (the surrogate
 /// gives the rates' derivatives analytically, not those of the work and
@@ -182,14 +182,36 @@ impl SliceModel for SurrogateModel {
             .min((state.height - d_star).max(0.0))
     }
 
-    fn force_parts(&self, xi: f64, state: &StageState) -> Option<([f64; 3], [f64; 3])> {
-        let o = self
-            .surrogate
-            .evaluate(xi, &Self::cut_state(state), &ScaleFactors::default());
-        let p = |s: &shearcut_sim::surrogate::ScaledParts| {
-            [s.by_toughness, s.by_stiffness, s.by_friction_stiffness]
+    fn force_model(&self, xi: f64, state: &StageState, scale: [f64; 3]) -> Option<[ForceModel; 2]> {
+        let cut = Self::cut_state(state);
+        let [t, s, f] = scale;
+        let nominal = self.surrogate.evaluate(xi, &cut, &ScaleFactors::default());
+        let at = self.surrogate.evaluate(
+            xi,
+            &cut,
+            &ScaleFactors {
+                toughness: t,
+                stiffness: s,
+                friction: f,
+            },
+        );
+        // θ = (T, S, P = F·S): ∂/∂S holds P, so the friction part enters
+        // only through the wedge's dependence on ℓ = ln(S/T).
+        let linearised = |n: &ScaledParts, p: &ScaledParts| ForceModel {
+            nominal: n.combine(1.0, 1.0, 1.0),
+            value: p.combine(t, s, f),
+            gradient: [
+                p.toughness_derivative(t, s, f),
+                p.by_stiffness
+                    + p.by_stiffness_log_ratio_slope
+                    + f * p.by_friction_stiffness_log_ratio_slope,
+                p.by_friction_stiffness,
+            ],
         };
-        Some((p(&o.force_normal_parts), p(&o.force_tangential_parts)))
+        Some([
+            linearised(&nominal.force_normal_parts, &at.force_normal_parts),
+            linearised(&nominal.force_tangential_parts, &at.force_tangential_parts),
+        ])
     }
 
     fn set_scale(&mut self, toughness: f64, stiffness: f64, friction: f64) {
