@@ -4,13 +4,15 @@
 //!   (work per unit depth with its ξ-derivatives, force, deflection);
 //! - [`DepthProfile`]: edge in contact and section size along the cut;
 //! - [`DepthQp`]: the convex subproblem over depth stages, persistent;
-//! - [`ScaleEstimator`]: online R_c, E, μ scale factors from the forces;
+//! - [`ScaleEstimator`]: online R_c, E, μ scale factors from the forces,
+//!   with [`IndentationStiffness`] for E before the first fracture;
 //! - [`SurrogateModel`]: the fitted surrogate as a [`SliceModel`];
 //! - [`Mpc`]: the controller.
 
 mod controller;
 mod depth_profile;
 mod depth_qp;
+mod indentation_stiffness;
 mod scale_estimator;
 mod settings;
 mod slice_model;
@@ -19,6 +21,7 @@ mod surrogate_model;
 pub use controller::{Mpc, MpcStats};
 pub use depth_profile::DepthProfile;
 pub use depth_qp::{DepthQp, QpLimits, QpStatus, StageData};
+pub use indentation_stiffness::IndentationStiffness;
 pub use scale_estimator::ScaleEstimator;
 pub use settings::MpcSettings;
 pub use slice_model::{ForceModel, SliceModel, StageCost, StageState};

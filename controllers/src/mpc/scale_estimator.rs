@@ -4,6 +4,7 @@
 
 use nalgebra::{Matrix3, Vector3};
 
+use super::indentation_stiffness::IndentationStiffness;
 use super::slice_model::ForceModel;
 
 /// Estimates θ = (toughness, stiffness, friction × stiffness) in
@@ -37,9 +38,8 @@ pub struct ScaleEstimator {
     forgetting: f64,
     updates: u64,
     relative_error: f64,
-    /// The last indentation tick: contact length, measured normal and
-    /// tangential forces per unit length, and the model of them.
-    last_indentation: Option<(f64, [f64; 2], [ForceModel; 2])>,
+    /// The stiffness from the indentation before the first fracture.
+    indentation: IndentationStiffness,
 }
 
 impl ScaleEstimator {
@@ -65,7 +65,7 @@ impl ScaleEstimator {
             forgetting,
             updates: 0,
             relative_error,
-            last_indentation: None,
+            indentation: IndentationStiffness::default(),
         }
     }
 
@@ -107,36 +107,22 @@ impl ScaleEstimator {
 
     /// One tick of the indentation before the first fracture: the measured
     /// normal and tangential forces per unit length `force` (N/m) with
-    /// `contact` metres of edge in contact, and the model of them at
-    /// [`Self::factors`].
+    /// `contact` metres of edge in contact, and the model of them.
     ///
-    /// The rows are the changes from the previous tick, not the forces
-    /// themselves: the edge touches within a tick, so the knife's travel
-    /// since the first tick in contact lags the indentation by a fraction
-    /// of a tick's travel, which offsets the force by a near-constant
-    /// amount (and so does a sensor bias); differences cancel both. Ticks
-    /// where the contact length changed (another part of the edge touched,
-    /// with no indentation yet) are skipped: the force per unit length of
-    /// the model is not the plant's across them. Before the fracture the
-    /// forces are linear in the stiffness alone (the gradient is the parts),
-    /// so the change of the gradients is the row, predicted at the current
-    /// θ (the two ticks' values were predicted at different estimates).
+    /// Before the fracture the forces are linear in the stiffness alone, so
+    /// the stiffness factor is set to the least-squares slope of the
+    /// measured forces on the model's nominal ones, with an offset per
+    /// force and per run of constant contact ([`IndentationStiffness`]: the
+    /// edge touches within a tick, so the knife's travel lags the
+    /// indentation by a near-constant amount, as a sensor bias offsets the
+    /// force).
     pub fn observe_indentation(&mut self, contact: f64, force: [f64; 2], model: [ForceModel; 2]) {
-        let now = (contact, force, model);
-        if let Some((l, f, p)) = self.last_indentation.replace(now)
-            && (l - contact).abs() <= 1e-9 * contact
-        {
-            for i in 0..2 {
-                let (m, q) = (model[i], p[i]);
-                let change = (m.nominal - q.nominal).abs();
-                if change > 0.0 {
-                    self.update(
-                        [0, 1, 2].map(|k| m.gradient[k] - q.gradient[k]),
-                        force[i] - f[i],
-                        self.relative_error * change,
-                    );
-                }
-            }
+        self.indentation
+            .observe(contact, force, model.map(|m| m.nominal));
+        if let Some(s) = self.indentation.stiffness() {
+            let (lo, hi) = Self::BOUNDS;
+            self.theta[1] = s.clamp(lo, hi);
+            self.updates += 1;
         }
     }
 
