@@ -80,6 +80,10 @@ fn at_unit_ratio_the_corrections_drop_out_bit_for_bit() {
         bent.ratio.face_reaction_quadratic = [-1.1; 28];
         bent.ratio.strain_energy_rate_linear = [2.5; 17];
         bent.ratio.strain_energy_rate_quadratic = [-0.8; 17];
+        bent.ratio.face_reaction_slice_linear = [0.3, -0.2, 0.6];
+        bent.ratio.face_reaction_slice_quadratic = [-0.1, 0.05, 0.2];
+        bent.ratio.drag_linear = [0.4, -0.3, 0.2, 0.1];
+        bent.ratio.drag_quadratic = [-0.2, 0.1, 0.3, -0.1];
         for (xi, state, scale) in golden_grid() {
             let a = output_hash(FNV_START, &linear.evaluate(xi, &state, &scale));
             assert_eq!(a, output_hash(FNV_START, &s.evaluate(xi, &state, &scale)));
@@ -101,6 +105,10 @@ fn with_corrections(name: &str) -> Surrogate {
         s.ratio.face_reaction_quadratic = p.face_reaction.map(|c| -0.05 * c);
         s.ratio.strain_energy_rate_linear = p.strain_energy_rate.map(|c| -0.15 * c);
         s.ratio.strain_energy_rate_quadratic = p.strain_energy_rate.map(|c| 0.04 * c);
+        s.ratio.face_reaction_slice_linear = [-0.2, 0.03, -0.4];
+        s.ratio.face_reaction_slice_quadratic = [0.05, -0.01, 0.1];
+        s.ratio.drag_linear = p.drag.map(|c| -0.3 * c);
+        s.ratio.drag_quadratic = p.drag.map(|c| 0.1 * c);
     }
     s
 }
@@ -185,8 +193,12 @@ fn parts_and_their_ratio_slopes_match_finite_differences() {
                             (u.by_friction_stiffness - d.by_friction_stiffness) / (2.0 * h),
                             size,
                         );
-                        // The toughness part does not depend on the ratio.
-                        assert_eq!(u.by_toughness, d.by_toughness);
+                        assert_fd(
+                            &format!("{name} by_toughness slope, xi {xi}"),
+                            p.by_toughness_log_ratio_slope,
+                            (u.by_toughness - d.by_toughness) / (2.0 * h),
+                            p.by_toughness.abs(),
+                        );
                     }
                     let at = |t, k, f| values(&s.evaluate(xi, &state, &scale(t, k, f)));
                     let dt = [at(t + h, k, f), at(t - h, k, f)];
@@ -201,7 +213,7 @@ fn parts_and_their_ratio_slopes_match_finite_differences() {
                         let fd = |d: &[[f64; 3]; 2]| (d[0][i] - d[1][i]) / (2.0 * h);
                         let what = format!("{name} output {i} at xi {xi}, T {t}, S {k}");
                         assert_fd(&what, p.toughness_derivative(t, k, f), fd(&dt), v.abs());
-                        assert_fd(&what, p.stiffness_derivative(f), fd(&dk), v.abs());
+                        assert_fd(&what, p.stiffness_derivative(t, k, f), fd(&dk), v.abs());
                         assert_fd(&what, p.friction_derivative(k), fd(&df), v.abs());
                     }
                 }

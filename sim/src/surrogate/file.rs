@@ -166,6 +166,16 @@ impl Surrogate {
             "ratio.face_reaction_quadratic",
             &ratio.face_reaction_quadratic,
         );
+        arr(
+            "ratio.face_reaction_slice_linear",
+            &ratio.face_reaction_slice_linear,
+        );
+        arr(
+            "ratio.face_reaction_slice_quadratic",
+            &ratio.face_reaction_slice_quadratic,
+        );
+        arr("ratio.drag_linear", &ratio.drag_linear);
+        arr("ratio.drag_quadratic", &ratio.drag_quadratic);
         v.push(("post_fracture.knee_lead".to_string(), post.knee_lead));
         v
     }

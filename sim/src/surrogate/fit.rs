@@ -12,7 +12,7 @@ use super::catch_up::{catch_up_values, knee_values};
 use super::model::{
     FitRange, FittedBlade, PostFracture, PreFracture, SURROGATE_FORMAT_VERSION, Surrogate,
 };
-use super::ratio::{RatioCorrection, log_ratio};
+use super::ratio::{RatioCorrection, SLICE_TERMS, log_ratio, slice_basis};
 use super::state::CutState;
 use super::sweep::SweepRun;
 use super::toughness::ToughnessRatio;
@@ -407,6 +407,11 @@ fn fit_post_fracture(
     })
 }
 
+/// [`slice_basis`] as numbers.
+fn slice_values(xi: f64) -> [f64; SLICE_TERMS] {
+    slice_basis(xi).map(|j| j.v)
+}
+
 /// Full-model sweeps of the fit's grid at a material whose stiffness (E)
 /// is scaled by `stiffness` and whose toughness (R_c, R'_c) by `toughness`.
 #[derive(Debug, Clone, Copy)]
@@ -424,7 +429,8 @@ pub struct ScaledSweep<'a> {
 /// ρ = S/T (`ratio` module), by least squares on the residuals against the
 /// nominal surrogate evaluated at their ρ, with the nominal fit's targets:
 /// - the faces' normal reaction N = (F_n^f + ξF_t^f)/(μ₀√(1+ξ²)) over
-///   S·E₀·Δ, minus the nominal N₀/(E₀Δ), on [ℓ·b_N, ℓ²·b_N];
+///   S·E₀·Δ, minus the nominal N₀/(E₀Δ), on [ℓ·b_N, ℓ·N₀φ, ℓ²·b_N, ℓ²·N₀φ]
+///   (φ the `ratio::slice_basis` in ξ);
 /// - the knife's non-friction work per depth beyond T·r(ξ,ν)·R_c₀·g over
 ///   S·E₀·Δ², minus the nominal U̇₀/(E₀Δ²), on [ℓ·b_U, ℓ²·b_U];
 ///
@@ -443,7 +449,8 @@ pub fn fit_ratio_correction(
     let mu0 = m.friction_coefficient;
     let delta = 0.5 * surrogate.blade.thickness;
     let p = &surrogate.post_fracture;
-    let mut face = Rows::<{ 2 * FRICTION_TERMS }>::new("ratio.face_reaction");
+    const FACE_TERMS: usize = FRICTION_TERMS + SLICE_TERMS;
+    let mut face = Rows::<{ 2 * FACE_TERMS }>::new("ratio.face_reaction");
     let mut strain = Rows::<{ 2 * STRAIN_TERMS }>::new("ratio.strain_energy_rate");
     for sweep in sweeps {
         let l = log_ratio(sweep.toughness, sweep.stiffness);
@@ -465,15 +472,18 @@ pub fn fit_ratio_correction(
                 if mu0 > 0.0 {
                     let n = (sample.force_normal_friction + xi * sample.force_tangential_friction)
                         / (mu0 * root);
-                    let mut row = [0.0; 2 * FRICTION_TERMS];
-                    for (k, b) in bases.face.iter().enumerate() {
+                    let n0 = dot(&p.face_reaction, &bases.face);
+                    let mut row = [0.0; 2 * FACE_TERMS];
+                    let terms = bases
+                        .face
+                        .iter()
+                        .copied()
+                        .chain(slice_values(xi).map(|phi| n0 * phi));
+                    for (k, b) in terms.enumerate() {
                         row[k] = l * b;
-                        row[FRICTION_TERMS + k] = l * l * b;
+                        row[FACE_TERMS + k] = l * l * b;
                     }
-                    face.push(
-                        row,
-                        n / (s * e0 * delta) - dot(&p.face_reaction, &bases.face),
-                    );
+                    face.push(row, n / (s * e0 * delta) - n0);
                 }
                 let f_n = sample.force_normal - sample.force_normal_friction;
                 let f_t = sample.force_tangential - sample.force_tangential_friction;
@@ -500,8 +510,78 @@ pub fn fit_ratio_correction(
         let n = face.solve()?;
         out.face_reaction_linear
             .copy_from_slice(&n[..FRICTION_TERMS]);
+        out.face_reaction_slice_linear
+            .copy_from_slice(&n[FRICTION_TERMS..FACE_TERMS]);
         out.face_reaction_quadratic
-            .copy_from_slice(&n[FRICTION_TERMS..]);
+            .copy_from_slice(&n[FACE_TERMS..FACE_TERMS + FRICTION_TERMS]);
+        out.face_reaction_slice_quadratic
+            .copy_from_slice(&n[FACE_TERMS + FRICTION_TERMS..]);
     }
+    out = fit_drag_correction(surrogate, sweeps, out)?;
     Ok(out)
+}
+
+/// The drag part of the ratio corrections, given the others in `ratio`:
+/// the edge's F_t^c = σ·F_n^e + T·Q(ξ)·(h(s) + ℓ·h₁(s) + ℓ²·h₂(s)) with
+/// F_n^e = F_n^c − S·U̇(ρ) (as the nominal fit's split and drag, with the
+/// nominal σ, Q and h), least squares for h₁, h₂ on the residuals of the
+/// off-nominal sweeps.
+fn fit_drag_correction(
+    surrogate: &Surrogate,
+    sweeps: &[ScaledSweep<'_>],
+    mut ratio: RatioCorrection,
+) -> Result<RatioCorrection, FitError> {
+    let m = &surrogate.material;
+    let e0 = m.youngs_modulus;
+    let g0 = m.shear_modulus();
+    let delta = 0.5 * surrogate.blade.thickness;
+    let h_b = surrogate.blade.section().bevel_height();
+    let b = surrogate.blade.edge_width;
+    let pre = &surrogate.pre_fracture;
+    let p = &surrogate.post_fracture;
+    let mut rows = Rows::<{ 2 * RAMPS }>::new("ratio.drag");
+    for sweep in sweeps {
+        let (t, s) = (sweep.toughness, sweep.stiffness);
+        let l = log_ratio(t, s);
+        for run in sweep.runs {
+            let c = run.case;
+            let xi = c.xi;
+            let (lh, lw) = size_features(c.height, c.half_width, b);
+            let r = ToughnessRatio::at(xi, m.poisson_ratio).value;
+            let y = dot(&pre.onset, &onset_basis(xi, lh, lw));
+            let c_t = dot(&pre.tangential_compliance, &size_basis(lh, lw));
+            let q = g0 * m.initial_fracture_toughness * xi * r / (c_t * e0 * y);
+            let sigma = dot(&p.split, &split_basis(xi, lh, lw));
+            for sample in run.samples.iter().filter(|x| x.fractured) {
+                let state = CutState {
+                    depth: sample.depth,
+                    height: c.height,
+                    half_width: c.half_width,
+                    fractured: true,
+                    travel_since_fracture: sample.travel_since_fracture,
+                };
+                let bases = surrogate.wedge_bases(xi, &state);
+                let u = e0
+                    * delta
+                    * delta
+                    * (dot(&p.strain_energy_rate, &bases.strain)
+                        + l * dot(&ratio.strain_energy_rate_linear, &bases.strain)
+                        + l * l * dot(&ratio.strain_energy_rate_quadratic, &bases.strain));
+                let f_n = sample.force_normal - sample.force_normal_friction - s * u;
+                let f_t = sample.force_tangential - sample.force_tangential_friction;
+                let (ramp, _) = ramps(sample.travel_since_fracture, h_b);
+                let decays = drag_basis(&ramp);
+                let mut row = [0.0; 2 * RAMPS];
+                for (k, d) in decays.iter().enumerate() {
+                    row[k] = t * q * l * d;
+                    row[RAMPS + k] = t * q * l * l * d;
+                }
+                rows.push(row, f_t - sigma * f_n - t * q * dot(&p.drag, &decays));
+            }
+        }
+    }
+    let h = rows.solve()?;
+    ratio.drag_linear.copy_from_slice(&h[..RAMPS]);
+    ratio.drag_quadratic.copy_from_slice(&h[RAMPS..]);
+    Ok(ratio)
 }

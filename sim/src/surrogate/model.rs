@@ -10,7 +10,7 @@ use super::basis::{
 use super::catch_up::{CATCH_UP_TERMS, KNEE_TERMS, catch_up_basis, dot_jet, knee_terms};
 use super::jet::Jet;
 use super::output::{QuadraticModel, ScaledParts, SurrogateOutput};
-use super::ratio::{RatioCorrection, corrected, log_ratio};
+use super::ratio::{RatioCorrection, corrected, log_ratio, slice_basis};
 use super::state::{CutState, ScaleFactors};
 use super::toughness::ToughnessRatio;
 use crate::blade::BladeSection;
@@ -254,8 +254,11 @@ impl Surrogate {
             Jet::new(dot(c, &face_basis), d, dd).scale(n_scale)
         };
         let n0 = face_jet(&p.face_reaction);
-        let n1 = face_jet(&rc.face_reaction_linear);
-        let n2 = face_jet(&rc.face_reaction_quadratic);
+        let slice = slice_basis(xi);
+        let n1 = face_jet(&rc.face_reaction_linear)
+            .add(n0.mul(dot_jet(&rc.face_reaction_slice_linear, &slice)));
+        let n2 = face_jet(&rc.face_reaction_quadratic)
+            .add(n0.mul(dot_jet(&rc.face_reaction_slice_quadratic, &slice)));
         let (nv, n_l) = corrected(n0.v, n1.v, n2.v, l);
         let (nd, _) = corrected(n0.d, n1.d, n2.d, l);
         let (ndd, _) = corrected(n0.dd, n1.dd, n2.dd, l);
@@ -282,7 +285,13 @@ impl Surrogate {
         let k = g0 * m.initial_fracture_toughness / (c_t * e0);
         let q = k * xi * r.value / y;
         let dq = k * ((r.value + xi * r.slope) / y - xi * r.value * dy / (y * y));
-        let h = dot(&p.drag, &drag_basis(&ramp));
+        let decays = drag_basis(&ramp);
+        let (h, h_l) = corrected(
+            dot(&p.drag, &decays),
+            dot(&rc.drag_linear, &decays),
+            dot(&rc.drag_quadratic, &decays),
+            l,
+        );
         let drag0 = q * h;
         let ddrag0 = dq * h;
         // Non-friction force: the edge at the crack tip takes the fracture
@@ -324,8 +333,11 @@ impl Surrogate {
         let (fracture0, fr0) = (fracture0.v, fr0.v);
         let fr_l = mu0 * n_l;
         let fn_t = (fracture0 - xi * drag0) / den;
+        let drag_l = q * h_l;
+        let fn_t_l = -xi * drag_l / den;
         out.force_normal_parts = ScaledParts {
             by_toughness: fn_t,
+            by_toughness_log_ratio_slope: fn_t_l,
             by_stiffness: u_rate0,
             by_friction_stiffness: fr0 / root,
             by_stiffness_log_ratio_slope: u_l,
@@ -333,6 +345,7 @@ impl Surrogate {
         };
         out.force_tangential_parts = ScaledParts {
             by_toughness: sigma * fn_t + drag0,
+            by_toughness_log_ratio_slope: sigma * fn_t_l + drag_l,
             by_stiffness: 0.0,
             by_friction_stiffness: fr0 * xi / root,
             by_stiffness_log_ratio_slope: 0.0,
@@ -340,6 +353,7 @@ impl Surrogate {
         };
         out.work_per_depth_parts = ScaledParts {
             by_toughness: fracture0,
+            by_toughness_log_ratio_slope: 0.0,
             by_stiffness: u_rate0,
             by_friction_stiffness: fr0 * root,
             by_stiffness_log_ratio_slope: u_l,

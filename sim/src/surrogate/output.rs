@@ -7,16 +7,17 @@
 /// their part is bilinear). [`combine`](Self::combine) with the same factors
 /// returns the output exactly.
 ///
-/// The parts multiplied by the stiffness depend on the ratio ρ = S/T through
+/// The parts depend on the ratio ρ = S/T through
 /// ℓ = ln ρ (the wedge's strain-energy rate and the faces' reaction, module
 /// `ratio`; zero dependence in a format-3 surrogate), so the output is linear
 /// in the factors only along a ray of constant ρ. The `*_log_ratio_slope`
 /// fields are ∂/∂ℓ of those parts, from which an estimator that
 /// re-linearises at its current factors forms ∂value/∂T and ∂value/∂S
 /// ([`toughness_derivative`](Self::toughness_derivative),
-/// [`stiffness_derivative`](Self::stiffness_derivative)). The toughness part
-/// does not depend on ρ (the fracture work T·r·R_c·g and the drag held at
-/// the onset are exactly ∝ T).
+/// [`stiffness_derivative`](Self::stiffness_derivative)). Of the toughness
+/// part only the drag the edge still holds after the onset depends on ρ (it
+/// is released over a travel that grows with the onset depth ∝ T/S); the
+/// fracture work T·r·R_c·g is exactly ∝ T.
 ///
 /// Before the first fracture the forces are `stiffness·by_stiffness` (the
 /// other parts and the slopes 0) but whether the section has fractured, and
@@ -30,6 +31,9 @@ pub struct ScaledParts {
     pub by_stiffness: f64,
     /// Part multiplied by the product friction × stiffness.
     pub by_friction_stiffness: f64,
+    /// ∂by_toughness/∂ℓ, ℓ = ln(stiffness/toughness), same unit as the
+    /// part (the drag the edge still holds from the onset; 0 for the work).
+    pub by_toughness_log_ratio_slope: f64,
     /// ∂by_stiffness/∂ℓ, ℓ = ln(stiffness/toughness), same unit as the part.
     pub by_stiffness_log_ratio_slope: f64,
     /// ∂by_friction_stiffness/∂ℓ, ℓ = ln(stiffness/toughness), same unit as
@@ -48,30 +52,30 @@ impl ScaledParts {
             + friction * stiffness * self.by_friction_stiffness
     }
 
-    /// ∂value/∂ℓ at the factors of the evaluation: S·∂by_stiffness/∂ℓ +
-    /// F·S·∂by_friction_stiffness/∂ℓ.
+    /// ∂value/∂ℓ at the factors (T, S, F) of the evaluation:
+    /// T·∂by_toughness/∂ℓ + S·∂by_stiffness/∂ℓ + F·S·∂by_friction_stiffness/∂ℓ.
     #[inline]
-    fn log_ratio_slope(&self, stiffness: f64, friction: f64) -> f64 {
-        stiffness
-            * (self.by_stiffness_log_ratio_slope
-                + friction * self.by_friction_stiffness_log_ratio_slope)
+    pub fn log_ratio_derivative(&self, toughness: f64, stiffness: f64, friction: f64) -> f64 {
+        toughness * self.by_toughness_log_ratio_slope
+            + stiffness
+                * (self.by_stiffness_log_ratio_slope
+                    + friction * self.by_friction_stiffness_log_ratio_slope)
     }
 
     /// ∂value/∂T at the factors (T, S, F) of the evaluation:
     /// by_toughness − (1/T)·∂value/∂ℓ (ℓ = ln S − ln T).
     #[inline]
     pub fn toughness_derivative(&self, toughness: f64, stiffness: f64, friction: f64) -> f64 {
-        self.by_toughness - self.log_ratio_slope(stiffness, friction) / toughness
+        self.by_toughness - self.log_ratio_derivative(toughness, stiffness, friction) / toughness
     }
 
-    /// ∂value/∂S at the factors (T, S, F) of the evaluation (independent of S):
+    /// ∂value/∂S at the factors (T, S, F) of the evaluation:
     /// by_stiffness + F·by_friction_stiffness + (1/S)·∂value/∂ℓ.
     #[inline]
-    pub fn stiffness_derivative(&self, friction: f64) -> f64 {
+    pub fn stiffness_derivative(&self, toughness: f64, stiffness: f64, friction: f64) -> f64 {
         self.by_stiffness
             + friction * self.by_friction_stiffness
-            + self.by_stiffness_log_ratio_slope
-            + friction * self.by_friction_stiffness_log_ratio_slope
+            + self.log_ratio_derivative(toughness, stiffness, friction) / stiffness
     }
 
     /// ∂value/∂F at the factors of the evaluation: S·by_friction_stiffness
