@@ -195,16 +195,14 @@ impl SliceModel for SurrogateModel {
                 friction: f,
             },
         );
-        // θ = (T, S, P = F·S): ∂/∂S holds P, so the friction part enters
-        // only through the wedge's dependence on ℓ = ln(S/T).
+        // θ = (T, S, P = F·S), ℓ = ln(S/T): ∂/∂T = a − (∂value/∂ℓ)/T,
+        // ∂/∂S (holding P) = b + (∂value/∂ℓ)/S, ∂/∂P = c.
         let linearised = |n: &ScaledParts, p: &ScaledParts| ForceModel {
             nominal: n.combine(1.0, 1.0, 1.0),
             value: p.combine(t, s, f),
             gradient: [
                 p.toughness_derivative(t, s, f),
-                p.by_stiffness
-                    + p.by_stiffness_log_ratio_slope
-                    + f * p.by_friction_stiffness_log_ratio_slope,
+                p.by_stiffness + p.log_ratio_derivative(t, s, f) / s,
                 p.by_friction_stiffness,
             ],
         };

@@ -4,9 +4,9 @@ use nalgebra::{DMatrix, DVector};
 
 use super::accuracy::compare_run;
 use super::basis::{
-    DEFLECTION_TERMS, FRICTION_TERMS, RAMPS, SPLIT_TERMS, STRAIN_TERMS, deflection_basis, dot,
-    drag_basis, friction_basis, onset_basis, ramps, size_basis, size_features, split_basis,
-    strain_basis_rate,
+    DEFLECTION_TERMS, FRICTION_TERMS, RAMPS, SPLIT_TERMS, STRAIN_TERMS, column_aspect,
+    compliance_basis, deflection_basis, dot, drag_basis, friction_basis, onset_basis, ramps,
+    size_basis, size_features, split_basis, strain_basis_rate,
 };
 use super::catch_up::{catch_up_values, knee_values};
 use super::model::{
@@ -143,14 +143,16 @@ pub fn fit_surrogate(
             range.half_width[1].max(c.half_width),
         ];
         let (lh, lw) = size_features(c.height, c.half_width, b);
+        let aspect = column_aspect(c.height, c.half_width, b);
         let sizes = size_basis(lh, lw);
+        let compliance = compliance_basis(lh, lw, aspect);
         let r = ToughnessRatio::at(xi, nu).value;
         let onset_depth = run
             .onset_depth
             .map(|d| (d - 0.5 * run.onset_resolution).max(0.5 * run.onset_resolution));
         if let Some(d) = onset_depth {
             onset.push(
-                onset_basis(xi, lh, lw),
+                onset_basis(xi, lh, lw, aspect),
                 r * material.initial_fracture_toughness / (e0 * d),
             );
         }
@@ -160,10 +162,10 @@ pub fn fit_surrogate(
                 continue;
             }
             if s.force_normal > 0.0 {
-                c_n.push(sizes, e0 * s.depth / s.force_normal);
+                c_n.push(compliance, e0 * s.depth / s.force_normal);
             }
             if xi > 0.0 && s.force_tangential > 0.0 {
-                c_t.push(sizes, g0 * xi * s.depth / s.force_tangential);
+                c_t.push(compliance, g0 * xi * s.depth / s.force_tangential);
             }
             defl_pre.push(sizes, s.deflection / s.depth);
         }
@@ -179,8 +181,10 @@ pub fn fit_surrogate(
     let nominal_onset = |run: &SweepRun| {
         let c = run.case;
         let (lh, lw) = size_features(c.height, c.half_width, b);
+        let (a, b2) =
+            pre_fracture.onset_stiffness_terms(lh, lw, column_aspect(c.height, c.half_width, b));
         let r = ToughnessRatio::at(c.xi, nu).value;
-        let y = dot(&pre_fracture.onset, &onset_basis(c.xi, lh, lw));
+        let y = a + c.xi * c.xi * b2;
         r * material.initial_fracture_toughness / (e0 * y)
     };
     let mut catch_up_rows = Rows::new("post_fracture.catch_up");
@@ -346,12 +350,13 @@ fn fit_post_fracture(
         let c = run.case;
         let xi = c.xi;
         let (lh, lw) = size_features(c.height, c.half_width, b);
-        let sizes = size_basis(lh, lw);
+        let aspect = column_aspect(c.height, c.half_width, b);
         let r = ToughnessRatio::at(xi, nu).value;
         // The drag at onset per unit toughness factor, from the fitted
         // pre-fracture model (as `Surrogate::evaluate` computes it).
-        let y = dot(&pre_fracture.onset, &onset_basis(xi, lh, lw));
-        let c_t = dot(&pre_fracture.tangential_compliance, &sizes);
+        let (a, b2) = pre_fracture.onset_stiffness_terms(lh, lw, aspect);
+        let y = a + xi * xi * b2;
+        let (_, c_t) = pre_fracture.compliances(lh, lw, aspect);
         let q = g0 * material.initial_fracture_toughness * xi * r / (c_t * e0 * y);
         for s in run.samples.iter().filter(|s| s.fractured) {
             let (ramp, ramp_slope) = ramps(s.travel_since_fracture, h_b);
@@ -548,8 +553,10 @@ fn fit_drag_correction(
             let xi = c.xi;
             let (lh, lw) = size_features(c.height, c.half_width, b);
             let r = ToughnessRatio::at(xi, m.poisson_ratio).value;
-            let y = dot(&pre.onset, &onset_basis(xi, lh, lw));
-            let c_t = dot(&pre.tangential_compliance, &size_basis(lh, lw));
+            let aspect = column_aspect(c.height, c.half_width, b);
+            let (a, b2) = pre.onset_stiffness_terms(lh, lw, aspect);
+            let y = a + xi * xi * b2;
+            let (_, c_t) = pre.compliances(lh, lw, aspect);
             let q = g0 * m.initial_fracture_toughness * xi * r / (c_t * e0 * y);
             let sigma = dot(&p.split, &split_basis(xi, lh, lw));
             for sample in run.samples.iter().filter(|x| x.fractured) {

@@ -3,9 +3,10 @@
 use serde::{Deserialize, Serialize};
 
 use super::basis::{
-    DEFLECTION_TERMS, FRICTION_TERMS, ONSET_TERMS, RAMPS, SIZE_TERMS, SPLIT_TERMS, STRAIN_TERMS,
-    deflection_basis, dot, drag_basis, friction_basis, knee_derivatives, onset_basis, ramps,
-    size_basis, size_features, split_basis, split_basis_slope, strain_basis_rate,
+    COMPLIANCE_TERMS, DEFLECTION_TERMS, FRICTION_TERMS, ONSET_TERMS, RAMPS, SIZE_TERMS,
+    SPLIT_TERMS, STRAIN_TERMS, column_aspect, compliance_basis, deflection_basis, dot, drag_basis,
+    friction_basis, knee_derivatives, ramps, size_basis, size_features, split_basis,
+    split_basis_slope, strain_basis_rate,
 };
 use super::catch_up::{CATCH_UP_TERMS, KNEE_TERMS, catch_up_basis, dot_jet, knee_terms};
 use super::jet::Jet;
@@ -75,14 +76,41 @@ pub struct FitRange {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct PreFracture {
-    /// C_n = E·d/F_n, the indentation compliance times E, on [1, λ_H, λ_w].
-    pub normal_compliance: [f64; SIZE_TERMS],
-    /// C_t = G·ξ·d/F_t, the antiplane drag compliance times G, on [1, λ_H, λ_w].
-    pub tangential_compliance: [f64; SIZE_TERMS],
+    /// C_n = E·d/F_n, the indentation compliance times E, on
+    /// [1, λ_H, λ_w, H/w].
+    pub normal_compliance: [f64; COMPLIANCE_TERMS],
+    /// C_t = G·ξ·d/F_t, the antiplane drag compliance times G, on
+    /// [1, λ_H, λ_w, H/w].
+    pub tangential_compliance: [f64; COMPLIANCE_TERMS],
     /// Surface deflection per depth, on [1, λ_H, λ_w].
     pub deflection: [f64; SIZE_TERMS],
-    /// r(ξ,ν)·R'_c/(E·d*) on [1, λ_H, λ_w, ξ², ξ²λ_H, ξ²λ_w].
+    /// r(ξ,ν)·R'_c/(E·d*) on [1, λ_H, λ_w, H/w, ξ², ξ²λ_H, ξ²λ_w, ξ²H/w].
     pub onset: [f64; ONSET_TERMS],
+}
+
+impl PreFracture {
+    /// (C_n, C_t) of a section with size features `lh`, `lw` and column
+    /// aspect `aspect` (`basis::column_aspect`).
+    #[inline]
+    pub fn compliances(&self, lh: f64, lw: f64, aspect: f64) -> (f64, f64) {
+        let c = compliance_basis(lh, lw, aspect);
+        (
+            dot(&self.normal_compliance, &c),
+            dot(&self.tangential_compliance, &c),
+        )
+    }
+
+    /// The onset stiffness y(ξ) = A + ξ²·B = r(ξ,ν)·R'_c/(E·d*) of a
+    /// section: (A, B).
+    #[inline]
+    pub fn onset_stiffness_terms(&self, lh: f64, lw: f64, aspect: f64) -> (f64, f64) {
+        let c = compliance_basis(lh, lw, aspect);
+        let o = &self.onset;
+        let (a, b) = (0..COMPLIANCE_TERMS).fold((0.0, 0.0), |(a, b), k| {
+            (a + o[k] * c[k], b + o[COMPLIANCE_TERMS + k] * c[k])
+        });
+        (a, b)
+    }
 }
 
 /// Fitted coefficients after the first fracture.
@@ -197,13 +225,15 @@ impl Surrogate {
         let nu = m.poisson_ratio;
         let b = self.blade.edge_width;
         let (lh, lw) = size_features(state.height, state.half_width, b);
+        let aspect = column_aspect(state.height, state.half_width, b);
         let r = ToughnessRatio::at(xi, nu);
         let (t, s, f) = (scale.toughness, scale.stiffness, scale.friction);
         let e0 = m.youngs_modulus;
         let g0 = e0 / (2.0 * (1.0 + nu));
         let sizes = size_basis(lh, lw);
         // Onset: r·R'_c/(E·d*) = A + ξ²B.
-        let onset_stiffness = dot(&self.pre_fracture.onset, &onset_basis(xi, lh, lw));
+        let (onset_a, onset_b) = self.pre_fracture.onset_stiffness_terms(lh, lw, aspect);
+        let onset_stiffness = onset_a + xi * xi * onset_b;
         let onset_depth = t * r.value * m.initial_fracture_toughness
             / (s * e0 * onset_stiffness.max(f64::MIN_POSITIVE));
         let mut out = SurrogateOutput {
@@ -214,8 +244,7 @@ impl Surrogate {
         };
         if !state.fractured {
             let d = state.depth.max(0.0);
-            let c_n = dot(&self.pre_fracture.normal_compliance, &sizes);
-            let c_t = dot(&self.pre_fracture.tangential_compliance, &sizes);
+            let (c_n, c_t) = self.pre_fracture.compliances(lh, lw, aspect);
             let k_n = e0 * d / c_n;
             let k_t = g0 * d / c_t;
             out.force_normal = s * k_n;
@@ -240,7 +269,7 @@ impl Surrogate {
             knee,
             face_basis,
             strain_basis,
-        } = self.post_features(xi, state, lh, lw, &r, onset_stiffness);
+        } = self.post_features(xi, state, lh, lw, &r, (onset_a, onset_b));
         // Nominal face reaction N₀ (a jet: only its catch-up terms depend
         // on ξ) and strain-energy rate U̇₀ per unit travel.
         // Both are corrected for the stiffness-to-toughness ratio ρ = S/T by
@@ -279,7 +308,7 @@ impl Surrogate {
         let mu0 = m.friction_coefficient;
         // Drag held at the onset, released over the first few h_b: per unit
         // toughness factor Q(ξ)·h(s), Q = G₀ξ·r·R'_c₀/(C_t·E₀·y(ξ)).
-        let c_t = dot(&self.pre_fracture.tangential_compliance, &sizes);
+        let (_, c_t) = self.pre_fracture.compliances(lh, lw, aspect);
         let y = y_jet.v;
         let dy = y_jet.d;
         let k = g0 * m.initial_fracture_toughness / (c_t * e0);
@@ -373,7 +402,7 @@ impl Surrogate {
         lh: f64,
         lw: f64,
         r: &ToughnessRatio,
-        onset_stiffness: f64,
+        (onset_a, onset_b): (f64, f64),
     ) -> PostFeatures {
         let m = &self.material;
         let p = &self.post_fracture;
@@ -389,10 +418,8 @@ impl Surrogate {
         // d*₀ = r·R'_c₀/(E₀·y), y = A + ξ²B; the knee gate g(s) and the
         // catch-up terms of the face reaction, as jets in ξ.
         let r_jet = Jet::new(r.value, r.slope, r.curvature);
-        let o = &self.pre_fracture.onset;
-        let onset_b = o[3] + o[4] * lh + o[5] * lw;
         let y_jet = Jet::new(
-            onset_stiffness.max(f64::MIN_POSITIVE),
+            (onset_a + xi * xi * onset_b).max(f64::MIN_POSITIVE),
             2.0 * xi * onset_b,
             2.0 * onset_b,
         );
@@ -424,8 +451,9 @@ impl Surrogate {
         let xi = xi.abs();
         let (lh, lw) = size_features(state.height, state.half_width, self.blade.edge_width);
         let r = ToughnessRatio::at(xi, self.material.poisson_ratio);
-        let onset_stiffness = dot(&self.pre_fracture.onset, &onset_basis(xi, lh, lw));
-        let f = self.post_features(xi, state, lh, lw, &r, onset_stiffness);
+        let aspect = column_aspect(state.height, state.half_width, self.blade.edge_width);
+        let onset = self.pre_fracture.onset_stiffness_terms(lh, lw, aspect);
+        let f = self.post_features(xi, state, lh, lw, &r, onset);
         WedgeBases {
             face: f.face_basis,
             strain: f.strain_basis,
