@@ -266,6 +266,24 @@ fn the_estimator_converges_on_plants_off_the_preset() {
                 r[1],
             );
             worst = e.iter().fold(worst, |w, x| w.max(x.abs()));
+            // The stiffness meets the 5 %; toughness and friction
+            // do not everywhere (docs/controllers.md: the model's own error
+            // at the true factors, up to 7–9 % where E/R_c rises): 10 %
+            // guards what is reached against regressions.
+            assert!(
+                e[1].abs() < 0.05,
+                "{} {label}: stiffness {:+.1} %",
+                setup.name,
+                100.0 * e[1]
+            );
+            for (k, factor) in [(0, "toughness"), (2, "friction")] {
+                assert!(
+                    e[k].abs() < 0.10,
+                    "{} {label}: {factor} {:+.1} %",
+                    setup.name,
+                    100.0 * e[k]
+                );
+            }
         }
     }
     println!("worst factor error {:.1} %", 100.0 * worst);

@@ -67,13 +67,12 @@ impl Surrogate {
         Self::from_toml_str(&text)
     }
 
-    /// Parses a surrogate from TOML: the `version` must be
-    /// [`SURROGATE_FORMAT_VERSION`] (4) or [`OLDEST_READ_FORMAT_VERSION`]
-    /// (3, whose missing `[ratio]` table reads as zero correction: the
-    /// format-3 surrogate exactly), every key present and known (the
-    /// `[ratio]` table whole or not at all), every coefficient finite and the
-    /// material and blade constants positive. The version read is kept, so a
-    /// format-3 file written back says 3 only if it was read as 3.
+    /// Parses a surrogate from TOML: the `version` must be within
+    /// [`OLDEST_READ_FORMAT_VERSION`]..=[`SURROGATE_FORMAT_VERSION`] (both 4
+    /// now), every key present and known (the `[ratio]` table whole or not
+    /// at all: a file without one reads as zero correction, the surrogate
+    /// then linear in the scale factors), every coefficient finite and the
+    /// material and blade constants positive.
     pub fn from_toml_str(text: &str) -> Result<Self, SurrogateFileError> {
         let table: toml::Table =
             toml::from_str(text).map_err(|e| SurrogateFileError::Format(one_line(&e)))?;

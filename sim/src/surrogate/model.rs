@@ -11,7 +11,7 @@ use super::basis::{
 use super::catch_up::{CATCH_UP_TERMS, KNEE_TERMS, catch_up_basis, dot_jet, knee_terms};
 use super::jet::Jet;
 use super::output::{QuadraticModel, ScaledParts, SurrogateOutput};
-use super::ratio::{RatioCorrection, corrected, log_ratio, slice_basis};
+use super::ratio::{RatioCorrection, corrected, fitted_log_ratio, slice_basis};
 use super::state::{CutState, ScaleFactors};
 use super::toughness::ToughnessRatio;
 use crate::blade::BladeSection;
@@ -21,10 +21,12 @@ use crate::material::Material;
 /// [`OLDEST_READ_FORMAT_VERSION`]).
 pub const SURROGATE_FORMAT_VERSION: u32 = 4;
 
-/// The oldest surrogate file format this build reads: format 3 lacks the
-/// ratio corrections (`[ratio]`), which then read as zero (the surrogate is
-/// linear in the scale factors, as format 3 was).
-pub const OLDEST_READ_FORMAT_VERSION: u32 = 3;
+/// The oldest surrogate file format this build reads. Format 3 lacked the
+/// ratio corrections (`[ratio]`) and its compliances and onset stiffness
+/// the column term H/w (three and six coefficients where format 4 has four
+/// and eight): its coefficients mean something else, so it is refused with
+/// a refit hint.
+pub const OLDEST_READ_FORMAT_VERSION: u32 = 4;
 
 /// The blade section a surrogate was fitted for (all fields required in a file).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -274,8 +276,9 @@ impl Surrogate {
         // on ξ) and strain-energy rate U̇₀ per unit travel.
         // Both are corrected for the stiffness-to-toughness ratio ρ = S/T by
         // ℓ = ln ρ (`ratio` module): x₀ + ℓ·x₁ + ℓ²·x₂ with x₁, x₂ on the
-        // same bases; exactly x₀ at ℓ = 0.
-        let l = log_ratio(t, s);
+        // same bases; exactly x₀ at ℓ = 0. Outside the fitted range of ℓ
+        // they continue along their tangents (`ratio::fitted_log_ratio`).
+        let l = fitted_log_ratio(t, s);
         let rc = &self.ratio;
         let n_scale = e0 * delta;
         let face_jet = |c: &[f64; FRICTION_TERMS]| {

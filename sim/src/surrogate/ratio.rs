@@ -113,17 +113,39 @@ pub fn log_ratio(toughness: f64, stiffness: f64) -> f64 {
     }
 }
 
-/// A nominal term x₀ corrected for the ratio, x₀ + ℓ·x₁ + ℓ²·x₂, and its
-/// ℓ-derivative x₁ + 2ℓ·x₂. At ℓ = 0 the value is x₀ itself (not x₀ + 0,
-/// which would turn −0 into +0).
+/// The range of ℓ = ln ρ the corrections are fitted over: the sweeps at
+/// E × 0.5 and × 2 (`campaign::RATIO_STIFFNESS_FACTORS`).
+pub const FITTED_LOG_RATIO: [f64; 2] = [-std::f64::consts::LN_2, std::f64::consts::LN_2];
+
+/// The corrections' ℓ at the factors (T, S), split into the part within
+/// the fitted range [`FITTED_LOG_RATIO`] and the excess beyond it (0
+/// inside). Beyond the range a correction is continued along its tangent at
+/// the range's end ([`corrected`]) rather than along its quadratic: the
+/// quadratic was fitted over ±ln 2 only, and an estimator's first guesses
+/// can pass far beyond (the toughness estimate once ran to its bound 0.2,
+/// ρ ≈ 7, and the friction to 17 on the half potato at R_c ×0.7, E ×1.3
+/// with the quadratic extrapolated); holding the correction constant
+/// instead left no gradient in ℓ there, and the estimate stuck at the
+/// range's end.
 #[inline]
-pub fn corrected(nominal: f64, linear: f64, quadratic: f64, l: f64) -> (f64, f64) {
+pub fn fitted_log_ratio(toughness: f64, stiffness: f64) -> (f64, f64) {
+    let l = log_ratio(toughness, stiffness);
+    let [lo, hi] = FITTED_LOG_RATIO;
+    let inside = l.clamp(lo, hi);
+    (inside, l - inside)
+}
+
+/// A nominal term x₀ corrected for the ratio, x₀ + ℓ·x₁ + ℓ²·x₂, and its
+/// ℓ-derivative x₁ + 2ℓ·x₂, at ℓ = `l` + `beyond` with `l` within the
+/// fitted range and `beyond` the excess ([`fitted_log_ratio`]): beyond the
+/// range the value continues along the tangent at its end. At ℓ = 0 the
+/// value is x₀ itself (not x₀ + 0, which would turn −0 into +0).
+#[inline]
+pub fn corrected(nominal: f64, linear: f64, quadratic: f64, (l, beyond): (f64, f64)) -> (f64, f64) {
     if l == 0.0 {
         (nominal, linear)
     } else {
-        (
-            nominal + l * (linear + l * quadratic),
-            linear + 2.0 * l * quadratic,
-        )
+        let slope = linear + 2.0 * l * quadratic;
+        (nominal + l * (linear + l * quadratic) + beyond * slope, slope)
     }
 }

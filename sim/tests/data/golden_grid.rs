@@ -1,8 +1,7 @@
 // The evaluation grid and output hash of `surrogate_ratio.rs`'s bit-for-bit
-// test (shared with the format-3 build that wrote
-// `format3_output_hashes.txt`).
+// test.
 
-/// The evaluation grid of the format-3 golden hashes: ξ × states × scales
+/// The evaluation grid of the bit-for-bit checks: ξ × states × scales
 /// with T = S (ρ = 1), for one surrogate.
 fn golden_grid() -> Vec<(f64, CutState, ScaleFactors)> {
     let mut out = Vec::new();
