@@ -84,6 +84,7 @@ fn at_unit_ratio_the_corrections_drop_out_bit_for_bit() {
         bent.ratio.face_reaction_slice_quadratic = [-0.1, 0.05, 0.2];
         bent.ratio.drag_linear = [0.4, -0.3, 0.2, 0.1];
         bent.ratio.drag_quadratic = [-0.2, 0.1, 0.3, -0.1];
+        bent.ratio.catch_up_exponent = 0.8;
         for (xi, state, scale) in golden_grid() {
             let a = output_hash(FNV_START, &linear.evaluate(xi, &state, &scale));
             assert_eq!(a, output_hash(FNV_START, &s.evaluate(xi, &state, &scale)));
@@ -109,6 +110,7 @@ fn with_corrections(name: &str) -> Surrogate {
         s.ratio.face_reaction_slice_quadratic = [0.05, -0.01, 0.1];
         s.ratio.drag_linear = p.drag.map(|c| -0.3 * c);
         s.ratio.drag_quadratic = p.drag.map(|c| 0.1 * c);
+        s.ratio.catch_up_exponent = 1.0;
     }
     s
 }

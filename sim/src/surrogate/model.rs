@@ -3,14 +3,16 @@
 use serde::{Deserialize, Serialize};
 
 use super::basis::{
-    DEFLECTION_TERMS, FRICTION_TERMS, ONSET_TERMS, RAMPS, SIZE_TERMS, SPLIT_TERMS, STRAIN_TERMS,
-    deflection_basis, dot, drag_basis, friction_basis, knee_derivatives, onset_basis, ramps,
-    size_basis, size_features, split_basis, split_basis_slope, strain_basis_rate,
+    DEFLECTION_TERMS, FRICTION_TERMS, KNEE_START, ONSET_TERMS, RAMPS, SIZE_TERMS, SPLIT_TERMS,
+    STRAIN_TERMS, deflection_basis, dot, drag_basis, friction_basis, knee_derivatives, onset_basis,
+    ramps, size_basis, size_features, split_basis, split_basis_slope, strain_basis_rate,
 };
-use super::catch_up::{CATCH_UP_TERMS, KNEE_TERMS, catch_up_basis, dot_jet, knee_terms};
+use super::catch_up::{
+    CATCH_UP_TERMS, KNEE_TERMS, catch_up_basis, dot_jet, knee_terms, knee_terms_with,
+};
 use super::jet::Jet;
 use super::output::{QuadraticModel, ScaledParts, SurrogateOutput};
-use super::ratio::{RatioCorrection, corrected, log_ratio, slice_basis};
+use super::ratio::{RatioCorrection, SLICE_TERMS, corrected, log_ratio, slice_basis};
 use super::state::{CutState, ScaleFactors};
 use super::toughness::ToughnessRatio;
 use crate::blade::BladeSection;
@@ -127,6 +129,8 @@ struct PostFeatures {
     y_jet: Jet,
     /// The catch-up terms (the knee gate g first), jets in ξ.
     knee: [Jet; KNEE_TERMS],
+    /// Their ℓ-derivatives at fixed ξ (through L ∝ ρ^(−k)).
+    knee_l: [f64; KNEE_TERMS],
     /// The face reaction's basis.
     face_basis: [f64; FRICTION_TERMS],
     /// The strain-energy rate's basis.
@@ -233,20 +237,21 @@ impl Surrogate {
         }
         let p = &self.post_fracture;
         let delta = self.half_thickness();
+        let l = log_ratio(t, s);
         let PostFeatures {
             ramp,
             r_jet,
             y_jet,
             knee,
+            knee_l,
             face_basis,
             strain_basis,
-        } = self.post_features(xi, state, lh, lw, &r, onset_stiffness);
+        } = self.post_features(xi, state, lh, lw, &r, onset_stiffness, l);
         // Nominal face reaction N₀ (a jet: only its catch-up terms depend
         // on ξ) and strain-energy rate U̇₀ per unit travel.
         // Both are corrected for the stiffness-to-toughness ratio ρ = S/T by
         // ℓ = ln ρ (`ratio` module): x₀ + ℓ·x₁ + ℓ²·x₂ with x₁, x₂ on the
         // same bases; exactly x₀ at ℓ = 0.
-        let l = log_ratio(t, s);
         let rc = &self.ratio;
         let n_scale = e0 * delta;
         let face_jet = |c: &[f64; FRICTION_TERMS]| {
@@ -262,6 +267,24 @@ impl Surrogate {
         let (nv, n_l) = corrected(n0.v, n1.v, n2.v, l);
         let (nd, _) = corrected(n0.d, n1.d, n2.d, l);
         let (ndd, _) = corrected(n0.dd, n1.dd, n2.dd, l);
+        // The catch-up terms' ℓ-dependence (through L) on every
+        // coefficient set: Σ_knee c_k(ℓ)·∂b_k/∂ℓ.
+        let knee_dot = |c: &[f64; FRICTION_TERMS]| {
+            c[KNEE_START..]
+                .iter()
+                .zip(&knee_l)
+                .map(|(c, b)| c * b)
+                .sum::<f64>()
+        };
+        let slice_v = |a: &[f64; SLICE_TERMS]| dot(a, &slice.map(|j| j.v));
+        let n_l = n_l
+            + n_scale
+                * (knee_dot(&p.face_reaction)
+                    * (1.0
+                        + l * slice_v(&rc.face_reaction_slice_linear)
+                        + l * l * slice_v(&rc.face_reaction_slice_quadratic))
+                    + l * knee_dot(&rc.face_reaction_linear)
+                    + l * l * knee_dot(&rc.face_reaction_quadratic));
         let (n0, n_l) = if nv > 0.0 {
             (Jet::new(nv, nd, ndd), n_l)
         } else {
@@ -334,7 +357,9 @@ impl Surrogate {
         let fr_l = mu0 * n_l;
         let fn_t = (fracture0 - xi * drag0) / den;
         let drag_l = q * h_l;
-        let fn_t_l = -xi * drag_l / den;
+        // The gate's ℓ-dependence through L: ∂(r·R_c₀·g)/∂ℓ.
+        let fracture_l = r.value * m.fracture_toughness * knee_l[0];
+        let fn_t_l = (fracture_l - xi * drag_l) / den;
         out.force_normal_parts = ScaledParts {
             by_toughness: fn_t,
             by_toughness_log_ratio_slope: fn_t_l,
@@ -353,7 +378,7 @@ impl Surrogate {
         };
         out.work_per_depth_parts = ScaledParts {
             by_toughness: fracture0,
-            by_toughness_log_ratio_slope: 0.0,
+            by_toughness_log_ratio_slope: fracture_l,
             by_stiffness: u_rate0,
             by_friction_stiffness: fr0 * root,
             by_stiffness_log_ratio_slope: u_l,
@@ -374,6 +399,7 @@ impl Surrogate {
         lw: f64,
         r: &ToughnessRatio,
         onset_stiffness: f64,
+        l: f64,
     ) -> PostFeatures {
         let m = &self.material;
         let p = &self.post_fracture;
@@ -400,6 +426,13 @@ impl Surrogate {
             .mul(y_jet.recip())
             .scale(m.initial_fracture_toughness / e0);
         let length = onset0.mul(dot_jet(&p.catch_up, &catch_up_basis(xi, lh, lw)));
+        // L ∝ ρ^(−k) (`ratio`): exactly the nominal L at ℓ = 0 or k = 0.
+        let k = self.ratio.catch_up_exponent;
+        let length = if l == 0.0 || k == 0.0 {
+            length
+        } else {
+            length.scale((-k * l).exp())
+        };
         let knee_width = [
             p.knee_width[0],
             p.knee_width[1] * self.bevel_height(),
@@ -407,25 +440,42 @@ impl Surrogate {
         ];
         let knee = knee_terms(travel, xi, length, knee_width, lh, lw);
         let knee_v = knee.map(|j| j.v);
+        // ∂/∂ℓ of the catch-up terms at fixed ξ: dL/dℓ = −k·L.
+        let knee_l = if k == 0.0 {
+            [0.0; KNEE_TERMS]
+        } else {
+            let big_l = length.v;
+            knee_terms_with(
+                travel,
+                Jet::constant(xi * xi),
+                Jet::new(big_l, -k * big_l, k * k * big_l),
+                knee_width,
+                lh,
+                lw,
+            )
+            .map(|j| j.d)
+        };
         PostFeatures {
             ramp,
             r_jet,
             y_jet,
             knee,
+            knee_l,
             face_basis: friction_basis(&ramp_depth, depth_ratio, &knee_v, lh, lw),
             strain_basis: strain_basis_rate(&ramp_slope, depth_ratio, height, lh, lw),
         }
     }
 
     /// The bases of the wedge's terms after fracture as `evaluate` takes
-    /// them at ξ and `state` (its own catch-up length and knee), with the
-    /// knee gate g: the rows of the ratio corrections' fit.
-    pub(super) fn wedge_bases(&self, xi: f64, state: &CutState) -> WedgeBases {
+    /// them at ξ, `state` and ℓ = ln(S/T) (its own catch-up length at that
+    /// ratio and knee), with the knee gate g: the rows of the ratio
+    /// corrections' fit.
+    pub(super) fn wedge_bases(&self, xi: f64, state: &CutState, l: f64) -> WedgeBases {
         let xi = xi.abs();
         let (lh, lw) = size_features(state.height, state.half_width, self.blade.edge_width);
         let r = ToughnessRatio::at(xi, self.material.poisson_ratio);
         let onset_stiffness = dot(&self.pre_fracture.onset, &onset_basis(xi, lh, lw));
-        let f = self.post_features(xi, state, lh, lw, &r, onset_stiffness);
+        let f = self.post_features(xi, state, lh, lw, &r, onset_stiffness, l);
         WedgeBases {
             face: f.face_basis,
             strain: f.strain_basis,
