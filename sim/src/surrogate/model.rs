@@ -8,7 +8,7 @@ use super::basis::{
     ramps, size_basis, size_features, split_basis, split_basis_slope, strain_basis_rate,
 };
 use super::catch_up::{
-    CATCH_UP_TERMS, KNEE_TERMS, catch_up_basis, dot_jet, knee_terms, knee_terms_with,
+    CATCH_UP_TERMS, KNEE_TERMS, MIN_CATCH_UP, catch_up_basis, dot_jet, knee_terms, knee_terms_with,
 };
 use super::jet::Jet;
 use super::output::{QuadraticModel, ScaledParts, SurrogateOutput};
@@ -246,7 +246,7 @@ impl Surrogate {
             knee_l,
             face_basis,
             strain_basis,
-        } = self.post_features(xi, state, lh, lw, &r, onset_stiffness, l);
+        } = self.post_features(xi, state, (lh, lw), &r, onset_stiffness, (l, t / s));
         // Nominal face reaction N₀ (a jet: only its catch-up terms depend
         // on ξ) and strain-energy rate U̇₀ per unit travel.
         // Both are corrected for the stiffness-to-toughness ratio ρ = S/T by
@@ -389,17 +389,16 @@ impl Surrogate {
 
     /// The features after fracture that `evaluate` builds on, at one ξ and
     /// state (`lh`, `lw` the size features, `r` eq. 6 at ξ, `onset_stiffness`
-    /// y(ξ) of the onset).
+    /// y(ξ) of the onset, `l` = ln ρ and `ratio_inverse` = 1/ρ = T/S).
     #[inline]
     fn post_features(
         &self,
         xi: f64,
         state: &CutState,
-        lh: f64,
-        lw: f64,
+        (lh, lw): (f64, f64),
         r: &ToughnessRatio,
         onset_stiffness: f64,
-        l: f64,
+        (l, ratio_inverse): (f64, f64),
     ) -> PostFeatures {
         let m = &self.material;
         let p = &self.post_fracture;
@@ -431,7 +430,12 @@ impl Surrogate {
         let length = if l == 0.0 || k == 0.0 {
             length
         } else {
-            length.scale((-k * l).exp())
+            // ρ^(−k); T/S itself for the shipped k = 1 (no exp).
+            length.scale(if k == 1.0 {
+                ratio_inverse
+            } else {
+                (-k * l).exp()
+            })
         };
         let knee_width = [
             p.knee_width[0],
@@ -441,7 +445,9 @@ impl Surrogate {
         let knee = knee_terms(travel, xi, length, knee_width, lh, lw);
         let knee_v = knee.map(|j| j.v);
         // ∂/∂ℓ of the catch-up terms at fixed ξ: dL/dℓ = −k·L.
-        let knee_l = if k == 0.0 {
+        // Zero without a catch-up (L below the floor: `knee_terms` holds
+        // it constant), e.g. potato.
+        let knee_l = if k == 0.0 || length.v < MIN_CATCH_UP {
             [0.0; KNEE_TERMS]
         } else {
             let big_l = length.v;
@@ -475,7 +481,7 @@ impl Surrogate {
         let (lh, lw) = size_features(state.height, state.half_width, self.blade.edge_width);
         let r = ToughnessRatio::at(xi, self.material.poisson_ratio);
         let onset_stiffness = dot(&self.pre_fracture.onset, &onset_basis(xi, lh, lw));
-        let f = self.post_features(xi, state, lh, lw, &r, onset_stiffness, l);
+        let f = self.post_features(xi, state, (lh, lw), &r, onset_stiffness, (l, (-l).exp()));
         WedgeBases {
             face: f.face_basis,
             strain: f.strain_basis,
