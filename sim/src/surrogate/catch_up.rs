@@ -149,6 +149,21 @@ pub fn knee_terms(
     lh: f64,
     lw: f64,
 ) -> [Jet; KNEE_TERMS] {
+    knee_terms_with(s, Jet::new(xi * xi, 2.0 * xi, 2.0), length, width, lh, lw)
+}
+
+/// [`knee_terms`] as jets in any one variable, given ξ² and the catch-up
+/// length as jets in it: in ξ (`knee_terms`), or in ℓ = ln(S/T) at fixed ξ
+/// (ξ² constant, L ∝ ρ^(−k): the ratio's effect on the knee, module `ratio`).
+#[inline]
+pub fn knee_terms_with(
+    s: f64,
+    x2: Jet,
+    length: Jet,
+    width: [f64; 3],
+    lh: f64,
+    lw: f64,
+) -> [Jet; KNEE_TERMS] {
     let s = s.max(0.0);
     let length = if length.v >= MIN_CATCH_UP {
         length
@@ -160,7 +175,6 @@ pub fn knee_terms(
     let [f, df, ddf] = progress(p.v);
     let v = p.compose(f, df, ddf);
     let v2 = v.mul(v);
-    let x2 = Jet::new(xi * xi, 2.0 * xi, 2.0);
     let v4 = v2.mul(v2);
     let open = Jet::constant(1.0).add(g.scale(-1.0));
     [

@@ -176,6 +176,10 @@ impl Surrogate {
         arr("ratio.drag_linear", &ratio.drag_linear);
         arr("ratio.drag_quadratic", &ratio.drag_quadratic);
         v.push(("post_fracture.knee_lead".to_string(), post.knee_lead));
+        v.push((
+            "ratio.catch_up_exponent".to_string(),
+            ratio.catch_up_exponent,
+        ));
         v
     }
 

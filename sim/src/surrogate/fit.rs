@@ -412,6 +412,11 @@ fn fit_post_fracture(
     })
 }
 
+/// The exponent k of the catch-up length's scaling with the ratio,
+/// L = L₀·ρ^(−k): the crack's jump at the onset is ≈ ½·(R'_c/R_c)·d* and
+/// d* ∝ T/S exactly (seed 000 eq. 1 at the onset, `catch_up` module).
+pub const CATCH_UP_EXPONENT: f64 = 1.0;
+
 /// [`slice_basis`] as numbers.
 fn slice_values(xi: f64) -> [f64; SLICE_TERMS] {
     slice_basis(xi).map(|j| j.v)
@@ -440,7 +445,8 @@ pub struct ScaledSweep<'a> {
 ///   S·E₀·Δ², minus the nominal U̇₀/(E₀Δ²), on [ℓ·b_U, ℓ²·b_U];
 ///
 /// with b_N, b_U the nominal terms' bases as the surrogate takes them (its
-/// own catch-up length and knee gate g), ℓ = ln ρ, and each run's own onset
+/// own catch-up length at the sweep's ratio, L₀·ρ^(−k) with
+/// k = [`CATCH_UP_EXPONENT`], and knee gate g), ℓ = ln ρ, and each run's own onset
 /// (fractured samples, travel since its first fracture). With sweeps at a
 /// single ρ the ℓ² terms are not observable apart from the ℓ terms and the
 /// SVD's minimum-norm solution splits them; use two ratios on either side
@@ -449,6 +455,15 @@ pub fn fit_ratio_correction(
     surrogate: &Surrogate,
     sweeps: &[ScaledSweep<'_>],
 ) -> Result<RatioCorrection, FitError> {
+    // The residuals are taken with the catch-up length at the sweep's ratio
+    // (L ∝ ρ^(−k), k = 1: physics, not fitted).
+    let surrogate = &Surrogate {
+        ratio: RatioCorrection {
+            catch_up_exponent: CATCH_UP_EXPONENT,
+            ..RatioCorrection::default()
+        },
+        ..surrogate.clone()
+    };
     let m = &surrogate.material;
     let e0 = m.youngs_modulus;
     let mu0 = m.friction_coefficient;
@@ -473,7 +488,7 @@ pub fn fit_ratio_correction(
                     fractured: true,
                     travel_since_fracture: sample.travel_since_fracture,
                 };
-                let bases = surrogate.wedge_bases(xi, &state);
+                let bases = surrogate.wedge_bases(xi, &state, l);
                 if mu0 > 0.0 {
                     let n = (sample.force_normal_friction + xi * sample.force_tangential_friction)
                         / (mu0 * root);
@@ -505,7 +520,7 @@ pub fn fit_ratio_correction(
             }
         }
     }
-    let mut out = RatioCorrection::default();
+    let mut out = surrogate.ratio;
     let u = strain.solve()?;
     out.strain_energy_rate_linear
         .copy_from_slice(&u[..STRAIN_TERMS]);
@@ -567,7 +582,7 @@ fn fit_drag_correction(
                     fractured: true,
                     travel_since_fracture: sample.travel_since_fracture,
                 };
-                let bases = surrogate.wedge_bases(xi, &state);
+                let bases = surrogate.wedge_bases(xi, &state, l);
                 let u = e0
                     * delta
                     * delta

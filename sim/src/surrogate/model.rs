@@ -3,15 +3,19 @@
 use serde::{Deserialize, Serialize};
 
 use super::basis::{
-    COMPLIANCE_TERMS, DEFLECTION_TERMS, FRICTION_TERMS, ONSET_TERMS, RAMPS, SIZE_TERMS,
+    COMPLIANCE_TERMS, DEFLECTION_TERMS, FRICTION_TERMS, KNEE_START, ONSET_TERMS, RAMPS, SIZE_TERMS,
     SPLIT_TERMS, STRAIN_TERMS, column_aspect, compliance_basis, deflection_basis, dot, drag_basis,
     friction_basis, knee_derivatives, ramps, size_basis, size_features, split_basis,
     split_basis_slope, strain_basis_rate,
 };
-use super::catch_up::{CATCH_UP_TERMS, KNEE_TERMS, catch_up_basis, dot_jet, knee_terms};
+use super::catch_up::{
+    CATCH_UP_TERMS, KNEE_TERMS, MIN_CATCH_UP, catch_up_basis, dot_jet, knee_terms, knee_terms_with,
+};
 use super::jet::Jet;
 use super::output::{QuadraticModel, ScaledParts, SurrogateOutput};
-use super::ratio::{RatioCorrection, corrected, fitted_log_ratio, slice_basis};
+use super::ratio::{
+    RatioCorrection, SLICE_TERMS, corrected, fitted_log_ratio, log_ratio, slice_basis,
+};
 use super::state::{CutState, ScaleFactors};
 use super::toughness::ToughnessRatio;
 use crate::blade::BladeSection;
@@ -157,6 +161,8 @@ struct PostFeatures {
     y_jet: Jet,
     /// The catch-up terms (the knee gate g first), jets in ξ.
     knee: [Jet; KNEE_TERMS],
+    /// Their ℓ-derivatives at fixed ξ (through L ∝ ρ^(−k)).
+    knee_l: [f64; KNEE_TERMS],
     /// The face reaction's basis.
     face_basis: [f64; FRICTION_TERMS],
     /// The strain-energy rate's basis.
@@ -264,21 +270,23 @@ impl Surrogate {
         }
         let p = &self.post_fracture;
         let delta = self.half_thickness();
+        let l = log_ratio(t, s);
         let PostFeatures {
             ramp,
             r_jet,
             y_jet,
             knee,
+            knee_l,
             face_basis,
             strain_basis,
-        } = self.post_features(xi, state, lh, lw, &r, (onset_a, onset_b));
+        } = self.post_features(xi, state, (lh, lw), &r, (onset_a, onset_b), (l, t / s));
         // Nominal face reaction N₀ (a jet: only its catch-up terms depend
         // on ξ) and strain-energy rate U̇₀ per unit travel.
         // Both are corrected for the stiffness-to-toughness ratio ρ = S/T by
         // ℓ = ln ρ (`ratio` module): x₀ + ℓ·x₁ + ℓ²·x₂ with x₁, x₂ on the
         // same bases; exactly x₀ at ℓ = 0. Outside the fitted range of ℓ
         // they continue along their tangents (`ratio::fitted_log_ratio`).
-        let l = fitted_log_ratio(t, s);
+        let l_fit = fitted_log_ratio(t, s);
         let rc = &self.ratio;
         let n_scale = e0 * delta;
         let face_jet = |c: &[f64; FRICTION_TERMS]| {
@@ -291,9 +299,33 @@ impl Surrogate {
             .add(n0.mul(dot_jet(&rc.face_reaction_slice_linear, &slice)));
         let n2 = face_jet(&rc.face_reaction_quadratic)
             .add(n0.mul(dot_jet(&rc.face_reaction_slice_quadratic, &slice)));
-        let (nv, n_l) = corrected(n0.v, n1.v, n2.v, l);
-        let (nd, _) = corrected(n0.d, n1.d, n2.d, l);
-        let (ndd, _) = corrected(n0.dd, n1.dd, n2.dd, l);
+        let (nv, n_l) = corrected(n0.v, n1.v, n2.v, l_fit);
+        let (nd, _) = corrected(n0.d, n1.d, n2.d, l_fit);
+        let (ndd, _) = corrected(n0.dd, n1.dd, n2.dd, l_fit);
+        // ℓ·x₁ + ℓ²·x₂ as the corrections take it.
+        let bend = |linear: f64, quadratic: f64| corrected(0.0, linear, quadratic, l_fit).0;
+        // The catch-up terms' ℓ-dependence (through L) on every
+        // coefficient set: Σ_knee c_k(ℓ)·∂b_k/∂ℓ.
+        let knee_dot = |c: &[f64; FRICTION_TERMS]| {
+            c[KNEE_START..]
+                .iter()
+                .zip(&knee_l)
+                .map(|(c, b)| c * b)
+                .sum::<f64>()
+        };
+        let slice_v = |a: &[f64; SLICE_TERMS]| dot(a, &slice.map(|j| j.v));
+        let n_l = n_l
+            + n_scale
+                * (knee_dot(&p.face_reaction)
+                    * (1.0
+                        + bend(
+                            slice_v(&rc.face_reaction_slice_linear),
+                            slice_v(&rc.face_reaction_slice_quadratic),
+                        ))
+                    + bend(
+                        knee_dot(&rc.face_reaction_linear),
+                        knee_dot(&rc.face_reaction_quadratic),
+                    ));
         let (n0, n_l) = if nv > 0.0 {
             (Jet::new(nv, nd, ndd), n_l)
         } else {
@@ -304,7 +336,7 @@ impl Surrogate {
             u_scale * dot(&p.strain_energy_rate, &strain_basis),
             u_scale * dot(&rc.strain_energy_rate_linear, &strain_basis),
             u_scale * dot(&rc.strain_energy_rate_quadratic, &strain_basis),
-            l,
+            l_fit,
         );
         // Crack growth only once the edge has caught up: r·R_c₀·g.
         let fracture0 = r_jet.mul(knee[0]).scale(m.fracture_toughness);
@@ -322,7 +354,7 @@ impl Surrogate {
             dot(&p.drag, &decays),
             dot(&rc.drag_linear, &decays),
             dot(&rc.drag_quadratic, &decays),
-            l,
+            l_fit,
         );
         let drag0 = q * h;
         let ddrag0 = dq * h;
@@ -366,7 +398,9 @@ impl Surrogate {
         let fr_l = mu0 * n_l;
         let fn_t = (fracture0 - xi * drag0) / den;
         let drag_l = q * h_l;
-        let fn_t_l = -xi * drag_l / den;
+        // The gate's ℓ-dependence through L: ∂(r·R_c₀·g)/∂ℓ.
+        let fracture_l = r.value * m.fracture_toughness * knee_l[0];
+        let fn_t_l = (fracture_l - xi * drag_l) / den;
         out.force_normal_parts = ScaledParts {
             by_toughness: fn_t,
             by_toughness_log_ratio_slope: fn_t_l,
@@ -385,7 +419,7 @@ impl Surrogate {
         };
         out.work_per_depth_parts = ScaledParts {
             by_toughness: fracture0,
-            by_toughness_log_ratio_slope: 0.0,
+            by_toughness_log_ratio_slope: fracture_l,
             by_stiffness: u_rate0,
             by_friction_stiffness: fr0 * root,
             by_stiffness_log_ratio_slope: u_l,
@@ -396,16 +430,16 @@ impl Surrogate {
 
     /// The features after fracture that `evaluate` builds on, at one ξ and
     /// state (`lh`, `lw` the size features, `r` eq. 6 at ξ, `onset_stiffness`
-    /// y(ξ) of the onset).
+    /// y(ξ) of the onset, `l` = ln ρ and `ratio_inverse` = 1/ρ = T/S).
     #[inline]
     fn post_features(
         &self,
         xi: f64,
         state: &CutState,
-        lh: f64,
-        lw: f64,
+        (lh, lw): (f64, f64),
         r: &ToughnessRatio,
         (onset_a, onset_b): (f64, f64),
+        (l, ratio_inverse): (f64, f64),
     ) -> PostFeatures {
         let m = &self.material;
         let p = &self.post_fracture;
@@ -430,6 +464,18 @@ impl Surrogate {
             .mul(y_jet.recip())
             .scale(m.initial_fracture_toughness / e0);
         let length = onset0.mul(dot_jet(&p.catch_up, &catch_up_basis(xi, lh, lw)));
+        // L ∝ ρ^(−k) (`ratio`): exactly the nominal L at ℓ = 0 or k = 0.
+        let k = self.ratio.catch_up_exponent;
+        let length = if l == 0.0 || k == 0.0 {
+            length
+        } else {
+            // ρ^(−k); T/S itself for the shipped k = 1 (no exp).
+            length.scale(if k == 1.0 {
+                ratio_inverse
+            } else {
+                (-k * l).exp()
+            })
+        };
         let knee_width = [
             p.knee_width[0],
             p.knee_width[1] * self.bevel_height(),
@@ -437,26 +483,45 @@ impl Surrogate {
         ];
         let knee = knee_terms(travel, xi, length, knee_width, lh, lw);
         let knee_v = knee.map(|j| j.v);
+        // ∂/∂ℓ of the catch-up terms at fixed ξ: dL/dℓ = −k·L.
+        // Zero without a catch-up (L below the floor: `knee_terms` holds
+        // it constant), e.g. potato.
+        let knee_l = if k == 0.0 || length.v < MIN_CATCH_UP {
+            [0.0; KNEE_TERMS]
+        } else {
+            let big_l = length.v;
+            knee_terms_with(
+                travel,
+                Jet::constant(xi * xi),
+                Jet::new(big_l, -k * big_l, k * k * big_l),
+                knee_width,
+                lh,
+                lw,
+            )
+            .map(|j| j.d)
+        };
         PostFeatures {
             ramp,
             r_jet,
             y_jet,
             knee,
+            knee_l,
             face_basis: friction_basis(&ramp_depth, depth_ratio, &knee_v, lh, lw),
             strain_basis: strain_basis_rate(&ramp_slope, depth_ratio, height, lh, lw),
         }
     }
 
     /// The bases of the wedge's terms after fracture as `evaluate` takes
-    /// them at ξ and `state` (its own catch-up length and knee), with the
-    /// knee gate g: the rows of the ratio corrections' fit.
-    pub(super) fn wedge_bases(&self, xi: f64, state: &CutState) -> WedgeBases {
+    /// them at ξ, `state` and ℓ = ln(S/T) (its own catch-up length at that
+    /// ratio and knee), with the knee gate g: the rows of the ratio
+    /// corrections' fit.
+    pub(super) fn wedge_bases(&self, xi: f64, state: &CutState, l: f64) -> WedgeBases {
         let xi = xi.abs();
         let (lh, lw) = size_features(state.height, state.half_width, self.blade.edge_width);
         let r = ToughnessRatio::at(xi, self.material.poisson_ratio);
         let aspect = column_aspect(state.height, state.half_width, self.blade.edge_width);
         let onset = self.pre_fracture.onset_stiffness_terms(lh, lw, aspect);
-        let f = self.post_features(xi, state, lh, lw, &r, onset);
+        let f = self.post_features(xi, state, (lh, lw), &r, onset, (l, (-l).exp()));
         WedgeBases {
             face: f.face_basis,
             strain: f.strain_basis,

@@ -82,6 +82,11 @@ pub struct RatioCorrection {
     pub drag_linear: [f64; RAMPS],
     /// h₂: the same, coefficient of ℓ².
     pub drag_quadratic: [f64; RAMPS],
+    /// k: the catch-up length scales as L = L₀·ρ^(−k) (L₀ the nominal one,
+    /// `catch_up` module). The crack's jump at the onset is ≈ ½·(R'_c/R_c)·d*
+    /// and the onset depth d* ∝ T/S exactly, so `fit` writes k = 1 (not
+    /// fitted); 0 (format 3) keeps L at its nominal value.
+    pub catch_up_exponent: f64,
 }
 
 impl RatioCorrection {
@@ -97,6 +102,7 @@ impl RatioCorrection {
             .chain(&self.face_reaction_slice_quadratic)
             .chain(&self.drag_linear)
             .chain(&self.drag_quadratic)
+            .chain(std::iter::once(&self.catch_up_exponent))
             .all(|&c| c == 0.0)
     }
 }
@@ -146,6 +152,9 @@ pub fn corrected(nominal: f64, linear: f64, quadratic: f64, (l, beyond): (f64, f
         (nominal, linear)
     } else {
         let slope = linear + 2.0 * l * quadratic;
-        (nominal + l * (linear + l * quadratic) + beyond * slope, slope)
+        (
+            nominal + l * (linear + l * quadratic) + beyond * slope,
+            slope,
+        )
     }
 }
