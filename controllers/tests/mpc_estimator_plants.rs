@@ -266,22 +266,20 @@ fn the_estimator_converges_on_plants_off_the_preset() {
                 r[1],
             );
             worst = e.iter().fold(worst, |w, x| w.max(x.abs()));
-            // The stiffness meets the 5 %; toughness and friction
-            // do not everywhere (docs/controllers.md: the model's own error
-            // at the true factors, up to 7–9 % where E/R_c rises): 10 %
-            // guards what is reached against regressions.
-            assert!(
-                e[1].abs() < 0.05,
-                "{} {label}: stiffness {:+.1} %",
-                setup.name,
-                100.0 * e[1]
-            );
-            for (k, factor) in [(0, "toughness"), (2, "friction")] {
+            // The 5 % wherever the model at the true factors is
+            // within 5 % of the plant (a factor can be no closer to the
+            // truth than the model is to the plant); where it is not (the
+            // chef's curved edge on the half potato, E/R_c raised on the
+            // cuboid: docs/controllers.md), 15 % guards what is reached.
+            let model_holds = r.iter().all(|x| (x - 1.0).abs() < 0.05);
+            let bound = if model_holds { 0.05 } else { 0.15 };
+            for (k, factor) in ["toughness", "stiffness", "friction"].iter().enumerate() {
                 assert!(
-                    e[k].abs() < 0.10,
-                    "{} {label}: {factor} {:+.1} %",
+                    e[k].abs() < bound,
+                    "{} {label}: {factor} {:+.1} % (bound {} %)",
                     setup.name,
-                    100.0 * e[k]
+                    100.0 * e[k],
+                    100.0 * bound
                 );
             }
         }

@@ -4,9 +4,9 @@
 //! tick in contact (an offset of the indentation's forces), and after the
 //! first fracture the crack's jumps, a ±30 % sawtooth on the forces. The
 //! model is exact here — including the wedge's dependence on E/R_c, which
-//! makes the forces nonlinear in the factors (the estimator re-linearises
-//! at its estimate) — so the estimator must recover the factors closely
-//! (1 %); on the full plant the model's own error adds to this
+//! makes the forces nonlinear in the factors (the estimator takes the parts
+//! at its estimate's ratio) — so the estimator must recover the factors
+//! closely (1 %); on the full plant the model's own error adds to this
 //! (`mpc_estimator_plants.rs`).
 
 use std::path::Path;

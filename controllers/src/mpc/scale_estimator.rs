@@ -1,6 +1,6 @@
 //! Online estimation of the material's scale factors from the measured
-//! forces (recursive least squares with forgetting, re-linearised at the
-//! current estimate: an extended Kalman filter on constant parameters).
+//! forces (recursive least squares with forgetting, on the model's parts at
+//! the current estimate's E/R_c).
 
 use nalgebra::{Matrix3, Vector3};
 
@@ -9,25 +9,23 @@ use super::slice_model::ForceModel;
 
 /// Estimates θ = (toughness, stiffness, friction × stiffness) in
 ///
-///   F = θ₁·a + θ₂·b(ℓ) + θ₃·c(ℓ),  ℓ = ln(θ₂/θ₁),
+///   F = θ₁·a(ℓ) + θ₂·b(ℓ) + θ₃·c(ℓ),  ℓ = ln(θ₂/θ₁),
 ///
 /// where (a, b, c) are the model's parts of a force per unit length at the
 /// current state (the surrogate's `ScaledParts`: what multiplies R_c, E and
-/// μ·E) and F the measured force per unit length. The wedge's parts b and c
-/// depend on E/R_c (the crack runs further ahead of a stiffer, less tough
+/// μ·E) and F the measured force per unit length. The wedge's parts depend
+/// on E/R_c (the crack runs further ahead of a stiffer, less tough
 /// material's wedge; `docs/surrogates.md`), so F is not linear in θ: each
-/// row is linearised at the current estimate ([`ForceModel`]: the value
-/// there and its gradient), the innovation is the measured force minus that
-/// value, and the update is recursive least squares on the gradient (an
-/// extended Kalman filter on constant parameters; with b and c independent
-/// of ℓ, plain recursive least squares). Each tick brings two such rows
-/// (normal and tangential force): during the indentation before the first
-/// fracture as changes from the previous tick
-/// ([`Self::observe_indentation`]; only the stiffness part is non-zero, so
-/// only θ₂ moves), after it as they are, weighed by the model's relative
-/// error ([`Self::observe_cut`]). Recursive least squares, with an optional
-/// forgetting factor λ per row for slow changes (skin, then flesh); each
-/// factor is kept within [`ScaleEstimator::BOUNDS`].
+/// row takes the parts at the ratio of the current estimate ([`ForceModel`])
+/// and the update is recursive least squares on them — a fixed-point
+/// iteration on ℓ, which moves only through the estimate; with parts
+/// independent of ℓ, plain recursive least squares. Before the first
+/// fracture only the stiffness part is non-zero and the stiffness is the
+/// slope of the indentation's forces ([`Self::observe_indentation`]); after
+/// it each tick brings two rows (normal and tangential force), weighed by
+/// the model's relative error ([`Self::observe_cut`]). An optional
+/// forgetting factor λ per row follows slow changes (skin, then flesh);
+/// each factor is kept within [`ScaleEstimator::BOUNDS`].
 ///
 /// Rows whose parts are all tiny carry no information and are skipped (no
 /// contact, or pressing with no tangential force). Allocation-free.
@@ -136,9 +134,9 @@ impl ScaleEstimator {
     }
 
     /// One measurement row linearised at the current θ: the model's
-    /// `gradient` ∂F/∂θ and `predicted` F there, `measured` F, `noise` its
-    /// standard deviation. Rows that are not finite or carry no
-    /// information (gradient ≈ 0) are skipped.
+    /// `gradient` (∂F/∂θ, or the parts at the current ratio) and `predicted`
+    /// F there, `measured` F, `noise` its standard deviation. Rows that are
+    /// not finite or carry no information (gradient ≈ 0) are skipped.
     pub fn update_linearised(
         &mut self,
         gradient: [f64; 3],

@@ -195,16 +195,12 @@ impl SliceModel for SurrogateModel {
                 friction: f,
             },
         );
-        // θ = (T, S, P = F·S), ℓ = ln(S/T): ∂/∂T = a − (∂value/∂ℓ)/T,
-        // ∂/∂S (holding P) = b + (∂value/∂ℓ)/S, ∂/∂P = c.
+        // θ = (T, S, P = F·S): the parts at the current ratio ℓ = ln(S/T),
+        // i.e. the derivatives holding ℓ (`ForceModel::gradient`).
         let linearised = |n: &ScaledParts, p: &ScaledParts| ForceModel {
             nominal: n.combine(1.0, 1.0, 1.0),
             value: p.combine(t, s, f),
-            gradient: [
-                p.toughness_derivative(t, s, f),
-                p.by_stiffness + p.log_ratio_derivative(t, s, f) / s,
-                p.by_friction_stiffness,
-            ],
+            gradient: [p.by_toughness, p.by_stiffness, p.by_friction_stiffness],
         };
         Some([
             linearised(&nominal.force_normal_parts, &at.force_normal_parts),
