@@ -215,8 +215,8 @@ impl<M: SliceModel> Mpc<M> {
 
     /// Feeds the measured forces per unit length of edge in contact to the
     /// estimator, with the model of them at the executed ξ, the current
-    /// state and the estimator's factors: as changes from tick to tick during the indentation (which
-    /// identifies the stiffness), as they are after the first fracture.
+    /// state and the estimator's factors: during the indentation (which
+    /// identifies the stiffness) and after the first fracture.
     fn estimate(&mut self, m: &Measurement) {
         let Some(estimator) = self.estimator.as_mut() else {
             return;

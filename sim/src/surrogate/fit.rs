@@ -14,7 +14,7 @@ use super::model::{
 };
 use super::ratio::{RatioCorrection, SLICE_TERMS, log_ratio, slice_basis};
 use super::state::CutState;
-use super::sweep::SweepRun;
+use super::sweep::{SweepCase, SweepRun, SweepSample};
 use super::toughness::ToughnessRatio;
 use crate::blade::BladeSection;
 use crate::material::Material;
@@ -481,13 +481,7 @@ pub fn fit_ratio_correction(
             let r = ToughnessRatio::at(xi, m.poisson_ratio).value;
             let root = (1.0 + xi * xi).sqrt();
             for sample in run.samples.iter().filter(|x| x.fractured) {
-                let state = CutState {
-                    depth: sample.depth,
-                    height: c.height,
-                    half_width: c.half_width,
-                    fractured: true,
-                    travel_since_fracture: sample.travel_since_fracture,
-                };
+                let state = fractured_state(&c, sample);
                 let bases = surrogate.wedge_bases(xi, &state, l);
                 if mu0 > 0.0 {
                     let n = (sample.force_normal_friction + xi * sample.force_tangential_friction)
@@ -575,13 +569,7 @@ fn fit_drag_correction(
             let q = g0 * m.initial_fracture_toughness * xi * r / (c_t * e0 * y);
             let sigma = dot(&p.split, &split_basis(xi, lh, lw));
             for sample in run.samples.iter().filter(|x| x.fractured) {
-                let state = CutState {
-                    depth: sample.depth,
-                    height: c.height,
-                    half_width: c.half_width,
-                    fractured: true,
-                    travel_since_fracture: sample.travel_since_fracture,
-                };
+                let state = fractured_state(&c, sample);
                 let bases = surrogate.wedge_bases(xi, &state, l);
                 let u = e0
                     * delta
@@ -606,4 +594,15 @@ fn fit_drag_correction(
     ratio.drag_linear.copy_from_slice(&h[..RAMPS]);
     ratio.drag_quadratic.copy_from_slice(&h[RAMPS..]);
     Ok(ratio)
+}
+
+/// The cut's state at a fractured sample of a sweep run of `case`.
+fn fractured_state(case: &SweepCase, sample: &SweepSample) -> CutState {
+    CutState {
+        depth: sample.depth,
+        height: case.height,
+        half_width: case.half_width,
+        fractured: true,
+        travel_since_fracture: sample.travel_since_fracture,
+    }
 }
