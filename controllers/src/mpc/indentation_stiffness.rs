@@ -57,6 +57,9 @@ pub struct IndentationStiffness {
     run: [CentredSums; 2],
     /// Σ w·(m − m̄)² and Σ w·(m − m̄)·(y − ȳ) of the finished runs.
     finished: [f64; 2],
+    /// Σ w·m² over every row: the scale against which the model's spread
+    /// Σ w·(m − m̄)² counts as a change rather than rounding.
+    magnitude: f64,
 }
 
 impl IndentationStiffness {
@@ -78,19 +81,28 @@ impl IndentationStiffness {
         let weight = contact * contact;
         for i in 0..2 {
             self.run[i].add(weight, model[i], measured[i]);
+            self.magnitude += weight * model[i] * model[i];
         }
     }
 
     /// The stiffness factor S, once the model's forces have changed within
-    /// a run (`None` before).
+    /// a run (`None` before, and while the changes are at the rounding
+    /// level of the forces: a relative spread of the model's forces under
+    /// [`Self::MIN_RELATIVE_SPREAD`]).
     pub fn stiffness(&self) -> Option<f64> {
         let (mut mm, mut my) = (self.finished[0], self.finished[1]);
         for r in &self.run {
             mm += r.model_model;
             my += r.model_measured;
         }
-        (mm > 0.0).then(|| my / mm)
+        (mm > Self::MIN_RELATIVE_SPREAD * self.magnitude).then(|| my / mm)
     }
+
+    /// The smallest Σ w·(m − m̄)² / Σ w·m² that identifies a slope: forces
+    /// agreeing to about six digits (10⁻¹²  of the squares) have not changed
+    /// (an indentation takes the force from near zero, a spread of order
+    /// one).
+    pub const MIN_RELATIVE_SPREAD: f64 = 1e-12;
 }
 
 #[cfg(test)]
@@ -120,5 +132,21 @@ mod tests {
         assert_eq!(fit.stiffness(), None);
         fit.observe(0.01, [f64::NAN, 1.0], [4.0, 1.0]);
         assert_eq!(fit.stiffness(), None);
+    }
+
+    #[test]
+    fn changes_at_the_rounding_level_identify_nothing() {
+        // The model's forces differ only in their last bits: the spread is
+        // rounding, and a slope through it would be arbitrary.
+        let mut fit = IndentationStiffness::default();
+        let m: f64 = 4.0e3;
+        for k in 0..10 {
+            let wobble = if k % 2 == 0 { m } else { m.next_up() };
+            fit.observe(0.01, [5.0e3 + k as f64, 1.0], [wobble, 1.0]);
+        }
+        assert_eq!(fit.stiffness(), None);
+        // A real change of one part in a thousand does.
+        fit.observe(0.01, [5.2e3, 1.0], [m * 1.001, 1.0]);
+        assert!(fit.stiffness().is_some());
     }
 }

@@ -160,7 +160,8 @@ impl ScaleEstimator {
         let (lo, hi) = Self::BOUNDS;
         self.theta[0] = self.theta[0].clamp(lo, hi);
         self.theta[1] = self.theta[1].clamp(lo, hi);
-        self.theta[2] = self.theta[2].clamp(lo * lo, hi * hi);
+        // θ₂ = F·S: the friction factor F itself within the bounds.
+        self.theta[2] = self.theta[2].clamp(lo * self.theta[1], hi * self.theta[1]);
         self.updates += 1;
     }
 
