@@ -17,7 +17,7 @@ use std::path::Path;
 use nalgebra::Vector2;
 use shearcut_controllers::controller::{Controller, CutTask, MotionLimits};
 use shearcut_controllers::mpc::{
-    DepthProfile, Mpc, MpcSettings, SliceModel, StageState, SurrogateModel,
+    DepthProfile, EdgeDepth, Mpc, MpcSettings, SliceModel, StageState, SurrogateModel,
 };
 use shearcut_sim::geometry::TriangleMesh;
 use shearcut_sim::plant::Measurement;
@@ -103,7 +103,7 @@ fn profile(mesh: &TriangleMesh) -> DepthProfile {
     DepthProfile::new(depths, lengths, height, 0.5 * (hi.x - lo.x)).unwrap()
 }
 
-/// Crack depth past the first fracture before the rows count (the
+/// The edge's travel past the first fracture before the rows count (the
 /// controller's settling depth), m.
 const SETTLE: f64 = 2e-3;
 
@@ -113,6 +113,8 @@ const SETTLE: f64 = 2e-3;
 /// as close to the truth as these are to 1.
 #[derive(Debug, Default)]
 struct ModelCheck {
+    /// The depth the model is evaluated at, as the controller takes it.
+    edge: EdgeDepth,
     fracture: Option<f64>,
     measured: [f64; 2],
     modelled: [f64; 2],
@@ -126,6 +128,7 @@ impl ModelCheck {
         m: &Measurement,
         truth: [f64; 3],
     ) {
+        let depth = profile.section_depth(self.edge.observe(m.position.y, m.contact_length));
         let v_n = -m.velocity.y;
         let l = m.contact_length;
         if !(v_n > 0.0 && l > 0.0) {
@@ -134,7 +137,6 @@ impl ModelCheck {
         if m.fractured_sections == 0 {
             return;
         }
-        let depth = m.crack_depth.max(0.0);
         let since = depth - *self.fracture.get_or_insert(depth);
         if since < SETTLE {
             return;
@@ -242,6 +244,7 @@ fn the_estimator_converges_on_plants_off_the_preset() {
         ..MpcSettings::default()
     };
     let mut worst: f64 = 0.0;
+    let mut failures = Vec::new();
     for setup in [CUBOID, WHOLE] {
         for (label, truth) in PLANTS {
             let (estimated, check, completed) = end_of_cut(&setup, truth, &settings);
@@ -274,15 +277,18 @@ fn the_estimator_converges_on_plants_off_the_preset() {
             let model_limited = setup.name == CUBOID.name && truth == [0.7, 1.3, 1.0];
             let bound = if model_limited { 0.15 } else { 0.05 };
             for (k, factor) in ["toughness", "stiffness", "friction"].iter().enumerate() {
-                assert!(
-                    e[k].abs() < bound,
-                    "{} {label}: {factor} {:+.1} % (bound {} %)",
-                    setup.name,
-                    100.0 * e[k],
-                    100.0 * bound
-                );
+                if e[k].abs() >= bound {
+                    failures.push(format!(
+                        "{} {label}: {factor} {:+.1} % (bound {} %)",
+                        setup.name,
+                        100.0 * e[k],
+                        100.0 * bound
+                    ));
+                }
             }
         }
     }
     println!("worst factor error {:.1} %", 100.0 * worst);
+    // The whole table first, then every plant off its bound.
+    assert!(failures.is_empty(), "{}", failures.join("; "));
 }

@@ -6,6 +6,7 @@ use shearcut_sim::plant::{KnifeCommand, Measurement, PlantStatus};
 
 use super::depth_profile::DepthProfile;
 use super::depth_qp::{DepthQp, QpLimits, QpStatus, StageData};
+use super::edge_depth::EdgeDepth;
 use super::scale_estimator::ScaleEstimator;
 use super::settings::MpcSettings;
 use super::slice_model::{SliceModel, StageState};
@@ -34,7 +35,7 @@ pub struct MpcStats {
 
 /// Prior variance of each scale factor (a ±100 % belief).
 const ESTIMATOR_PRIOR_VARIANCE: f64 = 1.0;
-/// Crack depth past the first fracture before the estimator uses the
+/// The edge's travel past the first fracture before the estimator uses the
 /// forces again, m: the transition (sections fracturing one by one, the
 /// drag held at onset being released over a few bevel heights) is in
 /// neither the pre- nor the post-fracture model.
@@ -89,6 +90,7 @@ pub struct Mpc<M: SliceModel> {
     ticks: u64,
     normal_speed: f64,
     tangential_speed: f64,
+    /// The sections' mean depth at the first fracture, m.
     depth_at_fracture: Option<f64>,
     budget: BladeBudget,
     shaper: VelocityShaper,
@@ -102,8 +104,12 @@ pub struct Mpc<M: SliceModel> {
     stats: MpcStats,
     replanned: bool,
     estimator: Option<ScaleEstimator>,
-    /// Knife height when the edge first touched (contact length > 0), m.
-    touch_height: Option<f64>,
+    /// The edge's depth: the model's state (not the crack's depth).
+    edge: EdgeDepth,
+    /// The edge's depth after the last measurement, m (below the object's
+    /// top; the model's state is the sections' mean depth there,
+    /// [`DepthProfile::section_depth`]).
+    depth: f64,
     telemetry: ControllerTelemetry,
 }
 
@@ -176,7 +182,8 @@ impl<M: SliceModel> Mpc<M> {
                     ESTIMATOR_RELATIVE_ERROR,
                 )
             }),
-            touch_height: None,
+            edge: EdgeDepth::default(),
+            depth: 0.0,
             telemetry: ControllerTelemetry::default(),
         })
     }
@@ -227,15 +234,8 @@ impl<M: SliceModel> Mpc<M> {
             return;
         }
         let xi = m.velocity.z.abs() / v_n;
-        let touch = *self.touch_height.get_or_insert(m.position.y);
         let fractured = m.fractured_sections > 0;
-        let depth = if fractured {
-            m.crack_depth.max(0.0)
-        } else {
-            // Before fracture the model's depth is the knife's travel since
-            // the edge touched.
-            (touch - m.position.y).max(0.0)
-        };
+        let depth = self.profile.section_depth(self.depth);
         let since = self.depth_at_fracture.map_or(0.0, |d| (depth - d).max(0.0));
         // Right after the first fracture the sections fracture one by one
         // and the crack runs in jumps: the measured force is neither the
@@ -278,7 +278,7 @@ impl<M: SliceModel> Mpc<M> {
         let mean = |xi: &[f64]| xi.iter().sum::<f64>() / xi.len() as f64;
         let mut last = f64::NAN;
         for _ in 0..FIRST_PLAN_ITERATIONS {
-            self.replan_at(0.0, false);
+            self.replan_at(0.0, self.task.target_depth, false);
             let now = mean(&self.plan_xi);
             if (now - last).abs() < 1e-4 {
                 break;
@@ -289,15 +289,27 @@ impl<M: SliceModel> Mpc<M> {
     }
 
     fn replan(&mut self, m: &Measurement) {
-        self.replan_at(m.crack_depth.max(0.0), m.fractured_sections > 0);
+        let remaining = self.task.target_depth - m.crack_depth.max(0.0);
+        self.replan_at(self.depth, remaining, m.fractured_sections > 0);
     }
 
-    /// Plans from crack depth `d0` (m), `fractured` or not.
-    fn replan_at(&mut self, d0: f64, fractured: bool) {
+    /// Plans from the edge's depth `d0` (m, [`EdgeDepth`]) for the cut to
+    /// deepen by `remaining` (m of the sections' mean depth: the target is
+    /// the crack's), `fractured` or not.
+    ///
+    /// The stages split the edge's travel that takes the sections' mean
+    /// depth `remaining` further ([`DepthProfile::travel_for`]: more than
+    /// `remaining` where the contact grows with depth); each stage's model
+    /// state is at the mean section depth there
+    /// ([`DepthProfile::section_depth`]), and its work is per unit of the
+    /// edge's travel.
+    fn replan_at(&mut self, d0: f64, remaining: f64, fractured: bool) {
         let n = self.settings.stages;
-        let remaining = (self.task.target_depth - d0).max(1e-6);
-        let dd = remaining / n as f64;
+        let travel = self.profile.travel_for(d0, remaining.max(1e-6));
+        let dd = travel / n as f64;
         let since = self.depth_at_fracture;
+        let section_depth = |d: f64| self.profile.section_depth(d);
+        let s0 = section_depth(d0);
         let [t, st, f] = self.scale();
         self.model.set_scale(t, st, f);
         // Before the first fracture the onset's cost covers the catch-up
@@ -307,7 +319,7 @@ impl<M: SliceModel> Mpc<M> {
             0.0
         } else {
             let first = StageState {
-                depth: d0 + 0.5 * dd,
+                depth: section_depth(d0 + 0.5 * dd),
                 height: self.profile.height(),
                 half_width: self.profile.half_width(),
                 fractured: false,
@@ -316,7 +328,8 @@ impl<M: SliceModel> Mpc<M> {
             self.model.catch_up_span(self.plan_xi[0], &first)
         };
         for k in 0..n {
-            let depth = d0 + (k as f64 + 0.5) * dd;
+            let edge = d0 + (k as f64 + 0.5) * dd;
+            let depth = section_depth(edge);
             let state = StageState {
                 depth,
                 height: self.profile.height(),
@@ -325,13 +338,13 @@ impl<M: SliceModel> Mpc<M> {
                 travel_since_fracture: match since {
                     Some(at) if fractured => (depth - at).max(0.0),
                     _ if k == 0 => span,
-                    _ => (depth - d0).max(span),
+                    _ => (depth - s0).max(span),
                 },
             };
             let xi_bar = self.plan_xi[k];
             self.stages[k] = StageData {
                 depth_step: dd,
-                contact_length: self.profile.contact_length(depth),
+                contact_length: self.profile.contact_length(edge),
                 xi_bar,
                 cost: self.model.stage(xi_bar, &state),
                 before_fracture: !fractured && k == 0,
@@ -461,8 +474,9 @@ impl<M: SliceModel> Controller for Mpc<M> {
             self.shaper.resync(&m.velocity);
         }
         self.budget.observe(m);
+        self.depth = self.edge.observe(m.position.y, m.contact_length);
         if m.fractured_sections > 0 && self.depth_at_fracture.is_none() {
-            self.depth_at_fracture = Some(m.crack_depth.max(0.0));
+            self.depth_at_fracture = Some(self.profile.section_depth(self.depth));
             // E is identified by the indentation before the first fracture;
             // after it, toughness and stiffness are nearly collinear.
             if let Some(estimator) = self.estimator.as_mut() {

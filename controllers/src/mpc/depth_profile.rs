@@ -2,13 +2,23 @@
 
 use shearcut_sim::InvalidSetting;
 
-/// The object as the MPC sees it along the cut: at each crack depth below
-/// the top, the length of edge in contact and the section's height and half
-/// width. Piecewise linear between samples; constant beyond the ends.
+/// The object as the MPC sees it along the cut: at each depth of the edge
+/// below the object's top (the knife's travel since it touched,
+/// [`EdgeDepth`](super::EdgeDepth)), the length of edge in contact, and the
+/// section's height and half width. Piecewise linear between samples;
+/// constant beyond the ends.
+///
+/// Where the contact grows with depth (a dome), the sections in contact
+/// entered at different depths, each with its own top: the edge is less
+/// deep in them, on average, than below the crest.
+/// [`section_depth`](Self::section_depth) is that mean, the depth at which
+/// one section's model (the surrogate) stands for them all.
 #[derive(Debug, Clone, PartialEq)]
 pub struct DepthProfile {
     depths: Vec<f64>,
     contact_lengths: Vec<f64>,
+    /// ∫₀^{depths[i]} L(h) dh, m².
+    areas: Vec<f64>,
     height: f64,
     half_width: f64,
 }
@@ -60,9 +70,19 @@ impl DepthProfile {
                 return Err(InvalidSetting::new(key, v, "finite and >= 0"));
             }
         }
+        // The area under L(h) from 0: constant L before the first sample.
+        let mut areas = Vec::with_capacity(depths.len());
+        let mut area = depths[0] * contact_lengths[0];
+        areas.push(area);
+        for i in 1..depths.len() {
+            area +=
+                0.5 * (depths[i] - depths[i - 1]) * (contact_lengths[i] + contact_lengths[i - 1]);
+            areas.push(area);
+        }
         Ok(Self {
             depths,
             contact_lengths,
+            areas,
             height,
             half_width,
         })
@@ -73,7 +93,7 @@ impl DepthProfile {
         Self::new(vec![0.0], vec![length], height, half_width)
     }
 
-    /// Length of edge in contact at crack depth `depth`, m.
+    /// Length of edge in contact with the edge at `depth`, m.
     pub fn contact_length(&self, depth: f64) -> f64 {
         let d = &self.depths;
         let l = &self.contact_lengths;
@@ -89,6 +109,74 @@ impl DepthProfile {
         l[i] + t * (l[i + 1] - l[i])
     }
 
+    /// ∫₀^depth L(h) dh, m²: the area of the cut face the edge has swept.
+    fn swept_area(&self, depth: f64) -> f64 {
+        let d = &self.depths;
+        let l = &self.contact_lengths;
+        if depth <= d[0] {
+            return depth.max(0.0) * l[0];
+        }
+        let last = d.len() - 1;
+        if depth >= d[last] {
+            return self.areas[last] + (depth - d[last]) * l[last];
+        }
+        let i = d.partition_point(|x| *x <= depth) - 1;
+        self.areas[i] + 0.5 * (depth - d[i]) * (l[i] + self.contact_length(depth))
+    }
+
+    /// The edge's mean depth in the sections in contact when it is `depth`
+    /// below the top, m: ∫₀^depth L(h) dh / L(depth). A section at a point
+    /// of the edge whose surface lies h below the top has the edge
+    /// depth − h into it, and the points with h ≤ depth make up L(depth);
+    /// averaged over them this is the swept area over the contact length
+    /// (`depth` itself where the contact does not change with depth, 2/3 of
+    /// it where L ∝ √depth, as near a dome's crest). Every section's own
+    /// depth advances with the knife, so this is the state one section's
+    /// model evaluates, while work per unit of the knife's depth is L·w.
+    /// `depth` where nothing is in contact.
+    pub fn section_depth(&self, depth: f64) -> f64 {
+        let l = self.contact_length(depth);
+        if l > 0.0 {
+            (self.swept_area(depth) / l).min(depth.max(0.0))
+        } else {
+            depth.max(0.0)
+        }
+    }
+
+    /// How far the edge must go from `depth` (m) for the mean section depth
+    /// to advance by `advance` (m): the inverse of
+    /// [`section_depth`](Self::section_depth), by bisection (it is
+    /// non-decreasing for the contact lengths of convex objects, and grows
+    /// at the rate 1 beyond the last sample). At least `advance` where the
+    /// contact grows with depth (new sections enter at depth 0).
+    pub fn travel_for(&self, depth: f64, advance: f64) -> f64 {
+        if !(advance > 0.0) {
+            return 0.0;
+        }
+        let start = self.section_depth(depth);
+        let reached = |travel: f64| self.section_depth(depth + travel) - start >= advance;
+        let (mut lo, mut hi) = (0.0, advance);
+        while !reached(hi) {
+            lo = hi;
+            hi *= 2.0;
+            if hi > 1e3 {
+                return hi;
+            }
+        }
+        for _ in 0..60 {
+            let mid = 0.5 * (lo + hi);
+            if reached(mid) {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+            if hi - lo <= 1e-12 * hi {
+                break;
+            }
+        }
+        hi
+    }
+
     /// Section height at the cut, m.
     pub fn height(&self) -> f64 {
         self.height
@@ -97,5 +185,49 @@ impl DepthProfile {
     /// Section half width, m.
     pub fn half_width(&self) -> f64 {
         self.half_width
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::DepthProfile;
+
+    #[test]
+    fn constant_contact_keeps_the_edge_depth() {
+        let p = DepthProfile::uniform(0.03, 0.025, 0.015).unwrap();
+        for d in [0.0, 1e-4, 0.01, 0.02] {
+            assert_eq!(p.section_depth(d), d);
+            let travel = p.travel_for(d, 0.005);
+            assert!((travel - 0.005).abs() < 1e-14, "{travel}");
+        }
+    }
+
+    #[test]
+    fn contact_growing_with_depth_halves_a_wedge() {
+        // L = 2h up to 30 mm (a wedge, apex up): the sections in contact
+        // at depth d entered uniformly over [0, d], so their mean depth is
+        // d/2, and the mean advances half as fast as the knife.
+        let p = DepthProfile::new(vec![0.0, 0.03], vec![0.0, 0.06], 0.03, 0.015).unwrap();
+        for d in [1e-3, 0.01, 0.025] {
+            assert!((p.section_depth(d) - 0.5 * d).abs() < 1e-15);
+            assert!((p.travel_for(d, 2e-3) - 4e-3).abs() < 1e-12);
+        }
+        // Beyond the last sample the contact is constant: the mean catches
+        // up with the knife at the rate 1.
+        let deep = p.section_depth(0.04);
+        assert!((deep - (0.5 * 0.03 * 0.06 + 0.01 * 0.06) / 0.06).abs() < 1e-15);
+        assert_eq!(p.section_depth(0.0), 0.0);
+    }
+
+    #[test]
+    fn a_dome_crest_gives_two_thirds() {
+        // L ∝ √h near a crest: mean depth 2/3 of the edge's, sampled finely.
+        let depths: Vec<f64> = (0..=2000).map(|k| k as f64 * 1e-5).collect();
+        let lengths: Vec<f64> = depths.iter().map(|h| 0.5 * h.sqrt()).collect();
+        let p = DepthProfile::new(depths, lengths, 0.035, 0.03).unwrap();
+        for d in [0.005, 0.01, 0.019] {
+            let ratio = p.section_depth(d) / d;
+            assert!((ratio - 2.0 / 3.0).abs() < 2e-3, "{ratio}");
+        }
     }
 }
