@@ -23,7 +23,22 @@ fn shipped(name: &str) -> Surrogate {
 }
 
 /// The surrogates the golden hashes were taken from (format 3, before the
-/// ratio corrections) with the same nominal coefficients.
+/// ratio corrections) with the same nominal coefficients. The potato files
+/// were refitted since (the steady strain-energy rate, the faces' slip ratio
+/// and their ξ-terms, docs/surrogates.md "The normal force's mean after
+/// fracture"), so their format-4 files with the format-3 nominal
+/// coefficients are kept in `tests/data/format3_*.toml`.
+fn golden(name: &str) -> Surrogate {
+    let kept =
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("tests/data/format3_{name}.toml"));
+    if kept.exists() {
+        Surrogate::from_path(&kept).unwrap()
+    } else {
+        shipped(name)
+    }
+}
+
+/// The names of the golden surrogates.
 const GOLDEN: [&str; 4] = [
     "potato-cuboid-straight",
     "potato-whole-chef",
@@ -41,7 +56,7 @@ fn at_unit_ratio_the_outputs_are_those_of_format_3_bit_for_bit() {
     let expected = include_str!("data/format3_output_hashes.txt");
     let mut lines = expected.lines();
     for name in GOLDEN {
-        let s = shipped(name);
+        let s = golden(name);
         let grid = golden_grid();
         let mut xi0 = grid[0].0;
         let mut h = FNV_START;
