@@ -236,7 +236,7 @@ fn energy_rates(s: &Surrogate, runs: &[shearcut_sim::surrogate::SweepRun]) {
                 }
             }
             println!("  dU/dd along the cut:{line}");
-            let tail: Vec<String> = w[w.len() - 400..]
+            let tail: Vec<String> = w[w.len().saturating_sub(400)..]
                 .chunks(50)
                 .map(|ch| {
                     format!(
