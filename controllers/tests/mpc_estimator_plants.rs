@@ -266,13 +266,13 @@ fn the_estimator_converges_on_plants_off_the_preset() {
                 r[1],
             );
             worst = e.iter().fold(worst, |w, x| w.max(x.abs()));
-            // The 5 % wherever the model at the true factors is
-            // within 5 % of the plant (a factor can be no closer to the
-            // truth than the model is to the plant); where it is not (the
-            // chef's curved edge on the half potato, E/R_c raised on the
-            // cuboid: docs/controllers.md), 15 % guards what is reached.
-            let model_holds = r.iter().all(|x| (x - 1.0).abs() < 0.05);
-            let bound = if model_holds { 0.05 } else { 0.15 };
+            // The 5 % on every plant but one: on the cuboid stiffer
+            // and less tough than the preset the model at the true factors
+            // over-predicts the plant's work by 7–8.5 % (`r` above), and no
+            // factors fitted to those forces can be within 5 %; 15 % guards
+            // what is reached there (docs/controllers.md).
+            let model_limited = setup.name == CUBOID.name && truth == [0.7, 1.3, 1.0];
+            let bound = if model_limited { 0.15 } else { 0.05 };
             for (k, factor) in ["toughness", "stiffness", "friction"].iter().enumerate() {
                 assert!(
                     e[k].abs() < bound,

@@ -4,15 +4,14 @@
 //! `tests/fit.rs` at the workspace root).
 
 use shearcut_sim::surrogate::{
-    CutState, ScaleFactors, ScaledSweep, Surrogate, SweepSettings, fit_ratio_correction,
+    CutState, ScaleFactors, ScaledSweep, Surrogate, SweepCase, SweepSettings, fit_ratio_correction,
     fit_surrogate, grid, run_sweep, scaled_material,
 };
-use shearcut_sim::{KnifePreset, MaterialPreset};
+use shearcut_sim::{BladeSection, KnifePreset, Material, MaterialPreset};
 
-#[test]
-fn fit_is_deterministic_across_threads() {
-    let material = MaterialPreset::PotatoCuboid.material();
-    let blade = KnifePreset::Straight.settings().blade;
+/// A small potato sweep (three ξ on three small sections, to 60 % of the
+/// height): potato-cuboid, the straight blade, its settings and cases.
+fn small_sweep() -> (Material, BladeSection, SweepSettings, Vec<SweepCase>) {
     let settings = SweepSettings {
         depth_fraction: 0.6,
         ..SweepSettings::default()
@@ -21,6 +20,17 @@ fn fit_is_deterministic_across_threads() {
         &[0.0, 0.8, 1.6],
         &[(0.012, 0.008), (0.016, 0.012), (0.014, 0.01)],
     );
+    (
+        MaterialPreset::PotatoCuboid.material(),
+        KnifePreset::Straight.settings().blade,
+        settings,
+        cases,
+    )
+}
+
+#[test]
+fn fit_is_deterministic_across_threads() {
+    let (material, blade, settings, cases) = small_sweep();
     let fit_with = |threads| {
         let runs = run_sweep(&material, &blade, &cases, &settings, threads, &|| {}).unwrap();
         fit_surrogate(&material, &blade, "potato-cuboid", "straight", &runs).unwrap()
@@ -51,16 +61,7 @@ fn fit_is_deterministic_across_threads() {
 /// wedge when E/R_c grows), at ρ = 0.5 above it.
 #[test]
 fn ratio_correction_fit_is_deterministic_and_bends_the_right_way() {
-    let material = MaterialPreset::PotatoCuboid.material();
-    let blade = KnifePreset::Straight.settings().blade;
-    let settings = SweepSettings {
-        depth_fraction: 0.6,
-        ..SweepSettings::default()
-    };
-    let cases = grid(
-        &[0.0, 0.8, 1.6],
-        &[(0.012, 0.008), (0.016, 0.012), (0.014, 0.01)],
-    );
+    let (material, blade, settings, cases) = small_sweep();
     let nominal = run_sweep(&material, &blade, &cases, &settings, 2, &|| {}).unwrap();
     let s = fit_surrogate(&material, &blade, "potato-cuboid", "straight", &nominal).unwrap();
     let fit_with = |threads| {

@@ -194,7 +194,20 @@ impl Iceoryx2PlantLink {
         if self.services.termination_requested() {
             return Err(self.stopped());
         }
-        match self.services.peer_state(Role::Plant) {
+        let state = self.services.peer_state(Role::Plant);
+        // On SIGINT/SIGTERM the supervisor stops the controller before the
+        // plant, but on a loaded machine the controller can see the plant
+        // gone before its own signal's handler has run: give the signal a
+        // moment before calling the plant lost (CI once reported "the plant
+        // is gone" for a terminated run).
+        if state != PeerState::Alive
+            && self
+                .services
+                .termination_requested_within(TERMINATION_GRACE)
+        {
+            return Err(self.stopped());
+        }
+        match state {
             PeerState::Alive => Ok(()),
             PeerState::Dead => Err(LinkError::Lost(format!(
                 "the plant '{}' died (iceoryx2 dead-node detection)",
@@ -280,6 +293,10 @@ impl Iceoryx2PlantLink {
         }
     }
 }
+
+/// How long a controller that finds the plant gone waits for a termination
+/// request before reporting the plant lost.
+const TERMINATION_GRACE: Duration = Duration::from_millis(50);
 
 impl PlantLink for Iceoryx2PlantLink {
     fn period(&self) -> f64 {

@@ -257,6 +257,12 @@ impl LoopServices {
         self.node.wait(Duration::ZERO).is_err()
     }
 
+    /// Whether a termination request (SIGINT/SIGTERM) arrives within
+    /// `grace` (returns as soon as one has).
+    pub fn termination_requested_within(&self, grace: Duration) -> bool {
+        self.node.wait(grace).is_err()
+    }
+
     /// The state of `role`'s node in this run: alive, dead (its process died
     /// without cleaning up) or absent.
     pub fn peer_state(&self, role: Role) -> PeerState {

@@ -127,13 +127,18 @@ pub fn run_both(
         plant.id(),
         ctl.id()
     );
-    let mut stopped = false;
     let (plant_status, ctl_status) = loop {
-        if node.wait(Duration::from_millis(5)).is_err() && !stopped {
-            stopped = true;
+        if node.wait(Duration::from_millis(5)).is_err() {
             eprintln!("run {run_id}: termination requested, stopping plant and controller");
+            // The controller first, and the plant once it has gone: the
+            // controller then stops on its own signal (and writes its partial
+            // results saying so) instead of finding the plant gone first,
+            // which a loaded machine's scheduling could otherwise make it do.
             terminate(&ctl);
+            let c = wait_or_kill(&mut ctl, CONTROLLER_GRACE);
             terminate(&plant);
+            let p = wait_or_kill(&mut plant, PLANT_GRACE);
+            break (p, c);
         }
         if let Ok(Some(c)) = ctl.try_wait() {
             let p = wait_or_kill(&mut plant, PLANT_GRACE);

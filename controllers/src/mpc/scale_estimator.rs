@@ -16,10 +16,12 @@ use super::slice_model::ForceModel;
 /// μ·E) and F the measured force per unit length. The wedge's parts depend
 /// on E/R_c (the crack runs further ahead of a stiffer, less tough
 /// material's wedge; `docs/surrogates.md`), so F is not linear in θ: each
-/// row takes the parts at the ratio of the current estimate ([`ForceModel`])
-/// and the update is recursive least squares on them — a fixed-point
-/// iteration on ℓ, which moves only through the estimate; with parts
-/// independent of ℓ, plain recursive least squares. Before the first
+/// row takes the parts at the ratio of the estimate when it arrives
+/// ([`ForceModel`]) and the update is recursive least squares on them; ℓ
+/// moves only through the estimate, and rows already taken are not
+/// re-linearised (on the surrogate's own forces the early rows, taken at
+/// ratios the estimate has since left, bias the end estimate by under 1 %;
+/// with parts independent of ℓ this is plain recursive least squares). Before the first
 /// fracture only the stiffness part is non-zero and the stiffness is the
 /// slope of the indentation's forces ([`Self::observe_indentation`]); after
 /// it each tick brings two rows (normal and tangential force), weighed by

@@ -9,7 +9,7 @@
 ///
 /// The parts depend on the ratio ρ = S/T through
 /// ℓ = ln ρ (the wedge's strain-energy rate and the faces' reaction, module
-/// `ratio`; zero dependence in a format-3 surrogate), so the output is linear
+/// `ratio`; none without a `[ratio]` table), so the output is linear
 /// in the factors only along a ray of constant ρ. The `*_log_ratio_slope`
 /// fields are ∂/∂ℓ of those parts, from which an estimator that
 /// re-linearises at its current factors forms ∂value/∂T and ∂value/∂S

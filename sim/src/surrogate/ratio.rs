@@ -55,7 +55,7 @@ pub fn slice_basis(xi: f64) -> [Jet; SLICE_TERMS] {
 
 /// The corrections of the wedge's terms for the stiffness-to-toughness
 /// ratio ρ = S/T, as coefficients on the nominal terms' bases (file format
-/// 4, table `[ratio]`; absent in a format-3 file, which reads as zero
+/// 4, table `[ratio]`; a file without the table reads as zero
 /// correction).
 #[derive(Debug, Clone, Copy, PartialEq, Default, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -85,12 +85,12 @@ pub struct RatioCorrection {
     /// k: the catch-up length scales as L = L₀·ρ^(−k) (L₀ the nominal one,
     /// `catch_up` module). The crack's jump at the onset is ≈ ½·(R'_c/R_c)·d*
     /// and the onset depth d* ∝ T/S exactly, so `fit` writes k = 1 (not
-    /// fitted); 0 (format 3) keeps L at its nominal value.
+    /// fitted); 0 (a file without `[ratio]`) keeps L at its nominal value.
     pub catch_up_exponent: f64,
 }
 
 impl RatioCorrection {
-    /// Whether every coefficient is zero (a format-3 file, or a fit without
+    /// Whether every coefficient is zero (a file without `[ratio]`, or a fit without
     /// off-nominal sweeps): the surrogate is then linear in T, S and F·S.
     pub fn is_zero(&self) -> bool {
         self.strain_energy_rate_linear
