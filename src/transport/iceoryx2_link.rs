@@ -195,11 +195,10 @@ impl Iceoryx2PlantLink {
             return Err(self.stopped());
         }
         let state = self.services.peer_state(Role::Plant);
-        // On SIGINT/SIGTERM the supervisor stops the controller before the
-        // plant, but on a loaded machine the controller can see the plant
-        // gone before its own signal's handler has run: give the signal a
-        // moment before calling the plant lost (CI once reported "the plant
-        // is gone" for a terminated run).
+        // The run's supervisor stops the controller before the plant, but a
+        // Ctrl-C in a terminal signals the whole process group at once, and
+        // the plant may leave before the controller's handler has run: give
+        // the signal a moment before calling the plant lost.
         if state != PeerState::Alive
             && self
                 .services

@@ -60,9 +60,34 @@ fn terminate(child: &Child) {
         .status();
 }
 
-/// Waits for `child` up to `grace`; kills it (SIGKILL) after that. Polls
-/// with `node.wait` so SIGINT/SIGTERM to this process are still seen.
-fn wait_or_kill(child: &mut Child, grace: Duration) -> Option<ExitStatus> {
+/// How often [`stop`] repeats its SIGTERM.
+const RESEND: Duration = Duration::from_millis(500);
+
+/// Sends SIGTERM to `child`, repeated every [`RESEND`] until it exits or
+/// `grace` has passed (then SIGKILL). iceoryx2 keeps one pending signal in a
+/// flag that its own calls can reset (`SignalHandler::call_and_fetch`
+/// clears it before a call, and every `termination_requested` consumes it):
+/// a controller under load once ran on for the whole 10 s grace after a
+/// single SIGTERM and was killed. A repeated signal gets through.
+fn stop(child: &mut Child, grace: Duration) -> Option<ExitStatus> {
+    #[allow(clippy::disallowed_methods)] // Supervision deadline.
+    let until = Instant::now() + grace;
+    loop {
+        terminate(child);
+        #[allow(clippy::disallowed_methods)]
+        let left = until.saturating_duration_since(Instant::now());
+        if left <= RESEND {
+            return wait_or_kill(child, left);
+        }
+        if let Some(s) = wait_within(child, RESEND) {
+            return Some(s);
+        }
+    }
+}
+
+/// Waits for `child` up to `grace`, without killing it: its exit status, or
+/// None if it is still running.
+fn wait_within(child: &mut Child, grace: Duration) -> Option<ExitStatus> {
     #[allow(clippy::disallowed_methods)] // Supervision deadline.
     let until = Instant::now() + grace;
     loop {
@@ -71,11 +96,18 @@ fn wait_or_kill(child: &mut Child, grace: Duration) -> Option<ExitStatus> {
         }
         #[allow(clippy::disallowed_methods)]
         if Instant::now() > until {
-            let _ = child.kill();
-            return child.wait().ok();
+            return None;
         }
         std::thread::sleep(Duration::from_millis(5));
     }
+}
+
+/// Waits for `child` up to `grace`; kills it (SIGKILL) after that.
+fn wait_or_kill(child: &mut Child, grace: Duration) -> Option<ExitStatus> {
+    wait_within(child, grace).or_else(|| {
+        let _ = child.kill();
+        child.wait().ok()
+    })
 }
 
 /// Runs `scenario` as two processes (plant and controller) over iceoryx2,
@@ -132,12 +164,9 @@ pub fn run_both(
             eprintln!("run {run_id}: termination requested, stopping plant and controller");
             // The controller first, and the plant once it has gone: the
             // controller then stops on its own signal (and writes its partial
-            // results saying so) instead of finding the plant gone first,
-            // which a loaded machine's scheduling could otherwise make it do.
-            terminate(&ctl);
-            let c = wait_or_kill(&mut ctl, CONTROLLER_GRACE);
-            terminate(&plant);
-            let p = wait_or_kill(&mut plant, PLANT_GRACE);
+            // results saying so) instead of finding the plant gone first.
+            let c = stop(&mut ctl, CONTROLLER_GRACE);
+            let p = stop(&mut plant, PLANT_GRACE);
             break (p, c);
         }
         if let Ok(Some(c)) = ctl.try_wait() {

@@ -182,12 +182,8 @@ pub fn fit_surrogate(
     // nominal onset depth (as `Surrogate::evaluate` computes it).
     let nominal_onset = |run: &SweepRun| {
         let c = run.case;
-        let (lh, lw) = size_features(c.height, c.half_width, b);
-        let (a, b2) =
-            pre_fracture.onset_stiffness_terms(lh, lw, column_aspect(c.height, c.half_width, b));
         let r = ToughnessRatio::at(c.xi, nu).value;
-        let y = a + c.xi * c.xi * b2;
-        r * material.initial_fracture_toughness / (e0 * y)
+        r * material.initial_fracture_toughness / (e0 * onset_stiffness(&pre_fracture, &c, b))
     };
     let mut catch_up_rows = Rows::new("post_fracture.catch_up");
     let observed: Vec<Option<f64>> = runs.iter().map(observed_catch_up).collect();
@@ -311,7 +307,6 @@ fn fit_post_fracture(
 ) -> Result<PostFracture, FitError> {
     let e0 = material.youngs_modulus;
     let nu = material.poisson_ratio;
-    let g0 = material.shear_modulus();
     let mu0 = material.friction_coefficient;
     let b = blade.edge_width;
     let delta = 0.5 * blade.thickness;
@@ -372,14 +367,7 @@ fn fit_post_fracture(
         let c = run.case;
         let xi = c.xi;
         let (lh, lw) = size_features(c.height, c.half_width, b);
-        let aspect = column_aspect(c.height, c.half_width, b);
-        let r = ToughnessRatio::at(xi, nu).value;
-        // The drag at onset per unit toughness factor, from the fitted
-        // pre-fracture model (as `Surrogate::evaluate` computes it).
-        let (a, b2) = pre_fracture.onset_stiffness_terms(lh, lw, aspect);
-        let y = a + xi * xi * b2;
-        let (_, c_t) = pre_fracture.compliances(lh, lw, aspect);
-        let q = g0 * material.initial_fracture_toughness * xi * r / (c_t * e0 * y);
+        let q = onset_drag(pre_fracture, material, &c, b);
         for s in run.samples.iter().filter(|s| s.fractured) {
             let (ramp, ramp_slope) = ramps(s.travel_since_fracture, h_b);
             let depth_ratio = (s.depth / c.height).clamp(0.0, 1.0);
@@ -609,7 +597,6 @@ fn fit_drag_correction(
 ) -> Result<RatioCorrection, FitError> {
     let m = &surrogate.material;
     let e0 = m.youngs_modulus;
-    let g0 = m.shear_modulus();
     let delta = 0.5 * surrogate.blade.thickness;
     let h_b = surrogate.blade.section().bevel_height();
     let b = surrogate.blade.edge_width;
@@ -623,12 +610,7 @@ fn fit_drag_correction(
             let c = run.case;
             let xi = c.xi;
             let (lh, lw) = size_features(c.height, c.half_width, b);
-            let r = ToughnessRatio::at(xi, m.poisson_ratio).value;
-            let aspect = column_aspect(c.height, c.half_width, b);
-            let (a, b2) = pre.onset_stiffness_terms(lh, lw, aspect);
-            let y = a + xi * xi * b2;
-            let (_, c_t) = pre.compliances(lh, lw, aspect);
-            let q = g0 * m.initial_fracture_toughness * xi * r / (c_t * e0 * y);
+            let q = onset_drag(pre, m, &c, b);
             let sigma = dot(&p.split, &split_basis(xi, lh, lw));
             for sample in run.samples.iter().filter(|x| x.fractured) {
                 let state = fractured_state(&c, sample);
@@ -667,4 +649,26 @@ fn fractured_state(case: &SweepCase, sample: &SweepSample) -> CutState {
         fractured: true,
         travel_since_fracture: sample.travel_since_fracture,
     }
+}
+
+/// The onset stiffness y(ξ) = r(ξ,ν)·R'_c/(E·d*) the fitted pre-fracture
+/// model gives a run of `case` (edge width `b`), as `Surrogate::evaluate`
+/// computes it.
+fn onset_stiffness(pre: &PreFracture, case: &SweepCase, b: f64) -> f64 {
+    let (lh, lw) = size_features(case.height, case.half_width, b);
+    let (a, b2) = pre.onset_stiffness_terms(lh, lw, column_aspect(case.height, case.half_width, b));
+    a + case.xi * case.xi * b2
+}
+
+/// The antiplane drag the edge holds at the onset per unit toughness factor,
+/// Q(ξ) = G₀·ξ·r·R'_c₀/(C_t·E₀·y(ξ)), from the fitted pre-fracture model, as
+/// `Surrogate::evaluate` computes it.
+fn onset_drag(pre: &PreFracture, material: &Material, case: &SweepCase, b: f64) -> f64 {
+    let xi = case.xi;
+    let r = ToughnessRatio::at(xi, material.poisson_ratio).value;
+    let (lh, lw) = size_features(case.height, case.half_width, b);
+    let (_, c_t) = pre.compliances(lh, lw, column_aspect(case.height, case.half_width, b));
+    let y = onset_stiffness(pre, case, b);
+    material.shear_modulus() * material.initial_fracture_toughness * xi * r
+        / (c_t * material.youngs_modulus * y)
 }
