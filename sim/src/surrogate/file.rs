@@ -178,6 +178,14 @@ impl Surrogate {
             "ratio.face_reaction_slice_quadratic",
             &ratio.face_reaction_slice_quadratic,
         );
+        arr(
+            "ratio.face_reaction_slice_size_linear",
+            &ratio.face_reaction_slice_size_linear,
+        );
+        arr(
+            "ratio.face_reaction_slice_size_quadratic",
+            &ratio.face_reaction_slice_size_quadratic,
+        );
         arr("ratio.drag_linear", &ratio.drag_linear);
         arr("ratio.drag_quadratic", &ratio.drag_quadratic);
         v.push(("post_fracture.knee_lead".to_string(), post.knee_lead));

@@ -14,7 +14,7 @@ use super::model::{
     FitRange, FittedBlade, PostFracture, PreFracture, SURROGATE_FORMAT_VERSION, Surrogate,
     slip_direction,
 };
-use super::ratio::{RatioCorrection, SLICE_TERMS, log_ratio, slice_basis};
+use super::ratio::{RatioCorrection, SLICE_SIZE_TERMS, SLICE_TERMS, log_ratio, slice_basis};
 use super::state::CutState;
 use super::sweep::{SweepCase, SweepRun, SweepSample};
 use super::toughness::ToughnessRatio;
@@ -492,8 +492,9 @@ pub struct ScaledSweep<'a> {
 /// ρ = S/T (`ratio` module), by least squares on the residuals against the
 /// nominal surrogate evaluated at their ρ, with the nominal fit's targets:
 /// - the faces' normal reaction N = (F_n^f + ξF_t^f)/(μ₀√(1+ξ²)) over
-///   S·E₀·Δ, minus the nominal N₀/(E₀Δ), on [ℓ·b_N, ℓ·N₀φ, ℓ²·b_N, ℓ²·N₀φ]
-///   (φ the `ratio::slice_basis` in ξ);
+///   S·E₀·Δ, minus the nominal N₀/(E₀Δ), on [ℓ·b_N, ℓ·N₀φ, ℓ·N₀ψ, ℓ²·b_N,
+///   ℓ²·N₀φ, ℓ²·N₀ψ] (φ the `ratio::slice_basis` in ξ, ψ = φ·[λ_H, λ_w, H/w]
+///   the `ratio::slice_size_basis`);
 /// - the knife's non-friction work per depth beyond T·r(ξ,ν)·R_c₀·g over
 ///   S·E₀·Δ², minus the nominal U̇₀/(E₀Δ²), on [ℓ·b_U, ℓ²·b_U];
 ///
@@ -522,7 +523,7 @@ pub fn fit_ratio_correction(
     let mu0 = m.friction_coefficient;
     let delta = 0.5 * surrogate.blade.thickness;
     let p = &surrogate.post_fracture;
-    const FACE_TERMS: usize = FRICTION_TERMS + SLICE_TERMS;
+    const FACE_TERMS: usize = FRICTION_TERMS + SLICE_TERMS + SLICE_SIZE_TERMS;
     let mut face = Rows::<{ 2 * FACE_TERMS }>::new("ratio.face_reaction");
     let mut strain = Rows::<{ 2 * STRAIN_TERMS }>::new("ratio.strain_energy_rate");
     for sweep in sweeps {
@@ -545,7 +546,8 @@ pub fn fit_ratio_correction(
                         .face
                         .iter()
                         .copied()
-                        .chain(slice_values(xi).map(|phi| n0 * phi));
+                        .chain(slice_values(xi).map(|phi| n0 * phi))
+                        .chain(bases.slice_size.map(|b| n0 * b));
                     for (k, b) in terms.enumerate() {
                         row[k] = l * b;
                         row[FACE_TERMS + k] = l * l * b;
@@ -574,12 +576,17 @@ pub fn fit_ratio_correction(
         let n = face.solve()?;
         out.face_reaction_linear
             .copy_from_slice(&n[..FRICTION_TERMS]);
+        let slice = FRICTION_TERMS + SLICE_TERMS;
         out.face_reaction_slice_linear
-            .copy_from_slice(&n[FRICTION_TERMS..FACE_TERMS]);
+            .copy_from_slice(&n[FRICTION_TERMS..slice]);
+        out.face_reaction_slice_size_linear
+            .copy_from_slice(&n[slice..FACE_TERMS]);
         out.face_reaction_quadratic
             .copy_from_slice(&n[FACE_TERMS..FACE_TERMS + FRICTION_TERMS]);
         out.face_reaction_slice_quadratic
-            .copy_from_slice(&n[FACE_TERMS + FRICTION_TERMS..]);
+            .copy_from_slice(&n[FACE_TERMS + FRICTION_TERMS..FACE_TERMS + slice]);
+        out.face_reaction_slice_size_quadratic
+            .copy_from_slice(&n[FACE_TERMS + slice..]);
     }
     out = fit_drag_correction(surrogate, sweeps, out)?;
     Ok(out)

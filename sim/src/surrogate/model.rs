@@ -3,8 +3,8 @@
 use serde::{Deserialize, Serialize};
 
 use super::basis::{
-    COMPLIANCE_TERMS, DEFLECTION_TERMS, FRICTION_TERMS, KNEE_START, ONSET_TERMS, RAMPS,
-    SIZE_TERMS, SPLIT_TERMS, STRAIN_DEPTH_TERMS, STRAIN_TERMS, column_aspect, compliance_basis,
+    COMPLIANCE_TERMS, DEFLECTION_TERMS, FRICTION_TERMS, KNEE_START, ONSET_TERMS, RAMPS, SIZE_TERMS,
+    SPLIT_TERMS, STRAIN_DEPTH_TERMS, STRAIN_TERMS, column_aspect, compliance_basis,
     deflection_basis, dot, drag_basis, friction_basis, knee_derivatives, ramps, size_basis,
     size_features, split_basis, split_basis_slope, strain_basis_rate, strain_depth_rate_basis,
 };
@@ -14,7 +14,8 @@ use super::catch_up::{
 use super::jet::Jet;
 use super::output::{QuadraticModel, ScaledParts, SurrogateOutput};
 use super::ratio::{
-    RatioCorrection, SLICE_TERMS, corrected, fitted_log_ratio, log_ratio, slice_basis,
+    RatioCorrection, SLICE_SIZE_TERMS, SLICE_TERMS, corrected, fitted_log_ratio, log_ratio,
+    slice_basis, slice_size_basis,
 };
 use super::state::{CutState, ScaleFactors};
 use super::toughness::ToughnessRatio;
@@ -231,6 +232,9 @@ pub(super) struct WedgeBases {
     pub strain_rate: f64,
     /// The knee gate g.
     pub gate: f64,
+    /// The ratio corrections' slice terms with sizes
+    /// (`ratio::slice_size_basis`).
+    pub slice_size: [f64; SLICE_SIZE_TERMS],
 }
 
 /// A fitted surrogate of the cross-section model for one material and blade
@@ -353,10 +357,25 @@ impl Surrogate {
         } else {
             n0.add(dot_jet(&p.face_reaction_slice, &slice).scale(n_scale))
         };
-        let n1 = face_jet(&rc.face_reaction_linear)
-            .add(n0.mul(dot_jet(&rc.face_reaction_slice_linear, &slice)));
-        let n2 = face_jet(&rc.face_reaction_quadratic)
-            .add(n0.mul(dot_jet(&rc.face_reaction_slice_quadratic, &slice)));
+        // The slice factor of N₁ and N₂, with its part ∝ H/w (skipped when
+        // zero: files fitted before it evaluate bit for bit as before).
+        let slice_size = slice_size_basis(&slice, lh, lw, aspect);
+        let slice_factor = |a: &[f64; SLICE_TERMS], column: &[f64; SLICE_SIZE_TERMS]| {
+            let f = dot_jet(a, &slice);
+            if *column == [0.0; SLICE_SIZE_TERMS] {
+                f
+            } else {
+                f.add(dot_jet(column, &slice_size))
+            }
+        };
+        let n1 = face_jet(&rc.face_reaction_linear).add(n0.mul(slice_factor(
+            &rc.face_reaction_slice_linear,
+            &rc.face_reaction_slice_size_linear,
+        )));
+        let n2 = face_jet(&rc.face_reaction_quadratic).add(n0.mul(slice_factor(
+            &rc.face_reaction_slice_quadratic,
+            &rc.face_reaction_slice_size_quadratic,
+        )));
         let (nv, n_l) = corrected(n0.v, n1.v, n2.v, l_fit);
         let (nd, _) = corrected(n0.d, n1.d, n2.d, l_fit);
         let (ndd, _) = corrected(n0.dd, n1.dd, n2.dd, l_fit);
@@ -371,14 +390,27 @@ impl Surrogate {
                 .map(|(c, b)| c * b)
                 .sum::<f64>()
         };
-        let slice_v = |a: &[f64; SLICE_TERMS]| dot(a, &slice.map(|j| j.v));
+        let slice_v = |a: &[f64; SLICE_TERMS], column: &[f64; SLICE_SIZE_TERMS]| {
+            let v = dot(a, &slice.map(|j| j.v));
+            if *column == [0.0; SLICE_SIZE_TERMS] {
+                v
+            } else {
+                v + dot(column, &slice_size.map(|j| j.v))
+            }
+        };
         let n_l = n_l
             + n_scale
                 * (knee_dot(&p.face_reaction)
                     * (1.0
                         + bend(
-                            slice_v(&rc.face_reaction_slice_linear),
-                            slice_v(&rc.face_reaction_slice_quadratic),
+                            slice_v(
+                                &rc.face_reaction_slice_linear,
+                                &rc.face_reaction_slice_size_linear,
+                            ),
+                            slice_v(
+                                &rc.face_reaction_slice_quadratic,
+                                &rc.face_reaction_slice_size_quadratic,
+                            ),
                         ))
                     + bend(
                         knee_dot(&rc.face_reaction_linear),
@@ -613,6 +645,7 @@ impl Surrogate {
             strain: f.strain_basis,
             strain_rate: self.nominal_strain_rate(&f.strain_basis, state, lh, lw),
             gate: f.knee[0].v,
+            slice_size: slice_size_basis(&slice_basis(xi), lh, lw, aspect).map(|j| j.v),
         }
     }
 
