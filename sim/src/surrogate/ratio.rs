@@ -108,10 +108,10 @@ pub struct RatioCorrection {
     /// by how much depends on how stiff the halves are, which their size
     /// sets as it sets the compliances (`basis::compliance_basis`).
     /// Without it, at E × 2 in steady cutting, the
-    /// section's friction over the surrogate's fell from ξ = 0.3 to 1 by
-    /// +0.025 at H/w = 0.8 (20 × 25 mm) but by 0.064 at 30 × 15 mm and
-    /// 0.113 at 45 × 10 mm (`docs/surrogates.md`, "The friction's mean at
-    /// other ratios"). Zero when absent (files fitted before it: outputs bit
+    /// section's F_n friction over the surrogate's went from ξ = 0.3 to 1 by
+    /// +0.025 at H/w = 0.8 (20 × 25 mm) but by −0.064 at 30 × 15 mm and
+    /// −0.113 at 45 × 10 mm (`docs/surrogates.md`, "The friction's mean at
+    /// other ratios and the depth it is evaluated at"). Zero when absent (files fitted before it: outputs bit
     /// for bit as before).
     #[serde(default)]
     pub face_reaction_slice_size_linear: [f64; SLICE_SIZE_TERMS],
