@@ -212,6 +212,25 @@ pub fn strain_basis_rate(
     )
 }
 
+/// Number of terms of [`strain_depth_rate_basis`].
+pub const STRAIN_DEPTH_TERMS: usize = 3;
+
+/// Basis of the strain-energy rate (N/m) over E·Δ² that stays in steady
+/// cutting: the slopes d/dd of U/(E·Δ²) = (d/H)·[1, λ_H, λ_w], i.e.
+/// [1, λ_H, λ_w]/H. Behind its bevel the blade's body holds the crack faces
+/// apart by 2Δ over the whole cut, so the halves store an energy that grows
+/// with the length of cut they are pushed apart over (seed 000 eq. 1: the
+/// knife pays dU/dd on top of r·R_c even when the wedge's ramps are done).
+/// The section model's dU/dd after the bevel has entered (potato, travel
+/// since fracture ≥ 8 mm) is 11–12 N/m on 30 × 15 mm and 15–18 N/m on
+/// 25 × 15 mm, about ξ-independent; the ramps' slopes vanish there and
+/// (d/H)³, (d/H)⁴ alone made the fit trade that level against the wedge's
+/// entry (`docs/surrogates.md`, "The normal force's mean after fracture").
+#[inline]
+pub fn strain_depth_rate_basis(height: f64, lh: f64, lw: f64) -> [f64; STRAIN_DEPTH_TERMS] {
+    [1.0 / height, lh / height, lw / height]
+}
+
 /// Number of terms of the post-fracture deflection basis.
 pub const DEFLECTION_TERMS: usize = 3;
 

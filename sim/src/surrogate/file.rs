@@ -150,6 +150,11 @@ impl Surrogate {
         arr("post_fracture.drag", &post.drag);
         arr("post_fracture.face_reaction", &post.face_reaction);
         arr("post_fracture.strain_energy_rate", &post.strain_energy_rate);
+        arr("post_fracture.strain_depth_rate", &post.strain_depth_rate);
+        arr(
+            "post_fracture.face_reaction_slice",
+            &post.face_reaction_slice,
+        );
         arr("post_fracture.deflection", &post.deflection);
         let ratio = &self.ratio;
         arr(
@@ -173,6 +178,14 @@ impl Surrogate {
             "ratio.face_reaction_slice_quadratic",
             &ratio.face_reaction_slice_quadratic,
         );
+        arr(
+            "ratio.face_reaction_slice_size_linear",
+            &ratio.face_reaction_slice_size_linear,
+        );
+        arr(
+            "ratio.face_reaction_slice_size_quadratic",
+            &ratio.face_reaction_slice_size_quadratic,
+        );
         arr("ratio.drag_linear", &ratio.drag_linear);
         arr("ratio.drag_quadratic", &ratio.drag_quadratic);
         v.push(("post_fracture.knee_lead".to_string(), post.knee_lead));
@@ -180,6 +193,7 @@ impl Surrogate {
             "ratio.catch_up_exponent".to_string(),
             ratio.catch_up_exponent,
         ));
+        v.push(("post_fracture.slip_ratio".to_string(), post.slip_ratio));
         v
     }
 
@@ -203,6 +217,14 @@ impl Surrogate {
                     allowed: "must be non-negative",
                 });
             }
+        }
+        let slip = self.post_fracture.slip_ratio;
+        if slip <= 0.0 {
+            return Err(SurrogateFileError::BadValue {
+                key: "post_fracture.slip_ratio".to_string(),
+                value: slip,
+                allowed: "must be positive",
+            });
         }
         let lead = self.post_fracture.knee_lead;
         if lead < 0.0 {

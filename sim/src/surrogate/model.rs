@@ -4,9 +4,9 @@ use serde::{Deserialize, Serialize};
 
 use super::basis::{
     COMPLIANCE_TERMS, DEFLECTION_TERMS, FRICTION_TERMS, KNEE_START, ONSET_TERMS, RAMPS, SIZE_TERMS,
-    SPLIT_TERMS, STRAIN_TERMS, column_aspect, compliance_basis, deflection_basis, dot, drag_basis,
-    friction_basis, knee_derivatives, ramps, size_basis, size_features, split_basis,
-    split_basis_slope, strain_basis_rate,
+    SPLIT_TERMS, STRAIN_DEPTH_TERMS, STRAIN_TERMS, column_aspect, compliance_basis,
+    deflection_basis, dot, drag_basis, friction_basis, knee_derivatives, ramps, size_basis,
+    size_features, split_basis, split_basis_slope, strain_basis_rate, strain_depth_rate_basis,
 };
 use super::catch_up::{
     CATCH_UP_TERMS, KNEE_TERMS, MIN_CATCH_UP, catch_up_basis, dot_jet, knee_terms, knee_terms_with,
@@ -14,7 +14,8 @@ use super::catch_up::{
 use super::jet::Jet;
 use super::output::{QuadraticModel, ScaledParts, SurrogateOutput};
 use super::ratio::{
-    RatioCorrection, SLICE_TERMS, corrected, fitted_log_ratio, log_ratio, slice_basis,
+    RatioCorrection, SLICE_SIZE_TERMS, SLICE_TERMS, corrected, fitted_log_ratio, log_ratio,
+    slice_basis, slice_size_basis,
 };
 use super::state::{CutState, ScaleFactors};
 use super::toughness::ToughnessRatio;
@@ -147,8 +148,57 @@ pub struct PostFracture {
     /// [1, λ_H, λ_w, (ρ_k, ρ_kλ_H, ρ_kλ_w) for k < 4, (d/H)³, (d/H)⁴]:
     /// fitted to the knife's non-friction work per depth beyond r·R_c·g.
     pub strain_energy_rate: [f64; STRAIN_TERMS],
+    /// The strain-energy rate U̇/(E·Δ²) (1/m) that stays in steady cutting
+    /// (the blade's body holding the faces apart over the cut), on
+    /// [1, λ_H, λ_w]/H (`basis::strain_depth_rate_basis`); fitted with
+    /// `strain_energy_rate`. Zero when absent (files fitted before it), and
+    /// then the outputs are bit for bit those without it.
+    #[serde(default)]
+    pub strain_depth_rate: [f64; STRAIN_DEPTH_TERMS],
     /// Surface deflection over Δ on [1, ρ₀, λ_w].
     pub deflection: [f64; DEFLECTION_TERMS],
+    /// k: the faces slip along (1, k·ξ)/√(1+k²ξ²) against the blade, so
+    /// the friction μN splits as F_n^f = μN/√(1+k²ξ²), F_t^f = k·ξ·F_n^f
+    /// and its work per depth is μN·(1+kξ²)/√(1+k²ξ²). k = 1 is the
+    /// knife's own direction (1, ξ); k > 1 when the material at the faces
+    /// follows the blade down (it slips less vertically than the knife
+    /// moves). Fitted to the section's F_t^f against ξ·F_n^f; 1 when absent
+    /// (files fitted before it, whose outputs are then bit for bit those
+    /// without it).
+    #[serde(default = "unit_slip_ratio")]
+    pub slip_ratio: f64,
+    /// The face reaction's dependence on ξ in steady cutting, N/(E·Δ) on
+    /// [ξ, ξ², ξ/(1+ξ²)] (`ratio::slice_basis`), added to
+    /// `face_reaction`: how far the crack runs ahead of the edge depends on
+    /// ξ (potato, 30 × 15 mm: 0.34, 0.41, 0.47, 0.55, 0.45 mm at ξ = 0,
+    /// 0.3, 0.6, 1, 2.5), and the further it leads, the less the bevel
+    /// presses on the faces (the section's N is lowest near ξ = 1, 6 %
+    /// under its pressing value), which ξ² alone cannot follow. Zero when
+    /// absent (files fitted before it: outputs bit for bit as before).
+    #[serde(default)]
+    pub face_reaction_slice: [f64; SLICE_TERMS],
+}
+
+/// The default [`PostFracture::slip_ratio`]: the knife's own direction.
+fn unit_slip_ratio() -> f64 {
+    1.0
+}
+
+/// The faces' slip direction factors (F_n^f, F_t^f, work per depth) per
+/// unit μN as jets in ξ, for a slip ratio k:
+/// 1/√(1+k²ξ²), kξ/√(1+k²ξ²) and (1+kξ²)/√(1+k²ξ²).
+#[inline]
+pub(super) fn slip_direction(xi: f64, slip: f64) -> (Jet, Jet, Jet) {
+    let k2 = slip * slip;
+    let q = 1.0 + k2 * xi * xi;
+    let a = 1.0 / q.sqrt();
+    let a3 = a * a * a;
+    let a5 = a3 * a * a;
+    let normal = Jet::new(a, -k2 * xi * a3, -k2 * a3 + 3.0 * k2 * k2 * xi * xi * a5);
+    let x = Jet::new(xi, 1.0, 0.0);
+    let tangential = normal.mul(x).scale(slip);
+    let work = normal.add(tangential.mul(x));
+    (normal, tangential, work)
 }
 
 /// What `evaluate` builds on after fracture (see `Surrogate::post_features`).
@@ -174,10 +224,17 @@ struct PostFeatures {
 pub(super) struct WedgeBases {
     /// The face reaction's basis (`basis::friction_basis`).
     pub face: [f64; FRICTION_TERMS],
+    /// The nominal face reaction N₀/(E₀Δ), with its ξ-terms.
+    pub face_reaction: f64,
     /// The strain-energy rate's basis (`basis::strain_basis_rate`).
     pub strain: [f64; STRAIN_TERMS],
+    /// The nominal strain-energy rate U̇₀/(E·Δ²) (1/m), both its parts.
+    pub strain_rate: f64,
     /// The knee gate g.
     pub gate: f64,
+    /// The ratio corrections' slice terms with sizes
+    /// (`ratio::slice_size_basis`).
+    pub slice_size: [f64; SLICE_SIZE_TERMS],
 }
 
 /// A fitted surrogate of the cross-section model for one material and blade
@@ -293,12 +350,32 @@ impl Surrogate {
             let (d, dd) = knee_derivatives(c, &knee);
             Jet::new(dot(c, &face_basis), d, dd).scale(n_scale)
         };
-        let n0 = face_jet(&p.face_reaction);
         let slice = slice_basis(xi);
-        let n1 = face_jet(&rc.face_reaction_linear)
-            .add(n0.mul(dot_jet(&rc.face_reaction_slice_linear, &slice)));
-        let n2 = face_jet(&rc.face_reaction_quadratic)
-            .add(n0.mul(dot_jet(&rc.face_reaction_slice_quadratic, &slice)));
+        let n0 = face_jet(&p.face_reaction);
+        let n0 = if p.face_reaction_slice == [0.0; SLICE_TERMS] {
+            n0
+        } else {
+            n0.add(dot_jet(&p.face_reaction_slice, &slice).scale(n_scale))
+        };
+        // The slice factor of N₁ and N₂, with its part ∝ H/w (skipped when
+        // zero: files fitted before it evaluate bit for bit as before).
+        let slice_size = slice_size_basis(&slice, lh, lw, aspect);
+        let slice_factor = |a: &[f64; SLICE_TERMS], column: &[f64; SLICE_SIZE_TERMS]| {
+            let f = dot_jet(a, &slice);
+            if *column == [0.0; SLICE_SIZE_TERMS] {
+                f
+            } else {
+                f.add(dot_jet(column, &slice_size))
+            }
+        };
+        let n1 = face_jet(&rc.face_reaction_linear).add(n0.mul(slice_factor(
+            &rc.face_reaction_slice_linear,
+            &rc.face_reaction_slice_size_linear,
+        )));
+        let n2 = face_jet(&rc.face_reaction_quadratic).add(n0.mul(slice_factor(
+            &rc.face_reaction_slice_quadratic,
+            &rc.face_reaction_slice_size_quadratic,
+        )));
         let (nv, n_l) = corrected(n0.v, n1.v, n2.v, l_fit);
         let (nd, _) = corrected(n0.d, n1.d, n2.d, l_fit);
         let (ndd, _) = corrected(n0.dd, n1.dd, n2.dd, l_fit);
@@ -313,14 +390,27 @@ impl Surrogate {
                 .map(|(c, b)| c * b)
                 .sum::<f64>()
         };
-        let slice_v = |a: &[f64; SLICE_TERMS]| dot(a, &slice.map(|j| j.v));
+        let slice_v = |a: &[f64; SLICE_TERMS], column: &[f64; SLICE_SIZE_TERMS]| {
+            let v = dot(a, &slice.map(|j| j.v));
+            if *column == [0.0; SLICE_SIZE_TERMS] {
+                v
+            } else {
+                v + dot(column, &slice_size.map(|j| j.v))
+            }
+        };
         let n_l = n_l
             + n_scale
                 * (knee_dot(&p.face_reaction)
                     * (1.0
                         + bend(
-                            slice_v(&rc.face_reaction_slice_linear),
-                            slice_v(&rc.face_reaction_slice_quadratic),
+                            slice_v(
+                                &rc.face_reaction_slice_linear,
+                                &rc.face_reaction_slice_size_linear,
+                            ),
+                            slice_v(
+                                &rc.face_reaction_slice_quadratic,
+                                &rc.face_reaction_slice_size_quadratic,
+                            ),
                         ))
                     + bend(
                         knee_dot(&rc.face_reaction_linear),
@@ -333,7 +423,7 @@ impl Surrogate {
         };
         let u_scale = e0 * delta * delta;
         let (u_rate0, u_l) = corrected(
-            u_scale * dot(&p.strain_energy_rate, &strain_basis),
+            u_scale * self.nominal_strain_rate(&strain_basis, state, lh, lw),
             u_scale * dot(&rc.strain_energy_rate_linear, &strain_basis),
             u_scale * dot(&rc.strain_energy_rate_quadratic, &strain_basis),
             l_fit,
@@ -384,18 +474,43 @@ impl Surrogate {
         let fs = f * s;
         out.fracture = t * fracture0.v;
         out.strain = s * u_rate0;
-        out.friction = fs * fr0.v * root;
-        out.force_normal = fn_c + fs * fr0.v / root;
-        out.force_tangential = ft_c + fs * fr0.v * xi / root;
-        out.work_per_depth = pj.v + fs * fr0.v * root;
-        out.force_normal_slope = dfn_c + fs * (fr0.d / root - fr0.v * xi / root3);
-        out.force_tangential_slope = dft_c + fs * (fr0.d * xi / root + fr0.v / root3);
-        out.work_per_depth_slope = pj.d + fs * (fr0.d * root + fr0.v * xi / root);
-        out.work_per_depth_curvature =
-            pj.dd + fs * (fr0.dd * root + 2.0 * fr0.d * xi / root + fr0.v / root3);
+        // The faces' slip (1, k·ξ)/√(1+k²ξ²) (`PostFracture::slip_ratio`):
+        // the parts' friction factors of F_n, F_t and the work per unit μN.
+        let slip = p.slip_ratio;
+        let friction_factors = if slip == 1.0 {
+            out.friction = fs * fr0.v * root;
+            out.force_normal = fn_c + fs * fr0.v / root;
+            out.force_tangential = ft_c + fs * fr0.v * xi / root;
+            out.work_per_depth = pj.v + fs * fr0.v * root;
+            out.force_normal_slope = dfn_c + fs * (fr0.d / root - fr0.v * xi / root3);
+            out.force_tangential_slope = dft_c + fs * (fr0.d * xi / root + fr0.v / root3);
+            out.work_per_depth_slope = pj.d + fs * (fr0.d * root + fr0.v * xi / root);
+            out.work_per_depth_curvature =
+                pj.dd + fs * (fr0.dd * root + 2.0 * fr0.d * xi / root + fr0.v / root3);
+            None
+        } else {
+            let (normal, tangential, work) = slip_direction(xi, slip);
+            let (fn_f, ft_f, w_f) = (fr0.mul(normal), fr0.mul(tangential), fr0.mul(work));
+            out.friction = fs * w_f.v;
+            out.force_normal = fn_c + fs * fn_f.v;
+            out.force_tangential = ft_c + fs * ft_f.v;
+            out.work_per_depth = pj.v + fs * w_f.v;
+            out.force_normal_slope = dfn_c + fs * fn_f.d;
+            out.force_tangential_slope = dft_c + fs * ft_f.d;
+            out.work_per_depth_slope = pj.d + fs * w_f.d;
+            out.work_per_depth_curvature = pj.dd + fs * w_f.dd;
+            Some((normal.v, tangential.v, work.v))
+        };
         out.deformation = delta * dot(&p.deflection, &deflection_basis(&ramp, lw));
         let (fracture0, fr0) = (fracture0.v, fr0.v);
         let fr_l = mu0 * n_l;
+        // Friction parts: (F_n, F_t, work) per unit μN, as the outputs.
+        let along = |x: f64| match friction_factors {
+            None => (x / root, x * xi / root, x * root),
+            Some((n, t, w)) => (x * n, x * t, x * w),
+        };
+        let (fr_n, fr_t, fr_w) = along(fr0);
+        let (fr_l_n, fr_l_t, fr_l_w) = along(fr_l);
         let fn_t = (fracture0 - xi * drag0) / den;
         let drag_l = q * h_l;
         // The gate's ℓ-dependence through L: ∂(r·R_c₀·g)/∂ℓ.
@@ -405,25 +520,25 @@ impl Surrogate {
             by_toughness: fn_t,
             by_toughness_log_ratio_slope: fn_t_l,
             by_stiffness: u_rate0,
-            by_friction_stiffness: fr0 / root,
+            by_friction_stiffness: fr_n,
             by_stiffness_log_ratio_slope: u_l,
-            by_friction_stiffness_log_ratio_slope: fr_l / root,
+            by_friction_stiffness_log_ratio_slope: fr_l_n,
         };
         out.force_tangential_parts = ScaledParts {
             by_toughness: sigma * fn_t + drag0,
             by_toughness_log_ratio_slope: sigma * fn_t_l + drag_l,
             by_stiffness: 0.0,
-            by_friction_stiffness: fr0 * xi / root,
+            by_friction_stiffness: fr_t,
             by_stiffness_log_ratio_slope: 0.0,
-            by_friction_stiffness_log_ratio_slope: fr_l * xi / root,
+            by_friction_stiffness_log_ratio_slope: fr_l_t,
         };
         out.work_per_depth_parts = ScaledParts {
             by_toughness: fracture0,
             by_toughness_log_ratio_slope: fracture_l,
             by_stiffness: u_rate0,
-            by_friction_stiffness: fr0 * root,
+            by_friction_stiffness: fr_w,
             by_stiffness_log_ratio_slope: u_l,
-            by_friction_stiffness_log_ratio_slope: fr_l * root,
+            by_friction_stiffness_log_ratio_slope: fr_l_w,
         };
         out
     }
@@ -522,11 +637,41 @@ impl Surrogate {
         let aspect = column_aspect(state.height, state.half_width, self.blade.edge_width);
         let onset = self.pre_fracture.onset_stiffness_terms(lh, lw, aspect);
         let f = self.post_features(xi, state, (lh, lw), &r, onset, (l, (-l).exp()));
+        let slice = slice_basis(xi).map(|j| j.v);
         WedgeBases {
+            face_reaction: dot(&self.post_fracture.face_reaction, &f.face_basis)
+                + dot(&self.post_fracture.face_reaction_slice, &slice),
             face: f.face_basis,
             strain: f.strain_basis,
+            strain_rate: self.nominal_strain_rate(&f.strain_basis, state, lh, lw),
             gate: f.knee[0].v,
+            slice_size: slice_size_basis(&slice_basis(xi), lh, lw, aspect).map(|j| j.v),
         }
+    }
+
+    /// The nominal strain-energy rate U̇₀/(E·Δ²) (1/m): the wedge's part on
+    /// `strain_basis` plus the steady part on [1, λ_H, λ_w]/H
+    /// (`strain_depth_rate`, skipped when zero so that files fitted before
+    /// it evaluate bit for bit as before).
+    #[inline]
+    pub(super) fn nominal_strain_rate(
+        &self,
+        strain_basis: &[f64; STRAIN_TERMS],
+        state: &CutState,
+        lh: f64,
+        lw: f64,
+    ) -> f64 {
+        let p = &self.post_fracture;
+        let wedge = dot(&p.strain_energy_rate, strain_basis);
+        if p.strain_depth_rate == [0.0; STRAIN_DEPTH_TERMS] {
+            return wedge;
+        }
+        let height = state.height.max(self.blade.edge_width);
+        wedge
+            + dot(
+                &p.strain_depth_rate,
+                &strain_depth_rate_basis(height, lh, lw),
+            )
     }
 
     /// The quadratic model of work per depth in ξ around `xi` (value, slope,

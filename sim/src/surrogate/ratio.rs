@@ -33,6 +33,30 @@ use super::jet::Jet;
 /// Number of terms of [`slice_basis`].
 pub const SLICE_TERMS: usize = 3;
 
+/// Number of terms of [`slice_size_basis`].
+pub const SLICE_SIZE_TERMS: usize = 3 * SLICE_TERMS;
+
+/// [φ_j·λ_H, φ_j·λ_w, φ_j·H/w] for the jets φ of [`slice_basis`] (λ_H, λ_w
+/// the size features and H/w the column aspect, `basis::size_features`,
+/// `basis::column_aspect`): the slice factor of the face reaction's ratio
+/// correction, by section size
+/// ([`RatioCorrection::face_reaction_slice_size_linear`]).
+#[inline]
+pub fn slice_size_basis(
+    slice: &[Jet; SLICE_TERMS],
+    lh: f64,
+    lw: f64,
+    aspect: f64,
+) -> [Jet; SLICE_SIZE_TERMS] {
+    let mut b = [Jet::default(); SLICE_SIZE_TERMS];
+    for (j, phi) in slice.iter().enumerate() {
+        b[3 * j] = phi.scale(lh);
+        b[3 * j + 1] = phi.scale(lw);
+        b[3 * j + 2] = phi.scale(aspect);
+    }
+    b
+}
+
 /// [ξ, ξ², ξ/(1+ξ²)] as jets in ξ: how the faces' reaction's departure
 /// from linear scaling depends on the slice-push ratio, as a factor of the
 /// nominal reaction N₀ (potato, 30 × 15 mm, steady cutting at E × 2: the
@@ -75,6 +99,25 @@ pub struct RatioCorrection {
     pub face_reaction_slice_linear: [f64; SLICE_TERMS],
     /// The same for N₂.
     pub face_reaction_slice_quadratic: [f64; SLICE_TERMS],
+    /// The part of N₁'s slice factor that depends on the section's size:
+    /// N₁ += N₀·Σ c_k·ψ_k with ψ = φ_j(ξ)·[λ_H, λ_w, H/w]
+    /// ([`slice_size_basis`]). How much steeper slices lower the faces'
+    /// reaction at another ρ depends on the section: the crack's lead over
+    /// the edge grows steeply with ρ (potato, 30 × 15 mm, ξ = 1, travel
+    /// 8–12 mm past the onset: 0.34, 0.69 and 3.6 mm at ρ = 0.5, 1 and 2),
+    /// by how much depends on how stiff the halves are, which their size
+    /// sets as it sets the compliances (`basis::compliance_basis`).
+    /// Without it, at E × 2 in steady cutting, the
+    /// section's F_n friction over the surrogate's went from ξ = 0.3 to 1 by
+    /// +0.025 at H/w = 0.8 (20 × 25 mm) but by −0.064 at 30 × 15 mm and
+    /// −0.113 at 45 × 10 mm (`docs/surrogates.md`, "The friction's mean at
+    /// other ratios and the depth it is evaluated at"). Zero when absent (files fitted before it: outputs bit
+    /// for bit as before).
+    #[serde(default)]
+    pub face_reaction_slice_size_linear: [f64; SLICE_SIZE_TERMS],
+    /// The same for N₂.
+    #[serde(default)]
+    pub face_reaction_slice_size_quadratic: [f64; SLICE_SIZE_TERMS],
     /// h₁: the share of the onset's drag still held after a travel s,
     /// h(s) + ℓ·h₁(s) + ℓ²·h₂(s), coefficient of ℓ on the decays of
     /// `post_fracture.drag` (the drag is released over a travel that grows
@@ -100,6 +143,8 @@ impl RatioCorrection {
             .chain(&self.face_reaction_quadratic)
             .chain(&self.face_reaction_slice_linear)
             .chain(&self.face_reaction_slice_quadratic)
+            .chain(&self.face_reaction_slice_size_linear)
+            .chain(&self.face_reaction_slice_size_quadratic)
             .chain(&self.drag_linear)
             .chain(&self.drag_quadratic)
             .chain(std::iter::once(&self.catch_up_exponent))
