@@ -242,6 +242,7 @@ fn the_estimator_converges_on_plants_off_the_preset() {
         ..MpcSettings::default()
     };
     let mut worst: f64 = 0.0;
+    let mut failures = Vec::new();
     for setup in [CUBOID, WHOLE] {
         for (label, truth) in PLANTS {
             let (estimated, check, completed) = end_of_cut(&setup, truth, &settings);
@@ -274,15 +275,18 @@ fn the_estimator_converges_on_plants_off_the_preset() {
             let model_limited = setup.name == CUBOID.name && truth == [0.7, 1.3, 1.0];
             let bound = if model_limited { 0.15 } else { 0.05 };
             for (k, factor) in ["toughness", "stiffness", "friction"].iter().enumerate() {
-                assert!(
-                    e[k].abs() < bound,
-                    "{} {label}: {factor} {:+.1} % (bound {} %)",
-                    setup.name,
-                    100.0 * e[k],
-                    100.0 * bound
-                );
+                if e[k].abs() >= bound {
+                    failures.push(format!(
+                        "{} {label}: {factor} {:+.1} % (bound {} %)",
+                        setup.name,
+                        100.0 * e[k],
+                        100.0 * bound
+                    ));
+                }
             }
         }
     }
     println!("worst factor error {:.1} %", 100.0 * worst);
+    // The whole table first, then every plant off its bound.
+    assert!(failures.is_empty(), "{}", failures.join("; "));
 }
