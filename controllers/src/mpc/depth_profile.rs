@@ -150,7 +150,7 @@ impl DepthProfile {
     /// at the rate 1 beyond the last sample). At least `advance` where the
     /// contact grows with depth (new sections enter at depth 0).
     pub fn travel_for(&self, depth: f64, advance: f64) -> f64 {
-        if !(advance > 0.0) {
+        if advance.is_nan() || advance <= 0.0 {
             return 0.0;
         }
         let start = self.section_depth(depth);
