@@ -58,7 +58,7 @@ pub struct IndentationStiffness {
     /// Σ w·(m − m̄)² and Σ w·(m − m̄)·(y − ȳ) of the finished runs.
     finished: [f64; 2],
     /// Σ w·m² over every row: the scale against which the model's spread
-    /// Σ w·(m − m̄)² counts as a change rather than rounding.
+    /// Σ w·(m − m̄)² counts as excitation ([`Self::MIN_RELATIVE_SPREAD`]).
     magnitude: f64,
 }
 
