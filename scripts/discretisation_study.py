@@ -14,12 +14,12 @@ Usage: scripts/discretisation_study.py [path/to/shearcut]  (default
 target/release/shearcut; build it first with `cargo build --release`).
 """
 
-import json
 import os
 import pathlib
-import subprocess
 import sys
 import tempfile
+
+from mpc_run import run_mpc
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 BASE = "loop-potato-whole"
@@ -52,16 +52,10 @@ def scenario_text(row_spacing, grading, max_width, update_distance):
 
 
 def run(binary, text, out):
-    path = out / "scenario.toml"
-    path.write_text(text)
     before = os.times()
-    subprocess.run(
-        [binary, "run", str(path), "--controller", "mpc", "--transport", "inproc",
-         "--out", str(out / "run")],
-        check=True, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
+    _, summary = run_mpc(binary, text, out)
     after = os.times()
-    cut = json.loads((out / "run" / "summary.json").read_text())["cut"]
-    return cut, after.children_user - before.children_user
+    return summary["cut"], after.children_user - before.children_user
 
 
 def main():

@@ -15,12 +15,12 @@ Usage: scripts/estimation_table.py [path/to/shearcut]  (default
 target/release/shearcut; build it first with `cargo build --release`).
 """
 
-import json
 import pathlib
-import subprocess
 import sys
 import tempfile
 import tomllib
+
+from mpc_run import run_mpc
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 SCENARIOS = ["loop-potato-cuboid", "loop-potato-whole"]
@@ -55,14 +55,8 @@ def scenario_text(name, toughness, stiffness, friction, estimate):
 
 
 def run(binary, text, out):
-    path = out / "scenario.toml"
-    path.write_text(text)
-    subprocess.run(
-        [binary, "run", str(path), "--controller", "mpc", "--transport", "inproc",
-         "--out", str(out / "run")],
-        check=True, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
-    summary = json.loads((out / "run" / "summary.json").read_text())
-    rows = (out / "run" / "controller.csv").read_text().strip().splitlines()
+    run_dir, summary = run_mpc(binary, text, out)
+    rows = (run_dir / "controller.csv").read_text().strip().splitlines()
     header, last = rows[0].split(","), rows[-1].split(",")
     factors = [float(last[header.index(f"scale_{k}")]) for k in ("toughness", "stiffness", "friction")]
     return summary["cut"]["work_j"], factors

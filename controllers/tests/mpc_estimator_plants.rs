@@ -248,11 +248,9 @@ fn the_estimator_converges_on_plants_off_the_preset() {
     for setup in [CUBOID, WHOLE] {
         for (label, truth) in PLANTS {
             let (estimated, check, completed) = end_of_cut(&setup, truth, &settings);
-            assert!(
-                completed,
-                "{} {label}: the cut did not complete",
-                setup.name
-            );
+            if !completed {
+                failures.push(format!("{} {label}: the cut did not complete", setup.name));
+            }
             let e = errors(estimated, truth);
             let r = check.ratios();
             println!(
@@ -277,7 +275,8 @@ fn the_estimator_converges_on_plants_off_the_preset() {
             let model_limited = setup.name == CUBOID.name && truth == [0.7, 1.3, 1.0];
             let bound = if model_limited { 0.15 } else { 0.05 };
             for (k, factor) in ["toughness", "stiffness", "friction"].iter().enumerate() {
-                if e[k].abs() >= bound {
+                // A NaN factor fails too.
+                if e[k].is_nan() || e[k].abs() >= bound {
                     failures.push(format!(
                         "{} {label}: {factor} {:+.1} % (bound {} %)",
                         setup.name,

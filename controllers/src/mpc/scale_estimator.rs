@@ -120,8 +120,8 @@ impl ScaleEstimator {
         self.indentation
             .observe(contact, force, model.map(|m| m.nominal));
         if let Some(s) = self.indentation.stiffness() {
-            let (lo, hi) = Self::BOUNDS;
-            self.theta[1] = s.clamp(lo, hi);
+            self.theta[1] = s;
+            self.clamp_factors();
             self.updates += 1;
         }
     }
@@ -157,12 +157,18 @@ impl ScaleEstimator {
         self.covariance = (self.covariance - gain * p_phi.transpose()) / self.forgetting;
         // Keep P symmetric against rounding.
         self.covariance = 0.5 * (self.covariance + self.covariance.transpose());
+        self.clamp_factors();
+        self.updates += 1;
+    }
+
+    /// Keeps each factor within [`Self::BOUNDS`]: θ₁ (toughness), θ₂
+    /// (stiffness), and the friction factor F = θ₃/θ₂ itself, so θ₃ = F·S
+    /// within [lo·θ₂, hi·θ₂] (after θ₂ is).
+    fn clamp_factors(&mut self) {
         let (lo, hi) = Self::BOUNDS;
         self.theta[0] = self.theta[0].clamp(lo, hi);
         self.theta[1] = self.theta[1].clamp(lo, hi);
-        // θ₂ = F·S: the friction factor F itself within the bounds.
         self.theta[2] = self.theta[2].clamp(lo * self.theta[1], hi * self.theta[1]);
-        self.updates += 1;
     }
 
     /// Holds the stiffness factor where it is from now on: its row and
@@ -247,6 +253,34 @@ mod tests {
         assert_eq!(e.stiffness(), held);
         assert!((e.toughness() - 1.3).abs() < 2e-3, "{}", e.toughness());
         assert!((e.friction() - 1.25).abs() < 5e-3, "{}", e.friction());
+    }
+
+    #[test]
+    fn the_friction_factor_itself_stays_within_the_bounds() {
+        let (lo, hi) = ScaleEstimator::BOUNDS;
+        // Rows asking for F = 20 at S = 1: F is held at the upper bound
+        // (θ₃ = F·S alone would have been allowed up to hi²).
+        let mut e = ScaleEstimator::new(1.0, 1.0, 0.05);
+        for k in 0..50 {
+            let c = 10.0 + k as f64;
+            e.update([0.0, 0.0, c], 20.0 * c, 1.0);
+        }
+        assert!((e.friction() - hi).abs() < 1e-12, "{}", e.friction());
+        // A stiffness at its lower bound with F·S asking for F = 0.05:
+        // F is held at the lower bound, not 0.05 (the old [lo², hi²] on F·S
+        // admitted it).
+        let mut e = ScaleEstimator::new(1.0, 1.0, 0.05);
+        for k in 0..50 {
+            let b = 40.0 + k as f64;
+            e.update([0.0, b, 0.0], 0.1 * b, 1.0);
+        }
+        e.freeze_stiffness();
+        for k in 0..50 {
+            let c = 10.0 + k as f64;
+            e.update([0.0, 0.0, c], 0.05 * lo * c, 1.0);
+        }
+        assert_eq!(e.stiffness(), lo);
+        assert!((e.friction() - lo).abs() < 1e-12, "{}", e.friction());
     }
 
     #[test]
