@@ -294,19 +294,17 @@ impl<M: SliceModel> Mpc<M> {
     }
 
     /// Plans from the edge's depth `d0` (m, [`EdgeDepth`]) for the cut to
-    /// deepen by `remaining` (m of the sections' mean depth: the target is
-    /// the crack's), `fractured` or not.
+    /// deepen by `remaining` (m), `fractured` or not.
     ///
-    /// The stages split the edge's travel that takes the sections' mean
-    /// depth `remaining` further ([`DepthProfile::travel_for`]: more than
-    /// `remaining` where the contact grows with depth); each stage's model
-    /// state is at the mean section depth there
+    /// The plant's depth is the crack front's below the object's top, which
+    /// the edge's travel advances one for one (the crack's lead over the
+    /// edge is steady), so the stages split `remaining` of the edge's
+    /// travel; each stage's model state is the sections' mean depth there
     /// ([`DepthProfile::section_depth`]), and its work is per unit of the
     /// edge's travel.
     fn replan_at(&mut self, d0: f64, remaining: f64, fractured: bool) {
         let n = self.settings.stages;
-        let travel = self.profile.travel_for(d0, remaining.max(1e-6));
-        let dd = travel / n as f64;
+        let dd = remaining.max(1e-6) / n as f64;
         let since = self.depth_at_fracture;
         let section_depth = |d: f64| self.profile.section_depth(d);
         let s0 = section_depth(d0);

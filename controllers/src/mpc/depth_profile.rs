@@ -143,40 +143,6 @@ impl DepthProfile {
         }
     }
 
-    /// How far the edge must go from `depth` (m) for the mean section depth
-    /// to advance by `advance` (m): the inverse of
-    /// [`section_depth`](Self::section_depth), by bisection (it is
-    /// non-decreasing for the contact lengths of convex objects, and grows
-    /// at the rate 1 beyond the last sample). At least `advance` where the
-    /// contact grows with depth (new sections enter at depth 0).
-    pub fn travel_for(&self, depth: f64, advance: f64) -> f64 {
-        if advance.is_nan() || advance <= 0.0 {
-            return 0.0;
-        }
-        let start = self.section_depth(depth);
-        let reached = |travel: f64| self.section_depth(depth + travel) - start >= advance;
-        let (mut lo, mut hi) = (0.0, advance);
-        while !reached(hi) {
-            lo = hi;
-            hi *= 2.0;
-            if hi > 1e3 {
-                return hi;
-            }
-        }
-        for _ in 0..60 {
-            let mid = 0.5 * (lo + hi);
-            if reached(mid) {
-                hi = mid;
-            } else {
-                lo = mid;
-            }
-            if hi - lo <= 1e-12 * hi {
-                break;
-            }
-        }
-        hi
-    }
-
     /// Section height at the cut, m.
     pub fn height(&self) -> f64 {
         self.height
@@ -197,8 +163,6 @@ mod tests {
         let p = DepthProfile::uniform(0.03, 0.025, 0.015).unwrap();
         for d in [0.0, 1e-4, 0.01, 0.02] {
             assert_eq!(p.section_depth(d), d);
-            let travel = p.travel_for(d, 0.005);
-            assert!((travel - 0.005).abs() < 1e-14, "{travel}");
         }
     }
 
@@ -210,7 +174,6 @@ mod tests {
         let p = DepthProfile::new(vec![0.0, 0.03], vec![0.0, 0.06], 0.03, 0.015).unwrap();
         for d in [1e-3, 0.01, 0.025] {
             assert!((p.section_depth(d) - 0.5 * d).abs() < 1e-15);
-            assert!((p.travel_for(d, 2e-3) - 4e-3).abs() < 1e-12);
         }
         // Beyond the last sample the contact is constant: the mean catches
         // up with the knife at the rate 1.

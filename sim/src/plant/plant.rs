@@ -174,8 +174,16 @@ pub struct Measurement {
     pub wrench: [f64; 6],
     /// The noise-free wrench at the sensor.
     pub true_wrench: Wrench,
-    /// Mean crack depth over the active sections (those whose plane cuts the
-    /// object; 0 when none is), m.
+    /// Depth of the crack front below the object's top, m: the top's height
+    /// less the mean height of the crack tips over the active sections
+    /// (those whose plane cuts the object; 0 when none is). On a flat top
+    /// (a cuboid under a straight edge) this is the sections' mean crack
+    /// depth. On a dome it is not: a section that enters contact on the
+    /// flank starts with no crack, and the sections' mean crack depth
+    /// *falls* when it does (0.7 mm of a 25 mm cut in a half potato), while
+    /// its crack tip, at its surface where the edge touches, is about as
+    /// deep below the top as the rest of the front. The cut's depth is what
+    /// a cook means by it: how far below the top the cut has gone.
     pub crack_depth: f64,
     /// Length of edge in contact with material, m.
     pub contact_length: f64,
@@ -351,6 +359,8 @@ pub struct Plant {
     motion: Vector2<f64>,
     /// The object's silhouette in the knife plane (z, y).
     silhouette: Polygon,
+    /// Height of the silhouette's top, m: the depth is measured below it.
+    top: f64,
     /// Every segment of the edge's grid, heel to tip (the worker's slots).
     edge_segments: Vec<EdgeSegment>,
     /// The segments without a section yet. Preallocated; shrinks as they
@@ -467,6 +477,7 @@ impl Plant {
             factory,
             update_distance: settings.update_distance,
             motion: d,
+            top: hi.y,
             silhouette,
             front: None,
             rechoices: 0,
@@ -671,7 +682,7 @@ impl Plant {
         self.loads.clear();
         let mut contact_length = 0.0;
         let mut fractured = 0;
-        let mut depth_sum = 0.0;
+        let mut tip_height_sum = 0.0;
         let mut deformation: f64 = 0.0;
         let mut work = 0.0;
         let mut active = 0usize;
@@ -716,7 +727,7 @@ impl Plant {
             };
             let touching = s.gap <= 0.0 && s.lift <= 0.0 && state.knife_displacement > 0.0;
             work += (s.work_offset + state.work.knife) * s.segment.length;
-            depth_sum += state.crack_depth;
+            tip_height_sum += tip_of(s).y;
             deformation = deformation.max(state.surface_deflection);
             if state.fractured {
                 fractured += 1;
@@ -749,7 +760,7 @@ impl Plant {
             wrench,
             true_wrench,
             crack_depth: if active > 0 {
-                depth_sum / active as f64
+                self.top - tip_height_sum / active as f64
             } else {
                 0.0
             },
