@@ -18,18 +18,64 @@
 use std::path::PathBuf;
 
 use shearcut_sim::surrogate::{
-    CutState, HELD_OUT_SLICE_PUSH_RATIOS, ScaleFactors, Surrogate, SweepCase, SweepSettings,
-    compare_run, grid, run_sweep, scaled_material,
+    CutState, HELD_OUT_SLICE_PUSH_RATIOS, ScaleFactors, Surrogate, SurrogateOutput, SweepCase,
+    SweepRun, SweepSample, SweepSettings, compare_run, grid, run_sweep, scaled_material,
 };
-use shearcut_sim::{KnifePreset, MaterialPreset};
+use shearcut_sim::{KnifePreset, Material, MaterialPreset};
 
-fn meets_the_issue_tolerances(material: MaterialPreset) {
+/// The shipped straight-knife surrogate of a material preset.
+fn shipped_surrogate(material: MaterialPreset) -> Surrogate {
     let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!(
         "../config/surrogates/{}-straight.toml",
         material.name()
     ));
-    let s = Surrogate::from_path(&path).unwrap();
+    Surrogate::from_path(&path).unwrap()
+}
+
+/// The section model's straight-knife runs of `cases` on `material` (two
+/// threads).
+fn straight_knife_runs(
+    material: &Material,
+    cases: &[SweepCase],
+    settings: &SweepSettings,
+) -> Vec<SweepRun> {
     let blade = KnifePreset::Straight.settings().blade;
+    run_sweep(material, &blade, cases, settings, 2, &|| {}).unwrap()
+}
+
+/// Sums over a run's fractured samples at least 2 mm past the onset (the
+/// window of the sawtooth the accuracy report averages, `compare_run`) of a
+/// section quantity and the surrogate's counterpart at `scale`, as
+/// (section, surrogate); `quantity` gives both at a sample.
+fn settled_window_sums(
+    s: &Surrogate,
+    run: &SweepRun,
+    scale: &ScaleFactors,
+    quantity: impl Fn(&SweepSample, &SurrogateOutput) -> (f64, f64),
+) -> (f64, f64) {
+    let c = run.case;
+    let (mut full, mut surrogate) = (0.0, 0.0);
+    for x in run
+        .samples
+        .iter()
+        .filter(|x| x.fractured && x.travel_since_fracture >= 2e-3)
+    {
+        let state = CutState {
+            depth: x.depth,
+            height: c.height,
+            half_width: c.half_width,
+            fractured: true,
+            travel_since_fracture: x.travel_since_fracture,
+        };
+        let (section, model) = quantity(x, &s.evaluate(c.xi, &state, scale));
+        full += section;
+        surrogate += model;
+    }
+    (full, surrogate)
+}
+
+fn meets_the_issue_tolerances(material: MaterialPreset) {
+    let s = shipped_surrogate(material);
     let cases: Vec<SweepCase> = HELD_OUT_SLICE_PUSH_RATIOS
         .iter()
         .map(|&xi| SweepCase {
@@ -38,15 +84,7 @@ fn meets_the_issue_tolerances(material: MaterialPreset) {
             half_width: 0.02,
         })
         .collect();
-    let runs = run_sweep(
-        &material.material(),
-        &blade,
-        &cases,
-        &SweepSettings::default(),
-        2,
-        &|| {},
-    )
-    .unwrap();
+    let runs = straight_knife_runs(&material.material(), &cases, &SweepSettings::default());
     for run in &runs {
         let a = compare_run(&s, run).accuracy;
         eprintln!("{}: {a:?}", material.name());
@@ -85,11 +123,8 @@ fn whole_eggplant_surrogate_meets_the_issue_tolerances_on_held_out_runs() {
 /// stiffness from).
 #[test]
 fn indentation_stiffness_follows_the_section_off_the_fit_sizes() {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../config/surrogates/potato-cuboid-straight.toml");
-    let s = Surrogate::from_path(&path).unwrap();
+    let s = shipped_surrogate(MaterialPreset::PotatoCuboid);
     let material = MaterialPreset::PotatoCuboid.material();
-    let blade = KnifePreset::Straight.settings().blade;
     let cases: Vec<SweepCase> = [(0.015, 0.03), (0.06, 0.01), (0.025, 0.015), (0.06, 0.03)]
         .into_iter()
         .map(|(height, half_width)| SweepCase {
@@ -103,7 +138,7 @@ fn indentation_stiffness_follows_the_section_off_the_fit_sizes() {
         depth_fraction: 1e-4,
         ..SweepSettings::default()
     };
-    let runs = run_sweep(&material, &blade, &cases, &settings, 2, &|| {}).unwrap();
+    let runs = straight_knife_runs(&material, &cases, &settings);
     for run in &runs {
         let sample = &run.samples[0];
         assert!(!sample.fractured);
@@ -144,11 +179,8 @@ fn indentation_stiffness_follows_the_section_off_the_fit_sizes() {
 /// off the fit's sizes, which the size terms follow only to that level).
 #[test]
 fn potato_mean_normal_force_after_fracture_is_unbiased_across_xi() {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../config/surrogates/potato-cuboid-straight.toml");
-    let s = Surrogate::from_path(&path).unwrap();
+    let s = shipped_surrogate(MaterialPreset::PotatoCuboid);
     let material = MaterialPreset::PotatoCuboid.material();
-    let blade = KnifePreset::Straight.settings().blade;
     let cases: Vec<SweepCase> = [0.0, 0.3, 0.6, 1.0, 2.5]
         .iter()
         .map(|&xi| SweepCase {
@@ -157,36 +189,13 @@ fn potato_mean_normal_force_after_fracture_is_unbiased_across_xi() {
             half_width: 0.015,
         })
         .collect();
-    let runs = run_sweep(
-        &material,
-        &blade,
-        &cases,
-        &SweepSettings::default(),
-        2,
-        &|| {},
-    )
-    .unwrap();
+    let runs = straight_knife_runs(&material, &cases, &SweepSettings::default());
     let mut ratios = Vec::new();
     for run in &runs {
         let c = run.case;
-        let (mut full, mut surrogate) = (0.0, 0.0);
-        for x in run
-            .samples
-            .iter()
-            .filter(|x| x.fractured && x.travel_since_fracture >= 2e-3)
-        {
-            let state = CutState {
-                depth: x.depth,
-                height: c.height,
-                half_width: c.half_width,
-                fractured: true,
-                travel_since_fracture: x.travel_since_fracture,
-            };
-            full += x.force_normal;
-            surrogate += s
-                .evaluate(c.xi, &state, &ScaleFactors::default())
-                .force_normal;
-        }
+        let (full, surrogate) = settled_window_sums(&s, run, &ScaleFactors::default(), |x, o| {
+            (x.force_normal, o.force_normal)
+        });
         let ratio = full / surrogate;
         eprintln!("xi {}: full/surrogate mean F_n {ratio:.4}", c.xi);
         assert!((ratio - 1.0).abs() < 0.025, "xi {}: {ratio}", c.xi);
@@ -214,22 +223,11 @@ fn potato_mean_normal_force_after_fracture_is_unbiased_across_xi() {
 /// eight fit and held-out sizes), which no smooth size term follows.
 #[test]
 fn potato_mean_friction_at_another_ratio_is_unbiased_off_the_fit_sizes() {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("../config/surrogates/potato-cuboid-straight.toml");
-    let s = Surrogate::from_path(&path).unwrap();
+    let s = shipped_surrogate(MaterialPreset::PotatoCuboid);
     let (t, st) = (0.7, 1.3);
     let material = scaled_material(&MaterialPreset::PotatoCuboid.material(), t, st);
-    let blade = KnifePreset::Straight.settings().blade;
     let cases = grid(&[0.6, 1.0], &[(0.025, 0.015), (0.025, 0.02)]);
-    let runs = run_sweep(
-        &material,
-        &blade,
-        &cases,
-        &SweepSettings::default(),
-        2,
-        &|| {},
-    )
-    .unwrap();
+    let runs = straight_knife_runs(&material, &cases, &SweepSettings::default());
     let scale = ScaleFactors {
         toughness: t,
         stiffness: st,
@@ -237,23 +235,12 @@ fn potato_mean_friction_at_another_ratio_is_unbiased_off_the_fit_sizes() {
     };
     for run in &runs {
         let c = run.case;
-        let (mut full, mut surrogate) = (0.0, 0.0);
-        for x in run
-            .samples
-            .iter()
-            .filter(|x| x.fractured && x.travel_since_fracture >= 2e-3)
-        {
-            let state = CutState {
-                depth: x.depth,
-                height: c.height,
-                half_width: c.half_width,
-                fractured: true,
-                travel_since_fracture: x.travel_since_fracture,
-            };
-            let o = s.evaluate(c.xi, &state, &scale);
-            full += x.force_tangential_friction;
-            surrogate += st * o.force_tangential_parts.by_friction_stiffness;
-        }
+        let (full, surrogate) = settled_window_sums(&s, run, &scale, |x, o| {
+            (
+                x.force_tangential_friction,
+                st * o.force_tangential_parts.by_friction_stiffness,
+            )
+        });
         let ratio = full / surrogate;
         eprintln!(
             "{} x {} mm, xi {}: full/surrogate mean F_t friction {ratio:.4}",
