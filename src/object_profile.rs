@@ -5,6 +5,11 @@ use shearcut_controllers::mpc::DepthProfile;
 use shearcut_sim::InvalidSetting;
 use shearcut_sim::geometry::TriangleMesh;
 use shearcut_sim::plant::knife_plane_silhouette;
+use shearcut_sim::plant::section_shape::crest_section;
+use shearcut_sim::section::SectionError;
+use shearcut_sim::surrogate::{Surrogate, equivalent_half_width};
+
+use crate::scenario::Scenario;
 
 /// Depth samples of a profile.
 const SAMPLES: usize = 41;
@@ -31,4 +36,38 @@ pub fn depth_profile(mesh: &TriangleMesh) -> Result<DepthProfile, InvalidSetting
         .map(|d| silhouette.chord_length(hi.y - d))
         .collect();
     DepthProfile::new(depths, lengths, height, 0.5 * (hi.x - lo.x))
+}
+
+/// The [`depth_profile`] of `s`'s object as `surrogate` takes it: the
+/// section's half width is that of the rectangle equivalent to the object's
+/// crest section ([`equivalent_half_width`]: the rectangle of the same
+/// height that the section model presses to `depth` with the same work)
+/// for the surrogate's own material and blade (what the controller knows,
+/// not the plant's material) and `s`'s section settings. The surrogates
+/// are fitted on rectangles; a cuboid's section is its own equivalent, a
+/// half ellipsoid's crest section (35 × 60 mm) maps to about 0.9 of its
+/// width.
+///
+/// # Errors
+/// As [`depth_profile`], or the section model cannot cut the crest
+/// section.
+pub fn surrogate_profile(
+    s: &Scenario,
+    surrogate: &Surrogate,
+    mesh: &TriangleMesh,
+    depth: f64,
+) -> Result<DepthProfile, InvalidSetting> {
+    let profile = depth_profile(mesh)?;
+    let section_error =
+        |e: SectionError| InvalidSetting::new("object", "crest section", e.to_string());
+    let crest = crest_section(mesh, s.plant.rim_fraction).map_err(section_error)?;
+    let half_width = equivalent_half_width(
+        &crest,
+        &surrogate.material,
+        &surrogate.blade.section(),
+        &s.section,
+        depth,
+    )
+    .map_err(section_error)?;
+    Ok(profile.with_half_width(half_width))
 }

@@ -21,9 +21,10 @@ use shearcut_controllers::mpc::{
 };
 use shearcut_sim::geometry::TriangleMesh;
 use shearcut_sim::plant::Measurement;
+use shearcut_sim::plant::section_shape::crest_section;
 use shearcut_sim::plant::{ArmLimits, Plant, PlantSettings, knife_plane_silhouette};
 use shearcut_sim::section::SectionSettings;
-use shearcut_sim::surrogate::Surrogate;
+use shearcut_sim::surrogate::{Surrogate, equivalent_half_width};
 use shearcut_sim::{Cuboid, Knife, KnifePreset, MaterialPreset, ObjectShape};
 
 /// Safety margin on the arm's acceleration and jerk (as `shearcut run`).
@@ -89,7 +90,10 @@ const PLANTS: [(&str, [f64; 3]); 5] = [
     ("mu x0.7", [1.0, 1.0, 0.7]),
 ];
 
-fn profile(mesh: &TriangleMesh) -> DepthProfile {
+/// The object's profile as `shearcut run` gives it to the MPC: the section's
+/// half width is the crest section's equivalent rectangle's for the
+/// surrogate's material and blade (`src/object_profile.rs`).
+fn profile(mesh: &TriangleMesh, surrogate: &Surrogate, depth: f64) -> DepthProfile {
     let (lo, hi) = mesh.bounds();
     let height = hi.y - lo.y;
     let silhouette = knife_plane_silhouette(mesh).expect("crosses x = 0");
@@ -100,7 +104,18 @@ fn profile(mesh: &TriangleMesh) -> DepthProfile {
         .iter()
         .map(|d| silhouette.chord_length(hi.y - d))
         .collect();
-    DepthProfile::new(depths, lengths, height, 0.5 * (hi.x - lo.x)).unwrap()
+    let crest = crest_section(mesh, PlantSettings::default().rim_fraction).unwrap();
+    let half_width = equivalent_half_width(
+        &crest,
+        &surrogate.material,
+        &surrogate.blade.section(),
+        &SectionSettings::default(),
+        depth,
+    )
+    .unwrap();
+    DepthProfile::new(depths, lengths, height, 0.5 * (hi.x - lo.x))
+        .unwrap()
+        .with_half_width(half_width)
 }
 
 /// The edge's travel past the first fracture before the rows count (the
@@ -194,8 +209,9 @@ fn end_of_cut(
     let path = Path::new(env!("CARGO_MANIFEST_DIR"))
         .join("../config/surrogates")
         .join(format!("{}.toml", setup.surrogate));
-    let model = SurrogateModel::new(Surrogate::from_path(&path).unwrap());
-    let profile = profile(&mesh);
+    let surrogate = Surrogate::from_path(&path).unwrap();
+    let profile = profile(&mesh, &surrogate, setup.depth);
+    let model = SurrogateModel::new(surrogate);
     let mut check = ModelCheck::default();
     let mut mpc = Mpc::new(&task, settings, model.clone(), profile.clone(), xi).unwrap();
     let alpha = xi.atan();

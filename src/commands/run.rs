@@ -19,7 +19,7 @@ use crate::closed_loop::{
 use crate::controller_choice::ControllerChoice;
 use crate::cut_record::{CutSample, CutSummary, write_json, write_timeseries};
 use crate::error::{ConfigError, RunError};
-use crate::object_profile::depth_profile;
+use crate::object_profile::surrogate_profile;
 use crate::object_replica::ObjectReplica;
 use crate::plot::control_trace::draw_control_trace;
 use crate::plot::cut_curves::draw_cut_curves;
@@ -139,7 +139,8 @@ pub fn mpc_cutting_ratio(
     mesh: &TriangleMesh,
 ) -> Result<f64, RunError> {
     let surrogate = surrogate_for(s).map_err(|e| invalid(s, e))?;
-    let profile = depth_profile(mesh).map_err(|e| invalid(s, e))?;
+    let profile =
+        surrogate_profile(s, &surrogate, mesh, task.target_depth).map_err(|e| invalid(s, e))?;
     let mut mpc = Mpc::new(
         task,
         &s.controller.mpc,
@@ -175,7 +176,8 @@ pub fn make_controller(
         }
         ControllerChoice::Mpc => {
             let surrogate = surrogate_for(s).map_err(|e| invalid(s, e))?;
-            let profile = depth_profile(mesh).map_err(|e| invalid(s, e))?;
+            let profile = surrogate_profile(s, &surrogate, mesh, task.target_depth)
+                .map_err(|e| invalid(s, e))?;
             Mpc::new(
                 task,
                 &c.mpc,

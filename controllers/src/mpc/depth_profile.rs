@@ -93,6 +93,12 @@ impl DepthProfile {
         Self::new(vec![0.0], vec![length], height, half_width)
     }
 
+    /// The same profile with the section's half width `half_width` (m; e.g.
+    /// the equivalent rectangle's of a section of another shape).
+    pub fn with_half_width(self, half_width: f64) -> Self {
+        Self { half_width, ..self }
+    }
+
     /// Length of edge in contact with the edge at `depth`, m.
     pub fn contact_length(&self, depth: f64) -> f64 {
         let d = &self.depths;

@@ -1,7 +1,34 @@
 //! From a plane section of the object to the section model's geometry.
 
-use crate::geometry::Polygon;
+use nalgebra::Vector3;
+
+use crate::geometry::{Polygon, SectionPlane, TriangleMesh};
 use crate::section::{SectionError, SectionGeometry};
+
+/// The section model's geometry of `mesh`'s section normal to a straight
+/// edge (world z) through the middle of its extent along z (the crest of a
+/// dome), clipped at `rim_fraction` of its height as the plant clips its
+/// sections ([`section_geometry`]; `PlantSettings::rim_fraction`).
+///
+/// # Errors
+/// The plane misses the mesh, or the section is not one the section model
+/// takes.
+pub fn crest_section(
+    mesh: &TriangleMesh,
+    rim_fraction: f64,
+) -> Result<SectionGeometry, SectionError> {
+    let (lo, hi) = mesh.bounds();
+    let plane = SectionPlane {
+        origin: Vector3::new(0.0, 0.0, 0.5 * (lo.z + hi.z)),
+        u_axis: Vector3::x(),
+        v_axis: Vector3::y(),
+    };
+    let polygon = plane.section(mesh).ok_or(SectionError::UnsupportedShape(
+        "the mid plane misses the object",
+    ))?;
+    let (a, b) = polygon.bounds();
+    section_geometry(&polygon, rim_fraction * (b.y - a.y))
+}
 
 /// The section model's geometry for a plane section `polygon` (u across the
 /// cut, v up from the board): the upper boundary symmetrised about u = 0 and

@@ -9,13 +9,15 @@
 //! corrections for the stiffness-to-toughness ratio), `model`
 //! ([`Surrogate`] and its evaluation), `file` (TOML, versioned), `sweep`
 //! (full-model runs), `fit` (least squares), `accuracy` (the report against
-//! held-out runs), `campaign` (the sweeps of one fit and what each is for). The structure and its equations are in
+//! held-out runs), `equivalent_rectangle` (the rectangle a section of
+//! another shape maps to), `campaign` (the sweeps of one fit and what each is for). The structure and its equations are in
 //! `docs/surrogates.md`.
 
 mod accuracy;
 mod basis;
 mod campaign;
 mod catch_up;
+mod equivalent_rectangle;
 mod file;
 mod fit;
 mod jet;
@@ -36,6 +38,7 @@ pub use campaign::{
     fit_run_count, scaled_material,
 };
 pub use catch_up::CATCH_UP_TERMS;
+pub use equivalent_rectangle::equivalent_half_width;
 pub use file::SurrogateFileError;
 pub use fit::{FitError, ScaledSweep, fit_ratio_correction, fit_surrogate};
 pub use model::{
