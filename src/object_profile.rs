@@ -18,14 +18,24 @@ const SAMPLES: usize = 41;
 /// at crack depth d below the top, the length of edge in contact is the
 /// chord of the object's silhouette in the knife plane at height top − d (a
 /// straight, horizontal edge's view; a curved edge touches a little less).
-/// The section height is the object's height and the half width half its
-/// extent across the knife plane (x), as a vision system would report them.
+/// Depths are below the silhouette's top, where the edge first touches and
+/// the plant measures its depth from. The section height is the
+/// silhouette's and the half width half the object's extent across the
+/// knife plane (x), as a vision system would report them
+/// ([`surrogate_profile`] narrows it to the equivalent rectangle's).
 pub fn depth_profile(mesh: &TriangleMesh) -> Result<DepthProfile, InvalidSetting> {
     let (lo, hi) = mesh.bounds();
-    let height = hi.y - lo.y;
     let silhouette = knife_plane_silhouette(mesh).ok_or_else(|| {
         InvalidSetting::new("object", "mesh", "does not cross the knife plane x = 0")
     })?;
+    // The top and height in the knife plane, where the edge first touches
+    // and the plant measures the depth from (an eggplant's highest point
+    // need not lie on it).
+    let (bottom, top) = {
+        let (a, b) = silhouette.bounds();
+        (a.y, b.y)
+    };
+    let height = top - bottom;
     // Just below the top (the chord at the very top is a point) to just
     // above the board.
     let depths: Vec<f64> = (0..SAMPLES)
@@ -33,7 +43,7 @@ pub fn depth_profile(mesh: &TriangleMesh) -> Result<DepthProfile, InvalidSetting
         .collect();
     let lengths = depths
         .iter()
-        .map(|d| silhouette.chord_length(hi.y - d))
+        .map(|d| silhouette.chord_length(top - d))
         .collect();
     DepthProfile::new(depths, lengths, height, 0.5 * (hi.x - lo.x))
 }

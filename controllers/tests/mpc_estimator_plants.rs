@@ -95,14 +95,18 @@ const PLANTS: [(&str, [f64; 3]); 5] = [
 /// surrogate's material and blade (`src/object_profile.rs`).
 fn profile(mesh: &TriangleMesh, surrogate: &Surrogate, depth: f64) -> DepthProfile {
     let (lo, hi) = mesh.bounds();
-    let height = hi.y - lo.y;
     let silhouette = knife_plane_silhouette(mesh).expect("crosses x = 0");
+    let (bottom, top) = {
+        let (a, b) = silhouette.bounds();
+        (a.y, b.y)
+    };
+    let height = top - bottom;
     let depths: Vec<f64> = (0..PROFILE_SAMPLES)
         .map(|i| height * (0.005 + 0.99 * i as f64 / (PROFILE_SAMPLES - 1) as f64))
         .collect();
     let lengths = depths
         .iter()
-        .map(|d| silhouette.chord_length(hi.y - d))
+        .map(|d| silhouette.chord_length(top - d))
         .collect();
     let crest = crest_section(mesh, PlantSettings::default().rim_fraction).unwrap();
     let half_width = equivalent_half_width(
@@ -283,22 +287,18 @@ fn the_estimator_converges_on_plants_off_the_preset() {
                 r[1],
             );
             worst = e.iter().fold(worst, |w, x| w.max(x.abs()));
-            // The 5 %, except where the model at the true factors
-            // is itself further off than that, and no factors fitted to the
-            // forces can be within 5 %:
-            // - on the cuboid stiffer and less tough than the preset the
-            //   toughness (−8.5 %; 15 % guards it);
-            // - on the half potato the friction: the model over-predicts
-            //   the tangential force by 7–11 % at the truth (`r` above,
-            //   0.90–0.94; the dome's half-elliptic sections are mapped to
-            //   the surrogate's rectangles), and the estimate is 6.6–6.9 %
-            //   low on four of the five plants; 10 % guards it
-            //   (docs/controllers.md).
+            // The 5 %, except on the cuboid stiffer and less tough
+            // than the preset: its toughness ends −8.5 % and its friction
+            // +5.8 %. The model at the true factors is within 3 % of the
+            // plant there (`r` above: 0.972, 1.001); the normal force's 3 %
+            // becomes a toughness error about twice as large (the
+            // toughness is about half of the normal force), and the
+            // friction, nearly collinear with the toughness in the normal
+            // force, follows it (docs/controllers.md, "Identifiability").
+            // 15 % and 10 % guard what is reached there.
             let corner = setup.name == CUBOID.name && truth == [0.7, 1.3, 1.0];
             let bounds = if corner {
-                [0.15; 3]
-            } else if setup.name == WHOLE.name {
-                [0.05, 0.05, 0.10]
+                [0.15, 0.05, 0.10]
             } else {
                 [0.05; 3]
             };

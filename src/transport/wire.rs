@@ -130,7 +130,8 @@ pub struct WireMeasurement {
     pub wrench: [f64; 6],
     /// The noise-free wrench at the sensor, same layout and units.
     pub true_wrench: [f64; 6],
-    /// Mean crack depth over the active sections, m.
+    /// Depth of the crack front below the object's top, m (the plant's
+    /// `Measurement::crack_depth`).
     pub crack_depth: f64,
     /// Length of edge in contact with material, m.
     pub contact_length: f64,

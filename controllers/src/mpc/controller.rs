@@ -35,8 +35,9 @@ pub struct MpcStats {
 
 /// Prior variance of each scale factor (a ±100 % belief).
 const ESTIMATOR_PRIOR_VARIANCE: f64 = 1.0;
-/// The edge's travel past the first fracture before the estimator uses the
-/// forces again, m: the transition (sections fracturing one by one, the
+/// How far the sections' mean depth ([`DepthProfile::section_depth`]) has
+/// advanced past the first fracture before the estimator uses the forces
+/// again, m (on a dome about 1.5 times as much edge travel): the transition (sections fracturing one by one, the
 /// drag held at onset being released over a few bevel heights) is in
 /// neither the pre- nor the post-fracture model.
 const ESTIMATOR_SETTLE_DEPTH: f64 = 2e-3;

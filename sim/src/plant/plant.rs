@@ -175,15 +175,22 @@ pub struct Measurement {
     /// The noise-free wrench at the sensor.
     pub true_wrench: Wrench,
     /// Depth of the crack front below the object's top, m: the top's height
-    /// less the mean height of the crack tips over the active sections
-    /// (those whose plane cuts the object; 0 when none is). On a flat top
-    /// (a cuboid under a straight edge) this is the sections' mean crack
-    /// depth. On a dome it is not: a section that enters contact on the
-    /// flank starts with no crack, and the sections' mean crack depth
-    /// *falls* when it does (0.7 mm of a 25 mm cut in a half potato), while
-    /// its crack tip, at its surface where the edge touches, is about as
-    /// deep below the top as the rest of the front. The cut's depth is what
-    /// a cook means by it: how far below the top the cut has gone.
+    /// (the object's in the knife plane) less the mean height of the crack
+    /// tips over the active sections (those whose plane cuts the object; 0
+    /// when none is). Under a straight edge on a flat top (a cuboid) this
+    /// is the sections' mean crack depth. On a dome it is not: a section
+    /// that enters contact on the flank starts with no crack, and the
+    /// sections' mean crack depth *falls* when it does (by 1.4 mm pressing
+    /// the 30 mm half potato of the plant tests, by up to 1.0 mm in the
+    /// main job's cut), while its crack tip, at its surface where the edge
+    /// touches, is about as deep below the top as the rest of the front.
+    /// The cut's depth is what a cook means by it: how far below the top
+    /// the cut has gone. It is not a crack's depth in every respect: before
+    /// the first fracture on a dome it is already the depth of the
+    /// sections' tops in contact (3 mm on the whole eggplant when its skin
+    /// fractured), and under a curved edge, whose sections' planes tilt, it
+    /// can still fall by a few tenths of a millimetre as sections enter
+    /// (0.16–0.47 mm in `fig8-potato`, 0.48 mm on the eggplant).
     pub crack_depth: f64,
     /// Length of edge in contact with material, m.
     pub contact_length: f64,

@@ -76,9 +76,50 @@ pub fn equivalent_half_width(
 
 #[cfg(test)]
 mod tests {
-    use super::equivalent_half_width;
-    use crate::section::{SectionGeometry, SectionSettings};
+    use super::{STEP, equivalent_half_width};
+    use crate::section::{CrossSection, SectionGeometry, SectionSettings};
     use crate::{Knife, KnifePreset, MaterialPreset};
+
+    /// The half potato's crest section: a half ellipse 35 mm high, 60 mm
+    /// wide, on a coarse mesh (the equivalence is a ratio of two runs on
+    /// the same mesh).
+    #[test]
+    fn a_half_ellipse_maps_to_a_narrower_rectangle_with_the_same_work() {
+        let material = MaterialPreset::PotatoWhole.material();
+        let knife = Knife::new(&KnifePreset::Chef.settings()).unwrap();
+        let settings = SectionSettings {
+            row_spacing: 5e-4,
+            ..SectionSettings::default()
+        };
+        let (h, w) = (0.035, 0.03);
+        let ellipse: Vec<[f64; 2]> = (0..=64)
+            .map(|i| {
+                let x = -w + 2.0 * w * f64::from(i) / 64.0;
+                [x, h * (1.0 - (x / w).powi(2)).max(0.0).sqrt()]
+            })
+            .collect();
+        let section = SectionGeometry::from_polygon(&ellipse).unwrap();
+        let depth = 0.025;
+        let eq =
+            equivalent_half_width(&section, &material, knife.blade(), &settings, depth).unwrap();
+        // Narrower than the box, wider than the rectangle of the same area
+        // (π/4 of the box): the top, where the ellipse is narrow, is a
+        // small part of what the knife deforms.
+        let ratio = eq / w;
+        assert!(
+            ratio > std::f64::consts::FRAC_PI_4 && ratio < 0.97,
+            "{ratio}"
+        );
+        // And its pressing work is the ellipse's, within the tolerance.
+        let work = |g: &SectionGeometry| {
+            let mut s = CrossSection::new(g, &material, knife.blade(), &settings).unwrap();
+            s.advance_to(depth, 0.0, STEP).unwrap();
+            s.state().work.knife
+        };
+        let rectangle = SectionGeometry::rectangle(2.0 * eq, h).unwrap();
+        let (a, b) = (work(&section), work(&rectangle));
+        assert!((b / a - 1.0).abs() < 1e-3, "{b} vs {a}");
+    }
 
     #[test]
     fn a_rectangle_is_its_own_equivalent() {
