@@ -84,7 +84,8 @@ fn the_first_plan_sets_the_direction_the_plant_is_planned_for() {
     ] {
         let s = Scenario::load(name).expect("a built-in scenario");
         let setup = LoopSetup::new(&s, ControllerChoice::Mpc).expect("a valid scenario");
-        let ratio = mpc_cutting_ratio(&s, &setup.task, &setup.mesh).expect("a plan");
+        let profile = setup.profile.as_ref().expect("the MPC's profile");
+        let ratio = mpc_cutting_ratio(&s, &setup.task, profile).expect("a plan");
         assert!(
             (low..=high).contains(&ratio),
             "{name}: planned ratio {ratio}, expected in [{low}, {high}] (start {})",

@@ -8,7 +8,7 @@ use serde::Serialize;
 use shearcut_controllers::controller::{
     ConstantSlice, Controller, CutTask, ForceFeedback, ForceFeedbackGains, MotionLimits,
 };
-use shearcut_controllers::mpc::{Mpc, SurrogateModel};
+use shearcut_controllers::mpc::{DepthProfile, Mpc, SurrogateModel};
 use shearcut_sim::geometry::TriangleMesh;
 use shearcut_sim::plant::{Plant, PlantSettings};
 use shearcut_sim::{InvalidSetting, Knife};
@@ -136,28 +136,40 @@ pub fn mpc_start(task: &CutTask) -> f64 {
 pub fn mpc_cutting_ratio(
     s: &Scenario,
     task: &CutTask,
-    mesh: &TriangleMesh,
+    profile: &DepthProfile,
 ) -> Result<f64, RunError> {
     let surrogate = surrogate_for(s).map_err(|e| invalid(s, e))?;
-    let profile =
-        surrogate_profile(s, &surrogate, mesh, task.target_depth).map_err(|e| invalid(s, e))?;
     let mut mpc = Mpc::new(
         task,
         &s.controller.mpc,
         SurrogateModel::new(surrogate),
-        profile,
+        profile.clone(),
         mpc_start(task),
     )
     .map_err(|e| invalid(s, e.prefixed("controller")))?;
     Ok(mpc.planned_ratio_from_rest())
 }
 
-/// The controller a choice names, for a scenario's task and object.
+/// The object as `s`'s MPC sees it ([`surrogate_profile`]; built once per
+/// setup: finding the equivalent rectangle runs the section model).
+pub fn mpc_profile(
+    s: &Scenario,
+    task: &CutTask,
+    mesh: &TriangleMesh,
+) -> Result<DepthProfile, RunError> {
+    let surrogate = surrogate_for(s).map_err(|e| invalid(s, e))?;
+    surrogate_profile(s, &surrogate, mesh, task.target_depth).map_err(|e| invalid(s, e))
+}
+
+/// The controller a choice names, for a scenario's task and object; the
+/// MPC's from `profile` (the object as it sees it, [`mpc_profile`];
+/// built here if `None`).
 pub fn make_controller(
     s: &Scenario,
     choice: ControllerChoice,
     task: &CutTask,
     mesh: &TriangleMesh,
+    profile: Option<&DepthProfile>,
 ) -> Result<Box<dyn Controller>, RunError> {
     let c = &s.controller;
     let made: Result<Box<dyn Controller>, InvalidSetting> = match choice {
@@ -176,8 +188,10 @@ pub fn make_controller(
         }
         ControllerChoice::Mpc => {
             let surrogate = surrogate_for(s).map_err(|e| invalid(s, e))?;
-            let profile = surrogate_profile(s, &surrogate, mesh, task.target_depth)
-                .map_err(|e| invalid(s, e))?;
+            let profile = match profile {
+                Some(p) => p.clone(),
+                None => mpc_profile(s, task, mesh)?,
+            };
             Mpc::new(
                 task,
                 &c.mpc,
@@ -270,6 +284,8 @@ pub struct LoopSetup {
     /// The controller's nominal slice-push ratio: the plant builds its first
     /// sections for it and the samples carry it as `xi`.
     pub xi: f64,
+    /// The object as the MPC sees it ([`mpc_profile`]; the MPC only).
+    pub profile: Option<DepthProfile>,
 }
 
 impl LoopSetup {
@@ -292,15 +308,20 @@ impl LoopSetup {
             .map_err(|e| invalid(s, InvalidSetting::new("object", "mesh", e.to_string())))?;
         let mesh = replica.mesh(&mesh);
         let task = cut_task(s, &knife, &mesh);
-        let xi = match choice {
-            ControllerChoice::Mpc => mpc_cutting_ratio(s, &task, &mesh)?,
-            _ => choice.nominal_slice_push_ratio(mpc_start(&task)),
+        let profile = match choice {
+            ControllerChoice::Mpc => Some(mpc_profile(s, &task, &mesh)?),
+            _ => None,
+        };
+        let xi = match &profile {
+            Some(p) => mpc_cutting_ratio(s, &task, p)?,
+            None => choice.nominal_slice_push_ratio(mpc_start(&task)),
         };
         Ok(Self {
             knife,
             mesh,
             task,
             xi,
+            profile,
         })
     }
 
@@ -315,7 +336,7 @@ impl LoopSetup {
         s: &Scenario,
         choice: ControllerChoice,
     ) -> Result<Box<dyn Controller>, RunError> {
-        make_controller(s, choice, &self.task, &self.mesh)
+        make_controller(s, choice, &self.task, &self.mesh, self.profile.as_ref())
     }
 
     /// The loop's labels and stop conditions, with the knife's start where
