@@ -162,6 +162,32 @@ fn the_depth_profile_follows_the_objects_silhouette() {
 }
 
 #[test]
+fn the_mpc_sees_a_dome_section_as_its_equivalent_rectangle() {
+    use shearcut::object_profile::{depth_profile, surrogate_profile};
+    use shearcut::surrogates::surrogate_for;
+    // The half potato's crest section, a half ellipse, maps to about 0.9
+    // of its width (27.0 of 30 mm measured); a cuboid's is itself.
+    for (name, low, high) in [
+        ("loop-potato-whole-realtime", 0.88, 0.92),
+        ("loop-potato-cuboid", 1.0, 1.0),
+    ] {
+        let s = Scenario::load(name).unwrap();
+        let mesh = s.object.mesh().unwrap();
+        let boxed = depth_profile(&mesh).unwrap();
+        let surrogate = surrogate_for(&s).unwrap();
+        let seen = surrogate_profile(&s, &surrogate, &mesh, 0.025).unwrap();
+        let ratio = seen.half_width() / boxed.half_width();
+        assert!((low..=high).contains(&ratio), "{name}: {ratio}");
+        assert_eq!(seen.height(), boxed.height(), "{name}");
+        assert_eq!(
+            seen.contact_length(0.01),
+            boxed.contact_length(0.01),
+            "{name}"
+        );
+    }
+}
+
+#[test]
 fn the_mpc_completes_within_its_constraints_on_the_full_plant() {
     // The small potato cuboid, 10 segments, a short blade stroke.
     let text = include_str!("../config/scenarios/fig7-potato.toml").to_string()

@@ -4,15 +4,15 @@
 
 use shearcut::commands::run::{LoopSetup, mpc_cutting_ratio, mpc_start};
 use shearcut::controller_choice::ControllerChoice;
-use shearcut::object_profile::depth_profile;
 use shearcut::scenario::Scenario;
 use shearcut::surrogates::surrogate_for;
 use shearcut_controllers::mpc::{SliceModel, StageState, SurrogateModel};
 
 fn model_and_profile(name: &str) -> (SurrogateModel, StageState) {
     let s = Scenario::load(name).expect("a built-in scenario");
-    let setup = LoopSetup::new(&s, ControllerChoice::Press).expect("a valid scenario");
-    let profile = depth_profile(&setup.mesh).expect("a profile");
+    let setup = LoopSetup::new(&s, ControllerChoice::Mpc).expect("a valid scenario");
+    // The object as the MPC sees it (its section the equivalent rectangle).
+    let profile = setup.profile.expect("the MPC's profile");
     let model = SurrogateModel::new(surrogate_for(&s).expect("a shipped surrogate"));
     let intact = StageState {
         depth: 2e-3,

@@ -3,31 +3,42 @@
 use nalgebra::Vector3;
 
 use crate::geometry::{Polygon, SectionPlane, TriangleMesh};
+use crate::plant::knife_plane_silhouette;
 use crate::section::{SectionError, SectionGeometry};
 
 /// The section model's geometry of `mesh`'s section normal to a straight
-/// edge (world z) through the middle of its extent along z (the crest of a
-/// dome), clipped at `rim_fraction` of its height as the plant clips its
-/// sections ([`section_geometry`]; `PlantSettings::rim_fraction`).
+/// edge (world z) through its crest: the z of the top of its silhouette in
+/// the knife plane, where a descending edge first touches (the middle of a
+/// flat top), clipped at `rim_fraction` of its height as the plant clips
+/// its sections ([`section_geometry`]; `PlantSettings::rim_fraction`).
 ///
 /// # Errors
-/// The plane misses the mesh, or the section is not one the section model
-/// takes.
+/// The mesh does not cross the knife plane, the plane misses the mesh, or
+/// the section is not one the section model takes.
 pub fn crest_section(
     mesh: &TriangleMesh,
     rim_fraction: f64,
 ) -> Result<SectionGeometry, SectionError> {
-    let (lo, hi) = mesh.bounds();
+    let silhouette = knife_plane_silhouette(mesh).ok_or(SectionError::UnsupportedShape(
+        "the object does not cross the knife plane",
+    ))?;
+    let (lo, hi) = silhouette.bounds();
+    // The silhouette's highest vertices (one on a dome, a flat top's ends).
+    let near_top = 1e-9 * (hi.y - lo.y).max(hi.x - lo.x);
+    let (sum, n) = silhouette
+        .points
+        .iter()
+        .filter(|p| p.y >= hi.y - near_top)
+        .fold((0.0, 0usize), |(sum, n), p| (sum + p.x, n + 1));
     let plane = SectionPlane {
-        origin: Vector3::new(0.0, 0.0, 0.5 * (lo.z + hi.z)),
+        origin: Vector3::new(0.0, 0.0, sum / n as f64),
         u_axis: Vector3::x(),
         v_axis: Vector3::y(),
     };
     let polygon = plane.section(mesh).ok_or(SectionError::UnsupportedShape(
-        "the mid plane misses the object",
+        "the crest's plane misses the object",
     ))?;
-    let (a, b) = polygon.bounds();
-    section_geometry(&polygon, rim_fraction * (b.y - a.y))
+    section_geometry(&polygon, rim_fraction * polygon.bounds().1.y)
 }
 
 /// The section model's geometry for a plane section `polygon` (u across the
