@@ -290,10 +290,12 @@ fn the_estimator_converges_on_plants_off_the_preset() {
             // The issue's 5 %, except on the cuboid stiffer and less tough
             // than the preset: its toughness ends −8.5 % and its friction
             // +5.8 %, although the model at the true factors is within 3 %
-            // of the plant there (`r` above: 0.972, 1.001). Why is not
-            // established (a candidate: the ratio corrections evaluated at
-            // the estimate's E/R_c, ln(S/T) = 0.71 against 0.62 at the
-            // truth). 15 % and 10 % guard what is reached there. The half
+            // of the plant there (`r` above: 0.972, 1.001): the model at
+            // the estimate fits it better (1.003, 1.003), the toughness
+            // absorbing the model's 2.8 % excess normal force and the
+            // friction what the changed E/R_c does to the tangential one
+            // (docs/controllers.md). 15 % and 10 % guard what is reached
+            // there. The half
             // potato's worst factor is 4.3 %: little margin, and a change
             // to its equivalent rectangle (docs/controllers.md, "Which
             // section") moved one to 5.0 %.
