@@ -79,5 +79,5 @@ pub fn surrogate_profile(
         depth,
     )
     .map_err(section_error)?;
-    Ok(profile.with_half_width(half_width))
+    profile.with_half_width(half_width)
 }

@@ -120,6 +120,7 @@ fn profile(mesh: &TriangleMesh, surrogate: &Surrogate, depth: f64) -> DepthProfi
     DepthProfile::new(depths, lengths, height, 0.5 * (hi.x - lo.x))
         .unwrap()
         .with_half_width(half_width)
+        .unwrap()
 }
 
 /// The edge's travel past the first fracture before the rows count (the

@@ -95,8 +95,18 @@ impl DepthProfile {
 
     /// The same profile with the section's half width `half_width` (m; e.g.
     /// the equivalent rectangle's of a section of another shape).
-    pub fn with_half_width(self, half_width: f64) -> Self {
-        Self { half_width, ..self }
+    ///
+    /// # Errors
+    /// `half_width` is not finite or is negative.
+    pub fn with_half_width(self, half_width: f64) -> Result<Self, InvalidSetting> {
+        if !(half_width.is_finite() && half_width >= 0.0) {
+            return Err(InvalidSetting::new(
+                "depth_profile.half_width",
+                half_width,
+                "finite and >= 0",
+            ));
+        }
+        Ok(Self { half_width, ..self })
     }
 
     /// Length of edge in contact with the edge at `depth`, m.
@@ -186,6 +196,17 @@ mod tests {
         let deep = p.section_depth(0.04);
         assert!((deep - (0.5 * 0.03 * 0.06 + 0.01 * 0.06) / 0.06).abs() < 1e-15);
         assert_eq!(p.section_depth(0.0), 0.0);
+    }
+
+    #[test]
+    fn a_new_half_width_is_checked() {
+        let p = DepthProfile::uniform(0.03, 0.025, 0.015).unwrap();
+        assert_eq!(
+            p.clone().with_half_width(0.012).unwrap().half_width(),
+            0.012
+        );
+        let e = p.with_half_width(f64::NAN).unwrap_err();
+        assert!(e.to_string().contains("depth_profile.half_width"), "{e}");
     }
 
     #[test]
