@@ -319,11 +319,13 @@ fn fit_post_fracture(
         Rows::<{ STRAIN_TERMS + STRAIN_DEPTH_TERMS }>::new("post_fracture.strain_energy_rate");
     let mut split = Rows::new("post_fracture.split");
     let mut defl_post = Rows::new("post_fracture.deflection");
+    let window_weight = window_weight();
     for (run, &length) in runs.iter().zip(lengths) {
         let c = run.case;
         let xi = c.xi;
         let (lh, lw) = size_features(c.height, c.half_width, b);
         let r = ToughnessRatio::at(xi, nu).value;
+        let mut window = ([0.0; STRAIN_TERMS + STRAIN_DEPTH_TERMS], 0.0, 0.0f64);
         for s in run.samples.iter().filter(|s| s.fractured) {
             let (ramp, ramp_slope) = ramps(s.travel_since_fracture, h_b);
             let knee = knee_values(s.travel_since_fracture, xi, length, kappa, lh, lw);
@@ -349,11 +351,21 @@ fn fit_post_fracture(
             let mut row = [0.0; STRAIN_TERMS + STRAIN_DEPTH_TERMS];
             row[..STRAIN_TERMS].copy_from_slice(&wedge);
             row[STRAIN_TERMS..].copy_from_slice(&steady);
-            strain.push(
-                row,
-                (f_n + xi * f_t - r * material.fracture_toughness * knee[0]) / (e0 * delta * delta),
-            );
+            let target =
+                (f_n + xi * f_t - r * material.fracture_toughness * knee[0]) / (e0 * delta * delta);
+            if s.travel_since_fracture >= WINDOW_TRAVEL {
+                for (w, x) in window.0.iter_mut().zip(&row) {
+                    *w += x;
+                }
+                window.1 += target;
+                window.2 += 1.0;
+            }
+            strain.push(row, target);
             defl_post.push(deflection_basis(&ramp, lw), s.deflection / delta);
+        }
+        if window_weight > 0.0 && window.2 > 0.0 {
+            let a = window_weight * window.2.sqrt();
+            strain.push(window.0.map(|x| a * x / window.2), a * window.1 / window.2);
         }
     }
     let strain_fit: [f64; STRAIN_TERMS + STRAIN_DEPTH_TERMS] = strain.solve()?;
@@ -534,6 +546,7 @@ pub fn fit_ratio_correction(
             let xi = c.xi;
             let r = ToughnessRatio::at(xi, m.poisson_ratio).value;
             let root = friction_work_factor(xi, p.slip_ratio);
+            let mut window = ([0.0; 2 * STRAIN_TERMS], 0.0, 0.0f64);
             for sample in run.samples.iter().filter(|x| x.fractured) {
                 let state = fractured_state(&c, sample);
                 let bases = surrogate.wedge_bases(xi, &state, l);
@@ -562,7 +575,20 @@ pub fn fit_ratio_correction(
                     row[k] = l * b;
                     row[STRAIN_TERMS + k] = l * l * b;
                 }
-                strain.push(row, beyond / (s * e0 * delta * delta) - bases.strain_rate);
+                let target = beyond / (s * e0 * delta * delta) - bases.strain_rate;
+                if sample.travel_since_fracture >= WINDOW_TRAVEL {
+                    for (w, x) in window.0.iter_mut().zip(&row) {
+                        *w += x;
+                    }
+                    window.1 += target;
+                    window.2 += 1.0;
+                }
+                strain.push(row, target);
+            }
+            let ww = window_weight();
+            if ww > 0.0 && window.2 > 0.0 {
+                let a = ww * window.2.sqrt();
+                strain.push(window.0.map(|x| a * x / window.2), a * window.1 / window.2);
             }
         }
     }
@@ -678,4 +704,15 @@ fn onset_drag(pre: &PreFracture, material: &Material, case: &SweepCase, b: f64) 
     let y = onset_stiffness(pre, case, b);
     material.shear_modulus() * material.initial_fracture_toughness * xi * r
         / (c_t * material.youngs_modulus * y)
+}
+
+/// EXPERIMENT (corner10): travel since fracture from which a run's samples
+/// count to its window mean, m.
+const WINDOW_TRAVEL: f64 = 2e-3;
+
+/// EXPERIMENT (corner10): the weight of one row per run that asks the
+/// strain-energy rate's window mean to match the run's (env
+/// `FIT_WINDOW_WEIGHT`, default 0: off).
+fn window_weight() -> f64 {
+    std::env::var("FIT_WINDOW_WEIGHT").map_or(0.0, |v| v.parse().expect("a number"))
 }
