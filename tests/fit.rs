@@ -58,6 +58,8 @@ fn fit_reproduces_the_shipped_potato_file() {
         "potato-cuboid",
         "--knife",
         "straight",
+        "--window-weight",
+        "10",
         "--out",
         out.to_str().unwrap(),
     ]);

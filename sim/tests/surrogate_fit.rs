@@ -33,7 +33,7 @@ fn fit_is_deterministic_across_threads() {
     let (material, blade, settings, cases) = small_sweep();
     let fit_with = |threads| {
         let runs = run_sweep(&material, &blade, &cases, &settings, threads, &|| {}).unwrap();
-        fit_surrogate(&material, &blade, "potato-cuboid", "straight", &runs).unwrap()
+        fit_surrogate(&material, &blade, "potato-cuboid", "straight", &runs, 0.0).unwrap()
     };
     let one = fit_with(1);
     let two = fit_with(2);
@@ -63,7 +63,15 @@ fn fit_is_deterministic_across_threads() {
 fn ratio_correction_fit_is_deterministic_and_bends_the_right_way() {
     let (material, blade, settings, cases) = small_sweep();
     let nominal = run_sweep(&material, &blade, &cases, &settings, 2, &|| {}).unwrap();
-    let s = fit_surrogate(&material, &blade, "potato-cuboid", "straight", &nominal).unwrap();
+    let s = fit_surrogate(
+        &material,
+        &blade,
+        "potato-cuboid",
+        "straight",
+        &nominal,
+        0.0,
+    )
+    .unwrap();
     let fit_with = |threads| {
         let runs: Vec<_> = [0.5, 2.0]
             .map(|k| {

@@ -121,6 +121,7 @@ pub fn fit_surrogate(
     material_name: &str,
     knife_name: &str,
     runs: &[SweepRun],
+    window_weight: f64,
 ) -> Result<Surrogate, FitError> {
     let e0 = material.youngs_modulus;
     let nu = material.poisson_ratio;
@@ -212,6 +213,7 @@ pub fn fit_surrogate(
         version: SURROGATE_FORMAT_VERSION,
         material_name: material_name.to_string(),
         knife_name: knife_name.to_string(),
+        fit_window_weight: window_weight,
         material: *material,
         blade: FittedBlade::from(*blade),
         range,
@@ -319,7 +321,7 @@ fn fit_post_fracture(
         Rows::<{ STRAIN_TERMS + STRAIN_DEPTH_TERMS }>::new("post_fracture.strain_energy_rate");
     let mut split = Rows::new("post_fracture.split");
     let mut defl_post = Rows::new("post_fracture.deflection");
-    let window_weight = window_weight();
+    let window_weight = base.fit_window_weight;
     for (run, &length) in runs.iter().zip(lengths) {
         let c = run.case;
         let xi = c.xi;
@@ -363,6 +365,11 @@ fn fit_post_fracture(
             strain.push(row, target);
             defl_post.push(deflection_basis(&ramp, lw), s.deflection / delta);
         }
+        // The run's settled window as one row (its samples' mean), weighted
+        // as √n samples times the weight: the per-sample rows alone let
+        // the basis, the same at every ξ, trade the window's mean for the
+        // transient after the fracture (2.8 % of F_n on the potato cuboid
+        // at E/R_c ×1.86, `docs/surrogates.md`).
         if window_weight > 0.0 && window.2 > 0.0 {
             let a = window_weight * window.2.sqrt();
             strain.push(window.0.map(|x| a * x / window.2), a * window.1 / window.2);
@@ -585,7 +592,8 @@ pub fn fit_ratio_correction(
                 }
                 strain.push(row, target);
             }
-            let ww = window_weight();
+            // The settled window's mean row, as in the nominal fit.
+            let ww = surrogate.fit_window_weight;
             if ww > 0.0 && window.2 > 0.0 {
                 let a = ww * window.2.sqrt();
                 strain.push(window.0.map(|x| a * x / window.2), a * window.1 / window.2);
@@ -706,13 +714,7 @@ fn onset_drag(pre: &PreFracture, material: &Material, case: &SweepCase, b: f64) 
         / (c_t * material.youngs_modulus * y)
 }
 
-/// EXPERIMENT (corner10): travel since fracture from which a run's samples
-/// count to its window mean, m.
+/// Travel since fracture from which a run's samples count to its window
+/// mean ([`Surrogate::fit_window_weight`]), m: past the crack's jump and
+/// the knee after the first fracture (the sweeps' "settled" window).
 const WINDOW_TRAVEL: f64 = 2e-3;
-
-/// EXPERIMENT (corner10): the weight of one row per run that asks the
-/// strain-energy rate's window mean to match the run's (env
-/// `FIT_WINDOW_WEIGHT`, default 0: off).
-fn window_weight() -> f64 {
-    std::env::var("FIT_WINDOW_WEIGHT").map_or(0.0, |v| v.parse().expect("a number"))
-}
