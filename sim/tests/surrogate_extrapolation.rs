@@ -5,8 +5,8 @@
 //! the MPC's program is well posed. The fitted onset stiffness, linear in
 //! (λ_H, λ_w, H/w), reaches zero in tall narrow sections (H/w ≳ 10) and in
 //! sections of metres; before it was held at the stiffness of an onset at
-//! the section's height (`Surrogate::evaluate`), a 80 × 10 mm section gave
-//! infinite forces after fracture.
+//! the section's height (`Surrogate::evaluate`), an 80 mm tall section of
+//! 5 mm half width gave infinite forces after fracture.
 
 use std::path::PathBuf;
 
