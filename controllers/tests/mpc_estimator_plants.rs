@@ -21,16 +21,13 @@ use shearcut_controllers::mpc::{
 };
 use shearcut_sim::geometry::TriangleMesh;
 use shearcut_sim::plant::Measurement;
-use shearcut_sim::plant::section_shape::crest_section;
-use shearcut_sim::plant::{ArmLimits, Plant, PlantSettings, knife_plane_silhouette};
+use shearcut_sim::plant::{ArmLimits, Plant, PlantSettings};
 use shearcut_sim::section::SectionSettings;
-use shearcut_sim::surrogate::{Surrogate, equivalent_half_width};
+use shearcut_sim::surrogate::Surrogate;
 use shearcut_sim::{Cuboid, Knife, KnifePreset, MaterialPreset, ObjectShape};
 
 /// Safety margin on the arm's acceleration and jerk (as `shearcut run`).
 const ARM_MARGIN: f64 = 0.9;
-/// Depth samples of the object's profile (as `shearcut run`).
-const PROFILE_SAMPLES: usize = 41;
 
 /// One of the shipped closed-loop objects.
 #[derive(Debug, Clone, Copy)]
@@ -90,37 +87,18 @@ const PLANTS: [(&str, [f64; 3]); 5] = [
     ("mu x0.7", [1.0, 1.0, 0.7]),
 ];
 
-/// The object's profile as `shearcut run` gives it to the MPC: the section's
-/// half width is the crest section's equivalent rectangle's for the
-/// surrogate's material and blade (`src/object_profile.rs`).
+/// The object's profile as `shearcut run` gives it to the MPC (the crest
+/// section's equivalent rectangle, at the default section settings and
+/// rim clipping these scenarios use).
 fn profile(mesh: &TriangleMesh, surrogate: &Surrogate, depth: f64) -> DepthProfile {
-    let (lo, hi) = mesh.bounds();
-    let silhouette = knife_plane_silhouette(mesh).expect("crosses x = 0");
-    let (bottom, top) = {
-        let (a, b) = silhouette.bounds();
-        (a.y, b.y)
-    };
-    let height = top - bottom;
-    let depths: Vec<f64> = (0..PROFILE_SAMPLES)
-        .map(|i| height * (0.005 + 0.99 * i as f64 / (PROFILE_SAMPLES - 1) as f64))
-        .collect();
-    let lengths = depths
-        .iter()
-        .map(|d| silhouette.chord_length(top - d))
-        .collect();
-    let crest = crest_section(mesh, PlantSettings::default().rim_fraction).unwrap();
-    let half_width = equivalent_half_width(
-        &crest,
-        &surrogate.material,
-        &surrogate.blade.section(),
+    DepthProfile::for_surrogate(
+        mesh,
+        surrogate,
         &SectionSettings::default(),
+        PlantSettings::default().rim_fraction,
         depth,
     )
-    .unwrap();
-    DepthProfile::new(depths, lengths, height, 0.5 * (hi.x - lo.x))
-        .unwrap()
-        .with_half_width(half_width)
-        .unwrap()
+    .unwrap()
 }
 
 /// The edge's travel past the first fracture before the rows count (the

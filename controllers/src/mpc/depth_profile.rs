@@ -1,6 +1,14 @@
 //! How much edge is in contact, and the section's size, as the cut deepens.
 
 use shearcut_sim::InvalidSetting;
+use shearcut_sim::geometry::TriangleMesh;
+use shearcut_sim::plant::knife_plane_silhouette;
+use shearcut_sim::plant::section_shape::crest_section;
+use shearcut_sim::section::{SectionError, SectionSettings};
+use shearcut_sim::surrogate::{Surrogate, equivalent_half_width};
+
+/// Depth samples of [`DepthProfile::of_object`].
+const OBJECT_SAMPLES: usize = 41;
 
 /// The object as the MPC sees it along the cut: at each depth of the edge
 /// below the object's top (the knife's travel since it touched,
@@ -91,6 +99,77 @@ impl DepthProfile {
     /// A uniform object: the same contact `length` at every depth.
     pub fn uniform(length: f64, height: f64, half_width: f64) -> Result<Self, InvalidSetting> {
         Self::new(vec![0.0], vec![length], height, half_width)
+    }
+
+    /// The profile of `mesh` for a knife moving down in the plane x = 0: at
+    /// depth d below the top, the length of edge in contact is the chord of
+    /// the object's silhouette in the knife plane at height top − d (a
+    /// straight, horizontal edge's view; a curved edge touches a little
+    /// less). Depths are below the silhouette's top, where the edge first
+    /// touches and the plant measures its depth from (an eggplant's highest
+    /// point need not lie on it). The section height is the silhouette's and
+    /// the half width half the object's extent across the knife plane (x),
+    /// as a vision system would report them ([`for_surrogate`](Self::for_surrogate)
+    /// narrows it to the equivalent rectangle's).
+    ///
+    /// # Errors
+    /// The mesh does not cross the knife plane.
+    pub fn of_object(mesh: &TriangleMesh) -> Result<Self, InvalidSetting> {
+        let (lo, hi) = mesh.bounds();
+        let silhouette = knife_plane_silhouette(mesh).ok_or_else(|| {
+            InvalidSetting::new("object", "mesh", "does not cross the knife plane x = 0")
+        })?;
+        let (bottom, top) = {
+            let (a, b) = silhouette.bounds();
+            (a.y, b.y)
+        };
+        let height = top - bottom;
+        // Just below the top (the chord at the very top is a point) to just
+        // above the board.
+        let depths: Vec<f64> = (0..OBJECT_SAMPLES)
+            .map(|i| height * (0.005 + 0.99 * i as f64 / (OBJECT_SAMPLES - 1) as f64))
+            .collect();
+        let lengths = depths
+            .iter()
+            .map(|d| silhouette.chord_length(top - d))
+            .collect();
+        Self::new(depths, lengths, height, 0.5 * (hi.x - lo.x))
+    }
+
+    /// [`of_object`](Self::of_object) as `surrogate` takes it: the section's
+    /// half width is that of the rectangle equivalent to the object's crest
+    /// section ([`equivalent_half_width`]: the rectangle of the same height
+    /// that the section model presses to `depth` with the same work), cut
+    /// and clipped as the plant does (`rim_fraction`,
+    /// `PlantSettings::rim_fraction`), for the surrogate's own material and
+    /// blade (what the controller knows, not the plant's material) and the
+    /// `section` settings. The surrogates are fitted on rectangles; a
+    /// cuboid's section is its own equivalent, a half ellipsoid's crest
+    /// section (35 × 60 mm) maps to about 0.9 of its width.
+    ///
+    /// # Errors
+    /// As [`of_object`](Self::of_object), or the section model cannot cut
+    /// the crest section.
+    pub fn for_surrogate(
+        mesh: &TriangleMesh,
+        surrogate: &Surrogate,
+        section: &SectionSettings,
+        rim_fraction: f64,
+        depth: f64,
+    ) -> Result<Self, InvalidSetting> {
+        let profile = Self::of_object(mesh)?;
+        let section_error =
+            |e: SectionError| InvalidSetting::new("object", "crest section", e.to_string());
+        let crest = crest_section(mesh, rim_fraction).map_err(section_error)?;
+        let half_width = equivalent_half_width(
+            &crest,
+            &surrogate.material,
+            &surrogate.blade.section(),
+            section,
+            depth,
+        )
+        .map_err(section_error)?;
+        profile.with_half_width(half_width)
     }
 
     /// The same profile with the section's half width `half_width` (m; e.g.

@@ -309,9 +309,8 @@ impl Surrogate {
         let sizes = size_basis(lh, lw);
         // Onset: r·R'_c/(E·d*) = A + ξ²B.
         let (onset_a, onset_b) = self.pre_fracture.onset_stiffness_terms(lh, lw, aspect);
-        let onset_stiffness = onset_a + xi * xi * onset_b;
-        let onset_depth = t * r.value * m.initial_fracture_toughness
-            / (s * e0 * onset_stiffness.max(f64::MIN_POSITIVE));
+        let onset_stiffness = self.onset_stiffness(xi, &r, (onset_a, onset_b), state.height);
+        let onset_depth = t * r.value * m.initial_fracture_toughness / (s * e0 * onset_stiffness.v);
         let mut out = SurrogateOutput {
             toughness_ratio: r.value,
             toughness_ratio_slope: r.slope,
@@ -554,6 +553,33 @@ impl Surrogate {
         out
     }
 
+    /// The onset stiffness y(ξ) = A + ξ²B = r(ξ,ν)·R'_c₀/(E₀·d*₀) as a jet
+    /// in ξ, held at least r·R'_c₀/(E₀·H): the nominal onset depth d*₀ is
+    /// at most the section height `height` (the crack starts before the
+    /// edge reaches the board). Within the fitted sizes d*₀ is under a
+    /// tenth of H and the bound never holds; beyond them the linear fit in
+    /// (λ_H, λ_w, H/w) can reach zero (tall narrow sections, H/w ≳ 10, or
+    /// sections of metres), where an unbounded d*₀ made the forces infinite.
+    #[inline]
+    fn onset_stiffness(
+        &self,
+        xi: f64,
+        r: &ToughnessRatio,
+        (onset_a, onset_b): (f64, f64),
+        height: f64,
+    ) -> Jet {
+        let m = &self.material;
+        let height = height.max(self.blade.edge_width);
+        let fitted = Jet::new(
+            onset_a + xi * xi * onset_b,
+            2.0 * xi * onset_b,
+            2.0 * onset_b,
+        );
+        let floor = Jet::new(r.value, r.slope, r.curvature)
+            .scale(m.initial_fracture_toughness / (m.youngs_modulus * height));
+        if fitted.v >= floor.v { fitted } else { floor }
+    }
+
     /// The features after fracture that `evaluate` builds on, at one ξ and
     /// state (`lh`, `lw` the size features, `r` eq. 6 at ξ, `onset_stiffness`
     /// y(ξ) of the onset, `l` = ln ρ and `ratio_inverse` = 1/ρ = T/S).
@@ -581,11 +607,7 @@ impl Surrogate {
         // d*₀ = r·R'_c₀/(E₀·y), y = A + ξ²B; the knee gate g(s) and the
         // catch-up terms of the face reaction, as jets in ξ.
         let r_jet = Jet::new(r.value, r.slope, r.curvature);
-        let y_jet = Jet::new(
-            (onset_a + xi * xi * onset_b).max(f64::MIN_POSITIVE),
-            2.0 * xi * onset_b,
-            2.0 * onset_b,
-        );
+        let y_jet = self.onset_stiffness(xi, r, (onset_a, onset_b), state.height);
         let onset0 = r_jet
             .mul(y_jet.recip())
             .scale(m.initial_fracture_toughness / e0);
