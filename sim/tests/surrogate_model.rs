@@ -319,7 +319,8 @@ fn frictionless_steady_state_is_the_slicing_toughness() {
     };
     for s in [potato(), shipped("potato-whole")] {
         for xi in [0.0, 0.33, 0.75, 1.4, 1.8, 2.4] {
-            let target = toughness_ratio(xi, 0.4) * 150.0;
+            let m = &s.material;
+            let target = toughness_ratio(xi, m.poisson_ratio) * m.fracture_toughness;
             let excess = |height: f64| {
                 let state = CutState {
                     depth: 0.3 * height,
