@@ -77,6 +77,7 @@ pub fn fit_run_count() -> usize {
 /// `threads` sweep threads; the result does not depend on their number.
 /// `progress` is called after each full-model run ([`fit_run_count`] in
 /// all).
+#[allow(clippy::too_many_arguments)]
 pub fn fit_campaign(
     material: &Material,
     blade: &BladeSection,
