@@ -129,3 +129,79 @@ fn ratio_correction_fit_is_deterministic_and_bends_the_right_way() {
         );
     }
 }
+
+/// Each run's mean, over its settled window (travel since fracture ≥ 2 mm),
+/// of the full model's non-friction work per depth F_n^c + ξF_t^c less the
+/// surrogate's (fracture + strain-energy parts at the run's states).
+fn window_residuals(s: &Surrogate, runs: &[shearcut_sim::surrogate::SweepRun]) -> Vec<f64> {
+    runs.iter()
+        .filter_map(|run| {
+            let c = run.case;
+            let (mut n, mut sum) = (0.0, 0.0);
+            for x in run
+                .samples
+                .iter()
+                .filter(|x| x.fractured && x.travel_since_fracture >= 2e-3)
+            {
+                let state = CutState {
+                    depth: x.depth,
+                    height: c.height,
+                    half_width: c.half_width,
+                    fractured: true,
+                    travel_since_fracture: x.travel_since_fracture,
+                };
+                let o = s.evaluate(c.xi, &state, &ScaleFactors::default());
+                let full = (x.force_normal - x.force_normal_friction)
+                    + c.xi * (x.force_tangential - x.force_tangential_friction);
+                sum += full - (o.fracture + o.strain);
+                n += 1.0;
+            }
+            (n > 0.0).then(|| sum / n)
+        })
+        .collect()
+}
+
+/// `fit_window_weight`: the weight is recorded, the fit stays deterministic
+/// across threads, and the window rows do what they are for: the runs'
+/// settled-window means of the non-friction work per depth move towards
+/// the full model's (root mean square over the runs). A negative weight
+/// is an error, not a fit.
+#[test]
+fn window_rows_pull_the_settled_means_towards_the_full_model() {
+    let (material, blade, settings, cases) = small_sweep();
+    let runs = run_sweep(&material, &blade, &cases, &settings, 2, &|| {}).unwrap();
+    let fit = |w| fit_surrogate(&material, &blade, "potato-cuboid", "straight", &runs, w);
+    let plain = fit(0.0).unwrap();
+    let weighted = fit(10.0).unwrap();
+    assert_eq!(weighted.fit_window_weight, 10.0);
+    assert!(
+        weighted
+            .to_toml_string()
+            .contains("fit_window_weight = 10.0")
+    );
+    assert!(!plain.to_toml_string().contains("fit_window_weight"));
+    let runs_one = run_sweep(&material, &blade, &cases, &settings, 1, &|| {}).unwrap();
+    let again = fit_surrogate(
+        &material,
+        &blade,
+        "potato-cuboid",
+        "straight",
+        &runs_one,
+        10.0,
+    )
+    .unwrap();
+    assert_eq!(again, weighted);
+    let rms = |v: Vec<f64>| (v.iter().map(|x| x * x).sum::<f64>() / v.len() as f64).sqrt();
+    let (before, after) = (
+        rms(window_residuals(&plain, &runs)),
+        rms(window_residuals(&weighted, &runs)),
+    );
+    eprintln!("settled-window residual RMS: W = 0 {before:.3} N/m, W = 10 {after:.3} N/m");
+    assert!(
+        after < 0.8 * before,
+        "W = 0 {before} N/m, W = 10 {after} N/m"
+    );
+    for bad in [-1.0, f64::NAN, f64::INFINITY] {
+        assert!(fit(bad).is_err(), "{bad}");
+    }
+}

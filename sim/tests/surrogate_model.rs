@@ -300,17 +300,23 @@ fn onset_scales_with_toughness_over_stiffness() {
 /// (travel ≫ their longest length, 3 bevel heights ≈ 11 mm) what is left of
 /// dU/dd is the steady wedging energy E·Δ²·g(λ_H, λ_w)/H
 /// (`basis::strain_depth_rate_basis`) and the (d/H)³, (d/H)⁴ terms, all
-/// ∝ 1/H at a given d/H up to the logarithms: 11–18 N/m in the fitted
-/// sections (20–45 mm), and at H = 1 m still 0.5–2.4 % of r·R_c on the
-/// shipped potato files, of a sign the data do not pin there (potato whole
-/// +1.1 %, potato cuboid −1.9 % at ξ = 0.75, d/H = 0.1). So the law is
-/// checked as the limit it is, deep in sections of 10 m and 100 m: within
-/// 1 % at both and closer at 100 m. What it holds is the rest of the
-/// model: the knee gate at 1, the drag held at the onset released, and the
-/// force split that leaves the edge's F_n + ξF_t at exactly r·R_c. (The
-/// section model meets the law within 0.22 % with a razor blade,
-/// `sim/tests/section_steady_state.rs`; with the shipped 2 mm blade its
-/// wedge splits the crack ahead of the edge.)
+/// ∝ 1/H at a given d/H up to the logarithms: tens of N/m in the fitted
+/// sections (20–45 mm; the section model's own is 11–18 N/m at 25–30 ×
+/// 15 mm), and at H = 1 m still 0.5–2.4 % of r·R_c on the shipped potato
+/// files (d/H = 0.1; potato whole +1.1 %, potato cuboid −1.9 % at
+/// ξ = 0.75). The sign there is the extrapolation's: the potato cuboid's
+/// term, fitted with window rows, turns negative above H ≈ 0.12 m
+/// (w = H/2), the potato whole's and the unweighted fit's stay positive;
+/// the fits' sizes end at 45 mm (`docs/surrogates.md`, "The strain rate's
+/// settled mean"). So the law is checked as the limit it is, deep in sections of 10 m and 100 m
+/// (d/H = 0.3): within 1 % at 10 m, within 0.1 % at 100 m, and decaying
+/// at least as fast as 1/H up to logarithms (the 100 m excess at most a
+/// quarter of the 10 m one). What it holds is the rest of the model: the
+/// knee gate at 1, the drag held at the onset released, and the force split
+/// that leaves the edge's F_n + ξF_t at exactly r·R_c; a constant offset
+/// of ±0.1 % of r·R_c fails it. (The section model meets the law within
+/// 0.22 % with a razor blade, `sim/tests/section_steady_state.rs`; with the
+/// shipped 2 mm blade its wedge splits the crack ahead of the edge.)
 #[test]
 fn frictionless_steady_state_is_the_slicing_toughness() {
     let no_friction = ScaleFactors {
@@ -338,14 +344,14 @@ fn frictionless_steady_state_is_the_slicing_toughness() {
             };
             let (e10, e100) = (excess(10.0), excess(100.0));
             assert!(
-                e10.abs() <= 0.01 && e100.abs() <= 0.01,
+                e10.abs() <= 0.01 && e100.abs() <= 0.001,
                 "{} xi {xi}: F_n + xi F_t vs r R_c = {target}: {:+.3} % at 10 m, {:+.3} % at 100 m",
                 s.material_name,
                 100.0 * e10,
                 100.0 * e100
             );
             assert!(
-                e100.abs() < e10.abs(),
+                e100.abs() <= 0.25 * e10.abs(),
                 "{} xi {xi}: {e100} at 100 m, {e10} at 10 m",
                 s.material_name
             );

@@ -78,8 +78,10 @@ pub fn resolve(material: &str, knife: &str) -> Result<(MaterialPreset, KnifePres
     Ok((m, k))
 }
 
-/// Runs the sweeps, fits and compares (no files written). `progress` is
-/// called after each full-model run; the total is [`run_count`].
+/// Runs the sweeps, fits and compares (no files written). `window_weight`
+/// is the weight of each run's settled-window row in the strain-energy
+/// fits (`shearcut fit --window-weight`; 0: none). `progress` is called
+/// after each full-model run; the total is [`run_count`].
 pub fn fit(
     material: MaterialPreset,
     knife: KnifePreset,
@@ -129,6 +131,7 @@ pub fn surrogate_file_text(s: &Surrogate) -> String {
 }
 
 /// Runs the subcommand: sweeps with a progress bar, fit, report, files.
+/// `window_weight` as in [`fit`]; refused (exit 2) unless finite and ≥ 0.
 ///
 /// Writes `out` (default [`default_path`]), the report next to it
 /// (`<stem>.accuracy.toml`) and the plot (`<stem>.png`).
