@@ -4,10 +4,14 @@
 //! `tests/fit.rs` at the workspace root).
 
 use shearcut_sim::surrogate::{
-    CutState, ScaleFactors, ScaledSweep, Surrogate, SweepCase, SweepSettings, fit_ratio_correction,
-    fit_surrogate, grid, run_sweep, scaled_material,
+    CutState, ScaleFactors, ScaledSweep, Surrogate, SweepCase, SweepRun, SweepSettings,
+    fit_ratio_correction, fit_surrogate, grid, run_sweep, scaled_material,
 };
 use shearcut_sim::{BladeSection, KnifePreset, Material, MaterialPreset};
+
+#[path = "support/settled_window.rs"]
+mod settled_window;
+use settled_window::settled_window_sums;
 
 /// A small potato sweep (three ξ on three small sections, to 60 % of the
 /// height): potato-cuboid, the straight blade, its settings and cases.
@@ -130,41 +134,32 @@ fn ratio_correction_fit_is_deterministic_and_bends_the_right_way() {
     }
 }
 
-/// Each run's mean, over its settled window (travel since fracture ≥ 2 mm),
-/// of the full model's non-friction work per depth F_n^c + ξF_t^c less the
-/// surrogate's (fracture + strain-energy parts at the run's states).
-fn window_residuals(s: &Surrogate, runs: &[shearcut_sim::surrogate::SweepRun]) -> Vec<f64> {
+/// Each run's settled-window (travel since fracture ≥ 2 mm) sum of the full
+/// model's non-friction work per depth F_n^c + ξF_t^c against the
+/// surrogate's (fracture + strain-energy parts at the run's states), as the
+/// relative residual (full − surrogate)/full of the window means.
+fn window_residuals(s: &Surrogate, runs: &[SweepRun]) -> Vec<f64> {
     runs.iter()
-        .filter_map(|run| {
-            let c = run.case;
-            let (mut n, mut sum) = (0.0, 0.0);
-            for x in run
-                .samples
-                .iter()
-                .filter(|x| x.fractured && x.travel_since_fracture >= 2e-3)
-            {
-                let state = CutState {
-                    depth: x.depth,
-                    height: c.height,
-                    half_width: c.half_width,
-                    fractured: true,
-                    travel_since_fracture: x.travel_since_fracture,
-                };
-                let o = s.evaluate(c.xi, &state, &ScaleFactors::default());
-                let full = (x.force_normal - x.force_normal_friction)
-                    + c.xi * (x.force_tangential - x.force_tangential_friction);
-                sum += full - (o.fracture + o.strain);
-                n += 1.0;
-            }
-            (n > 0.0).then(|| sum / n)
+        .map(|run| {
+            let xi = run.case.xi;
+            let (full, surrogate) =
+                settled_window_sums(s, run, &ScaleFactors::default(), |x, o| {
+                    (
+                        (x.force_normal - x.force_normal_friction)
+                            + xi * (x.force_tangential - x.force_tangential_friction),
+                        o.fracture + o.strain,
+                    )
+                });
+            (full - surrogate) / full
         })
+        .filter(|r| r.is_finite())
         .collect()
 }
 
 /// `fit_window_weight`: the weight is recorded, the fit stays deterministic
 /// across threads, and the window rows do what they are for: the runs'
 /// settled-window means of the non-friction work per depth move towards
-/// the full model's (root mean square over the runs). A negative weight
+/// the full model's (root mean square over the runs of the relative residual). A negative weight
 /// is an error, not a fit.
 #[test]
 fn window_rows_pull_the_settled_means_towards_the_full_model() {
@@ -196,11 +191,12 @@ fn window_rows_pull_the_settled_means_towards_the_full_model() {
         rms(window_residuals(&plain, &runs)),
         rms(window_residuals(&weighted, &runs)),
     );
-    eprintln!("settled-window residual RMS: W = 0 {before:.3} N/m, W = 10 {after:.3} N/m");
-    assert!(
-        after < 0.8 * before,
-        "W = 0 {before} N/m, W = 10 {after} N/m"
+    eprintln!(
+        "settled-window relative residual RMS: W = 0 {:.2} %, W = 10 {:.2} %",
+        100.0 * before,
+        100.0 * after
     );
+    assert!(after < 0.8 * before, "W = 0 {before}, W = 10 {after}");
     for bad in [-1.0, f64::NAN, f64::INFINITY] {
         assert!(fit(bad).is_err(), "{bad}");
     }
