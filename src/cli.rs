@@ -104,6 +104,16 @@ pub enum Command {
         /// the accuracy report and plot go next to it.
         #[arg(long, value_name = "FILE")]
         out: Option<PathBuf>,
+        /// Weight (>= 0) of one row per run asking the strain-energy rate's
+        /// mean over the run's settled window to match the run's (0: none;
+        /// the shipped potato-cuboid files use 10; docs/surrogates.md).
+        #[arg(
+            long,
+            value_name = "W",
+            default_value_t = 0.0,
+            allow_negative_numbers = true
+        )]
+        window_weight: f64,
     },
     /// The plant process of the arm-style loop: serve the scenario's plant
     /// over iceoryx2 to the controller of run ID (lockstep or realtime per

@@ -45,7 +45,8 @@ fn main() -> ExitCode {
             material,
             knife,
             out,
-        }) => commands::fit::run(&material, &knife, out.as_deref()),
+            window_weight,
+        }) => commands::fit::run(&material, &knife, window_weight, out.as_deref()),
         Some(Command::Plant {
             scenario,
             run_id,

@@ -41,6 +41,23 @@ fn unknown_knife_is_exit_2_in_one_line() {
 }
 
 #[test]
+fn negative_window_weight_is_exit_2_in_one_line() {
+    let o = shearcut(&[
+        "fit",
+        "--material",
+        "potato-cuboid",
+        "--knife",
+        "straight",
+        "--window-weight",
+        "-1",
+    ]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = stderr(&o);
+    assert_eq!(e.trim_end().lines().count(), 1, "{e}");
+    assert!(e.contains("--window-weight") && e.contains("-1"), "{e}");
+}
+
+#[test]
 fn wire_is_refused_with_exit_2() {
     let o = shearcut(&["fit", "--material", "agar", "--knife", "wire"]);
     assert_eq!(o.status.code(), Some(2));
@@ -58,6 +75,8 @@ fn fit_reproduces_the_shipped_potato_file() {
         "potato-cuboid",
         "--knife",
         "straight",
+        "--window-weight",
+        "10",
         "--out",
         out.to_str().unwrap(),
     ]);

@@ -18,10 +18,14 @@
 use std::path::PathBuf;
 
 use shearcut_sim::surrogate::{
-    CutState, HELD_OUT_SLICE_PUSH_RATIOS, ScaleFactors, Surrogate, SurrogateOutput, SweepCase,
-    SweepRun, SweepSample, SweepSettings, compare_run, grid, run_sweep, scaled_material,
+    CutState, HELD_OUT_SLICE_PUSH_RATIOS, ScaleFactors, Surrogate, SweepCase, SweepRun,
+    SweepSettings, compare_run, grid, run_sweep, scaled_material,
 };
 use shearcut_sim::{KnifePreset, Material, MaterialPreset};
+
+#[path = "support/settled_window.rs"]
+mod settled_window;
+use settled_window::settled_window_sums;
 
 /// The shipped straight-knife surrogate of a material preset.
 fn shipped_surrogate(material: MaterialPreset) -> Surrogate {
@@ -41,37 +45,6 @@ fn straight_knife_runs(
 ) -> Vec<SweepRun> {
     let blade = KnifePreset::Straight.settings().blade;
     run_sweep(material, &blade, cases, settings, 2, &|| {}).unwrap()
-}
-
-/// Sums over a run's fractured samples at least 2 mm past the onset (the
-/// window of the sawtooth the accuracy report averages, `compare_run`) of a
-/// section quantity and the surrogate's counterpart at `scale`, as
-/// (section, surrogate); `quantity` gives both at a sample.
-fn settled_window_sums(
-    s: &Surrogate,
-    run: &SweepRun,
-    scale: &ScaleFactors,
-    quantity: impl Fn(&SweepSample, &SurrogateOutput) -> (f64, f64),
-) -> (f64, f64) {
-    let c = run.case;
-    let (mut full, mut surrogate) = (0.0, 0.0);
-    for x in run
-        .samples
-        .iter()
-        .filter(|x| x.fractured && x.travel_since_fracture >= 2e-3)
-    {
-        let state = CutState {
-            depth: x.depth,
-            height: c.height,
-            half_width: c.half_width,
-            fractured: true,
-            travel_since_fracture: x.travel_since_fracture,
-        };
-        let (section, model) = quantity(x, &s.evaluate(c.xi, &state, scale));
-        full += section;
-        surrogate += model;
-    }
-    (full, surrogate)
 }
 
 fn meets_the_issue_tolerances(material: MaterialPreset) {

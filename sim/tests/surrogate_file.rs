@@ -186,6 +186,18 @@ fn negative_knee_lead_is_refused_and_named() {
     assert!(e.to_string().contains("post_fracture.knee_lead"), "{e}");
 }
 
+#[test]
+fn negative_window_weight_is_refused_and_named() {
+    let text = potato_text();
+    let line = text
+        .lines()
+        .find(|l| l.starts_with("fit_window_weight = "))
+        .expect("the potato cuboid was fitted with a window weight");
+    let t = text.replace(line, "fit_window_weight = -1.0");
+    let e = Surrogate::from_toml_str(&t).unwrap_err();
+    assert!(e.to_string().contains("fit_window_weight"), "{e}");
+}
+
 /// The potato file without its `[ratio]` table.
 fn without_ratio_text() -> String {
     let text = potato_text();

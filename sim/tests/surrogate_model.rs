@@ -295,38 +295,67 @@ fn onset_scales_with_toughness_over_stiffness() {
     }
 }
 
-/// Seed 000 eq. (1) in steady cutting of a deep section: dU → 0, so with no
-/// friction the knife's work per depth is the slicing toughness r(ξ,ν)·R_c.
-/// The section model meets this within 1 % (sim/tests/section_steady_state.rs,
-/// measured 0.22 %); the surrogate's strain-energy rate decays with the
-/// travel ramps (longest 3 bevel heights ≈ 11 mm) and the (d/H)³ terms, so
-/// 0.1 m into a 1 m deep section it must hold within the same 1 %.
+/// Seed 000 eq. (1) in steady cutting: F·dd = r(ξ,ν)·R_c·dd + dU, so with
+/// no friction F_n + ξF_t = r·R_c + dU/dd. Once the wedge's ramps are done
+/// (travel ≫ their longest length, 3 bevel heights ≈ 11 mm) what is left of
+/// dU/dd is the steady wedging energy E·Δ²·g(λ_H, λ_w)/H
+/// (`basis::strain_depth_rate_basis`) and the (d/H)³, (d/H)⁴ terms, all
+/// ∝ 1/H at a given d/H up to the logarithms: tens of N/m in the fitted
+/// sections (20–45 mm; the section model's own is 11–18 N/m at 25–30 ×
+/// 15 mm), and at H = 1 m still 0.5–2.4 % of r·R_c on the shipped potato
+/// files (d/H = 0.1; potato whole +1.1 %, potato cuboid −1.9 % at
+/// ξ = 0.75). The sign there is the extrapolation's: the potato cuboid's
+/// term, fitted with window rows, turns negative above H ≈ 0.12 m
+/// (w = H/2), the potato whole's and the unweighted fit's stay positive;
+/// the fits' sizes end at 45 mm (`docs/surrogates.md`, "The strain rate's
+/// settled mean"). So the law is checked as the limit it is, deep in sections of 10 m and 100 m
+/// (d/H = 0.3): within 1 % at 10 m, within 0.1 % at 100 m, and decaying
+/// at least as fast as 1/H up to logarithms (the 100 m excess at most a
+/// quarter of the 10 m one). What it holds is the rest of the model: the
+/// knee gate at 1, the drag held at the onset released, and the force split
+/// that leaves the edge's F_n + ξF_t at exactly r·R_c; a constant offset
+/// of ±0.1 % of r·R_c fails it. (The section model meets the law within
+/// 0.22 % with a razor blade, `sim/tests/section_steady_state.rs`; with the
+/// shipped 2 mm blade its wedge splits the crack ahead of the edge.)
 #[test]
 fn frictionless_steady_state_is_the_slicing_toughness() {
-    let s = potato();
-    let state = CutState {
-        depth: 0.1,
-        height: 1.0,
-        half_width: 0.5,
-        fractured: true,
-        travel_since_fracture: 0.1,
-    };
     let no_friction = ScaleFactors {
         friction: 0.0,
         ..ScaleFactors::default()
     };
-    for xi in [0.0, 0.33, 0.75, 1.4, 1.8, 2.4] {
-        let o = s.evaluate(xi, &state, &no_friction);
-        let target = toughness_ratio(xi, 0.4) * 150.0;
-        let law = o.force_normal + xi * o.force_tangential;
-        assert!(
-            (law - target).abs() <= 0.01 * target,
-            "xi {xi}: F_n + xi F_t = {law} vs r R_c = {target}"
-        );
-        assert_eq!(o.friction, 0.0);
-        // With friction the work is larger by F·S·μN√(1+ξ²) ≥ 0.
-        let w = s.evaluate(xi, &state, &ScaleFactors::default());
-        assert!(w.work_per_depth >= o.work_per_depth);
+    for s in [potato(), shipped("potato-whole")] {
+        for xi in [0.0, 0.33, 0.75, 1.4, 1.8, 2.4] {
+            let m = &s.material;
+            let target = toughness_ratio(xi, m.poisson_ratio) * m.fracture_toughness;
+            let excess = |height: f64| {
+                let state = CutState {
+                    depth: 0.3 * height,
+                    height,
+                    half_width: 0.5 * height,
+                    fractured: true,
+                    travel_since_fracture: 0.3 * height,
+                };
+                let o = s.evaluate(xi, &state, &no_friction);
+                assert_eq!(o.friction, 0.0);
+                // With friction the work is larger by F·S·μN√(1+ξ²) ≥ 0.
+                let w = s.evaluate(xi, &state, &ScaleFactors::default());
+                assert!(w.work_per_depth >= o.work_per_depth);
+                (o.force_normal + xi * o.force_tangential - target) / target
+            };
+            let (e10, e100) = (excess(10.0), excess(100.0));
+            assert!(
+                e10.abs() <= 0.01 && e100.abs() <= 0.001,
+                "{} xi {xi}: F_n + xi F_t vs r R_c = {target}: {:+.3} % at 10 m, {:+.3} % at 100 m",
+                s.material_name,
+                100.0 * e10,
+                100.0 * e100
+            );
+            assert!(
+                e100.abs() <= 0.25 * e10.abs(),
+                "{} xi {xi}: {e100} at 100 m, {e10} at 10 m",
+                s.material_name
+            );
+        }
     }
 }
 

@@ -78,11 +78,14 @@ pub fn resolve(material: &str, knife: &str) -> Result<(MaterialPreset, KnifePres
     Ok((m, k))
 }
 
-/// Runs the sweeps, fits and compares (no files written). `progress` is
-/// called after each full-model run; the total is [`run_count`].
+/// Runs the sweeps, fits and compares (no files written). `window_weight`
+/// is the weight of each run's settled-window row in the strain-energy
+/// fits (`shearcut fit --window-weight`; 0: none). `progress` is called
+/// after each full-model run; the total is [`run_count`].
 pub fn fit(
     material: MaterialPreset,
     knife: KnifePreset,
+    window_weight: f64,
     progress: &(dyn Fn() + Sync),
 ) -> Result<FitOutput, RunError> {
     let threads = std::thread::available_parallelism()
@@ -94,6 +97,7 @@ pub fn fit(
         material.name(),
         knife.name(),
         &SweepSettings::default(),
+        window_weight,
         threads,
         progress,
     )
@@ -113,8 +117,13 @@ pub fn run_count() -> usize {
 
 /// The surrogate file's text: a header comment, then the data.
 pub fn surrogate_file_text(s: &Surrogate) -> String {
+    let weight = if s.fit_window_weight > 0.0 {
+        format!(" --window-weight {}", s.fit_window_weight)
+    } else {
+        String::new()
+    };
     format!(
-        "# Surrogate of the cross-section model (docs/surrogates.md), written by\n# `shearcut fit --material {} --knife {}`. Do not edit: refit.\n{}",
+        "# Surrogate of the cross-section model (docs/surrogates.md), written by\n# `shearcut fit --material {} --knife {}{weight}`. Do not edit: refit.\n{}",
         s.material_name,
         s.knife_name,
         s.to_toml_string()
@@ -122,11 +131,25 @@ pub fn surrogate_file_text(s: &Surrogate) -> String {
 }
 
 /// Runs the subcommand: sweeps with a progress bar, fit, report, files.
+/// `window_weight` as in [`fit`]; refused (exit 2) unless finite and ≥ 0.
 ///
 /// Writes `out` (default [`default_path`]), the report next to it
 /// (`<stem>.accuracy.toml`) and the plot (`<stem>.png`).
-pub fn run(material: &str, knife: &str, out: Option<&Path>) -> Result<(), RunError> {
+pub fn run(
+    material: &str,
+    knife: &str,
+    window_weight: f64,
+    out: Option<&Path>,
+) -> Result<(), RunError> {
     let (m, k) = resolve(material, knife)?;
+    if !(window_weight.is_finite() && window_weight >= 0.0) {
+        return Err(ConfigError::Argument(InvalidSetting::new(
+            "--window-weight",
+            window_weight,
+            "finite and >= 0",
+        ))
+        .into());
+    }
     let path = out.map_or_else(|| default_path(m.name(), k.name()), Path::to_path_buf);
     let bar = ProgressBar::new(run_count() as u64);
     bar.set_style(
@@ -134,7 +157,7 @@ pub fn run(material: &str, knife: &str, out: Option<&Path>) -> Result<(), RunErr
             .unwrap_or_else(|_| ProgressStyle::default_bar()),
     );
     bar.set_message(format!("full-model sweeps of {}", m.name()));
-    let result = fit(m, k, &|| bar.inc(1));
+    let result = fit(m, k, window_weight, &|| bar.inc(1));
     bar.finish_and_clear();
     let output = result?;
     ensure_parent(&path)?;

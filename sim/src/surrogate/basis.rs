@@ -192,8 +192,10 @@ pub fn friction_basis(
 /// strain energy U/(E·Δ²) on [(ρ_k, ρ_kλ_H, ρ_kλ_w) for k < 4, (d/H)³,
 /// (d/H)⁴] along a cut (travel and depth advance together). The ramps'
 /// slopes vanish in steady cutting and the depth terms' slopes, 3d²/H³ and
-/// 4d³/H⁴, in a deep section, so there dU/dd → 0 (seed 000 eq. 1 with
-/// dU → 0). The first three terms are 0 (a constant stores no work).
+/// 4d³/H⁴, in a deep section, so there this part of dU/dd → 0; the steady
+/// part ([`strain_depth_rate_basis`]) decays as 1/H, so dU/dd → 0 only as
+/// the section grows (seed 000 eq. 1 with dU → 0). The first three terms
+/// are 0 (a constant stores no work).
 #[inline]
 pub fn strain_basis_rate(
     ramp_slope: &[f64; RAMPS],

@@ -73,15 +73,18 @@ pub fn fit_run_count() -> usize {
 /// the fit's grid again at E × [`RATIO_STIFFNESS_FACTORS`] and fits the
 /// ratio corrections to them ([`fit_ratio_correction`]), then runs the
 /// held-out cases at the materials of [`HELD_OUT_SCALES`] for the report.
+/// `window_weight`: [`Surrogate::fit_window_weight`](super::Surrogate).
 /// `threads` sweep threads; the result does not depend on their number.
 /// `progress` is called after each full-model run ([`fit_run_count`] in
 /// all).
+#[allow(clippy::too_many_arguments)]
 pub fn fit_campaign(
     material: &Material,
     blade: &BladeSection,
     material_name: &str,
     knife_name: &str,
     settings: &SweepSettings,
+    window_weight: f64,
     threads: usize,
     progress: &(dyn Fn() + Sync),
 ) -> Result<FitCampaign, FitCampaignError> {
@@ -91,7 +94,14 @@ pub fn fit_campaign(
     cases.extend(&held_out_cases);
     let runs = run_sweep(material, blade, &cases, settings, threads, progress)?;
     let (fit_runs, held_out) = runs.split_at(fit_cases.len());
-    let mut surrogate = fit_surrogate(material, blade, material_name, knife_name, fit_runs)?;
+    let mut surrogate = fit_surrogate(
+        material,
+        blade,
+        material_name,
+        knife_name,
+        fit_runs,
+        window_weight,
+    )?;
     let ratio_runs: Vec<(f64, Vec<SweepRun>)> = RATIO_STIFFNESS_FACTORS
         .iter()
         .map(|&s| {

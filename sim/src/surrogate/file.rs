@@ -226,6 +226,14 @@ impl Surrogate {
                 allowed: "must be positive",
             });
         }
+        let weight = self.fit_window_weight;
+        if !(weight.is_finite() && weight >= 0.0) {
+            return Err(SurrogateFileError::BadValue {
+                key: "fit_window_weight".to_string(),
+                value: weight,
+                allowed: "must be a finite number >= 0",
+            });
+        }
         let lead = self.post_fracture.knee_lead;
         if lead < 0.0 {
             return Err(SurrogateFileError::BadValue {

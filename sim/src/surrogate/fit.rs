@@ -34,6 +34,9 @@ pub enum FitError {
         /// Coefficients.
         unknowns: usize,
     },
+    /// The window weight was negative or not finite.
+    #[error("window weight {0} must be a finite number >= 0")]
+    WindowWeight(f64),
 }
 
 /// Rows of a least-squares problem with `N` unknowns.
@@ -92,6 +95,52 @@ impl<const N: usize> Rows<N> {
     }
 }
 
+/// The mean of one run's strain-energy rows over its settled window (travel
+/// since fracture ≥ [`WINDOW_TRAVEL`]), pushed as one more row weighted as
+/// √n samples × the window weight ([`Surrogate::fit_window_weight`]): the
+/// per-sample rows alone let the basis, the same at every ξ, trade the
+/// window's mean for the transient after the fracture (2.8 % of F_n on the
+/// potato cuboid at E/R_c ×1.86, `docs/surrogates.md`). Used alike by the
+/// nominal fit and the ratio corrections' fit.
+struct WindowMean<const N: usize> {
+    row: [f64; N],
+    target: f64,
+    samples: f64,
+}
+
+impl<const N: usize> WindowMean<N> {
+    fn new() -> Self {
+        Self {
+            row: [0.0; N],
+            target: 0.0,
+            samples: 0.0,
+        }
+    }
+
+    /// Adds a sample's row and target if it is in the settled window.
+    fn add(&mut self, travel_since_fracture: f64, row: &[f64; N], target: f64) {
+        if travel_since_fracture >= WINDOW_TRAVEL {
+            for (w, x) in self.row.iter_mut().zip(row) {
+                *w += x;
+            }
+            self.target += target;
+            self.samples += 1.0;
+        }
+    }
+
+    /// Pushes the window's mean row onto `rows` with weight `weight` (none
+    /// at 0 or without settled samples).
+    fn push_into(&self, rows: &mut Rows<N>, weight: f64) {
+        if weight > 0.0 && self.samples > 0.0 {
+            let a = weight * self.samples.sqrt();
+            rows.push(
+                self.row.map(|x| a * x / self.samples),
+                a * self.target / self.samples,
+            );
+        }
+    }
+}
+
 /// Fits a surrogate to `runs` of `material` cut by `blade` (DESIGN §3.4).
 ///
 /// Every fitted function is linear in its coefficients (`basis` module), so
@@ -113,15 +162,24 @@ impl<const N: usize> Rows<N> {
 ///   S·U̇ taken off F_n^c, the edge's F_t^c = σ·F_n^e + Q(ξ)·h(s) (split and
 ///   released drag, jointly); the deflection over Δ. The shape kept is the
 ///   one whose surrogate follows the fit's own runs best (`compare_run`).
+///   With `window_weight` W > 0 each run adds one strain-energy row, the
+///   mean of its settled window's rows weighted as √n samples × W
+///   ([`WindowMean`]); W is recorded as `fit_window_weight` and the ratio
+///   corrections' fit ([`fit_ratio_correction`]) adds the same rows.
 ///
 /// With μ = 0 the face reaction cannot be observed and is fitted as 0.
+/// A negative or non-finite `window_weight` is [`FitError::WindowWeight`].
 pub fn fit_surrogate(
     material: &Material,
     blade: &BladeSection,
     material_name: &str,
     knife_name: &str,
     runs: &[SweepRun],
+    window_weight: f64,
 ) -> Result<Surrogate, FitError> {
+    if !(window_weight.is_finite() && window_weight >= 0.0) {
+        return Err(FitError::WindowWeight(window_weight));
+    }
     let e0 = material.youngs_modulus;
     let nu = material.poisson_ratio;
     let g0 = material.shear_modulus();
@@ -212,6 +270,7 @@ pub fn fit_surrogate(
         version: SURROGATE_FORMAT_VERSION,
         material_name: material_name.to_string(),
         knife_name: knife_name.to_string(),
+        fit_window_weight: window_weight,
         material: *material,
         blade: FittedBlade::from(*blade),
         range,
@@ -319,11 +378,13 @@ fn fit_post_fracture(
         Rows::<{ STRAIN_TERMS + STRAIN_DEPTH_TERMS }>::new("post_fracture.strain_energy_rate");
     let mut split = Rows::new("post_fracture.split");
     let mut defl_post = Rows::new("post_fracture.deflection");
+    let window_weight = base.fit_window_weight;
     for (run, &length) in runs.iter().zip(lengths) {
         let c = run.case;
         let xi = c.xi;
         let (lh, lw) = size_features(c.height, c.half_width, b);
         let r = ToughnessRatio::at(xi, nu).value;
+        let mut window = WindowMean::new();
         for s in run.samples.iter().filter(|s| s.fractured) {
             let (ramp, ramp_slope) = ramps(s.travel_since_fracture, h_b);
             let knee = knee_values(s.travel_since_fracture, xi, length, kappa, lh, lw);
@@ -349,12 +410,13 @@ fn fit_post_fracture(
             let mut row = [0.0; STRAIN_TERMS + STRAIN_DEPTH_TERMS];
             row[..STRAIN_TERMS].copy_from_slice(&wedge);
             row[STRAIN_TERMS..].copy_from_slice(&steady);
-            strain.push(
-                row,
-                (f_n + xi * f_t - r * material.fracture_toughness * knee[0]) / (e0 * delta * delta),
-            );
+            let target =
+                (f_n + xi * f_t - r * material.fracture_toughness * knee[0]) / (e0 * delta * delta);
+            window.add(s.travel_since_fracture, &row, target);
+            strain.push(row, target);
             defl_post.push(deflection_basis(&ramp, lw), s.deflection / delta);
         }
+        window.push_into(&mut strain, window_weight);
     }
     let strain_fit: [f64; STRAIN_TERMS + STRAIN_DEPTH_TERMS] = strain.solve()?;
     let mut strain_energy_rate = [0.0; STRAIN_TERMS];
@@ -496,7 +558,9 @@ pub struct ScaledSweep<'a> {
 ///   ℓ²·N₀φ, ℓ²·N₀ψ] (φ the `ratio::slice_basis` in ξ, ψ = φ·[λ_H, λ_w, H/w]
 ///   the `ratio::slice_size_basis`);
 /// - the knife's non-friction work per depth beyond T·r(ξ,ν)·R_c₀·g over
-///   S·E₀·Δ², minus the nominal U̇₀/(E₀Δ²), on [ℓ·b_U, ℓ²·b_U];
+///   S·E₀·Δ², minus the nominal U̇₀/(E₀Δ²), on [ℓ·b_U, ℓ²·b_U], with
+///   each run's settled-window mean row when `surrogate.fit_window_weight`
+///   is positive ([`WindowMean`], as in [`fit_surrogate`]);
 ///
 /// with b_N, b_U the nominal terms' bases as the surrogate takes them (its
 /// own catch-up length at the sweep's ratio, L₀·ρ^(−k) with
@@ -534,6 +598,7 @@ pub fn fit_ratio_correction(
             let xi = c.xi;
             let r = ToughnessRatio::at(xi, m.poisson_ratio).value;
             let root = friction_work_factor(xi, p.slip_ratio);
+            let mut window = WindowMean::new();
             for sample in run.samples.iter().filter(|x| x.fractured) {
                 let state = fractured_state(&c, sample);
                 let bases = surrogate.wedge_bases(xi, &state, l);
@@ -562,8 +627,11 @@ pub fn fit_ratio_correction(
                     row[k] = l * b;
                     row[STRAIN_TERMS + k] = l * l * b;
                 }
-                strain.push(row, beyond / (s * e0 * delta * delta) - bases.strain_rate);
+                let target = beyond / (s * e0 * delta * delta) - bases.strain_rate;
+                window.add(sample.travel_since_fracture, &row, target);
+                strain.push(row, target);
             }
+            window.push_into(&mut strain, surrogate.fit_window_weight);
         }
     }
     let mut out = surrogate.ratio;
@@ -679,3 +747,10 @@ fn onset_drag(pre: &PreFracture, material: &Material, case: &SweepCase, b: f64) 
     material.shear_modulus() * material.initial_fracture_toughness * xi * r
         / (c_t * material.youngs_modulus * y)
 }
+
+/// Travel since fracture from which a run's samples count to its window
+/// mean ([`WindowMean`]), m: on potato, where the crack does not jump ahead
+/// of the edge, past the knee after the first fracture. On eggplant, whose
+/// catch-up lasts ~14 mm after the fracture, the window would include it;
+/// the shipped eggplant files are fitted without window rows.
+const WINDOW_TRAVEL: f64 = 2e-3;

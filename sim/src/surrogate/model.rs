@@ -250,6 +250,12 @@ pub struct Surrogate {
     /// Knife preset name. Only its blade section enters the sections, so
     /// knives with the same blade have the same coefficients.
     pub knife_name: String,
+    /// Weight of the rows that ask the fitted strain-energy rate's mean over
+    /// each run's settled window (travel since fracture ≥ 2 mm) to match
+    /// the run's (`shearcut fit --window-weight`; 0, the default, adds none).
+    /// Recorded so that the fit can be reproduced.
+    #[serde(default, skip_serializing_if = "is_zero")]
+    pub fit_window_weight: f64,
     /// Nominal material (the scale factors multiply it).
     pub material: Material,
     /// The blade section.
@@ -264,6 +270,11 @@ pub struct Surrogate {
     /// ρ = S/T (`ratio` module; format 4, zero when absent).
     #[serde(default)]
     pub ratio: RatioCorrection,
+}
+
+/// Whether a weight is zero (not written to the file).
+fn is_zero(x: &f64) -> bool {
+    *x == 0.0
 }
 
 impl Surrogate {
