@@ -103,3 +103,15 @@ fn a_tall_narrow_section_beyond_the_fit_has_finite_forces() {
         }
     }
 }
+
+#[test]
+fn the_fit_range_covers_its_own_sizes_and_no_others() {
+    let s = shipped().remove(0);
+    let r = s.range;
+    assert!(r.covers_section(r.height[0], r.half_width[1]));
+    assert!(r.covers_section(0.5 * (r.height[0] + r.height[1]), r.half_width[0]));
+    assert!(!r.covers_section(1.01 * r.height[1], r.half_width[0]));
+    assert!(!r.covers_section(r.height[0], 0.99 * r.half_width[0]));
+    // The whole eggplant's equivalent section (91.8 mm half width) is beyond.
+    assert!(!r.covers_section(0.035, 0.0918));
+}

@@ -151,14 +151,34 @@ pub fn mpc_cutting_ratio(
 }
 
 /// The object as `s`'s MPC sees it ([`surrogate_profile`]; built once per
-/// setup: finding the equivalent rectangle runs the section model).
+/// setup: finding the equivalent rectangle runs the section model). Logs a
+/// warning when that section lies beyond the sizes the surrogate was fitted
+/// on (`FitRange::covers_section`): the MPC's model then extrapolates.
 pub fn mpc_profile(
     s: &Scenario,
     task: &CutTask,
     mesh: &TriangleMesh,
 ) -> Result<DepthProfile, RunError> {
     let surrogate = surrogate_for(s).map_err(|e| invalid(s, e))?;
-    surrogate_profile(s, &surrogate, mesh, task.target_depth).map_err(|e| invalid(s, e))
+    let profile =
+        surrogate_profile(s, &surrogate, mesh, task.target_depth).map_err(|e| invalid(s, e))?;
+    let range = &surrogate.range;
+    if !range.covers_section(profile.height(), profile.half_width()) {
+        tracing::warn!(
+            "the MPC's section ({:.1} mm high, {:.1} mm half width) lies beyond the sizes its \
+             surrogate {}-{} was fitted on ({:.0}-{:.0} mm high, {:.0}-{:.0} mm half width): \
+             it extrapolates (docs/surrogates.md)",
+            1e3 * profile.height(),
+            1e3 * profile.half_width(),
+            surrogate.material_name,
+            surrogate.knife_name,
+            1e3 * range.height[0],
+            1e3 * range.height[1],
+            1e3 * range.half_width[0],
+            1e3 * range.half_width[1],
+        );
+    }
+    Ok(profile)
 }
 
 /// The controller a choice names, for a scenario's task and object; the

@@ -78,6 +78,15 @@ pub struct FitRange {
     pub half_width: [f64; 2],
 }
 
+impl FitRange {
+    /// Whether a section of `height` × `half_width` (m) lies within the
+    /// fitted sizes (bounds included).
+    pub fn covers_section(&self, height: f64, half_width: f64) -> bool {
+        let within = |x: f64, [lo, hi]: [f64; 2]| (lo..=hi).contains(&x);
+        within(height, self.height) && within(half_width, self.half_width)
+    }
+}
+
 /// Fitted coefficients before the first fracture (basis functions in
 /// `basis`).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
