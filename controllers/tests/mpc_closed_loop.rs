@@ -199,3 +199,94 @@ fn while_estimating_the_mpc_touches_at_the_touch_speed_until_the_first_fracture(
     }
     assert!(early > 2.0 * touch, "{early} m/s");
 }
+
+/// The quadratic model with its optimum moving with depth
+/// (ξ* = 4/3 + 40·(0.01 − d), 1.73 at the top, 0.93 at 20 mm) so that the
+/// plan's stages differ, and failing (a NaN work slope) while `failing` is set: the
+/// subproblem then cannot be solved.
+struct FailingModel {
+    failing: std::rc::Rc<std::cell::Cell<bool>>,
+}
+
+impl shearcut_controllers::mpc::SliceModel for FailingModel {
+    fn stage(
+        &self,
+        xi: f64,
+        state: &shearcut_controllers::mpc::StageState,
+    ) -> shearcut_controllers::mpc::StageCost {
+        let shifted = xi - 40.0 * (0.01 - state.depth);
+        let mut c = QuadraticModel.stage(shifted, state);
+        if self.failing.get() {
+            c.work_per_depth_slope = f64::NAN;
+        }
+        c
+    }
+}
+
+/// `plan` is `solved` shifted by `j` stages (the stages past its end repeat
+/// its last): the fallback's plan.
+fn shifted_by(plan: &[f64], solved: &[f64]) -> Option<usize> {
+    let n = solved.len();
+    (0..n).find(|&j| (0..n).all(|k| plan[k] == solved[(k + j).min(n - 1)]))
+}
+
+#[test]
+fn a_plan_that_fails_falls_back_to_the_last_plan_shifted_to_the_edge() {
+    use shearcut_controllers::mpc::QpStatus;
+    let failing = std::rc::Rc::new(std::cell::Cell::new(false));
+    let model = FailingModel {
+        failing: failing.clone(),
+    };
+    let profile = DepthProfile::uniform(0.03, 0.03, 0.015).unwrap();
+    let budget = 1.0;
+    let mut mpc = Mpc::new(
+        &task(0.02, budget),
+        &MpcSettings::default(),
+        model,
+        profile,
+        0.5,
+    )
+    .unwrap();
+    let mut arm = SyntheticArm::new(0.0);
+    let mut m = arm.measure(PlantStatus::Moving);
+    let mut last_solved: Option<Vec<f64>> = None;
+    let (mut fallbacks, mut largest_shift, mut shifts_in_order) = (0, 0, true);
+    let mut previous_shift = 0;
+    for _ in 0..20_000 {
+        // Plans fail while the crack is between 6 and 12 mm deep.
+        failing.set((0.006..0.012).contains(&m.crack_depth));
+        let c = mpc.tick(&m);
+        m = arm.step(&c);
+        if mpc.replanned() {
+            if mpc.stats().last_status == Some(QpStatus::Solved) {
+                last_solved = Some(mpc.plan().to_vec());
+                previous_shift = 0;
+            } else {
+                fallbacks += 1;
+                let solved = last_solved.as_ref().expect("a plan was solved before 6 mm");
+                let j = shifted_by(mpc.plan(), solved)
+                    .unwrap_or_else(|| panic!("{:?} is not a shift of {solved:?}", mpc.plan()));
+                largest_shift = largest_shift.max(j);
+                shifts_in_order &= j >= previous_shift;
+                previous_shift = j;
+                // The knife follows the shifted plan's first stage.
+                assert!(c.velocity.iter().all(|v| v.is_finite()), "{c:?}");
+            }
+        }
+        if mpc.telemetry().phase == CutPhase::Done {
+            break;
+        }
+    }
+    eprintln!(
+        "{fallbacks} fallbacks, largest shift {largest_shift}; {:?}",
+        mpc.stats()
+    );
+    assert_eq!(mpc.telemetry().phase, CutPhase::Done);
+    assert_eq!(arm.refused, 0);
+    assert_eq!(mpc.stats().fallbacks, fallbacks, "{:?}", mpc.stats());
+    assert!(fallbacks >= 5, "{:?}", mpc.stats());
+    // 6 mm of depth at the plans' 2 mm stages (and less): the plan is
+    // shifted by more than one stage, never backwards.
+    assert!(largest_shift >= 2, "largest shift {largest_shift}");
+    assert!(shifts_in_order);
+}

@@ -63,7 +63,9 @@ pub const FIRST_PLAN_ITERATIONS: usize = 50;
 /// [`VelocityShaper`] follows on every servo tick in between.
 ///
 /// A plan that is not solved within the iteration budget falls back to the
-/// previous plan (the knife keeps its velocity target) and is counted.
+/// previous plan shifted to the edge's depth: the knife takes the ratio
+/// and speed that plan gave the stage it is in now (ratios capped to what
+/// is left of the blade), and the fallback is counted.
 ///
 /// With `estimate` on, every tick in contact feeds the measured forces per
 /// unit length to a [`ScaleEstimator`] with the model of them at the
@@ -102,6 +104,12 @@ pub struct Mpc<M: SliceModel> {
     /// sawing plan is solved.
     stroke_xi: Vec<f64>,
     stroke_tau: Vec<f64>,
+    /// The plan in force: τ per stage (s/m), its stages starting at the
+    /// edge's depth `plan_origin` (m), each `plan_step` deep (m; 0 before
+    /// the first solved plan). A fallback shifts it ([`Mpc::shift_plan`]).
+    plan_tau: Vec<f64>,
+    plan_origin: f64,
+    plan_step: f64,
     stats: MpcStats,
     replanned: bool,
     estimator: Option<ScaleEstimator>,
@@ -174,6 +182,9 @@ impl<M: SliceModel> Mpc<M> {
             saw: false,
             stroke_xi: vec![0.0; n],
             stroke_tau: vec![0.0; n],
+            plan_tau: vec![0.0; n],
+            plan_origin: 0.0,
+            plan_step: 0.0,
             stats: MpcStats::default(),
             replanned: false,
             estimator: settings.estimate.then(|| {
@@ -374,11 +385,15 @@ impl<M: SliceModel> Mpc<M> {
         self.stats.last_status = Some(status);
         if status == QpStatus::Solved {
             self.plan_xi.copy_from_slice(&self.stroke_xi);
+            self.plan_tau.copy_from_slice(&self.stroke_tau);
+            self.plan_origin = d0;
+            self.plan_step = dd;
             let tau = self.stroke_tau[0];
             self.normal_speed = (1.0 / tau).min(normal_limit);
             self.tangential_speed = (self.plan_xi[0] * self.normal_speed).min(l.tangential_speed);
         } else {
             self.stats.fallbacks += 1;
+            self.shift_plan(d0);
             // The trust region around a plan that no longer fits the blade
             // (after the last allowed reversal, say) leaves the next
             // subproblem infeasible too: linearise it around ratios that fit.
@@ -386,13 +401,41 @@ impl<M: SliceModel> Mpc<M> {
             for x in &mut self.plan_xi {
                 *x = x.min(cap);
             }
-            if self.normal_speed == 0.0 {
+            if self.plan_step == 0.0 {
                 // No plan yet: start at the initial plan's ratio, full speed.
                 self.normal_speed =
                     normal_limit.min(l.tangential_speed / self.plan_xi[0].max(1e-12));
-                self.tangential_speed = self.plan_xi[0] * self.normal_speed;
+            } else {
+                // The shifted plan's stage under the edge now.
+                self.normal_speed = (1.0 / self.plan_tau[0]).min(normal_limit);
             }
+            self.tangential_speed = (self.plan_xi[0] * self.normal_speed).min(l.tangential_speed);
         }
+    }
+
+    /// The fallback's plan: the last solved plan shifted to the edge's depth
+    /// `d0`, so that its first stage is the one the edge is in (stages past
+    /// the plan's end repeat its last). Nothing before the first solved plan.
+    fn shift_plan(&mut self, d0: f64) {
+        if self.plan_step <= 0.0 {
+            return;
+        }
+        let n = self.plan_xi.len();
+        let passed = ((d0 - self.plan_origin) / self.plan_step).floor();
+        let j = if passed.is_finite() {
+            passed.clamp(0.0, (n - 1) as f64) as usize
+        } else {
+            0
+        };
+        if j == 0 {
+            return;
+        }
+        for plan in [&mut self.plan_xi, &mut self.plan_tau] {
+            plan.copy_within(j.., 0);
+            let last = plan[n - 1 - j];
+            plan[n - j..].fill(last);
+        }
+        self.plan_origin += j as f64 * self.plan_step;
     }
 
     /// The normal speed allowed now, m/s: the arm's, or while estimating
