@@ -111,9 +111,11 @@ impl Default for ControllerTelemetry {
 
 /// A knife controller in an arm's servo loop.
 ///
-/// Construction may allocate; [`Controller::tick`] allocates nothing and
-/// never panics: a controller that cannot plan falls back to a safe command
-/// and says so in its telemetry.
+/// Construction may allocate; [`Controller::tick`] allocates nothing in our
+/// code and never panics: a controller that cannot plan falls back to a
+/// safe command and says so in its telemetry. (The one exception is inside
+/// clarabel 0.11.1: each solve of an MPC plan allocates one small block in
+/// its timers; `controllers/tests/controller_alloc.rs` counts it exactly.)
 pub trait Controller {
     /// A short name for tables and logs (e.g. `slice:0.75`).
     fn name(&self) -> &str;

@@ -1,0 +1,131 @@
+//! The MPC as `shearcut run` builds it — the shipped potato-cuboid
+//! surrogate, the online estimator on — cutting the full plant past the
+//! first fracture, with a counting global allocator (its own test binary):
+//! `Mpc::tick` allocates nothing between plans and, in each plan, exactly
+//! one block per solve, inside clarabel 0.11.1's timers
+//! (`controller_alloc.rs` explains it); the surrogate's stages, the
+//! catch-up before the fracture, the estimator's rows and the shaping
+//! allocate nothing. Only the controller's thread counts: the plant's
+//! section builders allocate on their own threads and the plant's step is
+//! not tracked.
+
+use std::path::Path;
+use std::sync::atomic::Ordering;
+
+use nalgebra::Vector2;
+use shearcut_controllers::controller::{Controller, CutTask, MotionLimits};
+use shearcut_controllers::mpc::{DepthProfile, Mpc, MpcSettings, SurrogateModel};
+use shearcut_sim::plant::{ArmLimits, Plant, PlantSettings};
+use shearcut_sim::section::SectionSettings;
+use shearcut_sim::surrogate::Surrogate;
+use shearcut_sim::{Cuboid, Knife, KnifePreset, MaterialPreset, ObjectShape};
+
+#[path = "support/counting_allocator.rs"]
+mod counting_allocator;
+
+use counting_allocator::{ALLOCATIONS, Counting, TRACK};
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+#[test]
+fn mpc_ticks_on_the_plant_allocate_only_inside_clarabel() {
+    let material = MaterialPreset::PotatoCuboid.material();
+    let knife = Knife::new(&KnifePreset::Straight.settings()).unwrap();
+    let mesh = ObjectShape::Cuboid(Cuboid {
+        width: 0.03,
+        height: 0.025,
+        length: 0.03,
+    })
+    .mesh()
+    .unwrap();
+    let arm = ArmLimits::default();
+    let task = CutTask {
+        target_depth: 0.008,
+        period: 1e-3,
+        blade_budget: 0.006,
+        limits: MotionLimits::within_arm(0.05, 0.1, arm.acceleration, arm.jerk, 0.9),
+    };
+    let surrogate = Surrogate::from_path(
+        &Path::new(env!("CARGO_MANIFEST_DIR"))
+            .join("../config/surrogates/potato-cuboid-straight.toml"),
+    )
+    .unwrap();
+    let profile = DepthProfile::for_surrogate(
+        &mesh,
+        &surrogate,
+        &SectionSettings::default(),
+        PlantSettings::default().rim_fraction,
+        task.target_depth,
+    )
+    .unwrap();
+    let settings = MpcSettings {
+        estimate: true,
+        ..MpcSettings::default()
+    };
+    let xi = task.blade_budget / task.target_depth;
+    let mut mpc = Mpc::new(
+        &task,
+        &settings,
+        SurrogateModel::new(surrogate),
+        profile,
+        xi,
+    )
+    .unwrap();
+    let alpha = f64::atan(xi);
+    let mut plant = Plant::new(
+        &material,
+        &knife,
+        &mesh,
+        0.02,
+        Vector2::new(alpha.sin(), -alpha.cos()),
+        &PlantSettings {
+            segments: 8,
+            reach: task.blade_budget,
+            ..PlantSettings::default()
+        },
+        &SectionSettings::default(),
+        &arm,
+        0,
+    )
+    .unwrap();
+    let mut m = plant.step(&Default::default(), task.period).unwrap();
+    // The first plan sets up clarabel's timer maps.
+    let command = mpc.tick(&m);
+    m = plant.step(&command, task.period).unwrap();
+    let solves_before = mpc.stats().solves;
+    let (mut plans, mut in_plans, mut between, mut fractured_plans) = (0u64, 0, 0, 0);
+    for _ in 0..20_000 {
+        ALLOCATIONS.store(0, Ordering::SeqCst);
+        TRACK.with(|t| t.set(true));
+        let command = mpc.tick(&m);
+        TRACK.with(|t| t.set(false));
+        let n = ALLOCATIONS.load(Ordering::SeqCst);
+        if mpc.replanned() {
+            plans += 1;
+            in_plans += n;
+            if m.fractured_sections > 0 {
+                fractured_plans += 1;
+            }
+        } else {
+            between += n;
+        }
+        m = plant.step(&command, task.period).unwrap();
+        if m.crack_depth >= task.target_depth {
+            break;
+        }
+    }
+    let solves = mpc.stats().solves - solves_before;
+    eprintln!(
+        "{plans} plans ({fractured_plans} after the first fracture), {solves} solves: {in_plans} allocations in plans, {between} between; {:?}",
+        mpc.stats()
+    );
+    assert!(m.crack_depth >= task.target_depth, "{} m", m.crack_depth);
+    assert!(
+        fractured_plans >= 10,
+        "{fractured_plans} plans after the fracture"
+    );
+    assert_eq!(mpc.stats().fallbacks, 0);
+    assert_eq!(between, 0);
+    assert_eq!(in_plans as u64, solves);
+}
