@@ -12,7 +12,8 @@
 //! potato cuboid (`loop-potato-cuboid`) the jumps are larger, peaks 1.4–1.7
 //! times the mean: its unconstrained peak is 12.9 N where the model's force
 //! is at most 8.2 N, so limits of 11 or 12 N never bind (the peak is the
-//! same to 0.001 N), and at 7 N the plant's peak is 11.5 N.
+//! same to 0.001 N), and at 7 N the plant's peak is 11.5 N (measured with
+//! `shearcut run`, not asserted here).
 
 use shearcut::commands::run::{LoopSetup, RunOutput, run_closed_loop};
 use shearcut::controller_choice::ControllerChoice;

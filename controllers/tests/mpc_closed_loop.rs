@@ -269,7 +269,17 @@ fn a_plan_that_fails_falls_back_to_the_last_plan_shifted_to_the_edge() {
                 largest_shift = largest_shift.max(j);
                 shifts_in_order &= j >= previous_shift;
                 previous_shift = j;
-                // The knife follows the shifted plan's first stage.
+                // The knife's target is the shifted plan's first stage
+                // (within the arm's 0.05 m/s normal speed).
+                let t = mpc.telemetry();
+                let v_n = (1.0 / mpc.plan_times()[0]).min(0.05);
+                assert!((t.normal_speed - v_n).abs() <= 1e-12, "{t:?} vs {v_n}");
+                let xi = t.tangential_speed / t.normal_speed;
+                assert!(
+                    (xi - mpc.plan()[0]).abs() <= 1e-9,
+                    "{t:?} vs {:?}",
+                    mpc.plan()
+                );
                 assert!(c.velocity.iter().all(|v| v.is_finite()), "{c:?}");
             }
         }

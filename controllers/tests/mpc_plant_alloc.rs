@@ -1,6 +1,6 @@
-//! The MPC as `shearcut run` builds it — the shipped potato-cuboid
-//! surrogate, the online estimator on — cutting the full plant past the
-//! first fracture, with a counting global allocator (its own test binary):
+//! The MPC with the shipped potato-cuboid surrogate and the online
+//! estimator on (off in `shearcut run`'s default), cutting the full plant
+//! (8 segments, 8 mm) past the first fracture, every plan solved, with a counting global allocator (its own test binary):
 //! `Mpc::tick` allocates nothing between plans and, in each plan, exactly
 //! one block per solve, inside clarabel 0.11.1's timers
 //! (`controller_alloc.rs` explains it); the surrogate's stages, the

@@ -314,7 +314,8 @@ fn onset_scales_with_toughness_over_stiffness() {
 /// quarter of the 10 m one). What it holds is the rest of the model: the
 /// knee gate at 1, the drag held at the onset released, and the force split
 /// that leaves the edge's F_n + ξF_t at exactly r·R_c; a constant offset
-/// of ±0.1 % of r·R_c fails it. (The section model meets the law within
+/// of ±0.1 % of r·R_c fails it (on the potato whole's file, whose excess
+/// is positive; the potato cuboid's negative 1/H term would hide +0.1 %). (The section model meets the law within
 /// 0.22 % with a razor blade, `sim/tests/section_steady_state.rs`; with the
 /// shipped 2 mm blade its wedge splits the crack ahead of the edge.)
 #[test]

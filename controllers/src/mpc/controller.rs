@@ -65,7 +65,8 @@ pub const FIRST_PLAN_ITERATIONS: usize = 50;
 /// A plan that is not solved within the iteration budget falls back to the
 /// previous plan shifted to the edge's depth: the knife takes the ratio
 /// and speed that plan gave the stage it is in now (ratios capped to what
-/// is left of the blade), and the fallback is counted.
+/// is left of the blade in the current stroke: a fallback does not saw),
+/// and the fallback is counted.
 ///
 /// With `estimate` on, every tick in contact feeds the measured forces per
 /// unit length to a [`ScaleEstimator`] with the model of them at the
@@ -218,6 +219,13 @@ impl<M: SliceModel> Mpc<M> {
     /// The current plan's ratios, stage by stage.
     pub fn plan(&self) -> &[f64] {
         &self.plan_xi
+    }
+
+    /// The current plan's times per unit depth τ (s/m), stage by stage (0
+    /// before the first solved plan): its first stage's normal speed is
+    /// 1/τ₀ within the speed limit.
+    pub fn plan_times(&self) -> &[f64] {
+        &self.plan_tau
     }
 
     /// The model (e.g. to update its scale factors).

@@ -237,7 +237,8 @@ pub fn fit_surrogate(
         onset: onset.solve()?,
     };
     // The catch-up: ℓ = L/d*₀ from each run's knee, with d*₀ the fitted
-    // nominal onset depth (as `Surrogate::evaluate` computes it).
+    // nominal onset depth (as `Surrogate::evaluate` computes it, without
+    // its floor, which never holds within the fitted sizes).
     let nominal_onset = |run: &SweepRun| {
         let c = run.case;
         let r = ToughnessRatio::at(c.xi, nu).value;
@@ -728,7 +729,8 @@ fn fractured_state(case: &SweepCase, sample: &SweepSample) -> CutState {
 
 /// The onset stiffness y(ξ) = r(ξ,ν)·R'_c/(E·d*) the fitted pre-fracture
 /// model gives a run of `case` (edge width `b`), as `Surrogate::evaluate`
-/// computes it.
+/// computes it within the fitted sizes (without its floor at the section
+/// height, which never holds there).
 fn onset_stiffness(pre: &PreFracture, case: &SweepCase, b: f64) -> f64 {
     let (lh, lw) = size_features(case.height, case.half_width, b);
     let (a, b2) = pre.onset_stiffness_terms(lh, lw, column_aspect(case.height, case.half_width, b));

@@ -565,8 +565,9 @@ impl Surrogate {
     /// The onset stiffness y(ξ) = A + ξ²B = r(ξ,ν)·R'_c₀/(E₀·d*₀) as a jet
     /// in ξ, held at least r·R'_c₀/(E₀·H): the nominal onset depth d*₀ is
     /// at most the section height `height` (the crack starts before the
-    /// edge reaches the board). Within the fitted sizes d*₀ is under a
-    /// tenth of H and the bound never holds; beyond them the linear fit in
+    /// edge reaches the board). Within the fitted sizes d*₀ is well under
+    /// H (at most about a quarter of it, eggplant's onsets at ξ = 0.6) and
+    /// the bound never holds; beyond them the linear fit in
     /// (λ_H, λ_w, H/w) can reach zero (tall narrow sections, H/w ≳ 10, or
     /// sections of metres), where an unbounded d*₀ made the forces infinite.
     #[inline]
