@@ -300,3 +300,36 @@ fn a_plan_that_fails_falls_back_to_the_last_plan_shifted_to_the_edge() {
     assert!(largest_shift >= 2, "largest shift {largest_shift}");
     assert!(shifts_in_order);
 }
+
+#[test]
+fn fallbacks_on_a_short_blade_stay_within_it() {
+    // 8 mm of blade for 20 mm of depth, no sawing, plans failing for 6 mm
+    // of depth: the shifted plans (capped to what is left of the blade
+    // over the remaining depth) finish the cut within the blade and the
+    // arm's limits.
+    let failing = std::rc::Rc::new(std::cell::Cell::new(false));
+    let model = FailingModel {
+        failing: failing.clone(),
+    };
+    let profile = DepthProfile::new(vec![0.0, 0.02], vec![0.01, 0.05], 0.03, 0.015).unwrap();
+    let budget = 0.008;
+    let settings = MpcSettings {
+        max_reversals: 0,
+        ..MpcSettings::default()
+    };
+    let mut mpc = Mpc::new(&task(0.02, budget), &settings, model, profile, 0.4).unwrap();
+    let mut arm = SyntheticArm::new(0.0);
+    let mut m = arm.measure(PlantStatus::Moving);
+    for _ in 0..20_000 {
+        failing.set((0.006..0.012).contains(&m.crack_depth));
+        let c = mpc.tick(&m);
+        m = arm.step(&c);
+        if mpc.telemetry().phase == CutPhase::Done {
+            break;
+        }
+    }
+    assert_eq!(mpc.telemetry().phase, CutPhase::Done);
+    assert_eq!(arm.refused, 0);
+    assert!(mpc.stats().fallbacks >= 5, "{:?}", mpc.stats());
+    assert!(arm.position.z <= budget, "travel {}", arm.position.z);
+}
