@@ -230,63 +230,72 @@ fn shifted_by(plan: &[f64], solved: &[f64]) -> Option<usize> {
     (0..n).find(|&j| (0..n).all(|k| plan[k] == solved[(k + j).min(n - 1)]))
 }
 
-#[test]
-fn a_plan_that_fails_falls_back_to_the_last_plan_shifted_to_the_edge() {
-    use shearcut_controllers::mpc::QpStatus;
+/// An MPC on [`FailingModel`] for `task`'s cut of `profile`, run against a
+/// spring-free synthetic arm with every plan failing while the crack is
+/// between 6 and 12 mm deep; `observe` sees the MPC and the command after
+/// each tick. Returns the MPC and the arm at the end of the cut.
+fn run_failing(
+    budget: f64,
+    settings: &MpcSettings,
+    profile: DepthProfile,
+    initial_xi: f64,
+    mut observe: impl FnMut(&Mpc<FailingModel>, &shearcut_sim::plant::KnifeCommand),
+) -> (Mpc<FailingModel>, SyntheticArm) {
     let failing = std::rc::Rc::new(std::cell::Cell::new(false));
     let model = FailingModel {
         failing: failing.clone(),
     };
-    let profile = DepthProfile::uniform(0.03, 0.03, 0.015).unwrap();
-    let budget = 1.0;
-    let mut mpc = Mpc::new(
-        &task(0.02, budget),
-        &MpcSettings::default(),
-        model,
-        profile,
-        0.5,
-    )
-    .unwrap();
+    let mut mpc = Mpc::new(&task(0.02, budget), settings, model, profile, initial_xi).unwrap();
     let mut arm = SyntheticArm::new(0.0);
     let mut m = arm.measure(PlantStatus::Moving);
-    let mut last_solved: Option<Vec<f64>> = None;
-    let (mut fallbacks, mut largest_shift, mut shifts_in_order) = (0, 0, true);
-    let mut previous_shift = 0;
     for _ in 0..20_000 {
-        // Plans fail while the crack is between 6 and 12 mm deep.
         failing.set((0.006..0.012).contains(&m.crack_depth));
         let c = mpc.tick(&m);
         m = arm.step(&c);
-        if mpc.replanned() {
-            if mpc.stats().last_status == Some(QpStatus::Solved) {
-                last_solved = Some(mpc.plan().to_vec());
-                previous_shift = 0;
-            } else {
-                fallbacks += 1;
-                let solved = last_solved.as_ref().expect("a plan was solved before 6 mm");
-                let j = shifted_by(mpc.plan(), solved)
-                    .unwrap_or_else(|| panic!("{:?} is not a shift of {solved:?}", mpc.plan()));
-                largest_shift = largest_shift.max(j);
-                shifts_in_order &= j >= previous_shift;
-                previous_shift = j;
-                // The knife's target is the shifted plan's first stage
-                // (within the arm's 0.05 m/s normal speed).
-                let t = mpc.telemetry();
-                let v_n = (1.0 / mpc.plan_times()[0]).min(0.05);
-                assert!((t.normal_speed - v_n).abs() <= 1e-12, "{t:?} vs {v_n}");
-                let xi = t.tangential_speed / t.normal_speed;
-                assert!(
-                    (xi - mpc.plan()[0]).abs() <= 1e-9,
-                    "{t:?} vs {:?}",
-                    mpc.plan()
-                );
-                assert!(c.velocity.iter().all(|v| v.is_finite()), "{c:?}");
-            }
-        }
+        observe(&mpc, &c);
         if mpc.telemetry().phase == CutPhase::Done {
             break;
         }
     }
+    (mpc, arm)
+}
+
+#[test]
+fn a_plan_that_fails_falls_back_to_the_last_plan_shifted_to_the_edge() {
+    use shearcut_controllers::mpc::QpStatus;
+    let profile = DepthProfile::uniform(0.03, 0.03, 0.015).unwrap();
+    let mut last_solved: Option<Vec<f64>> = None;
+    let (mut fallbacks, mut largest_shift, mut shifts_in_order) = (0, 0, true);
+    let mut previous_shift = 0;
+    let (mpc, arm) = run_failing(1.0, &MpcSettings::default(), profile, 0.5, |mpc, c| {
+        if !mpc.replanned() {
+            return;
+        }
+        if mpc.stats().last_status == Some(QpStatus::Solved) {
+            last_solved = Some(mpc.plan().to_vec());
+            previous_shift = 0;
+            return;
+        }
+        fallbacks += 1;
+        let solved = last_solved.as_ref().expect("a plan was solved before 6 mm");
+        let j = shifted_by(mpc.plan(), solved)
+            .unwrap_or_else(|| panic!("{:?} is not a shift of {solved:?}", mpc.plan()));
+        largest_shift = largest_shift.max(j);
+        shifts_in_order &= j >= previous_shift;
+        previous_shift = j;
+        // The knife's target is the shifted plan's first stage (within the
+        // arm's 0.05 m/s normal speed).
+        let t = mpc.telemetry();
+        let v_n = (1.0 / mpc.plan_times()[0]).min(0.05);
+        assert!((t.normal_speed - v_n).abs() <= 1e-12, "{t:?} vs {v_n}");
+        let xi = t.tangential_speed / t.normal_speed;
+        assert!(
+            (xi - mpc.plan()[0]).abs() <= 1e-9,
+            "{t:?} vs {:?}",
+            mpc.plan()
+        );
+        assert!(c.velocity.iter().all(|v| v.is_finite()), "{c:?}");
+    });
     eprintln!(
         "{fallbacks} fallbacks, largest shift {largest_shift}; {:?}",
         mpc.stats()
@@ -307,27 +316,13 @@ fn fallbacks_on_a_short_blade_stay_within_it() {
     // of depth: the shifted plans (capped to what is left of the blade
     // over the remaining depth) finish the cut within the blade and the
     // arm's limits.
-    let failing = std::rc::Rc::new(std::cell::Cell::new(false));
-    let model = FailingModel {
-        failing: failing.clone(),
-    };
     let profile = DepthProfile::new(vec![0.0, 0.02], vec![0.01, 0.05], 0.03, 0.015).unwrap();
     let budget = 0.008;
     let settings = MpcSettings {
         max_reversals: 0,
         ..MpcSettings::default()
     };
-    let mut mpc = Mpc::new(&task(0.02, budget), &settings, model, profile, 0.4).unwrap();
-    let mut arm = SyntheticArm::new(0.0);
-    let mut m = arm.measure(PlantStatus::Moving);
-    for _ in 0..20_000 {
-        failing.set((0.006..0.012).contains(&m.crack_depth));
-        let c = mpc.tick(&m);
-        m = arm.step(&c);
-        if mpc.telemetry().phase == CutPhase::Done {
-            break;
-        }
-    }
+    let (mpc, arm) = run_failing(budget, &settings, profile, 0.4, |_, _| {});
     assert_eq!(mpc.telemetry().phase, CutPhase::Done);
     assert_eq!(arm.refused, 0);
     assert!(mpc.stats().fallbacks >= 5, "{:?}", mpc.stats());

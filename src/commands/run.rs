@@ -163,13 +163,11 @@ pub fn mpc_profile(
     let profile =
         surrogate_profile(s, &surrogate, mesh, task.target_depth).map_err(|e| invalid(s, e))?;
     let range = &surrogate.range;
-    // Once per process (`compare` sets up every replica); a section at a
-    // bound up to rounding of the mesh counts as within.
+    // Once per process (`compare` sets up every replica).
     static WARNED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
-    let (h, w) = (profile.height(), profile.half_width());
-    let within = range.covers_section(h * (1.0 - 1e-6), w * (1.0 - 1e-6))
-        || range.covers_section(h * (1.0 + 1e-6), w * (1.0 + 1e-6));
-    if !within && !WARNED.swap(true, std::sync::atomic::Ordering::Relaxed) {
+    if !range.covers_section(profile.height(), profile.half_width())
+        && !WARNED.swap(true, std::sync::atomic::Ordering::Relaxed)
+    {
         tracing::warn!(
             "the MPC's section ({:.1} mm high, {:.1} mm half width) lies beyond the sizes its \
              surrogate {}-{} was fitted on ({:.0}-{:.0} mm high, {:.0}-{:.0} mm half width): \

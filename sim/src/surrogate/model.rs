@@ -80,9 +80,11 @@ pub struct FitRange {
 
 impl FitRange {
     /// Whether a section of `height` × `half_width` (m) lies within the
-    /// fitted sizes (bounds included).
+    /// fitted sizes (bounds included, up to a relative 1e-6 for a size
+    /// computed from a mesh).
     pub fn covers_section(&self, height: f64, half_width: f64) -> bool {
-        let within = |x: f64, [lo, hi]: [f64; 2]| (lo..=hi).contains(&x);
+        let within =
+            |x: f64, [lo, hi]: [f64; 2]| (lo * (1.0 - 1e-6)..=hi * (1.0 + 1e-6)).contains(&x);
         within(height, self.height) && within(half_width, self.half_width)
     }
 }
