@@ -55,11 +55,11 @@ pub enum Command {
         /// How controller and plant talk.
         #[arg(long, value_enum, default_value = "inproc")]
         transport: crate::commands::run::Transport,
-        /// Run on a replica of the object, its heights scaled by
-        /// 1 + K·1e-7 (as `compare --replicas` does; in-process only).
-        #[arg(long, value_name = "K", default_value_t = 0, allow_negative_numbers = true,
-              value_parser = clap::value_parser!(i32).range(-10..=10))]
-        replica: i32,
+        /// Run replica K of the scenario: the knife starts K·5 µm higher
+        /// above the object (as `compare --replicas` does; in-process only).
+        #[arg(long, value_name = "K", default_value_t = 0,
+              value_parser = clap::value_parser!(u32).range(0..=crate::commands::compare::MAX_REPLICAS as i64 - 1))]
+        replica: u32,
         /// Result directory (default: runs/<scenario>-<UTC time>).
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
@@ -70,9 +70,10 @@ pub enum Command {
     Compare {
         /// Scenario TOML file, or the name of a built-in scenario.
         scenario: String,
-        /// Replicas of the object (heights scaled by 1 + k·1e-7) the MPC
-        /// and the best constant ratio's candidates run on: their rows are
-        /// the means, with the work's range; 1 runs the nominal object only.
+        /// Replicas of the run (replica k starts the knife k·5 µm higher)
+        /// the MPC and the best constant ratio's candidates run on: their
+        /// rows are the means, with the work's range; 1 runs the scenario
+        /// as given only.
         #[arg(long, default_value_t = crate::commands::compare::DEFAULT_REPLICAS,
               value_parser = clap::value_parser!(u64).range(1..=crate::commands::compare::MAX_REPLICAS))]
         replicas: u64,

@@ -6,7 +6,7 @@ use clap::Parser;
 use shearcut::cli::{Cli, Command};
 use shearcut::commands;
 use shearcut::error::RunError;
-use shearcut::object_replica::ObjectReplica;
+use shearcut::run_replica::RunReplica;
 
 fn main() -> ExitCode {
     shearcut::logging::init();
@@ -29,7 +29,7 @@ fn main() -> ExitCode {
             &scenario,
             controller.as_deref(),
             transport,
-            ObjectReplica { offset: replica },
+            RunReplica { index: replica },
             out.as_deref(),
         ),
         Some(Command::Compare {

@@ -154,11 +154,15 @@ fn trajectory_cases_from_jsonl() {
 }
 
 #[test]
-fn compare_refuses_a_replica_count_out_of_range_in_one_line() {
+fn replica_counts_and_indices_out_of_range_are_refused_in_one_line() {
     for bad in ["0", "22"] {
         let o = shearcut(&["compare", "loop-potato-cuboid", "--replicas", bad]);
         assert_eq!(o.status.code(), Some(2));
         let e = stderr(&o);
         assert!(e.contains("--replicas") && e.contains("1..=21"), "{e}");
     }
+    let o = shearcut(&["run", "loop-potato-cuboid", "--replica", "21"]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = stderr(&o);
+    assert!(e.contains("--replica") && e.contains("0..=20"), "{e}");
 }

@@ -3,10 +3,12 @@
 
 use std::process::Command;
 
-use shearcut::commands::run::run_closed_loop;
+use nalgebra::Vector3;
+use shearcut::commands::run::{LoopSetup, run_closed_loop, run_closed_loop_on};
 use shearcut::commands::simulate::simulate;
 use shearcut::controller_choice::ControllerChoice;
 use shearcut::cut_record::CutSample;
+use shearcut::run_replica::{RunReplica, START_STEP};
 use shearcut::scenario::Scenario;
 
 /// Fig. 7's potato cuboid, 6 mm deep, at one ξ, with a coarse section.
@@ -40,6 +42,39 @@ fn lockstep_runs_are_bit_identical_and_respect_the_arm() {
     assert_eq!(
         format!("{:?}", a.output.control),
         format!("{:?}", b.output.control)
+    );
+}
+
+#[test]
+fn a_replica_is_the_same_cut_begun_higher() {
+    let s = small_potato(0.75);
+    let choice = ControllerChoice::Slice(0.75);
+    let replica = RunReplica { index: 20 };
+    let nominal = LoopSetup::new(&s, choice).unwrap();
+    let raised = LoopSetup::on_replica(&s, choice, replica).unwrap();
+    // The knife starts straight above where it did, 20 steps (100 µm)
+    // higher; the plant puts it where the loop's labels say.
+    let (a, b) = (nominal.cut(&s), raised.cut(&s));
+    let up = b.start - a.start;
+    assert!(
+        (up - Vector3::new(0.0, 20.0 * START_STEP, 0.0)).norm() < 1e-15,
+        "{up}"
+    );
+    assert_eq!(raised.plant(&s).unwrap().position(), b.start);
+    assert_eq!(b.gap, s.plant.start_gap + 20.0 * START_STEP);
+    // So the edge touches 100 µm of normal travel later: at the speed along
+    // the velocity s, v_n = s/√(1+ξ²), within a tick either way.
+    let r0 = run_closed_loop_on(&s, choice, RunReplica::NOMINAL).unwrap();
+    let r1 = run_closed_loop_on(&s, choice, replica).unwrap();
+    assert!(r0.summary.completed && r1.summary.completed);
+    assert_eq!(r1.replica, replica);
+    let v_n = s.controller.speed / (1.0_f64 + 0.75 * 0.75).sqrt();
+    let later = r1.output.samples[0].time_s - r0.output.samples[0].time_s;
+    let expected = 20.0 * START_STEP / v_n;
+    let tick = 1.0 / s.control_loop.rate_hz;
+    assert!(
+        (later - expected).abs() <= tick + 1e-12,
+        "{later} s against {expected} s"
     );
 }
 

@@ -2,16 +2,21 @@
 //! pressing knife, the best constant slice-push ratio under the same blade
 //! budget (found by search), and the force loop — in the same closed loop.
 //!
-//! The MPC and the best constant run on several replicas of the object
-//! (heights scaled by 1 + k·10⁻⁷, [`ObjectReplica`]) and their rows are the
+//! The MPC and the best constant run on several replicas of the run (the
+//! knife starting k·5 µm higher, [`RunReplica`]) and their rows are the
 //! means over them, with the range of the work: the plant's discrete crack
-//! events move single runs by up to ~5 % on the cuboids. The search over
-//! constant ratios runs on the nominal object; its
-//! [`RESAMPLED_CANDIDATES`] cheapest ratios are then run on every replica
-//! and the best mean is the baseline, so that the baseline is not simply
-//! the luckiest of a dozen single runs. Pressing (unless among those
-//! candidates) and the force loop, far from the contest and the longest
-//! runs, are run on the nominal object only.
+//! events move single runs by a few per cent on the cuboids, depending on
+//! where the servo ticks fall. The search over constant ratios runs on the
+//! nominal replica; its [`RESAMPLED_CANDIDATES`] cheapest ratios are then
+//! run on every replica and the best mean is the baseline, so that the
+//! baseline is not simply the luckiest of a dozen single runs. Pressing
+//! (unless among those candidates) and the force loop, far from the
+//! contest and the longest runs, are run on the nominal replica only.
+//!
+//! The MPC and the best constant run on the same replicas, so their works
+//! pair up replica by replica: [`PairedDifference`] is the mean of the
+//! differences with its standard error, the resolution the table's means
+//! have.
 
 use std::path::Path;
 
@@ -21,21 +26,21 @@ use crate::commands::run::{LoopSetup, RunOutput, run_closed_loop_on};
 use crate::controller_choice::ControllerChoice;
 use crate::cut_record::write_json;
 use crate::error::RunError;
-use crate::object_replica::ObjectReplica;
 use crate::plot::comparison::draw_comparison;
 use crate::render_plot;
 use crate::run_dir;
+use crate::run_replica::RunReplica;
 use crate::scenario::Scenario;
 
 /// Points of the coarse search over constant ratios.
 const SEARCH_POINTS: usize = 6;
 /// Golden-section refinements after the coarse search.
 const REFINEMENTS: usize = 3;
-/// Constant ratios of the search (cheapest on the nominal object first)
+/// Constant ratios of the search (cheapest on the nominal replica first)
 /// that are run on every replica to choose the best constant.
 pub const RESAMPLED_CANDIDATES: usize = 3;
 /// Replicas per contestant by default.
-pub const DEFAULT_REPLICAS: u64 = 5;
+pub const DEFAULT_REPLICAS: u64 = 8;
 /// Most replicas accepted.
 pub const MAX_REPLICAS: u64 = 21;
 
@@ -59,7 +64,7 @@ pub struct ComparisonRow {
     pub work_min_j: f64,
     /// Most work of a replica, J.
     pub work_max_j: f64,
-    /// Replicas of the object run (1: the nominal object only).
+    /// Replicas run (1: the nominal replica only).
     pub replicas: usize,
     /// Peak vertical force, N (mean over the replicas).
     pub peak_force_vertical_n: f64,
@@ -73,7 +78,7 @@ pub struct ComparisonRow {
     /// Tangential path over all strokes, mm (mean).
     pub blade_path_mm: f64,
     /// Reversals of the tangential direction (sawing), on the nominal
-    /// object.
+    /// replica.
     pub reversals: u32,
     /// Whether every replica reached the target depth.
     pub completed: bool,
@@ -86,7 +91,7 @@ pub struct ComparisonRow {
 
 impl ComparisonRow {
     /// The row of one contestant from its runs on the replicas (the
-    /// nominal object's first).
+    /// nominal one first).
     fn new(role: &str, runs: &[&RunOutput]) -> Self {
         let n = runs.len() as f64;
         let mean = |f: fn(&RunOutput) -> f64| runs.iter().map(|r| f(r)).sum::<f64>() / n;
@@ -115,11 +120,94 @@ impl ComparisonRow {
     }
 }
 
+/// The MPC's work against a baseline's on the same replicas, replica by
+/// replica: how far the table's means can be trusted to tell them apart.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct PairedDifference {
+    /// The baseline (e.g. `slice:0.526`).
+    pub against: String,
+    /// Replicas paired.
+    pub replicas: usize,
+    /// Mean of (MPC − baseline) over the replicas, per cent of the
+    /// baseline's mean work (negative: the MPC needs less).
+    pub mean_percent: f64,
+    /// Standard error of that mean, per cent (the differences' sample
+    /// standard deviation over √replicas; `None` for one replica).
+    pub standard_error_percent: Option<f64>,
+    /// Replicas on which the MPC needed less work than the baseline.
+    pub mpc_lower: usize,
+}
+
+impl PairedDifference {
+    /// The paired difference of the MPC's runs and a baseline's, both in
+    /// replica order (`None` unless both ran on the same replicas).
+    pub fn new(mpc: &[&RunOutput], baseline: &[&RunOutput]) -> Option<Self> {
+        let same_replicas = mpc.len() == baseline.len()
+            && mpc
+                .iter()
+                .zip(baseline)
+                .all(|(a, b)| a.replica == b.replica);
+        if !same_replicas || mpc.is_empty() {
+            return None;
+        }
+        let works =
+            |runs: &[&RunOutput]| -> Vec<f64> { runs.iter().map(|r| r.summary.work_j).collect() };
+        Some(Self::from_works(
+            &baseline[0].controller,
+            &works(mpc),
+            &works(baseline),
+        ))
+    }
+
+    /// The paired difference of works (J) on the same replicas, in the
+    /// same order (both non-empty, of equal length).
+    pub fn from_works(against: &str, mpc: &[f64], baseline: &[f64]) -> Self {
+        let n = mpc.len();
+        let d: Vec<f64> = mpc.iter().zip(baseline).map(|(a, b)| a - b).collect();
+        let scale = 100.0 * n as f64 / baseline.iter().sum::<f64>();
+        let mean = d.iter().sum::<f64>() / n as f64;
+        let standard_error = (n > 1).then(|| {
+            let var = d.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1) as f64;
+            (var / n as f64).sqrt() * scale
+        });
+        Self {
+            against: against.to_string(),
+            replicas: n,
+            mean_percent: mean * scale,
+            standard_error_percent: standard_error,
+            mpc_lower: d.iter().filter(|&&x| x < 0.0).count(),
+        }
+    }
+
+    /// One line for the table's footer.
+    pub fn describe(&self) -> String {
+        let se = self
+            .standard_error_percent
+            .map_or(String::new(), |e| format!(" ± {e:.2} % (standard error)"));
+        format!(
+            "MPC − {} (paired over {} replicas): {:+.2} %{se}; the MPC needed less work on {} of {}",
+            self.against, self.replicas, self.mean_percent, self.mpc_lower, self.replicas
+        )
+    }
+}
+
+/// What `compare` found: the rows, and the MPC against the best constant
+/// replica by replica.
+#[derive(Debug, Clone, PartialEq, Serialize)]
+pub struct Comparison {
+    /// Every contestant's row (the main rows first, then the search's
+    /// other ratios, role `search`).
+    pub rows: Vec<ComparisonRow>,
+    /// The MPC's work against the best constant's, paired by replica
+    /// (`None` if the MPC did not run).
+    pub mpc_vs_best_constant: Option<PairedDifference>,
+}
+
 /// Runs each (controller, replica) of `jobs` on `s`, two at a time (the
 /// machine's cores).
 fn run_all(
     s: &Scenario,
-    jobs: &[(ControllerChoice, ObjectReplica)],
+    jobs: &[(ControllerChoice, RunReplica)],
 ) -> Vec<Result<RunOutput, RunError>> {
     let mut results: Vec<Option<Result<RunOutput, RunError>>> = jobs.iter().map(|_| None).collect();
     for (chunk, slots) in jobs.chunks(2).zip(results.chunks_mut(2)) {
@@ -134,9 +222,9 @@ fn run_all(
         });
         for ((c, replica), r) in chunk.iter().zip(slots.iter()) {
             if let Some(Ok(run)) = r {
-                let on = match replica.offset {
+                let on = match replica.index {
                     0 => String::new(),
-                    k => format!(" (replica {k:+})"),
+                    k => format!(" (replica {k})"),
                 };
                 println!(
                     "  {:<25} work {:.4} J, peak Fv {:.2} N, completed {}",
@@ -154,18 +242,15 @@ fn run_all(
         .collect()
 }
 
-/// Runs `choices` on the nominal object.
+/// Runs `choices` as the scenario gives them (the nominal replica).
 fn run_nominal(s: &Scenario, choices: &[ControllerChoice]) -> Vec<Result<RunOutput, RunError>> {
-    let jobs: Vec<_> = choices
-        .iter()
-        .map(|&c| (c, ObjectReplica::NOMINAL))
-        .collect();
+    let jobs: Vec<_> = choices.iter().map(|&c| (c, RunReplica::NOMINAL)).collect();
     run_all(s, &jobs)
 }
 
 /// The comparison for a loaded scenario, each contestant on `replicas`
-/// replicas of the object (1: the nominal object only).
-pub fn compare(s: &Scenario, replicas: u64) -> Result<Vec<ComparisonRow>, RunError> {
+/// replicas of the run (1: the nominal replica only).
+pub fn compare(s: &Scenario, replicas: u64) -> Result<Comparison, RunError> {
     let replicas = replicas.clamp(1, MAX_REPLICAS) as usize;
     let task = LoopSetup::new(s, ControllerChoice::Press)?.task;
     let target = task.target_depth;
@@ -233,7 +318,7 @@ pub fn compare(s: &Scenario, replicas: u64) -> Result<Vec<ComparisonRow>, RunErr
     }
     // The MPC and the search's cheapest ratios on the other replicas
     // (pressing and the force loop, far from the contest and the slowest
-    // runs, on the nominal object only).
+    // runs, on the nominal replica only).
     let mut order: Vec<usize> = (0..tried.len())
         .filter(|&i| tried[i].1.summary.completed)
         .collect();
@@ -247,13 +332,12 @@ pub fn compare(s: &Scenario, replicas: u64) -> Result<Vec<ComparisonRow>, RunErr
     let (mpc, force) = (ControllerChoice::Mpc, ControllerChoice::Force(setpoint));
     // Each job with whose row it is: None for the MPC and the force loop
     // (told apart by the choice), Some(i) for the search's ratio i.
-    let mut jobs = vec![
-        (mpc, ObjectReplica::NOMINAL),
-        (force, ObjectReplica::NOMINAL),
-    ];
+    let mut jobs = vec![(mpc, RunReplica::NOMINAL), (force, RunReplica::NOMINAL)];
     let mut owners = vec![None, None];
     for index in 1..replicas {
-        let replica = ObjectReplica::nth(index);
+        let replica = RunReplica {
+            index: index as u32,
+        };
         jobs.push((mpc, replica));
         owners.push(None);
         for &i in &order {
@@ -262,9 +346,11 @@ pub fn compare(s: &Scenario, replicas: u64) -> Result<Vec<ComparisonRow>, RunErr
         }
     }
     if replicas > 1 {
-        println!("the contestants on {replicas} replicas of the object:");
+        println!(
+            "the contestants on {replicas} replicas of the run (the knife starting 0, 5, 10, … µm higher):"
+        );
     }
-    // Runs per contestant, the nominal object's first.
+    // Runs per contestant, the nominal replica's first.
     let (mut of_mpc, mut of_force) = (Vec::new(), Vec::new());
     let mut of_tried: Vec<Vec<RunOutput>> = tried.iter().map(|_| Vec::new()).collect();
     for ((owner, (c, _)), run) in owners.iter().zip(&jobs).zip(run_all(s, &jobs)) {
@@ -293,8 +379,13 @@ pub fn compare(s: &Scenario, replicas: u64) -> Result<Vec<ComparisonRow>, RunErr
         .min_by(|&a, &b| mean_work(a).total_cmp(&mean_work(b)))
         .unwrap_or_else(|| best_index(&tried));
     let mut rows = Vec::new();
+    let mut mpc_vs_best_constant = None;
     match of_mpc.into_iter().collect::<Result<Vec<_>, _>>() {
-        Ok(runs) => rows.push(ComparisonRow::new("mpc", &runs.iter().collect::<Vec<_>>())),
+        Ok(runs) => {
+            let runs: Vec<&RunOutput> = runs.iter().collect();
+            rows.push(ComparisonRow::new("mpc", &runs));
+            mpc_vs_best_constant = PairedDifference::new(&runs, &replicated(best));
+        }
         Err(e) => println!("  mpc: not run ({e})"),
     }
     rows.push(ComparisonRow::new("press", &replicated(press_index)));
@@ -309,7 +400,10 @@ pub fn compare(s: &Scenario, replicas: u64) -> Result<Vec<ComparisonRow>, RunErr
             rows.push(ComparisonRow::new("search", &replicated(i)));
         }
     }
-    Ok(rows)
+    Ok(Comparison {
+        rows,
+        mpc_vs_best_constant,
+    })
 }
 
 /// The constant-ratio controller for ratio `xi` (0: pressing).
@@ -353,19 +447,23 @@ pub fn markdown_table(rows: &[ComparisonRow]) -> String {
 /// the object), print the table, write table, CSV, JSON and the bar plot.
 pub fn run(scenario: &str, replicas: u64, out: Option<&Path>) -> Result<(), RunError> {
     let s = Scenario::load(scenario)?;
-    let rows = compare(&s, replicas)?;
+    let comparison = compare(&s, replicas)?;
+    let rows = &comparison.rows;
     let dir = run_dir::create(&format!("{}-compare", s.name), out)?;
-    let table = markdown_table(&rows);
+    let mut table = markdown_table(rows);
+    if let Some(p) = &comparison.mpc_vs_best_constant {
+        table += &format!("\n{}\n", p.describe());
+    }
     println!("\n{table}");
     std::fs::write(dir.join("comparison.md"), &table)
         .map_err(|e| RunError::write(dir.join("comparison.md"), e))?;
     let path = dir.join("comparison.csv");
     let mut w = csv::Writer::from_path(&path).map_err(|e| RunError::write(&path, e))?;
-    for r in &rows {
+    for r in rows {
         w.serialize(r).map_err(|e| RunError::write(&path, e))?;
     }
     w.flush().map_err(|e| RunError::write(&path, e))?;
-    write_json(&dir.join("comparison.json"), &rows)?;
+    write_json(&dir.join("comparison.json"), &comparison)?;
     let main: Vec<ComparisonRow> = rows
         .iter()
         .filter(|r| r.role != "search")
@@ -382,4 +480,25 @@ pub fn run(scenario: &str, replicas: u64, out: Option<&Path>) -> Result<(), RunE
         dir.display()
     );
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn paired_differences_are_relative_to_the_baselines_mean() {
+        // Differences −0.1 and +0.1 J against a mean of 1.5 J: mean 0, the
+        // differences' standard deviation √0.02 J, its standard error 0.1 J,
+        // 6.67 % of 1.5 J.
+        let p = PairedDifference::from_works("slice:0.5", &[1.0, 2.0], &[1.1, 1.9]);
+        assert_eq!((p.replicas, p.mpc_lower), (2, 1));
+        assert!(p.mean_percent.abs() < 1e-12, "{}", p.mean_percent);
+        let se = p.standard_error_percent.unwrap();
+        assert!((se - 100.0 / 15.0).abs() < 1e-9, "{se}");
+        let one = PairedDifference::from_works("press", &[0.9], &[1.0]);
+        assert!((one.mean_percent + 10.0).abs() < 1e-9);
+        assert_eq!(one.standard_error_percent, None);
+        assert!(one.describe().contains("-10.00 %"), "{}", one.describe());
+    }
 }

@@ -12,8 +12,8 @@ use crate::commands::run::{LoopSetup, RunOutput, Transport, print_summary, write
 use crate::controller_choice::ControllerChoice;
 use crate::cut_record::{CutSummary, write_json};
 use crate::error::{ConfigError, RunError};
-use crate::object_replica::ObjectReplica;
 use crate::run_dir;
+use crate::run_replica::RunReplica;
 use crate::scenario::{ClockMode, Scenario};
 use crate::transport::loop_services::prefix;
 use crate::transport::{Iceoryx2PlantLink, LinkTimeouts, LoopServices, Role, WaitMode};
@@ -103,7 +103,7 @@ pub fn run(
         output,
         summary,
         target_depth_m: task.target_depth,
-        replica: ObjectReplica::NOMINAL,
+        replica: RunReplica::NOMINAL,
     };
     let dir = run_dir::create(&s.name, out)?;
     write_results(&s, &run, Transport::Iceoryx2, &dir)?;

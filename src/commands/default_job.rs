@@ -12,7 +12,7 @@
 
 use crate::commands::run;
 use crate::error::RunError;
-use crate::object_replica::ObjectReplica;
+use crate::run_replica::RunReplica;
 
 /// The default scenario of the main job.
 pub const DEFAULT_JOB_SCENARIO: &str = "loop-potato-whole-realtime";
@@ -26,7 +26,7 @@ pub fn run() -> Result<(), RunError> {
         DEFAULT_JOB_SCENARIO,
         Some("mpc"),
         run::Transport::Iceoryx2,
-        ObjectReplica::NOMINAL,
+        RunReplica::NOMINAL,
         None,
     )
 }

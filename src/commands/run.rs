@@ -20,11 +20,11 @@ use crate::controller_choice::ControllerChoice;
 use crate::cut_record::{CutSample, CutSummary, write_json, write_timeseries};
 use crate::error::{ConfigError, RunError};
 use crate::object_profile::surrogate_profile;
-use crate::object_replica::ObjectReplica;
 use crate::plot::control_trace::draw_control_trace;
 use crate::plot::cut_curves::draw_cut_curves;
 use crate::render_plot;
 use crate::run_dir;
+use crate::run_replica::RunReplica;
 use crate::scenario::Scenario;
 use crate::surrogates::surrogate_for;
 
@@ -54,8 +54,8 @@ pub struct RunOutput {
     pub summary: CutSummary,
     /// Target crack depth, m.
     pub target_depth_m: f64,
-    /// The replica of the object cut (nominal unless `--replica`).
-    pub replica: ObjectReplica,
+    /// The replica of the run (nominal unless `--replica`).
+    pub replica: RunReplica,
 }
 
 /// The summary file's content.
@@ -64,9 +64,9 @@ struct SummaryFile<'a> {
     scenario: &'a str,
     controller: &'a str,
     transport: Transport,
-    /// The object's replica: its heights were scaled by 1 + this × 1e-7
-    /// (0: the object as the scenario gives it).
-    object_replica: i32,
+    /// The run's replica: the knife started this many steps of 5 µm
+    /// higher than `[plant] start_gap` (0: the scenario as given).
+    replica: u32,
     end: &'a LoopEnd,
     target_depth_m: f64,
     cut: &'a CutSummary,
@@ -233,18 +233,21 @@ pub fn make_controller(
 /// sections are built for that direction; they are placed where the edge
 /// really arrives, see [`Plant`]) and the scenario's first z₀, its edge
 /// segmented within `reach` of the object along z (the controller's blade
-/// budget; `[plant] reach` if larger).
+/// budget; `[plant] reach` if larger), the knife starting `start_gap` above
+/// the object (m; `[plant] start_gap` unless a replica raises it).
 pub fn make_plant(
     s: &Scenario,
     knife: &Knife,
     mesh: &TriangleMesh,
     xi: f64,
     reach: f64,
+    start_gap: f64,
 ) -> Result<Plant, RunError> {
     let alpha = xi.atan();
     let z0 = s.motion.z0.first().copied().unwrap_or(0.0);
     let settings = PlantSettings {
         reach: s.plant.reach.max(reach),
+        start_gap,
         ..s.plant
     };
     Plant::new(
@@ -268,15 +271,15 @@ pub fn make_plant(
 
 /// Runs the closed loop for a loaded scenario (no files written).
 pub fn run_closed_loop(s: &Scenario, choice: ControllerChoice) -> Result<RunOutput, RunError> {
-    run_closed_loop_on(s, choice, ObjectReplica::NOMINAL)
+    run_closed_loop_on(s, choice, RunReplica::NOMINAL)
 }
 
-/// Runs the closed loop for a loaded scenario on a replica of its object
-/// (no files written).
+/// Runs the closed loop for a loaded scenario as one of its replicas (the
+/// knife starting a few µm higher, [`RunReplica`]; no files written).
 pub fn run_closed_loop_on(
     s: &Scenario,
     choice: ControllerChoice,
-    replica: ObjectReplica,
+    replica: RunReplica,
 ) -> Result<RunOutput, RunError> {
     let setup = LoopSetup::on_replica(s, choice, replica)?;
     let mut controller = setup.controller(s, choice)?;
@@ -310,27 +313,29 @@ pub struct LoopSetup {
     pub xi: f64,
     /// The object as the MPC sees it ([`mpc_profile`]; the MPC only).
     pub profile: Option<DepthProfile>,
+    /// The edge's normal distance above the object's top at the start, m
+    /// (`[plant] start_gap`, raised by a replica).
+    pub start_gap: f64,
 }
 
 impl LoopSetup {
     /// The setup of `s` under the controller `choice`.
     pub fn new(s: &Scenario, choice: ControllerChoice) -> Result<Self, RunError> {
-        Self::on_replica(s, choice, ObjectReplica::NOMINAL)
+        Self::on_replica(s, choice, RunReplica::NOMINAL)
     }
 
-    /// The setup of `s` under the controller `choice`, on a replica of the
-    /// object (its heights scaled by a hair: [`ObjectReplica`]).
+    /// The setup of `s` under the controller `choice` for one of its
+    /// replicas (the knife starting a few µm higher: [`RunReplica`]).
     pub fn on_replica(
         s: &Scenario,
         choice: ControllerChoice,
-        replica: ObjectReplica,
+        replica: RunReplica,
     ) -> Result<Self, RunError> {
         let knife = Knife::new(&s.knife).map_err(|e| invalid(s, e.prefixed("knife")))?;
         let mesh = s
             .object
             .mesh()
             .map_err(|e| invalid(s, InvalidSetting::new("object", "mesh", e.to_string())))?;
-        let mesh = replica.mesh(&mesh);
         let task = cut_task(s, &knife, &mesh);
         let profile = match choice {
             ControllerChoice::Mpc => Some(mpc_profile(s, &task, &mesh)?),
@@ -346,12 +351,20 @@ impl LoopSetup {
             task,
             xi,
             profile,
+            start_gap: replica.start_gap(s.plant.start_gap),
         })
     }
 
     /// A fresh plant.
     pub fn plant(&self, s: &Scenario) -> Result<Plant, RunError> {
-        make_plant(s, &self.knife, &self.mesh, self.xi, self.task.blade_budget)
+        make_plant(
+            s,
+            &self.knife,
+            &self.mesh,
+            self.xi,
+            self.task.blade_budget,
+            self.start_gap,
+        )
     }
 
     /// A fresh controller.
@@ -371,8 +384,8 @@ impl LoopSetup {
         LoopCut {
             xi_label: self.xi,
             z0,
-            start: Plant::start_position(&self.knife, &self.mesh, z0, s.plant.start_gap),
-            gap: s.plant.start_gap,
+            start: Plant::start_position(&self.knife, &self.mesh, z0, self.start_gap),
+            gap: self.start_gap,
             target_depth: self.task.target_depth,
             max_duration: s.controller.max_duration,
         }
@@ -384,15 +397,15 @@ pub fn run(
     scenario: &str,
     controller: Option<&str>,
     transport: Transport,
-    replica: ObjectReplica,
+    replica: RunReplica,
     out: Option<&Path>,
 ) -> Result<(), RunError> {
     if transport == Transport::Iceoryx2 {
-        if replica != ObjectReplica::NOMINAL {
+        if replica != RunReplica::NOMINAL {
             return Err(RunError::Config(ConfigError::Argument(
                 InvalidSetting::new(
                     "--replica",
-                    replica.offset,
+                    replica.index,
                     "0 with --transport iceoryx2 (replicas run in process)",
                 ),
             )));
@@ -435,7 +448,7 @@ pub(crate) fn write_results(
             scenario: &s.name,
             controller: &run.controller,
             transport,
-            object_replica: run.replica.offset,
+            replica: run.replica.index,
             end: &o.end,
             target_depth_m: run.target_depth_m,
             cut: &run.summary,
