@@ -16,11 +16,13 @@
 //!
 //! Replica k starts the knife k·[`START_STEP`] (5 µm) further above the
 //! object than the scenario's `[plant] start_gap`: the object, the plant
-//! and the controller are the scenario's, and the first contact comes a
-//! fraction of a millisecond later. Eight replicas span 35 µm, more than a
-//! tick's travel at every speed the shipped scenarios use, so the mean over
-//! them estimates the work a controller does on the object whatever the
-//! servo's phase, and their spread shows the plant's scatter.
+//! and the controller are the scenario's, and the first contact comes
+//! k·0.25 ms later at 20 mm/s. Eight replicas span 35 µm: 1.75 ticks'
+//! travel at the baselines' 20 mm/s, 0.7 of a tick at the MPC's 50 mm/s
+//! cap, and the phase of the later crack events is scrambled further by
+//! the run itself. The mean over them estimates the work a controller
+//! does on the object whatever the servo's phase, and their spread shows
+//! the plant's scatter.
 //!
 //! (An earlier design scaled the object's heights by 1 + k·10⁻⁷, 2.5 nm
 //! steps on 25 mm: too small to move most crack events to another tick, so
@@ -42,14 +44,11 @@ impl RunReplica {
     /// The run as the scenario gives it.
     pub const NOMINAL: Self = Self { index: 0 };
 
-    /// The gap between the edge and the object's top at the start, m, for
-    /// a scenario whose `[plant] start_gap` is `gap` (returned bit for bit
-    /// by the nominal replica).
+    /// The height of the edge's lowest point over the object above the
+    /// object's top at the start, m, for a scenario whose `[plant]
+    /// start_gap` is `gap` (the nominal replica's is `gap` bit for bit).
     pub fn start_gap(&self, gap: f64) -> f64 {
-        if self.index == 0 {
-            return gap;
-        }
-        gap + f64::from(self.index) * START_STEP
+        gap + self.start_offset()
     }
 
     /// How much higher the knife starts, m.

@@ -140,9 +140,12 @@ pub struct PairedDifference {
 
 impl PairedDifference {
     /// The paired difference of the MPC's runs and a baseline's, both in
-    /// replica order (`None` unless both ran on the same replicas).
+    /// replica order (`None` unless both ran on the same replicas and
+    /// every run completed: a run that stopped short did less work).
     pub fn new(mpc: &[&RunOutput], baseline: &[&RunOutput]) -> Option<Self> {
-        let same_replicas = mpc.len() == baseline.len()
+        let completed = mpc.iter().chain(baseline).all(|r| r.summary.completed);
+        let same_replicas = completed
+            && mpc.len() == baseline.len()
             && mpc
                 .iter()
                 .zip(baseline)
@@ -160,8 +163,8 @@ impl PairedDifference {
     }
 
     /// The paired difference of works (J) on the same replicas, in the
-    /// same order (both non-empty, of equal length).
-    pub fn from_works(against: &str, mpc: &[f64], baseline: &[f64]) -> Self {
+    /// same order (both non-empty, of equal length: checked by `new`).
+    fn from_works(against: &str, mpc: &[f64], baseline: &[f64]) -> Self {
         let n = mpc.len();
         let d: Vec<f64> = mpc.iter().zip(baseline).map(|(a, b)| a - b).collect();
         let scale = 100.0 * n as f64 / baseline.iter().sum::<f64>();
@@ -443,8 +446,8 @@ pub fn markdown_table(rows: &[ComparisonRow]) -> String {
     t
 }
 
-/// Runs the subcommand: compare (each contestant on `replicas` replicas of
-/// the object), print the table, write table, CSV, JSON and the bar plot.
+/// Runs the subcommand: compare (the MPC and the constant candidates on
+/// `replicas` replicas of the run), print the table, write table, CSV, JSON and the bar plot.
 pub fn run(scenario: &str, replicas: u64, out: Option<&Path>) -> Result<(), RunError> {
     let s = Scenario::load(scenario)?;
     let comparison = compare(&s, replicas)?;

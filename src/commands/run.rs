@@ -67,6 +67,8 @@ struct SummaryFile<'a> {
     /// The run's replica: the knife started this many steps of 5 µm
     /// higher than `[plant] start_gap` (0: the scenario as given).
     replica: u32,
+    /// How much higher that is, m.
+    replica_start_offset_m: f64,
     end: &'a LoopEnd,
     target_depth_m: f64,
     cut: &'a CutSummary,
@@ -313,8 +315,9 @@ pub struct LoopSetup {
     pub xi: f64,
     /// The object as the MPC sees it ([`mpc_profile`]; the MPC only).
     pub profile: Option<DepthProfile>,
-    /// The edge's normal distance above the object's top at the start, m
-    /// (`[plant] start_gap`, raised by a replica).
+    /// Height of the edge's lowest point over the object above the
+    /// object's top at the start, m (`[plant] start_gap`, raised by a
+    /// replica; [`Plant::start_position`]).
     pub start_gap: f64,
 }
 
@@ -449,6 +452,7 @@ pub(crate) fn write_results(
             controller: &run.controller,
             transport,
             replica: run.replica.index,
+            replica_start_offset_m: run.replica.start_offset(),
             end: &o.end,
             target_depth_m: run.target_depth_m,
             cut: &run.summary,
