@@ -40,17 +40,16 @@ fn unknown_knife_is_exit_2_in_one_line() {
     );
 }
 
+/// `shearcut fit --material potato-cuboid --knife straight` with `extra`.
+fn fit_potato_cuboid_straight(extra: &[&str]) -> Output {
+    let mut args = vec!["fit", "--material", "potato-cuboid", "--knife", "straight"];
+    args.extend_from_slice(extra);
+    shearcut(&args)
+}
+
 #[test]
 fn negative_window_weight_is_exit_2_in_one_line() {
-    let o = shearcut(&[
-        "fit",
-        "--material",
-        "potato-cuboid",
-        "--knife",
-        "straight",
-        "--window-weight",
-        "-1",
-    ]);
+    let o = fit_potato_cuboid_straight(&["--window-weight", "-1"]);
     assert_eq!(o.status.code(), Some(2));
     let e = stderr(&o);
     assert_eq!(e.trim_end().lines().count(), 1, "{e}");
@@ -69,17 +68,7 @@ fn wire_is_refused_with_exit_2() {
 fn fit_reproduces_the_shipped_potato_file() {
     let dir = std::env::temp_dir().join(format!("shearcut-fit-{}", std::process::id()));
     let out = dir.join("potato-cuboid-straight.toml");
-    let o = shearcut(&[
-        "fit",
-        "--material",
-        "potato-cuboid",
-        "--knife",
-        "straight",
-        "--window-weight",
-        "10",
-        "--out",
-        out.to_str().unwrap(),
-    ]);
+    let o = fit_potato_cuboid_straight(&["--window-weight", "10", "--out", out.to_str().unwrap()]);
     assert!(o.status.success(), "{}", stderr(&o));
     let fresh = std::fs::read_to_string(&out).unwrap();
     let shipped = std::fs::read_to_string(

@@ -140,16 +140,25 @@ pub fn mpc_cutting_ratio(
     task: &CutTask,
     profile: &DepthProfile,
 ) -> Result<f64, RunError> {
+    Ok(make_mpc(s, task, profile.clone())?.planned_ratio_from_rest())
+}
+
+/// The scenario's MPC for `task`, seeing the object as `profile`, on the
+/// scenario's surrogate.
+fn make_mpc(
+    s: &Scenario,
+    task: &CutTask,
+    profile: DepthProfile,
+) -> Result<Mpc<SurrogateModel>, RunError> {
     let surrogate = surrogate_for(s).map_err(|e| invalid(s, e))?;
-    let mut mpc = Mpc::new(
+    Mpc::new(
         task,
         &s.controller.mpc,
         SurrogateModel::new(surrogate),
-        profile.clone(),
+        profile,
         mpc_start(task),
     )
-    .map_err(|e| invalid(s, e.prefixed("controller")))?;
-    Ok(mpc.planned_ratio_from_rest())
+    .map_err(|e| invalid(s, e.prefixed("controller")))
 }
 
 /// The object as `s`'s MPC sees it ([`surrogate_profile`]; built once per
@@ -213,19 +222,11 @@ pub fn make_controller(
                 .map(|x| Box::new(x) as Box<dyn Controller>)
         }
         ControllerChoice::Mpc => {
-            let surrogate = surrogate_for(s).map_err(|e| invalid(s, e))?;
             let profile = match profile {
                 Some(p) => p.clone(),
                 None => mpc_profile(s, task, mesh)?,
             };
-            Mpc::new(
-                task,
-                &c.mpc,
-                SurrogateModel::new(surrogate),
-                profile,
-                mpc_start(task),
-            )
-            .map(|x| Box::new(x) as Box<dyn Controller>)
+            return Ok(Box::new(make_mpc(s, task, profile)?));
         }
     };
     made.map_err(|e| invalid(s, e.prefixed("controller")))
