@@ -5,6 +5,7 @@
 //! loads, nucleation scalings); and, built on them, the cross-section FEM,
 //! the multi-section plant and its surrogates. SI units throughout.
 
+pub mod arm;
 pub mod blade;
 pub mod geometry;
 pub mod invalid_setting;

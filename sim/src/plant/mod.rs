@@ -3,11 +3,10 @@
 //!
 //! Files: `crack_front` (the quadratic crack front fitted over the sections'
 //! crack tips), `wrench` (section forces summed into force and torque at the
-//! sensor), `arm_limits` (an arm's finite-difference reflexes), `ft_sensor`
+//! sensor), `ft_sensor`
 //! (noise, bias and sample rate of the F/T signal), `successor` (successor
 //! sections built ahead of their re-choices on a worker thread).
 
-pub mod arm_limits;
 pub mod contact_arc;
 pub mod crack_front;
 pub mod ft_sensor;
@@ -17,9 +16,9 @@ pub mod section_shape;
 mod successor;
 pub mod wrench;
 
-pub use arm_limits::{ArmLimitMonitor, ArmLimits, LimitViolation};
+pub use crate::arm::{ArmLimitMonitor, ArmLimits, KnifeCommand, LimitViolation};
 pub use contact_arc::{EdgeSegment, contact_arc, knife_plane_silhouette, segments};
 pub use crack_front::CrackFront;
 pub use ft_sensor::{FtSensor, FtSensorSettings};
-pub use plant::{KnifeCommand, Measurement, Plant, PlantError, PlantSettings, PlantStatus};
+pub use plant::{Measurement, Plant, PlantError, PlantSettings, PlantStatus};
 pub use wrench::{SegmentLoad, Wrench, wrench_at};

@@ -11,7 +11,6 @@ use crate::knife::Knife;
 use crate::material::Material;
 use crate::section::{CrossSection, SectionError, SectionGeometry, SectionSettings};
 
-use super::arm_limits::{ArmLimitMonitor, ArmLimits, LimitViolation};
 use super::contact_arc::{
     EdgeSegment, contact_arc, knife_plane_silhouette, ray_hit, segment_grid, span_arc,
 };
@@ -19,6 +18,8 @@ use super::crack_front::CrackFront;
 use super::ft_sensor::{FtSensor, FtSensorSettings};
 use super::successor::{Preparation, SectionFactory, SuccessorJob, SuccessorWorker};
 use super::wrench::{SegmentLoad, Wrench, wrench_at};
+pub use crate::arm::ArmStatus as PlantStatus;
+use crate::arm::{ArmLimitMonitor, ArmLimits, ArmReading, KnifeCommand};
 
 /// Settings of the plant.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -142,23 +143,6 @@ pub enum PlantError {
     },
 }
 
-/// A knife motion command: a Cartesian twist (translation only).
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct KnifeCommand {
-    /// Knife velocity in the world frame, m/s (the x component must be 0:
-    /// the knife moves in its own plane).
-    pub velocity: Vector3<f64>,
-}
-
-/// What the plant reports after a tick.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub enum PlantStatus {
-    /// The command was executed.
-    Moving,
-    /// The command broke an arm limit and was refused: the knife holds still.
-    LimitViolation(LimitViolation),
-}
-
 /// The measurement after a tick: what an arm and an F/T sensor report, plus
 /// the model's cut state.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -202,6 +186,20 @@ pub struct Measurement {
     pub deformation: f64,
     /// Outcome of the tick.
     pub status: PlantStatus,
+}
+
+impl Measurement {
+    /// What the arm reports of this tick: time, pose, executed twist, the
+    /// sensor's wrench and the arm's status; none of the model's cut state.
+    pub fn reading(&self) -> ArmReading {
+        ArmReading {
+            time: self.time,
+            position: self.position,
+            velocity: self.velocity,
+            wrench: self.wrench,
+            status: self.status,
+        }
+    }
 }
 
 /// One segment's section and its bookkeeping.
