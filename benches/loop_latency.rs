@@ -29,7 +29,7 @@ use shearcut::scenario::{ClockMode, Scenario};
 use shearcut::transport::{
     Iceoryx2PlantLink, LinkTimeouts, LoopServices, PlantServerSettings, Role, WaitMode, serve_plant,
 };
-use shearcut_sim::plant::KnifeCommand;
+use shearcut_sim::arm::KnifeCommand;
 
 fn prefix(tag: &str) -> String {
     format!("scb{}{tag}_", std::process::id())

@@ -8,7 +8,8 @@ use std::path::Path;
 
 use nalgebra::Vector3;
 use serde::Serialize;
-use shearcut_sim::plant::Measurement;
+use shearcut_plant::PlantTruth;
+use shearcut_sim::arm::ArmReading;
 
 use crate::error::RunError;
 
@@ -61,7 +62,8 @@ pub struct CutSample {
 }
 
 impl CutSample {
-    /// The sample of a plant tick: `start` is the knife's position before the
+    /// The sample of a plant tick (the arm's reading and the plant's
+    /// truth): `start` is the knife's position before the
     /// cut and `gap` the normal distance to the object's top it first had to
     /// close (so the displacement counts from first contact); `xi` and `z0`
     /// label the cut. `None` before the edge reaches the top.
@@ -71,7 +73,8 @@ impl CutSample {
     /// Torques are the F/T sensor's reading. The work split is not tracked
     /// per plant (0).
     pub fn from_plant(
-        m: &Measurement,
+        m: &ArmReading,
+        truth: &PlantTruth,
         xi: f64,
         z0: f64,
         start: &Vector3<f64>,
@@ -82,13 +85,13 @@ impl CutSample {
             return None;
         }
         let per_length = |f: f64| {
-            if m.contact_length > 0.0 {
-                f / m.contact_length
+            if truth.contact_length > 0.0 {
+                f / truth.contact_length
             } else {
                 0.0
             }
         };
-        let w = &m.true_wrench;
+        let w = &truth.wrench;
         let fv = w.force.y;
         let fh = if m.velocity.z > 0.0 {
             -w.force.z
@@ -110,15 +113,15 @@ impl CutSample {
             torque_x_nm: m.wrench[3],
             torque_y_nm: m.wrench[4],
             torque_z_nm: m.wrench[5],
-            contact_length_m: m.contact_length,
-            work_j_per_m: per_length(m.work),
-            work_j: m.work,
+            contact_length_m: truth.contact_length,
+            work_j_per_m: per_length(truth.work),
+            work_j: truth.work,
             fracture_energy_j_per_m: 0.0,
             strain_energy_j_per_m: 0.0,
             friction_work_j_per_m: 0.0,
-            crack_depth_m: m.crack_depth,
-            deformation_m: m.deformation,
-            fractured: m.fractured_sections > 0,
+            crack_depth_m: truth.crack_depth,
+            deformation_m: truth.deformation,
+            fractured: truth.fractured_sections > 0,
         })
     }
 }

@@ -8,7 +8,8 @@
 use std::path::Path;
 
 use serde::{Deserialize, Serialize};
-use shearcut_sim::plant::{ArmLimits, PlantSettings};
+use shearcut_plant::PlantSettings;
+use shearcut_sim::arm::ArmLimits;
 use shearcut_sim::{
     BladeSection, EdgeShape, InvalidSetting, KnifePreset, KnifeSettings, Material, MaterialPreset,
     ObjectShape, SectionSettings, SensorMount,
@@ -141,6 +142,9 @@ pub struct LoopSettings {
     pub missed_command_limit: u32,
     /// Arm limits on the knife's translation, checked by finite differences.
     pub arm_limits: ArmLimits,
+    /// How long a controller process waits for its plant (or an arm
+    /// bridge) to serve the run before it gives up, s (default 10).
+    pub connect_timeout: f64,
 }
 
 impl Default for LoopSettings {
@@ -150,6 +154,7 @@ impl Default for LoopSettings {
             clock: ClockMode::Lockstep,
             missed_command_limit: 20,
             arm_limits: ArmLimits::default(),
+            connect_timeout: 10.0,
         }
     }
 }
@@ -524,6 +529,16 @@ impl LoopSettings {
                 "missed_command_limit",
                 0,
                 "must be at least 1",
+            ));
+        }
+        if !(self.connect_timeout.is_finite()
+            && self.connect_timeout >= 0.1
+            && self.connect_timeout <= 3600.0)
+        {
+            return Err(InvalidSetting::new(
+                "connect_timeout",
+                self.connect_timeout,
+                "must be in [0.1, 3600] s",
             ));
         }
         self.arm_limits

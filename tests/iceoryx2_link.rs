@@ -11,13 +11,13 @@ use std::time::Duration;
 
 use echo_plant::{EchoPlant, remove_shm_files};
 use nalgebra::Vector3;
-use shearcut::closed_loop::{LinkError, PlantLink};
+use shearcut::closed_loop::{LinkAnswer, LinkError, PlantLink};
 use shearcut::scenario::ClockMode;
 use shearcut::transport::{
     Iceoryx2PlantLink, LinkTimeouts, LoopServices, PlantEnd, PlantServerSettings, Role, WaitMode,
     serve_plant,
 };
-use shearcut_sim::plant::{KnifeCommand, Measurement};
+use shearcut_sim::arm::KnifeCommand;
 
 /// The echo plant, stalling `stall` on its command number `slow`.
 struct Stalling {
@@ -32,7 +32,7 @@ impl PlantLink for Stalling {
         self.echo.period()
     }
 
-    fn exchange(&mut self, command: &KnifeCommand) -> Result<Measurement, LinkError> {
+    fn exchange(&mut self, command: &KnifeCommand) -> Result<LinkAnswer, LinkError> {
         if self.count == self.slow {
             std::thread::sleep(self.stall);
         }
@@ -70,9 +70,12 @@ fn a_late_answer_is_discarded_and_the_run_still_ends_cleanly() {
             velocity: Vector3::new(0.0, -0.005, 0.004),
         };
         for tick in 1..=2 {
-            let m = link.exchange(&command).unwrap();
+            let answer = link.exchange(&command).unwrap();
+            let m = answer.reading;
             assert!((m.time - tick as f64 * 1e-3).abs() < 1e-12, "{wait:?}");
             assert_eq!(m.velocity, command.velocity);
+            // The plant's truth crosses on its own board, for this tick.
+            assert!(answer.truth.is_some(), "{wait:?}");
         }
         // Command 2 stalls past the response timeout.
         match link.exchange(&command) {

@@ -20,7 +20,7 @@ use shearcut::scenario::ClockMode;
 use shearcut::transport::{
     Iceoryx2PlantLink, LinkTimeouts, LoopServices, PlantServerSettings, Role, WaitMode, serve_plant,
 };
-use shearcut_sim::plant::KnifeCommand;
+use shearcut_sim::arm::KnifeCommand;
 
 struct Counting;
 
@@ -105,7 +105,7 @@ fn measure(wait: WaitMode, tag: &str) -> (usize, usize) {
     TRACK.store(true, Ordering::SeqCst);
     let mut last_time = 0.0;
     for _ in 0..MEASURED {
-        last_time = link.exchange(&command).unwrap().time;
+        last_time = link.exchange(&command).unwrap().reading.time;
     }
     TRACK.store(false, Ordering::SeqCst);
     CONTROLLER.with(|c| c.set(false));

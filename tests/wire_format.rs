@@ -5,8 +5,9 @@ use std::mem::{align_of, offset_of, size_of};
 
 use nalgebra::Vector3;
 use proptest::prelude::*;
-use shearcut::transport::wire::{WireCommand, WireError, WireMeasurement, WireStatus};
-use shearcut_sim::plant::{KnifeCommand, LimitViolation, Measurement, PlantStatus, Wrench};
+use shearcut::transport::wire::{WireCommand, WireError, WireMeasurement, WireStatus, WireTruth};
+use shearcut_plant::{PlantTruth, Wrench};
+use shearcut_sim::arm::{ArmReading, ArmStatus, KnifeCommand, LimitViolation};
 
 #[test]
 fn command_layout_is_the_documented_one() {
@@ -19,9 +20,10 @@ fn command_layout_is_the_documented_one() {
     assert_eq!(offset_of!(WireCommand, reserved), 44);
 }
 
+/// The measurement carries only what an arm reports (wire format v2).
 #[test]
 fn measurement_layout_is_the_documented_one() {
-    assert_eq!(size_of::<WireMeasurement>(), 224);
+    assert_eq!(size_of::<WireMeasurement>(), 136);
     assert_eq!(align_of::<WireMeasurement>(), 8);
     let offsets = [
         (offset_of!(WireMeasurement, sequence), 0),
@@ -29,30 +31,48 @@ fn measurement_layout_is_the_documented_one() {
         (offset_of!(WireMeasurement, position), 16),
         (offset_of!(WireMeasurement, velocity), 40),
         (offset_of!(WireMeasurement, wrench), 64),
-        (offset_of!(WireMeasurement, true_wrench), 112),
-        (offset_of!(WireMeasurement, crack_depth), 160),
-        (offset_of!(WireMeasurement, contact_length), 168),
-        (offset_of!(WireMeasurement, work), 176),
-        (offset_of!(WireMeasurement, deformation), 184),
-        (offset_of!(WireMeasurement, fault_value), 192),
-        (offset_of!(WireMeasurement, fractured_sections), 200),
-        (offset_of!(WireMeasurement, status), 208),
-        (offset_of!(WireMeasurement, fault), 212),
-        (offset_of!(WireMeasurement, missed_commands), 216),
-        (offset_of!(WireMeasurement, reserved), 220),
+        (offset_of!(WireMeasurement, fault_value), 112),
+        (offset_of!(WireMeasurement, status), 120),
+        (offset_of!(WireMeasurement, fault), 124),
+        (offset_of!(WireMeasurement, missed_commands), 128),
+        (offset_of!(WireMeasurement, reserved), 132),
     ];
     for (i, (got, want)) in offsets.iter().enumerate() {
         assert_eq!(got, want, "field {i}");
     }
 }
 
-fn measurement(x: [f64; 8], status: PlantStatus) -> Measurement {
-    Measurement {
+#[test]
+fn truth_layout_is_the_documented_one() {
+    assert_eq!(size_of::<WireTruth>(), 96);
+    assert_eq!(align_of::<WireTruth>(), 8);
+    let offsets = [
+        (offset_of!(WireTruth, sequence), 0),
+        (offset_of!(WireTruth, wrench), 8),
+        (offset_of!(WireTruth, crack_depth), 56),
+        (offset_of!(WireTruth, contact_length), 64),
+        (offset_of!(WireTruth, work), 72),
+        (offset_of!(WireTruth, deformation), 80),
+        (offset_of!(WireTruth, fractured_sections), 88),
+    ];
+    for (i, (got, want)) in offsets.iter().enumerate() {
+        assert_eq!(got, want, "field {i}");
+    }
+}
+
+fn measurement(x: [f64; 8], status: ArmStatus) -> ArmReading {
+    ArmReading {
         time: x[0],
         position: Vector3::new(x[1], x[2], x[3]),
         velocity: Vector3::new(x[4], -x[5], x[6]),
         wrench: [x[7], x[0], x[1], x[2], x[3], x[4]],
-        true_wrench: Wrench {
+        status,
+    }
+}
+
+fn truth(x: [f64; 8]) -> PlantTruth {
+    PlantTruth {
+        wrench: Wrench {
             force: Vector3::new(x[5], x[6], x[7]),
             torque: Vector3::new(x[1], -x[2], x[3]),
         },
@@ -61,7 +81,6 @@ fn measurement(x: [f64; 8], status: PlantStatus) -> Measurement {
         fractured_sections: 7,
         work: x[6],
         deformation: x[7],
-        status,
     }
 }
 
@@ -72,16 +91,20 @@ proptest! {
         kind in 0u8..5,
     ) {
         let status = match kind {
-            0 => PlantStatus::Moving,
-            1 => PlantStatus::LimitViolation(LimitViolation::Velocity(x[0])),
-            2 => PlantStatus::LimitViolation(LimitViolation::Acceleration(x[1])),
-            3 => PlantStatus::LimitViolation(LimitViolation::Jerk(x[2])),
-            _ => PlantStatus::LimitViolation(LimitViolation::NotFinite),
+            0 => ArmStatus::Moving,
+            1 => ArmStatus::LimitViolation(LimitViolation::Velocity(x[0])),
+            2 => ArmStatus::LimitViolation(LimitViolation::Acceleration(x[1])),
+            3 => ArmStatus::LimitViolation(LimitViolation::Jerk(x[2])),
+            _ => ArmStatus::LimitViolation(LimitViolation::NotFinite),
         };
         let m = measurement(x, status);
-        let back = WireMeasurement::new(42, &m, 3).measurement().unwrap();
+        let back = WireMeasurement::new(42, &m, 3).reading().unwrap();
         // Debug prints each f64 in its shortest round-trip form.
         prop_assert_eq!(format!("{m:?}"), format!("{back:?}"));
+        let t = truth(x);
+        let wire = WireTruth::new(42, &t);
+        prop_assert_eq!(wire.sequence, 42);
+        prop_assert_eq!(format!("{t:?}"), format!("{:?}", wire.truth()));
     }
 
     #[test]
@@ -98,12 +121,12 @@ proptest! {
 
 #[test]
 fn a_braked_plant_is_not_a_measurement() {
-    let m = measurement([0.5; 8], PlantStatus::Moving);
+    let m = measurement([0.5; 8], ArmStatus::Moving);
     let w = WireMeasurement::new(1, &m, 20).stopped(
         WireStatus::Braked,
         shearcut::transport::wire::WireFault::MissedCommands,
         20.0,
     );
-    assert_eq!(w.measurement(), Err(WireError::Braked(20)));
+    assert_eq!(w.reading(), Err(WireError::Braked(20)));
     assert!(WireCommand::end_of_run(3, 1.0).is_end_of_run());
 }

@@ -11,7 +11,7 @@ use shearcut_controllers::controller::{Controller, CutTask, MotionLimits};
 use shearcut_controllers::mpc::{
     DepthProfile, DepthQp, Mpc, MpcSettings, QpLimits, SliceModel, StageCost, StageData, StageState,
 };
-use shearcut_sim::plant::{Measurement, PlantStatus, Wrench};
+use shearcut_sim::arm::{ArmReading, ArmStatus};
 
 /// w(ξ) = 150 − 120ξ + 45ξ² N/m, f(ξ) = 140/(1+ξ) N/m: the shape of the
 /// potato surrogate (a minimum near ξ = 1.3).
@@ -100,6 +100,7 @@ fn main() {
     // solve, shaping) against a measurement stream.
     let task = CutTask {
         target_depth: 1.0,
+        touch_height: 0.0,
         period: 1e-3,
         blade_budget: 1.0,
         limits: MotionLimits::within_arm(0.05, 0.1, 9.0, 4500.0, 0.9),
@@ -109,18 +110,15 @@ fn main() {
     let mut plan_times = Vec::new();
     for i in 0..50_000u64 {
         let depth = 1e-6 * i as f64 % 0.9;
-        let m = Measurement {
+        // The force drops from 20 to 10 N after 100 ticks: the first
+        // fracture, so that the plans are the cutting phase's.
+        let normal_force = if i < 100 { 20.0 } else { 10.0 };
+        let m = ArmReading {
             time: i as f64 * 1e-3,
             position: nalgebra::Vector3::new(0.0, -depth, 0.0),
             velocity: nalgebra::Vector3::new(0.0, -0.02, 0.02),
-            wrench: [0.0, 10.0, -3.0, 0.0, 0.0, 0.0],
-            true_wrench: Wrench::default(),
-            crack_depth: depth,
-            contact_length: 0.03,
-            fractured_sections: 1,
-            work: 0.0,
-            deformation: 0.0,
-            status: PlantStatus::Moving,
+            wrench: [0.0, normal_force, -3.0, 0.0, 0.0, 0.0],
+            status: ArmStatus::Moving,
         };
         let start = Instant::now();
         std::hint::black_box(mpc.tick(&m));

@@ -8,7 +8,7 @@ use std::sync::atomic::Ordering;
 use shearcut_controllers::controller::{
     ConstantSlice, Controller, ForceFeedback, ForceFeedbackGains,
 };
-use shearcut_sim::plant::PlantStatus;
+use shearcut_sim::arm::ArmStatus;
 use synthetic_arm::{SyntheticArm, task};
 
 #[path = "support/counting_allocator.rs"]
@@ -23,7 +23,7 @@ static GLOBAL: Counting = Counting;
 /// approach, contact, the blade budget running out and the target depth.
 fn allocations(c: &mut dyn Controller, ticks: usize) -> usize {
     let mut arm = SyntheticArm::new(2000.0);
-    let mut m = arm.measure(PlantStatus::Moving);
+    let mut m = arm.measure(ArmStatus::Moving);
     ALLOCATIONS.store(0, Ordering::SeqCst);
     TRACK.with(|t| t.set(true));
     for _ in 0..ticks {
@@ -63,7 +63,7 @@ fn controller_ticks_allocate_nothing() {
     )
     .unwrap();
     let mut arm = SyntheticArm::new(2000.0);
-    let mut m = arm.measure(PlantStatus::Moving);
+    let mut m = arm.measure(ArmStatus::Moving);
     // The first plan sets up clarabel's timer maps.
     let command = mpc.tick(&m);
     m = arm.step(&command);

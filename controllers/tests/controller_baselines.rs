@@ -7,13 +7,13 @@ mod synthetic_arm;
 use shearcut_controllers::controller::{
     ConstantSlice, Controller, CutPhase, ForceFeedback, ForceFeedbackGains,
 };
-use shearcut_sim::plant::PlantStatus;
+use shearcut_sim::arm::ArmStatus;
 use synthetic_arm::{SyntheticArm, task};
 
 /// Runs `c` for `ticks` or until it is done and the knife is at rest;
 /// returns the arm.
 fn run(c: &mut dyn Controller, arm: &mut SyntheticArm, ticks: usize) {
-    let mut m = arm.measure(PlantStatus::Moving);
+    let mut m = arm.measure(ArmStatus::Moving);
     for _ in 0..ticks {
         let command = c.tick(&m);
         m = arm.step(&command);
@@ -60,7 +60,7 @@ fn the_blade_budget_is_never_exceeded_and_the_cut_finishes_by_pressing() {
     let mut c = ConstantSlice::new(&task(0.03, budget), 1.0, 0.05).unwrap();
     let mut arm = SyntheticArm::new(0.0);
     let mut max_z: f64 = 0.0;
-    let mut m = arm.measure(PlantStatus::Moving);
+    let mut m = arm.measure(ArmStatus::Moving);
     for _ in 0..5000 {
         let command = c.tick(&m);
         m = arm.step(&command);
@@ -70,7 +70,7 @@ fn the_blade_budget_is_never_exceeded_and_the_cut_finishes_by_pressing() {
     assert!(max_z <= budget, "travel {max_z} > budget {budget}");
     // Most of the budget is used (stopping takes a few µm at these limits).
     assert!(max_z > 0.95 * budget, "travel {max_z}");
-    assert!(m.crack_depth >= 0.03, "depth {}", m.crack_depth);
+    assert!(arm.depth() >= 0.03, "depth {}", arm.depth());
 }
 
 #[test]
@@ -98,7 +98,7 @@ fn force_feedback_holds_the_setpoint_on_a_spring() {
     let gains = ForceFeedbackGains::for_setpoint(setpoint, 0.02);
     let mut c = ForceFeedback::new(&task(1.0, 1.0), setpoint, gains, 0.0, 0.02).unwrap();
     let mut arm = SyntheticArm::new(k);
-    let mut m = arm.measure(PlantStatus::Moving);
+    let mut m = arm.measure(ArmStatus::Moving);
     let mut peak: f64 = 0.0;
     for _ in 0..6000 {
         let command = c.tick(&m);

@@ -8,17 +8,17 @@ mod synthetic_arm;
 
 use shearcut_controllers::controller::{Controller, CutPhase, StrokePhase};
 use shearcut_controllers::mpc::{DepthProfile, Mpc, MpcSettings};
-use shearcut_sim::plant::PlantStatus;
+use shearcut_sim::arm::ArmStatus;
 use synthetic_arm::{QuadraticModel, SyntheticArm, task};
 
 fn run(mpc: &mut Mpc<QuadraticModel>, ticks: usize) -> (SyntheticArm, Vec<(f64, f64)>) {
     let mut arm = SyntheticArm::new(0.0);
-    let mut m = arm.measure(PlantStatus::Moving);
+    let mut m = arm.measure(ArmStatus::Moving);
     let mut trace = Vec::new();
     for _ in 0..ticks {
         let c = mpc.tick(&m);
         m = arm.step(&c);
-        trace.push((m.crack_depth, mpc.telemetry().slice_push_ratio));
+        trace.push((arm.depth(), mpc.telemetry().slice_push_ratio));
         if mpc.telemetry().phase == CutPhase::Done {
             break;
         }
@@ -86,7 +86,7 @@ fn a_short_blade_is_sawn_through_at_the_model_optimum_and_ratio() {
     )
     .unwrap();
     let mut arm = SyntheticArm::new(0.0);
-    let mut m = arm.measure(PlantStatus::Moving);
+    let mut m = arm.measure(ArmStatus::Moving);
     let mut reversing_ticks = 0;
     let mut mid_ratios = Vec::new();
     for _ in 0..40_000 {
@@ -113,7 +113,7 @@ fn a_short_blade_is_sawn_through_at_the_model_optimum_and_ratio() {
             }
         }
         m = arm.step(&c);
-        if (0.008..0.012).contains(&m.crack_depth) && m.velocity.y < 0.0 {
+        if (0.008..0.012).contains(&arm.depth()) && m.velocity.y < 0.0 {
             mid_ratios.push(m.velocity.z.abs() / -m.velocity.y);
         }
         if mpc.telemetry().phase == CutPhase::Done {
@@ -150,15 +150,16 @@ fn while_estimating_the_mpc_touches_at_the_touch_speed_until_the_first_fracture(
         ..MpcSettings::default()
     };
     let mut mpc = Mpc::new(&task(0.01, 1.0), &settings, QuadraticModel, profile, 0.5).unwrap();
-    let mut arm = SyntheticArm::new(0.0);
-    let mut m = arm.measure(PlantStatus::Moving);
+    // 2 N at the fracture: well above the fracture detector's floor.
+    let mut arm = SyntheticArm::new(4000.0);
+    arm.fracture_depth = Some(fracture_depth);
+    let mut m = arm.measure(ArmStatus::Moving);
     let (mut before, mut after) = (0.0f64, 0.0f64);
     for _ in 0..20_000 {
         let c = mpc.tick(&m);
         m = arm.step(&c);
         let depth = -m.position.y;
         if depth >= fracture_depth {
-            m.fractured_sections = 1;
             after = after.max(-m.velocity.y);
         } else {
             before = before.max(-m.velocity.y);
@@ -185,7 +186,7 @@ fn while_estimating_the_mpc_touches_at_the_touch_speed_until_the_first_fracture(
     let profile = DepthProfile::uniform(0.03, 0.03, 0.015).unwrap();
     let mut mpc = Mpc::new(&task(0.01, 1.0), &settings, QuadraticModel, profile, 0.5).unwrap();
     let mut arm = SyntheticArm::new(0.0);
-    let mut m = arm.measure(PlantStatus::Moving);
+    let mut m = arm.measure(ArmStatus::Moving);
     let mut early = 0.0f64;
     for _ in 0..20_000 {
         let c = mpc.tick(&m);
@@ -239,7 +240,7 @@ fn run_failing(
     settings: &MpcSettings,
     profile: DepthProfile,
     initial_xi: f64,
-    mut observe: impl FnMut(&Mpc<FailingModel>, &shearcut_sim::plant::KnifeCommand),
+    mut observe: impl FnMut(&Mpc<FailingModel>, &shearcut_sim::arm::KnifeCommand),
 ) -> (Mpc<FailingModel>, SyntheticArm) {
     let failing = std::rc::Rc::new(std::cell::Cell::new(false));
     let model = FailingModel {
@@ -247,9 +248,9 @@ fn run_failing(
     };
     let mut mpc = Mpc::new(&task(0.02, budget), settings, model, profile, initial_xi).unwrap();
     let mut arm = SyntheticArm::new(0.0);
-    let mut m = arm.measure(PlantStatus::Moving);
+    let mut m = arm.measure(ArmStatus::Moving);
     for _ in 0..20_000 {
-        failing.set((0.006..0.012).contains(&m.crack_depth));
+        failing.set((0.006..0.012).contains(&arm.depth()));
         let c = mpc.tick(&m);
         m = arm.step(&c);
         observe(&mpc, &c);

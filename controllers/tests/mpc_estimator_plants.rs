@@ -17,11 +17,11 @@ use std::path::Path;
 use nalgebra::Vector2;
 use shearcut_controllers::controller::{Controller, CutTask, MotionLimits};
 use shearcut_controllers::mpc::{
-    DepthProfile, EdgeDepth, Mpc, MpcSettings, SliceModel, StageState, SurrogateModel,
+    DepthProfile, Mpc, MpcSettings, SliceModel, StageState, SurrogateModel,
 };
+use shearcut_plant::{Plant, PlantSettings, PlantStep};
+use shearcut_sim::arm::ArmLimits;
 use shearcut_sim::geometry::TriangleMesh;
-use shearcut_sim::plant::Measurement;
-use shearcut_sim::plant::{ArmLimits, Plant, PlantSettings};
 use shearcut_sim::section::SectionSettings;
 use shearcut_sim::surrogate::Surrogate;
 use shearcut_sim::{Cuboid, Knife, KnifePreset, MaterialPreset, ObjectShape};
@@ -111,8 +111,10 @@ const SETTLE: f64 = 2e-3;
 /// as close to the truth as these are to 1.
 #[derive(Debug, Default)]
 struct ModelCheck {
-    /// The depth the model is evaluated at, as the controller takes it.
-    edge: EdgeDepth,
+    /// The knife's height when its edge meets the object's top, m: the
+    /// depth the model is evaluated at is the edge's below it, as the
+    /// controller takes it.
+    touch_height: f64,
     fracture: Option<f64>,
     measured: [f64; 2],
     modelled: [f64; 2],
@@ -123,16 +125,17 @@ impl ModelCheck {
         &mut self,
         model: &SurrogateModel,
         profile: &DepthProfile,
-        m: &Measurement,
+        step: &PlantStep,
         truth: [f64; 3],
     ) {
-        let depth = profile.section_depth(self.edge.observe(m.position.y, m.contact_length));
+        let m = &step.reading;
+        let depth = profile.section_depth((self.touch_height - m.position.y).max(0.0));
         let v_n = -m.velocity.y;
-        let l = m.contact_length;
+        let l = step.truth.contact_length;
         if !(v_n > 0.0 && l > 0.0) {
             return;
         }
-        if m.fractured_sections == 0 {
+        if step.truth.fractured_sections == 0 {
             return;
         }
         let since = depth - *self.fracture.get_or_insert(depth);
@@ -178,6 +181,7 @@ fn end_of_cut(
     let arm = ArmLimits::default();
     let task = CutTask {
         target_depth: setup.depth,
+        touch_height: Plant::start_position(&knife, &mesh, setup.z0, 0.0).y,
         period: 1e-3,
         blade_budget: setup.blade_budget,
         limits: MotionLimits::within_arm(
@@ -195,7 +199,10 @@ fn end_of_cut(
     let surrogate = Surrogate::from_path(&path).unwrap();
     let profile = profile(&mesh, &surrogate, setup.depth);
     let model = SurrogateModel::new(surrogate);
-    let mut check = ModelCheck::default();
+    let mut check = ModelCheck {
+        touch_height: task.touch_height,
+        ..ModelCheck::default()
+    };
     let mut mpc = Mpc::new(&task, settings, model.clone(), profile.clone(), xi).unwrap();
     let alpha = xi.atan();
     let plant_settings = PlantSettings {
@@ -220,10 +227,10 @@ fn end_of_cut(
         .expect("plant steps");
     // 30 s of simulated time at most, as `shearcut run`.
     for _ in 0..30_000 {
-        let command = mpc.tick(&m);
+        let command = mpc.tick(&m.reading);
         m = plant.step(&command, task.period).expect("plant steps");
         check.add(&model, &profile, &m, truth);
-        if m.crack_depth >= task.target_depth {
+        if m.truth.crack_depth >= task.target_depth {
             return (mpc.scale(), check, true);
         }
     }

@@ -15,7 +15,8 @@ use std::sync::atomic::Ordering;
 use nalgebra::Vector2;
 use shearcut_controllers::controller::{Controller, CutTask, MotionLimits};
 use shearcut_controllers::mpc::{DepthProfile, Mpc, MpcSettings, SurrogateModel};
-use shearcut_sim::plant::{ArmLimits, Plant, PlantSettings};
+use shearcut_plant::{Plant, PlantSettings};
+use shearcut_sim::arm::ArmLimits;
 use shearcut_sim::section::SectionSettings;
 use shearcut_sim::surrogate::Surrogate;
 use shearcut_sim::{Cuboid, Knife, KnifePreset, MaterialPreset, ObjectShape};
@@ -42,6 +43,7 @@ fn mpc_ticks_on_the_plant_allocate_only_inside_clarabel() {
     let arm = ArmLimits::default();
     let task = CutTask {
         target_depth: 0.008,
+        touch_height: Plant::start_position(&knife, &mesh, 0.02, 0.0).y,
         period: 1e-3,
         blade_budget: 0.006,
         limits: MotionLimits::within_arm(0.05, 0.1, arm.acceleration, arm.jerk, 0.9),
@@ -91,27 +93,27 @@ fn mpc_ticks_on_the_plant_allocate_only_inside_clarabel() {
     .unwrap();
     let mut m = plant.step(&Default::default(), task.period).unwrap();
     // The first plan sets up clarabel's timer maps.
-    let command = mpc.tick(&m);
+    let command = mpc.tick(&m.reading);
     m = plant.step(&command, task.period).unwrap();
     let solves_before = mpc.stats().solves;
     let (mut plans, mut in_plans, mut between, mut fractured_plans) = (0u64, 0, 0, 0);
     for _ in 0..20_000 {
         ALLOCATIONS.store(0, Ordering::SeqCst);
         TRACK.with(|t| t.set(true));
-        let command = mpc.tick(&m);
+        let command = mpc.tick(&m.reading);
         TRACK.with(|t| t.set(false));
         let n = ALLOCATIONS.load(Ordering::SeqCst);
         if mpc.replanned() {
             plans += 1;
             in_plans += n;
-            if m.fractured_sections > 0 {
+            if m.truth.fractured_sections > 0 {
                 fractured_plans += 1;
             }
         } else {
             between += n;
         }
         m = plant.step(&command, task.period).unwrap();
-        if m.crack_depth >= task.target_depth {
+        if m.truth.crack_depth >= task.target_depth {
             break;
         }
     }
@@ -120,7 +122,11 @@ fn mpc_ticks_on_the_plant_allocate_only_inside_clarabel() {
         "{plans} plans ({fractured_plans} after the first fracture), {solves} solves: {in_plans} allocations in plans, {between} between; {:?}",
         mpc.stats()
     );
-    assert!(m.crack_depth >= task.target_depth, "{} m", m.crack_depth);
+    assert!(
+        m.truth.crack_depth >= task.target_depth,
+        "{} m",
+        m.truth.crack_depth
+    );
     assert!(
         fractured_plans >= 10,
         "{fractured_plans} plans after the fracture"

@@ -131,7 +131,7 @@ use std::time::Instant;
 
 use nalgebra::Vector3;
 use shearcut_sim::geometry::SectionPlane;
-use shearcut_sim::plant::section_shape::section_geometry;
+use shearcut_sim::knife_plane::section_shape::section_geometry;
 use shearcut_sim::{
     CrossSection, Knife, KnifePreset, MaterialPreset, ObjectShape, SectionGeometry, SectionSettings,
 };

@@ -48,7 +48,7 @@ impl fmt::Display for InvalidSetting {
 }
 
 /// Checks that a value is finite and strictly positive.
-pub(crate) fn positive(key: &str, value: f64) -> Result<(), InvalidSetting> {
+pub fn positive(key: &str, value: f64) -> Result<(), InvalidSetting> {
     if value.is_finite() && value > 0.0 {
         Ok(())
     } else {
@@ -61,7 +61,7 @@ pub(crate) fn positive(key: &str, value: f64) -> Result<(), InvalidSetting> {
 }
 
 /// Checks that a value is finite and not negative.
-pub(crate) fn non_negative(key: &str, value: f64) -> Result<(), InvalidSetting> {
+pub fn non_negative(key: &str, value: f64) -> Result<(), InvalidSetting> {
     if value.is_finite() && value >= 0.0 {
         Ok(())
     } else {

@@ -10,10 +10,10 @@ pub mod blade;
 pub mod geometry;
 pub mod invalid_setting;
 pub mod knife;
+pub mod knife_plane;
 pub mod material;
 pub mod mechanics;
 pub mod object;
-pub mod plant;
 pub mod section;
 pub mod surrogate;
 

@@ -2,12 +2,12 @@
 
 use serde::Serialize;
 use shearcut_controllers::controller::{ControllerTelemetry, CutPhase};
-use shearcut_sim::plant::KnifeCommand;
+use shearcut_sim::arm::KnifeCommand;
 
 /// One tick of the controller (`controller.csv`).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
 pub struct ControlSample {
-    /// Simulated time of the measurement the controller answered, s.
+    /// Time of the reading the controller answered, s.
     pub time_s: f64,
     /// Planned slice-push ratio ξ = v_t / v_n.
     pub xi_plan: f64,

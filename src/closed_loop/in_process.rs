@@ -1,8 +1,9 @@
 //! The plant in the controller's process, stepped in lockstep.
 
-use shearcut_sim::plant::{KnifeCommand, Measurement, Plant};
+use shearcut_plant::Plant;
+use shearcut_sim::arm::KnifeCommand;
 
-use super::plant_link::{LinkError, PlantLink};
+use super::plant_link::{LinkAnswer, LinkError, PlantLink};
 
 /// A [`Plant`] stepped directly: each command advances it one period.
 #[derive(Debug, Clone)]
@@ -28,9 +29,14 @@ impl PlantLink for InProcessPlant {
         self.period
     }
 
-    fn exchange(&mut self, command: &KnifeCommand) -> Result<Measurement, LinkError> {
-        self.plant
+    fn exchange(&mut self, command: &KnifeCommand) -> Result<LinkAnswer, LinkError> {
+        let step = self
+            .plant
             .step(command, self.period)
-            .map_err(|e| LinkError::Model(e.to_string()))
+            .map_err(|e| LinkError::Model(e.to_string()))?;
+        Ok(LinkAnswer {
+            reading: step.reading,
+            truth: Some(step.truth),
+        })
     }
 }

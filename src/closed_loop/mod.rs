@@ -9,5 +9,5 @@ mod runner;
 
 pub use control_record::{ControlSample, TickTimes};
 pub use in_process::InProcessPlant;
-pub use plant_link::{LinkError, PlantLink};
+pub use plant_link::{LinkAnswer, LinkError, PlantLink};
 pub use runner::{LoopCut, LoopEnd, LoopOutput, run_loop};

@@ -1,6 +1,8 @@
-//! The controller's view of a plant: send a command, get the measurement.
+//! The controller's view of a plant: send a command, get the arm's reading
+//! (and, from a simulated plant, its ground truth for the runner).
 
-use shearcut_sim::plant::{KnifeCommand, Measurement};
+use shearcut_plant::PlantTruth;
+use shearcut_sim::arm::{ArmReading, KnifeCommand};
 
 /// Why a plant link stopped answering.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -13,16 +15,27 @@ pub enum LinkError {
     Lost(String),
 }
 
+/// One tick's answer of a plant link: the arm's reading, which the
+/// controller gets, and the simulated plant's truth, which only the runner
+/// sees (absent from a real arm's bridge).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct LinkAnswer {
+    /// What the arm and its F/T sensor report.
+    pub reading: ArmReading,
+    /// The simulated ground truth, if the plant is simulated.
+    pub truth: Option<PlantTruth>,
+}
+
 /// A plant as the controller's side of an arm loop sees it: one command
-/// per servo tick, one measurement back. Lockstep: the plant advances one
+/// per servo tick, one reading back. Lockstep: the plant advances one
 /// period per command.
 pub trait PlantLink {
     /// The servo period, s.
     fn period(&self) -> f64;
 
-    /// Sends `command` for the next tick and returns the measurement after it.
+    /// Sends `command` for the next tick and returns the reading after it.
     ///
     /// # Errors
     /// The plant failed or is gone.
-    fn exchange(&mut self, command: &KnifeCommand) -> Result<Measurement, LinkError>;
+    fn exchange(&mut self, command: &KnifeCommand) -> Result<LinkAnswer, LinkError>;
 }

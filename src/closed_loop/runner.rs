@@ -3,7 +3,8 @@
 use nalgebra::Vector3;
 use serde::Serialize;
 use shearcut_controllers::controller::Controller;
-use shearcut_sim::plant::{KnifeCommand, PlantStatus};
+use shearcut_controllers::controller::CutPhase;
+use shearcut_sim::arm::{ArmStatus, KnifeCommand};
 
 use super::control_record::{ControlSample, TickTimes};
 use super::plant_link::{LinkError, PlantLink};
@@ -13,8 +14,12 @@ use crate::cut_record::CutSample;
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(rename_all = "snake_case")]
 pub enum LoopEnd {
-    /// The crack reached the target depth.
+    /// The crack reached the target depth (the simulated plant's truth).
     Completed,
+    /// The controller declared the cut done and brought the knife to rest
+    /// before the plant's crack reached the target depth (or, facing a real
+    /// arm, with no truth to compare).
+    ControllerDone,
     /// The simulated time ran out first.
     TimedOut,
     /// The plant link failed (the message says why).
@@ -93,14 +98,14 @@ pub fn run_loop(
     let mut limit_faults = 0;
     let mut end = LoopEnd::TimedOut;
     let loop_started = std::time::Instant::now();
-    let mut measurement = match link.exchange(&KnifeCommand::default()) {
+    let mut answer = match link.exchange(&KnifeCommand::default()) {
         Ok(m) => m,
         Err(e) => return failed(e, loop_started.elapsed().as_secs_f64()),
     };
     let mut ticks = 0;
     while ticks < max_ticks {
         let started = std::time::Instant::now();
-        let command = controller.tick(&measurement);
+        let command = controller.tick(&answer.reading);
         let us = started.elapsed().as_secs_f64() * 1e6;
         durations.push(us);
         ticks += 1;
@@ -108,24 +113,35 @@ pub fn run_loop(
         if telemetry.planned {
             plan_durations.push(us);
         }
-        control.push(ControlSample::new(measurement.time, &telemetry, &command));
-        measurement = match link.exchange(&command) {
+        control.push(ControlSample::new(
+            answer.reading.time,
+            &telemetry,
+            &command,
+        ));
+        answer = match link.exchange(&command) {
             Ok(m) => m,
             Err(e) => {
                 end = LoopEnd::Failed(e.to_string());
                 break;
             }
         };
-        if matches!(measurement.status, PlantStatus::LimitViolation(_)) {
+        let reading = &answer.reading;
+        if matches!(reading.status, ArmStatus::LimitViolation(_)) {
             limit_faults += 1;
         }
-        if let Some(s) =
-            CutSample::from_plant(&measurement, cut.xi_label, cut.z0, &cut.start, cut.gap)
-        {
-            samples.push(s);
+        if let Some(truth) = &answer.truth {
+            if let Some(s) =
+                CutSample::from_plant(reading, truth, cut.xi_label, cut.z0, &cut.start, cut.gap)
+            {
+                samples.push(s);
+            }
+            if truth.crack_depth >= cut.target_depth {
+                end = LoopEnd::Completed;
+                break;
+            }
         }
-        if measurement.crack_depth >= cut.target_depth {
-            end = LoopEnd::Completed;
+        if telemetry.phase == CutPhase::Done && reading.velocity == Vector3::zeros() {
+            end = LoopEnd::ControllerDone;
             break;
         }
     }
@@ -139,7 +155,7 @@ pub fn run_loop(
         plan_times: TickTimes::from_durations(&mut plan_durations),
         fallbacks: controller.telemetry().fallbacks,
         wall_s: loop_started.elapsed().as_secs_f64(),
-        simulated_s: measurement.time,
+        simulated_s: answer.reading.time,
     }
 }
 

@@ -44,11 +44,15 @@ pub fn controller_choice(s: &Scenario, text: Option<&str>) -> Result<ControllerC
     }
 }
 
-/// The link's timeouts for a scenario: lockstep waits up to 30 s for an
-/// answer (a plant may rebuild a section); realtime up to the braking time
+/// The link's timeouts for a scenario: the plant must serve the run within
+/// `[loop] connect_timeout`; lockstep waits up to 30 s for an answer (a
+/// plant may rebuild a section); realtime up to the braking time
 /// (missed-command limit × period) plus 1 s.
 pub fn link_timeouts(s: &Scenario) -> LinkTimeouts {
-    let mut t = LinkTimeouts::default();
+    let mut t = LinkTimeouts {
+        connect: std::time::Duration::from_secs_f64(s.control_loop.connect_timeout),
+        ..LinkTimeouts::default()
+    };
     if s.control_loop.clock == ClockMode::Realtime {
         t.response = std::time::Duration::from_secs_f64(
             1.0 + f64::from(s.control_loop.missed_command_limit) / s.control_loop.rate_hz,

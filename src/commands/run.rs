@@ -9,8 +9,8 @@ use shearcut_controllers::controller::{
     ConstantSlice, Controller, CutTask, ForceFeedback, ForceFeedbackGains, MotionLimits,
 };
 use shearcut_controllers::mpc::{DepthProfile, Mpc, SurrogateModel};
+use shearcut_plant::{Plant, PlantSettings};
 use shearcut_sim::geometry::TriangleMesh;
-use shearcut_sim::plant::{Plant, PlantSettings};
 use shearcut_sim::{InvalidSetting, Knife};
 
 use crate::closed_loop::{
@@ -94,7 +94,9 @@ fn invalid(scenario: &Scenario, setting: InvalidSetting) -> RunError {
 }
 
 /// The cut task of a scenario for its first z₀: target depth (motion.depth
-/// or 0.8 × the object's height), servo period, blade budget and limits.
+/// or 0.8 × the object's height), the knife's height when its edge meets
+/// the object's top (what a touch-off gives on a real cell), servo period,
+/// blade budget and limits.
 pub fn cut_task(s: &Scenario, knife: &Knife, mesh: &TriangleMesh) -> CutTask {
     let (lo, hi) = mesh.bounds();
     let z0 = s.motion.z0.first().copied().unwrap_or(0.0);
@@ -111,6 +113,7 @@ pub fn cut_task(s: &Scenario, knife: &Knife, mesh: &TriangleMesh) -> CutTask {
     let arm = &s.control_loop.arm_limits;
     CutTask {
         target_depth: s.motion.depth.unwrap_or(0.8 * (hi.y - lo.y)),
+        touch_height: Plant::start_position(knife, mesh, z0, 0.0).y,
         period: 1.0 / s.control_loop.rate_hz,
         blade_budget: budget,
         limits: MotionLimits::within_arm(

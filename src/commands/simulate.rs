@@ -13,7 +13,8 @@
 use std::path::Path;
 
 use nalgebra::{Vector2, Vector3};
-use shearcut_sim::plant::{KnifeCommand, Plant, PlantStatus, SegmentLoad, wrench_at};
+use shearcut_plant::{Plant, SegmentLoad, wrench_at};
+use shearcut_sim::arm::{ArmStatus, KnifeCommand};
 use shearcut_sim::section::{CrossSection, SectionGeometry, SectionStep};
 use shearcut_sim::{Cuboid, EdgeShape, InvalidSetting, Knife, ObjectShape};
 
@@ -245,13 +246,13 @@ fn simulate_plant(scenario: &Scenario, knife: &Knife) -> Result<SimulationOutput
         for tick in 1..=max_ticks {
             let t = tick as f64 * dt;
             let v = v_full * (t / RAMP_S).min(1.0);
-            let m = plant.step(&KnifeCommand { velocity: v }, dt).map_err(|e| {
+            let step = plant.step(&KnifeCommand { velocity: v }, dt).map_err(|e| {
                 invalid(
                     scenario,
                     InvalidSetting::new("section", "step", e.to_string()),
                 )
             })?;
-            if let PlantStatus::LimitViolation(why) = m.status {
+            if let ArmStatus::LimitViolation(why) = step.reading.status {
                 return Err(invalid(
                     scenario,
                     InvalidSetting::new(
@@ -261,10 +262,12 @@ fn simulate_plant(scenario: &Scenario, knife: &Knife) -> Result<SimulationOutput
                     ),
                 ));
             }
-            if let Some(sample) = CutSample::from_plant(&m, xi, z0, &start, gap) {
+            if let Some(sample) =
+                CutSample::from_plant(&step.reading, &step.truth, xi, z0, &start, gap)
+            {
                 samples.push(sample);
             }
-            if m.crack_depth >= depth {
+            if step.truth.crack_depth >= depth {
                 break;
             }
         }

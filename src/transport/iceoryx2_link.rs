@@ -5,13 +5,13 @@ use std::time::{Duration, Instant};
 
 use iceoryx2::port::{listener::Listener, notifier::Notifier};
 use iceoryx2::prelude::*;
-use shearcut_sim::plant::{KnifeCommand, Measurement};
+use shearcut_sim::arm::KnifeCommand;
 
 use super::board::{BoardReader, BoardWriter};
 use super::loop_services::{LoopServices, PeerState, Role, node_name};
 use super::wait_mode::WaitMode;
-use super::wire::{WireCommand, WireError, WireMeasurement};
-use crate::closed_loop::{LinkError, PlantLink, TickTimes};
+use super::wire::{WireCommand, WireError, WireMeasurement, WireTruth};
+use crate::closed_loop::{LinkAnswer, LinkError, PlantLink, TickTimes};
 
 /// How long the controller waits for the plant.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -26,12 +26,12 @@ pub struct LinkTimeouts {
 }
 
 impl Default for LinkTimeouts {
-    /// Connect 30 s, response 30 s (a lockstep plant may rebuild a section:
+    /// Connect 10 s, response 30 s (a lockstep plant may rebuild a section:
     /// up to 4.7 s measured on a loaded 2-core machine; a dead plant is
     /// still detected within a check), checks every 5 ms.
     fn default() -> Self {
         Self {
-            connect: Duration::from_secs(30),
+            connect: Duration::from_secs(10),
             response: Duration::from_secs(30),
             check_every: Duration::from_millis(5),
         }
@@ -52,6 +52,9 @@ pub struct Iceoryx2PlantLink {
     commands: BoardWriter<WireCommand>,
     /// The plant's measurement board, once the plant serves the run.
     measurements: Option<BoardReader<WireMeasurement>>,
+    /// The simulated plant's truth board, if it has one (an arm bridge
+    /// does not): recorded, never given to the controller.
+    truth: Option<BoardReader<WireTruth>>,
     notifier: Notifier<ipc::Service>,
     listener: Listener<ipc::Service>,
     period: f64,
@@ -101,6 +104,7 @@ impl Iceoryx2PlantLink {
         Ok(Self {
             commands,
             measurements: None,
+            truth: None,
             notifier,
             listener,
             period,
@@ -131,9 +135,13 @@ impl Iceoryx2PlantLink {
                 .open_peer_board()
                 .map_err(|e| LinkError::Lost(format!("the plant '{}'s board: {e}", self.plant)))?;
             if let Some(board) = board {
-                self.measurements = Some(BoardReader::new(board).map_err(|e| {
-                    LinkError::Lost(format!("the plant '{}'s board: {e}", self.plant))
-                })?);
+                let lost = |e| LinkError::Lost(format!("the plant '{}'s board: {e}", self.plant));
+                self.measurements = Some(BoardReader::new(board).map_err(lost)?);
+                // A simulated plant creates its truth board before its
+                // measurement board: it exists now, or never.
+                if let Some(truth) = self.services.open_truth_board().map_err(lost)? {
+                    self.truth = Some(BoardReader::new(truth).map_err(lost)?);
+                }
                 return Ok(());
             }
             if self.services.node.wait(Duration::from_millis(1)).is_err() {
@@ -141,8 +149,9 @@ impl Iceoryx2PlantLink {
             }
             if started.elapsed() > self.timeouts.connect {
                 return Err(LinkError::Lost(format!(
-                    "no plant '{}' served the run within {:?}",
-                    self.plant, self.timeouts.connect
+                    "no plant or arm bridge served run '{}' within {:.1} s ([loop] connect_timeout)",
+                    self.services.run_id,
+                    self.timeouts.connect.as_secs_f64()
                 )));
             }
         }
@@ -173,7 +182,7 @@ impl Iceoryx2PlantLink {
         let answer = self.round_trip(command)?;
         // The plant's final count, misses after the last command included.
         self.missed_commands = answer.missed_commands;
-        match answer.measurement() {
+        match answer.reading() {
             Err(WireError::Ended) => Ok(()),
             other => Err(LinkError::Lost(format!(
                 "the plant '{}' did not acknowledge the end of the run: {other:?}",
@@ -302,15 +311,22 @@ impl PlantLink for Iceoryx2PlantLink {
         self.period
     }
 
-    fn exchange(&mut self, command: &KnifeCommand) -> Result<Measurement, LinkError> {
+    fn exchange(&mut self, command: &KnifeCommand) -> Result<LinkAnswer, LinkError> {
         let wire = WireCommand::new(self.sequence, self.last_time, command);
         let answer = self.round_trip(wire)?;
         self.missed_commands = answer.missed_commands;
-        let m = answer.measurement().map_err(|e| match e {
+        let reading = answer.reading().map_err(|e| match e {
             WireError::ModelFailed => LinkError::Model(format!("in the plant '{}'", self.plant)),
             e => LinkError::Lost(format!("the plant '{}': {e}", self.plant)),
         })?;
-        self.last_time = m.time;
-        Ok(m)
+        self.last_time = reading.time;
+        // The plant writes the tick's truth before its measurement.
+        let truth = self
+            .truth
+            .as_ref()
+            .map(BoardReader::latest)
+            .filter(|t| t.sequence == answer.sequence)
+            .map(|t| t.truth());
+        Ok(LinkAnswer { reading, truth })
     }
 }

@@ -3,7 +3,10 @@
 //! that waits (`shearcut/<run-id>/command`, `…/measurement`,
 //! `…/command-ready`, `…/measurement-ready`). Each board is created by its
 //! writer (the controller creates the command board, the plant the
-//! measurement board) and opened by the other side once it exists. All live
+//! measurement board) and opened by the other side once it exists. A
+//! simulated plant also writes its ground truth on a third board
+//! (`…/truth`), which the controller process may record but never passes
+//! to a controller; an arm bridge does not create it. All live
 //! under one iceoryx2 prefix (default [`DEFAULT_PREFIX`], or the
 //! environment's [`PREFIX_ENV`]): the next node created under the prefix
 //! cleans what killed processes left behind, and the run id in the names
@@ -17,7 +20,7 @@ use iceoryx2::service::builder::blackboard::{BlackboardCreateError, BlackboardOp
 use iceoryx2::service::port_factory::event;
 
 use super::board::{Board, ENTRY_KEY};
-use super::wire::{WireCommand, WireMeasurement};
+use super::wire::{WireCommand, WireMeasurement, WireTruth};
 
 /// The iceoryx2 prefix of every shearcut run (files under `/dev/shm` and
 /// `/tmp/iceoryx2` start with it).
@@ -90,21 +93,26 @@ fn board_name(role: Role) -> &'static str {
     }
 }
 
-/// Creates `role`'s board `name` with its empty entry. A board left by a
-/// killed process of an earlier run under the same run id is being removed
-/// by the dead-node cleanup: retry for up to a second.
-fn create_board(
+/// The simulated plant's truth board.
+const TRUTH_BOARD: &str = "truth";
+
+/// Creates `role`'s board `name` holding `empty` (its `what`: `command`,
+/// `measurement` or `truth`). A board left by a killed process of an
+/// earlier run under the same run id is being removed by the dead-node
+/// cleanup: retry for up to a second.
+fn create_board<T: Copy + ZeroCopySend + std::fmt::Debug + 'static>(
     node: &Node<ipc::Service>,
     name: &ServiceName,
     role: Role,
+    what: &str,
+    empty: T,
 ) -> Result<Board, ServiceError> {
     let mut last = None;
     for _ in 0..100 {
-        let builder = node.service_builder(name).blackboard_creator::<u64>();
-        let builder = match role {
-            Role::Controller => builder.add::<WireCommand>(ENTRY_KEY, WireCommand::empty()),
-            Role::Plant => builder.add::<WireMeasurement>(ENTRY_KEY, WireMeasurement::empty()),
-        };
+        let builder = node
+            .service_builder(name)
+            .blackboard_creator::<u64>()
+            .add::<T>(ENTRY_KEY, empty);
         match builder.create() {
             Ok(board) => return Ok(board),
             Err(
@@ -117,12 +125,11 @@ fn create_board(
                     break;
                 }
             }
-            Err(e) => return Err(iceoryx(&format!("{} board", board_name(role)), e)),
+            Err(e) => return Err(iceoryx(&format!("{what} board"), e)),
         }
     }
     Err(ServiceError::Iceoryx(format!(
-        "{} board '{}': {last:?} (is another {} serving this run id?)",
-        board_name(role),
+        "{what} board '{}': {last:?} (is another {} serving this run id?)",
         name.as_str(),
         role.as_str()
     )))
@@ -160,6 +167,9 @@ pub struct LoopServices {
     /// The board this role writes, created by it: the command board
     /// (controller) or the measurement board (plant).
     pub own_board: Board,
+    /// The simulated plant's truth board, created by the plant (`None` for
+    /// the controller).
+    pub truth_board: Option<Board>,
     /// Notifications "a command is waiting" (controller → plant).
     pub command_ready: event::PortFactory<ipc::Service>,
     /// Notifications "a measurement is waiting" (plant → controller).
@@ -207,10 +217,33 @@ impl LoopServices {
             .event()
             .open_or_create()
             .map_err(|e| iceoryx("measurement-ready service", e))?;
-        let own_board = create_board(&node, &service_name(board_name(role))?, role)?;
+        let own_name = service_name(board_name(role))?;
+        let (own_board, truth_board) = match role {
+            Role::Controller => (
+                create_board(&node, &own_name, role, "command", WireCommand::empty())?,
+                None,
+            ),
+            Role::Plant => (
+                create_board(
+                    &node,
+                    &own_name,
+                    role,
+                    "measurement",
+                    WireMeasurement::empty(),
+                )?,
+                Some(create_board(
+                    &node,
+                    &service_name(TRUTH_BOARD)?,
+                    role,
+                    TRUTH_BOARD,
+                    WireTruth::empty(),
+                )?),
+            ),
+        };
         Ok(Self {
             node,
             own_board,
+            truth_board,
             command_ready,
             measurement_ready,
             run_id: run_id.to_string(),
@@ -232,8 +265,20 @@ impl LoopServices {
     /// # Errors
     /// The board exists but iceoryx2 refused to open it.
     pub fn open_peer_board(&self) -> Result<Option<Board>, ServiceError> {
-        let peer = self.role.peer();
-        let name = ServiceName::new(&format!("shearcut/{}/{}", self.run_id, board_name(peer)))
+        self.open_board(board_name(self.role.peer()))
+    }
+
+    /// Opens the simulated plant's truth board (`None` while it does not
+    /// exist; an arm bridge never creates it).
+    ///
+    /// # Errors
+    /// iceoryx2 failed for another reason.
+    pub fn open_truth_board(&self) -> Result<Option<Board>, ServiceError> {
+        self.open_board(TRUTH_BOARD)
+    }
+
+    fn open_board(&self, what: &str) -> Result<Option<Board>, ServiceError> {
+        let name = ServiceName::new(&format!("shearcut/{}/{what}", self.run_id))
             .map_err(|e| iceoryx("service name", e))?;
         match self
             .node
@@ -248,7 +293,7 @@ impl LoopServices {
                 | BlackboardOpenError::HangsInCreation
                 | BlackboardOpenError::ServiceInCorruptedState,
             ) => Ok(None),
-            Err(e) => Err(iceoryx(&format!("{} board", board_name(peer)), e)),
+            Err(e) => Err(iceoryx(&format!("{what} board"), e)),
         }
     }
 

@@ -8,12 +8,12 @@ use std::time::{Duration, Instant};
 
 use iceoryx2::prelude::*;
 use serde::Serialize;
-use shearcut_sim::plant::{KnifeCommand, Measurement, PlantStatus};
+use shearcut_sim::arm::{ArmReading, KnifeCommand};
 
 use super::board::{BoardReader, BoardWriter};
 use super::loop_services::{LoopServices, ServiceError};
 use super::wait_mode::WaitMode;
-use super::wire::{NO_SEQUENCE, WireCommand, WireFault, WireMeasurement, WireStatus};
+use super::wire::{NO_SEQUENCE, WireCommand, WireFault, WireMeasurement, WireStatus, WireTruth};
 use crate::closed_loop::PlantLink;
 use crate::scenario::ClockMode;
 
@@ -86,11 +86,13 @@ fn iceoryx(context: &str, e: impl std::fmt::Debug) -> ServiceError {
 }
 
 /// The plant's end of the boards: the controller's command board (opened
-/// once the controller created it) and its own measurement board.
+/// once the controller created it), its own measurement board and its
+/// truth board.
 struct PlantPorts<'a> {
     services: &'a LoopServices,
     commands: Option<BoardReader<WireCommand>>,
     measurements: BoardWriter<WireMeasurement>,
+    truth: Option<BoardWriter<WireTruth>>,
     notifier: iceoryx2::port::notifier::Notifier<ipc::Service>,
     wait: WaitMode,
     /// The sequence number of the last command answered.
@@ -110,6 +112,15 @@ impl PlantPorts<'_> {
             let c = board.latest();
             (c.sequence != NO_SEQUENCE && Some(c.sequence) != self.answered).then_some(c)
         }))
+    }
+
+    /// Writes the truth of the tick answering command `sequence`; before
+    /// its measurement, so that a controller process that reads the
+    /// measurement finds the truth beside it.
+    fn record(&mut self, sequence: u64, truth: &shearcut_plant::PlantTruth) {
+        if let Some(board) = &self.truth {
+            board.publish(WireTruth::new(sequence, truth));
+        }
     }
 
     /// Writes `w` (the answer to command `w.sequence`) and wakes the controller.
@@ -156,6 +167,10 @@ pub fn serve_plant(
         services,
         commands: None,
         measurements: BoardWriter::new(&services.own_board)?,
+        truth: match &services.truth_board {
+            Some(board) => Some(BoardWriter::new(board)?),
+            None => None,
+        },
         notifier: services
             .measurement_ready
             .notifier_builder()
@@ -180,7 +195,7 @@ pub fn serve_plant(
     };
     let mut consecutive = 0u32;
     let mut last_command = KnifeCommand::default();
-    let mut last: Option<Measurement> = None;
+    let mut last: Option<ArmReading> = None;
     let started = Instant::now();
     // Start of the current window: the last command (lockstep) or the next
     // tick (realtime); None until the first command.
@@ -211,13 +226,16 @@ pub fn serve_plant(
             }
             last_command = command.knife_command();
             match plant.exchange(&last_command) {
-                Ok(m) => {
+                Ok(answer) => {
+                    if let Some(truth) = &answer.truth {
+                        ports.record(command.sequence, truth);
+                    }
                     ports.answer(WireMeasurement::new(
                         command.sequence,
-                        &m,
+                        &answer.reading,
                         report.missed_commands,
                     ));
-                    last = Some(m);
+                    last = Some(answer.reading);
                 }
                 Err(e) => {
                     let m = last.unwrap_or_else(rest_measurement);
@@ -301,7 +319,7 @@ pub fn serve_plant(
         }
         if realtime {
             match plant.exchange(&last_command) {
-                Ok(m) => last = Some(m),
+                Ok(answer) => last = Some(answer.reading),
                 Err(e) => {
                     report.end = PlantEnd::ModelFailed(e.to_string());
                     return Ok(report);
@@ -357,29 +375,14 @@ fn listen(
 }
 
 /// Commands zero velocity; a refused (too abrupt) stop holds the knife.
-fn brake(plant: &mut dyn PlantLink, report: &mut PlantReport, last: &mut Option<Measurement>) {
-    if let Ok(m) = plant.exchange(&KnifeCommand::default()) {
-        *last = Some(m);
+fn brake(plant: &mut dyn PlantLink, report: &mut PlantReport, last: &mut Option<ArmReading>) {
+    if let Ok(answer) = plant.exchange(&KnifeCommand::default()) {
+        *last = Some(answer.reading);
         report.steps += 1;
     }
 }
 
-/// The measurement of a plant that has not stepped yet.
-fn rest_measurement() -> Measurement {
-    Measurement {
-        time: 0.0,
-        position: nalgebra::Vector3::zeros(),
-        velocity: nalgebra::Vector3::zeros(),
-        wrench: [0.0; 6],
-        true_wrench: shearcut_sim::plant::Wrench {
-            force: nalgebra::Vector3::zeros(),
-            torque: nalgebra::Vector3::zeros(),
-        },
-        crack_depth: 0.0,
-        contact_length: 0.0,
-        fractured_sections: 0,
-        work: 0.0,
-        deformation: 0.0,
-        status: PlantStatus::Moving,
-    }
+/// The reading of a plant that has not stepped yet.
+fn rest_measurement() -> ArmReading {
+    ArmReading::at_rest(0.0, nalgebra::Vector3::zeros())
 }

@@ -8,7 +8,8 @@
 
 use iceoryx2::prelude::ZeroCopySend;
 use nalgebra::Vector3;
-use shearcut_sim::plant::{KnifeCommand, LimitViolation, Measurement, PlantStatus, Wrench};
+use shearcut_plant::{PlantTruth, Wrench};
+use shearcut_sim::arm::{ArmReading, ArmStatus, KnifeCommand, LimitViolation};
 
 /// [`WireCommand::flags`] bit: the run is over; the plant does not step,
 /// answers with its last measurement and exits.
@@ -112,14 +113,15 @@ pub enum WireFault {
     MissedCommands = 5,
 }
 
-/// One servo measurement, plant → controller (224 bytes).
+/// One servo measurement, plant → controller (136 bytes): only what a
+/// real arm and its F/T sensor report.
 #[derive(Debug, Clone, Copy, PartialEq, ZeroCopySend)]
-#[type_name("shearcut::WireMeasurement")]
+#[type_name("shearcut::WireMeasurement.v2")]
 #[repr(C)]
 pub struct WireMeasurement {
     /// Sequence number of the command this measurement answers.
     pub sequence: u64,
-    /// Simulated time after the tick, s.
+    /// The arm's time after the tick, s.
     pub time: f64,
     /// Knife frame origin (heel end of the edge) [x, y, z], m.
     pub position: [f64; 3],
@@ -128,21 +130,8 @@ pub struct WireMeasurement {
     /// F/T sensor reading [fx, fy, fz, tx, ty, tz], N and N·m (object on
     /// knife, with the sensor's noise and bias).
     pub wrench: [f64; 6],
-    /// The noise-free wrench at the sensor, same layout and units.
-    pub true_wrench: [f64; 6],
-    /// Depth of the crack front below the object's top, m (the plant's
-    /// `Measurement::crack_depth`).
-    pub crack_depth: f64,
-    /// Length of edge in contact with material, m.
-    pub contact_length: f64,
-    /// Cumulative knife work on the object, J.
-    pub work: f64,
-    /// Largest surface deformation next to the blade, m.
-    pub deformation: f64,
     /// The fault's value (see [`WireFault`]; 0 without a fault).
     pub fault_value: f64,
-    /// Number of sections that have fractured.
-    pub fractured_sections: u64,
     /// A [`WireStatus`] code.
     pub status: u32,
     /// A [`WireFault`] code.
@@ -152,6 +141,65 @@ pub struct WireMeasurement {
     pub missed_commands: u32,
     /// Explicit padding to the 8-byte alignment; always 0.
     pub reserved: u32,
+}
+
+/// The simulated plant's ground truth after a tick, on its own service
+/// (96 bytes): for recording only. A controller never acts on it, and an
+/// arm bridge does not publish it.
+#[derive(Debug, Clone, Copy, PartialEq, ZeroCopySend)]
+#[type_name("shearcut::WireTruth")]
+#[repr(C)]
+pub struct WireTruth {
+    /// Sequence number of the command whose tick this is.
+    pub sequence: u64,
+    /// The noise-free wrench at the sensor [fx, fy, fz, tx, ty, tz], N and N·m.
+    pub wrench: [f64; 6],
+    /// Depth of the crack front below the object's top, m.
+    pub crack_depth: f64,
+    /// Length of edge in contact with material, m.
+    pub contact_length: f64,
+    /// Cumulative knife work on the object, J.
+    pub work: f64,
+    /// Largest surface deformation next to the blade, m.
+    pub deformation: f64,
+    /// Number of sections that have fractured.
+    pub fractured_sections: u64,
+}
+
+impl WireTruth {
+    /// The truth of the tick answering command `sequence`.
+    pub fn new(sequence: u64, t: &PlantTruth) -> Self {
+        Self {
+            sequence,
+            wrench: t.wrench.to_array(),
+            crack_depth: t.crack_depth,
+            contact_length: t.contact_length,
+            work: t.work,
+            deformation: t.deformation,
+            fractured_sections: t.fractured_sections as u64,
+        }
+    }
+
+    /// The board's entry before the plant's first tick.
+    pub fn empty() -> Self {
+        Self::new(NO_SEQUENCE, &PlantTruth::default())
+    }
+
+    /// The plant's truth (lossless).
+    pub fn truth(&self) -> PlantTruth {
+        let w = &self.wrench;
+        PlantTruth {
+            wrench: Wrench {
+                force: Vector3::new(w[0], w[1], w[2]),
+                torque: Vector3::new(w[3], w[4], w[5]),
+            },
+            crack_depth: self.crack_depth,
+            contact_length: self.contact_length,
+            fractured_sections: usize::try_from(self.fractured_sections).unwrap_or(usize::MAX),
+            work: self.work,
+            deformation: self.deformation,
+        }
+    }
 }
 
 /// A measurement the controller cannot use: the plant stopped, or the
@@ -179,10 +227,10 @@ pub enum WireError {
 
 impl WireMeasurement {
     /// `m` as the answer to command `sequence`, with `missed_commands` so far.
-    pub fn new(sequence: u64, m: &Measurement, missed_commands: u32) -> Self {
+    pub fn new(sequence: u64, m: &ArmReading, missed_commands: u32) -> Self {
         let (status, fault, fault_value) = match m.status {
-            PlantStatus::Moving => (WireStatus::Moving, WireFault::None, 0.0),
-            PlantStatus::LimitViolation(v) => {
+            ArmStatus::Moving => (WireStatus::Moving, WireFault::None, 0.0),
+            ArmStatus::LimitViolation(v) => {
                 let (f, x) = match v {
                     LimitViolation::Velocity(x) => (WireFault::Velocity, x),
                     LimitViolation::Acceleration(x) => (WireFault::Acceleration, x),
@@ -198,13 +246,7 @@ impl WireMeasurement {
             position: [m.position.x, m.position.y, m.position.z],
             velocity: [m.velocity.x, m.velocity.y, m.velocity.z],
             wrench: m.wrench,
-            true_wrench: m.true_wrench.to_array(),
-            crack_depth: m.crack_depth,
-            contact_length: m.contact_length,
-            work: m.work,
-            deformation: m.deformation,
             fault_value,
-            fractured_sections: m.fractured_sections as u64,
             status: status as u32,
             fault: fault as u32,
             missed_commands,
@@ -221,13 +263,7 @@ impl WireMeasurement {
             position: [0.0; 3],
             velocity: [0.0; 3],
             wrench: [0.0; 6],
-            true_wrench: [0.0; 6],
-            crack_depth: 0.0,
-            contact_length: 0.0,
-            work: 0.0,
-            deformation: 0.0,
             fault_value: 0.0,
-            fractured_sections: 0,
             status: WireStatus::Moving as u32,
             fault: WireFault::None as u32,
             missed_commands: 0,
@@ -249,14 +285,14 @@ impl WireMeasurement {
     ///
     /// # Errors
     /// The plant stopped (braked, failed or ended), or a code is unknown.
-    pub fn measurement(&self) -> Result<Measurement, WireError> {
+    pub fn reading(&self) -> Result<ArmReading, WireError> {
         let unknown = WireError::Unknown {
             status: self.status,
             fault: self.fault,
         };
         let status = match self.status {
-            0 => PlantStatus::Moving,
-            1 => PlantStatus::LimitViolation(match self.fault {
+            0 => ArmStatus::Moving,
+            1 => ArmStatus::LimitViolation(match self.fault {
                 1 => LimitViolation::Velocity(self.fault_value),
                 2 => LimitViolation::Acceleration(self.fault_value),
                 3 => LimitViolation::Jerk(self.fault_value),
@@ -268,21 +304,11 @@ impl WireMeasurement {
             4 => return Err(WireError::Ended),
             _ => return Err(unknown),
         };
-        let w = &self.true_wrench;
-        Ok(Measurement {
+        Ok(ArmReading {
             time: self.time,
             position: Vector3::from(self.position),
             velocity: Vector3::from(self.velocity),
             wrench: self.wrench,
-            true_wrench: Wrench {
-                force: Vector3::new(w[0], w[1], w[2]),
-                torque: Vector3::new(w[3], w[4], w[5]),
-            },
-            crack_depth: self.crack_depth,
-            contact_length: self.contact_length,
-            fractured_sections: self.fractured_sections as usize,
-            work: self.work,
-            deformation: self.deformation,
             status,
         })
     }

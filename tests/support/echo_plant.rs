@@ -3,10 +3,11 @@
 //! `#[path]`, so each binary compiles its own copy).
 
 use nalgebra::Vector3;
-use shearcut::closed_loop::{LinkError, PlantLink};
-use shearcut_sim::plant::{KnifeCommand, Measurement, PlantStatus, Wrench};
+use shearcut::closed_loop::{LinkAnswer, LinkError, PlantLink};
+use shearcut_plant::PlantTruth;
+use shearcut_sim::arm::{ArmReading, ArmStatus, KnifeCommand};
 
-/// Steps 1 ms per command; the measurement echoes the commanded velocity.
+/// Steps 1 ms per command; the reading echoes the commanded velocity.
 pub struct EchoPlant {
     time: f64,
 }
@@ -23,23 +24,17 @@ impl PlantLink for EchoPlant {
         1e-3
     }
 
-    fn exchange(&mut self, command: &KnifeCommand) -> Result<Measurement, LinkError> {
+    fn exchange(&mut self, command: &KnifeCommand) -> Result<LinkAnswer, LinkError> {
         self.time += 1e-3;
-        Ok(Measurement {
-            time: self.time,
-            position: Vector3::zeros(),
-            velocity: command.velocity,
-            wrench: [0.0; 6],
-            true_wrench: Wrench {
-                force: Vector3::zeros(),
-                torque: Vector3::zeros(),
+        Ok(LinkAnswer {
+            reading: ArmReading {
+                time: self.time,
+                position: Vector3::zeros(),
+                velocity: command.velocity,
+                wrench: [0.0; 6],
+                status: ArmStatus::Moving,
             },
-            crack_depth: 0.0,
-            contact_length: 0.0,
-            fractured_sections: 0,
-            work: 0.0,
-            deformation: 0.0,
-            status: PlantStatus::Moving,
+            truth: Some(PlantTruth::default()),
         })
     }
 }

@@ -1,12 +1,12 @@
 //! The blade travel a cut may use along the edge.
 
-use shearcut_sim::plant::Measurement;
+use shearcut_sim::arm::ArmReading;
 
 /// Tracks the knife's tangential travel against the blade length available,
 /// so that the contact arc stays on the edge.
 ///
 /// The budget is on the net displacement along the edge from where the
-/// knife was at the first measurement (the arc's position on the blade), not
+/// knife was at the first reading (the arc's position on the blade), not
 /// on the path length: a stroke back frees blade again.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct BladeBudget {
@@ -25,9 +25,9 @@ impl BladeBudget {
         }
     }
 
-    /// Updates the travel used from a measurement.
-    pub fn observe(&mut self, measurement: &Measurement) {
-        let z = measurement.position.z;
+    /// Updates the travel used from the arm's reading of the knife's pose.
+    pub fn observe(&mut self, reading: &ArmReading) {
+        let z = reading.position.z;
         let start = *self.start.get_or_insert(z);
         self.used = z - start;
     }

@@ -1,7 +1,7 @@
 //! Baseline: slicing at a constant slice-push ratio and speed.
 
 use shearcut_sim::InvalidSetting;
-use shearcut_sim::plant::{KnifeCommand, Measurement, PlantStatus};
+use shearcut_sim::arm::{ArmReading, ArmStatus, KnifeCommand};
 
 use super::blade_budget::BladeBudget;
 use super::cut_task::CutTask;
@@ -80,13 +80,13 @@ impl Controller for ConstantSlice {
         &self.name
     }
 
-    fn tick(&mut self, m: &Measurement) -> KnifeCommand {
-        if matches!(m.status, PlantStatus::LimitViolation(_)) {
+    fn tick(&mut self, m: &ArmReading) -> KnifeCommand {
+        if matches!(m.status, ArmStatus::LimitViolation(_)) {
             self.shaper.resync(&m.velocity);
         }
         self.budget.observe(m);
         let l = &self.task.limits;
-        let done = m.crack_depth >= self.task.target_depth;
+        let done = self.task.reached(m.position.y);
         let (v_n, v_t) = if done {
             (0.0, 0.0)
         } else {

@@ -66,12 +66,26 @@ impl MotionLimits {
     }
 }
 
-/// The cut a controller must make.
+/// The cut a controller must make, and what a lab knows before it starts.
+///
+/// A controller is told nothing else about the world than this and what
+/// the arm reports each tick ([`ArmReading`](shearcut_sim::arm::ArmReading)).
+/// On a real cell the touch height comes from a touch-off (jog the knife
+/// down until the F/T sensor reads a few newtons, then back off) or from a
+/// measured object top (vision, a height gauge) plus the knife's edge
+/// geometry; the object's outline in the knife's plane, which the MPC's
+/// [`DepthProfile`](crate::mpc::DepthProfile) holds, from vision or a
+/// measured template.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct CutTask {
-    /// Crack depth at which the cut is complete, m (the plant's mean crack
-    /// depth over the sections in the object).
+    /// Depth of the cut below the object's top at which it is complete, m.
+    /// A controller takes it as the edge's depth below the touch point (the
+    /// knife's normal travel since the edge met the object's top).
     pub target_depth: f64,
+    /// Height of the knife frame's origin (world y, m; the board is y = 0)
+    /// at which the edge meets the object's top: the edge's depth is
+    /// `touch_height − y`.
+    pub touch_height: f64,
     /// Servo period, s (1 ms for a 1 kHz arm).
     pub period: f64,
     /// Tangential blade travel available, m: how far the knife may move
@@ -82,8 +96,27 @@ pub struct CutTask {
 }
 
 impl CutTask {
+    /// The edge's depth below the touch point with the knife frame's origin
+    /// at height `y` (m): `touch_height − y`, 0 above it.
+    pub fn edge_depth(&self, y: f64) -> f64 {
+        (self.touch_height - y).max(0.0)
+    }
+
+    /// Whether the edge has reached the target depth with the knife frame's
+    /// origin at height `y` (m).
+    pub fn reached(&self, y: f64) -> bool {
+        self.edge_depth(y) >= self.target_depth
+    }
+
     /// Checks the task, naming the offending key.
     pub fn validate(&self) -> Result<(), InvalidSetting> {
+        if !self.touch_height.is_finite() {
+            return Err(InvalidSetting::new(
+                "touch_height",
+                self.touch_height,
+                "a finite height in m",
+            ));
+        }
         if !(self.target_depth.is_finite() && self.target_depth > 0.0) {
             return Err(InvalidSetting::new(
                 "target_depth",

@@ -1,7 +1,8 @@
 //! Controllers of the knife: the [`Controller`] trait and the baselines.
 //!
 //! A controller sees what an arm and its force/torque sensor report each
-//! servo tick (a [`Measurement`]) and answers with the knife twist for the
+//! servo tick (an [`ArmReading`]) and what a lab knows before the cut (the
+//! [`CutTask`]), and answers with the knife twist for the
 //! next tick (a [`KnifeCommand`]), as a controller embedded in an arm's
 //! 1 kHz loop does. Every controller here plans a knife velocity
 //! (normal speed v_n down into the object and tangential speed v_t along
@@ -34,7 +35,7 @@ pub use force_feedback::{ForceFeedback, ForceFeedbackGains, INTEGRAL_BAND};
 pub use sawing_stroke::{SawingStroke, StrokePhase};
 pub use velocity_shaper::VelocityShaper;
 
-use shearcut_sim::plant::{KnifeCommand, Measurement};
+use shearcut_sim::arm::{ArmReading, KnifeCommand};
 
 /// Where a controller is in the cut.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Serialize)]
@@ -120,9 +121,11 @@ pub trait Controller {
     /// A short name for tables and logs (e.g. `slice:0.75`).
     fn name(&self) -> &str;
 
-    /// One servo tick: the latest measurement in, the command for the next
-    /// tick out.
-    fn tick(&mut self, measurement: &Measurement) -> KnifeCommand;
+    /// One servo tick: the arm's latest reading in, the command for the
+    /// next tick out. The reading is all a controller sees of the world:
+    /// the simulated plant's ground truth lives in `shearcut-plant`, which
+    /// this crate does not depend on.
+    fn tick(&mut self, reading: &ArmReading) -> KnifeCommand;
 
     /// What the last tick planned.
     fn telemetry(&self) -> ControllerTelemetry;

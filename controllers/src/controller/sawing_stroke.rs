@@ -19,7 +19,7 @@
 //! when the tangential stopping distance (plus one tick) reaches what is
 //! left of the stroke.
 
-use shearcut_sim::plant::KnifeCommand;
+use shearcut_sim::arm::KnifeCommand;
 
 use super::blade_budget::{BladeBudget, stopping_distance};
 use super::cut_task::CutTask;

@@ -1,7 +1,7 @@
 //! Jerk-limited knife velocity commands from planned velocities.
 
 use nalgebra::Vector3;
-use shearcut_sim::plant::KnifeCommand;
+use shearcut_sim::arm::KnifeCommand;
 
 use super::cut_task::MotionLimits;
 use crate::trajectory::{

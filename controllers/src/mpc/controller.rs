@@ -2,11 +2,12 @@
 //! cut at its own rate, and commands jerk-limited velocities every tick.
 
 use shearcut_sim::InvalidSetting;
-use shearcut_sim::plant::{KnifeCommand, Measurement, PlantStatus};
+use shearcut_sim::arm::{ArmReading, ArmStatus, KnifeCommand};
 
 use super::depth_profile::DepthProfile;
 use super::depth_qp::{DepthQp, QpLimits, QpStatus, StageData};
-use super::edge_depth::EdgeDepth;
+use super::force_tare::ForceTare;
+use super::fracture_onset::FractureOnset;
 use super::scale_estimator::ScaleEstimator;
 use super::settings::MpcSettings;
 use super::slice_model::{SliceModel, StageState};
@@ -114,8 +115,10 @@ pub struct Mpc<M: SliceModel> {
     stats: MpcStats,
     replanned: bool,
     estimator: Option<ScaleEstimator>,
-    /// The edge's depth: the model's state (not the crack's depth).
-    edge: EdgeDepth,
+    /// The sensor's bias, from the free-air readings.
+    tare: ForceTare,
+    /// The first fracture, from the normal force.
+    onset: FractureOnset,
     /// The edge's depth after the last measurement, m (below the object's
     /// top; the model's state is the sections' mean depth there,
     /// [`DepthProfile::section_depth`]).
@@ -195,7 +198,8 @@ impl<M: SliceModel> Mpc<M> {
                     ESTIMATOR_RELATIVE_ERROR,
                 )
             }),
-            edge: EdgeDepth::default(),
+            tare: ForceTare::default(),
+            onset: FractureOnset::default(),
             depth: 0.0,
             telemetry: ControllerTelemetry::default(),
         })
@@ -244,17 +248,15 @@ impl<M: SliceModel> Mpc<M> {
     /// estimator, with the model of them at the executed ξ, the current
     /// state and the estimator's factors: during the indentation (which
     /// identifies the stiffness) and after the first fracture.
-    fn estimate(&mut self, m: &Measurement) {
+    fn estimate(&mut self, m: &ArmReading, l: f64, fractured: bool) {
         let Some(estimator) = self.estimator.as_mut() else {
             return;
         };
         let v_n = -m.velocity.y;
-        let l = m.contact_length;
         if !(v_n > 0.0 && l > 0.0) {
             return;
         }
         let xi = m.velocity.z.abs() / v_n;
-        let fractured = m.fractured_sections > 0;
         let depth = self.profile.section_depth(self.depth);
         let since = self.depth_at_fracture.map_or(0.0, |d| (depth - d).max(0.0));
         // Right after the first fracture the sections fracture one by one
@@ -274,7 +276,8 @@ impl<M: SliceModel> Mpc<M> {
             return;
         };
         // Measured resistance: up, and against the tangential motion.
-        let force = [m.wrench[1], -m.wrench[2] * m.velocity.z.signum()];
+        let w = self.tare.tared(&m.wrench);
+        let force = [w[1], -w[2] * m.velocity.z.signum()];
         if fractured {
             let per_length = [
                 Some(force[0] / l),
@@ -308,12 +311,12 @@ impl<M: SliceModel> Mpc<M> {
         mean(&self.plan_xi)
     }
 
-    fn replan(&mut self, m: &Measurement) {
-        let remaining = self.task.target_depth - m.crack_depth.max(0.0);
-        self.replan_at(self.depth, remaining, m.fractured_sections > 0);
+    fn replan(&mut self, fractured: bool) {
+        let remaining = self.task.target_depth - self.depth;
+        self.replan_at(self.depth, remaining, fractured);
     }
 
-    /// Plans from the edge's depth `d0` (m, [`EdgeDepth`]) for the cut to
+    /// Plans from the edge's depth `d0` (m, [`CutTask::edge_depth`]) for the cut to
     /// deepen by `remaining` (m), `fractured` or not.
     ///
     /// The plant's depth is the crack front's below the object's top, which
@@ -519,13 +522,20 @@ impl<M: SliceModel> Controller for Mpc<M> {
         "mpc"
     }
 
-    fn tick(&mut self, m: &Measurement) -> KnifeCommand {
-        if matches!(m.status, PlantStatus::LimitViolation(_)) {
+    fn tick(&mut self, m: &ArmReading) -> KnifeCommand {
+        if matches!(m.status, ArmStatus::LimitViolation(_)) {
             self.shaper.resync(&m.velocity);
         }
         self.budget.observe(m);
-        self.depth = self.edge.observe(m.position.y, m.contact_length);
-        if m.fractured_sections > 0 && self.depth_at_fracture.is_none() {
+        self.depth = self.task.edge_depth(m.position.y);
+        let in_air = m.position.y > self.task.touch_height;
+        self.tare.observe(&m.wrench, in_air);
+        let contact = self.profile.contact_length(self.depth);
+        if !in_air {
+            self.onset.observe(self.tare.tared(&m.wrench)[1]);
+        }
+        let fractured = self.onset.fractured();
+        if fractured && self.depth_at_fracture.is_none() {
             self.depth_at_fracture = Some(self.profile.section_depth(self.depth));
             // E is identified by the indentation before the first fracture;
             // after it, toughness and stiffness are nearly collinear.
@@ -533,11 +543,11 @@ impl<M: SliceModel> Controller for Mpc<M> {
                 estimator.freeze_stiffness();
             }
         }
-        self.estimate(m);
-        let done = m.crack_depth >= self.task.target_depth;
+        self.estimate(m, contact, fractured);
+        let done = self.task.reached(m.position.y);
         self.replanned = false;
         if !done && self.ticks.is_multiple_of(self.ticks_per_plan) {
-            self.replan(m);
+            self.replan(fractured);
             self.replanned = true;
         }
         self.ticks += 1;

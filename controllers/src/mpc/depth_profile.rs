@@ -2,8 +2,8 @@
 
 use shearcut_sim::InvalidSetting;
 use shearcut_sim::geometry::TriangleMesh;
-use shearcut_sim::plant::knife_plane_silhouette;
-use shearcut_sim::plant::section_shape::crest_section;
+use shearcut_sim::knife_plane::knife_plane_silhouette;
+use shearcut_sim::knife_plane::section_shape::crest_section;
 use shearcut_sim::section::{SectionError, SectionSettings};
 use shearcut_sim::surrogate::{Surrogate, equivalent_half_width};
 
@@ -12,7 +12,7 @@ const OBJECT_SAMPLES: usize = 41;
 
 /// The object as the MPC sees it along the cut: at each depth of the edge
 /// below the object's top (the knife's travel since it touched,
-/// [`EdgeDepth`](super::EdgeDepth)), the length of edge in contact, and the
+/// [`CutTask::edge_depth`](crate::controller::CutTask::edge_depth)), the length of edge in contact, and the
 /// section's height and half width. Piecewise linear between samples;
 /// constant beyond the ends.
 ///

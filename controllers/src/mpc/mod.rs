@@ -4,7 +4,8 @@
 //!   (work per unit depth with its ξ-derivatives, force, deflection);
 //! - [`DepthProfile`]: edge in contact and section size along the cut;
 //! - [`DepthQp`]: the convex subproblem over depth stages, persistent;
-//! - [`EdgeDepth`]: the depth the model is indexed by, the edge's travel;
+//! - [`ForceTare`], [`FractureOnset`]: the sensor's bias and the first
+//!   fracture, inferred from the arm's reading;
 //! - [`ScaleEstimator`]: online R_c, E, μ scale factors from the forces,
 //!   with [`IndentationStiffness`] for E before the first fracture;
 //! - [`SurrogateModel`]: the fitted surrogate as a [`SliceModel`];
@@ -13,7 +14,8 @@
 mod controller;
 mod depth_profile;
 mod depth_qp;
-mod edge_depth;
+mod force_tare;
+mod fracture_onset;
 mod indentation_stiffness;
 mod scale_estimator;
 mod settings;
@@ -23,7 +25,8 @@ mod surrogate_model;
 pub use controller::{Mpc, MpcStats};
 pub use depth_profile::DepthProfile;
 pub use depth_qp::{DepthQp, QpLimits, QpStatus, StageData};
-pub use edge_depth::EdgeDepth;
+pub use force_tare::ForceTare;
+pub use fracture_onset::FractureOnset;
 pub use indentation_stiffness::IndentationStiffness;
 pub use scale_estimator::ScaleEstimator;
 pub use settings::MpcSettings;

@@ -7,9 +7,7 @@
 
 use nalgebra::Vector3;
 use shearcut_controllers::controller::{CutTask, MotionLimits};
-use shearcut_sim::plant::{
-    ArmLimitMonitor, ArmLimits, KnifeCommand, Measurement, PlantStatus, Wrench,
-};
+use shearcut_sim::arm::{ArmLimitMonitor, ArmLimits, ArmReading, ArmStatus, KnifeCommand};
 
 /// Servo period, s.
 pub const PERIOD: f64 = 1e-3;
@@ -19,6 +17,7 @@ pub fn task(target_depth: f64, blade_budget: f64) -> CutTask {
     let arm = ArmLimits::default();
     CutTask {
         target_depth,
+        touch_height: 0.0,
         period: PERIOD,
         blade_budget,
         limits: MotionLimits::within_arm(0.05, 0.1, arm.acceleration, arm.jerk, 0.9),
@@ -39,6 +38,10 @@ pub struct SyntheticArm {
     pub time: f64,
     /// Commands refused.
     pub refused: usize,
+    /// Depth at which the material first fractures, m (`None`: never):
+    /// past it the force drops to half its peak and stays there, as a
+    /// crack's steady cutting force below the indentation's peak.
+    pub fracture_depth: Option<f64>,
 }
 
 impl SyntheticArm {
@@ -51,44 +54,44 @@ impl SyntheticArm {
             stiffness,
             time: 0.0,
             refused: 0,
+            fracture_depth: None,
         }
     }
 
-    /// The measurement now.
-    pub fn measure(&self, status: PlantStatus) -> Measurement {
-        let depth = (-self.position.y).max(0.0);
-        let force = self.stiffness * depth;
-        let true_wrench = Wrench {
-            force: Vector3::new(0.0, force, 0.0),
-            torque: Vector3::zeros(),
+    /// The knife's depth below the object's top (y = 0), m: the crack is
+    /// as deep as the knife.
+    pub fn depth(&self) -> f64 {
+        (-self.position.y).max(0.0)
+    }
+
+    /// The arm's reading now.
+    pub fn measure(&self, status: ArmStatus) -> ArmReading {
+        let depth = self.depth();
+        let force = match self.fracture_depth {
+            Some(d) if depth >= d => 0.5 * self.stiffness * d,
+            _ => self.stiffness * depth,
         };
-        Measurement {
+        ArmReading {
             time: self.time,
             position: self.position,
             velocity: self.velocity,
-            wrench: true_wrench.to_array(),
-            true_wrench,
-            crack_depth: depth,
-            contact_length: if depth > 0.0 { 0.05 } else { 0.0 },
-            fractured_sections: 0,
-            work: 0.0,
-            deformation: 0.0,
+            wrench: [0.0, force, 0.0, 0.0, 0.0, 0.0],
             status,
         }
     }
 
     /// Executes one command (or refuses it) and measures.
-    pub fn step(&mut self, command: &KnifeCommand) -> Measurement {
+    pub fn step(&mut self, command: &KnifeCommand) -> ArmReading {
         let status = match self.monitor.check(command.velocity, PERIOD) {
             Ok(()) => {
                 self.velocity = command.velocity;
-                PlantStatus::Moving
+                ArmStatus::Moving
             }
             Err(why) => {
                 self.refused += 1;
                 self.monitor.reset();
                 self.velocity = Vector3::zeros();
-                PlantStatus::LimitViolation(why)
+                ArmStatus::LimitViolation(why)
             }
         };
         self.position += self.velocity * PERIOD;

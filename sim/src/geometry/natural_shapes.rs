@@ -163,7 +163,7 @@ mod tests {
         assert!((hi.x - lo.x - l).abs() < 1e-12);
         // The knife plane x = 0 cuts a near-circular slice: as wide as tall
         // (plus the flat), at most the diameter.
-        let slice = crate::plant::knife_plane_silhouette(&m).unwrap();
+        let slice = crate::knife_plane::knife_plane_silhouette(&m).unwrap();
         let (slo, shi) = slice.bounds();
         let (wide, tall) = (shi.x - slo.x, shi.y - slo.y);
         assert!(

@@ -8,8 +8,8 @@ use std::alloc::{GlobalAlloc, Layout, System};
 use std::cell::Cell;
 
 use nalgebra::{Vector2, Vector3};
+use shearcut_plant::{ArmLimits, KnifeCommand, Plant, PlantSettings};
 use shearcut_sim::geometry::TriangleMesh;
-use shearcut_sim::plant::{ArmLimits, KnifeCommand, Plant, PlantSettings};
 use shearcut_sim::{Knife, KnifePreset, MaterialPreset, SectionSettings};
 
 struct Counting;
@@ -91,7 +91,7 @@ fn plant_step_allocates_nothing() {
     let before = allocations();
     let mut fractured = 0;
     for _ in 0..1500 {
-        fractured = plant.step(&cmd, 1e-3).unwrap().fractured_sections;
+        fractured = plant.step(&cmd, 1e-3).unwrap().truth.fractured_sections;
     }
     let after = allocations();
     assert!(fractured > 0, "the run reached cutting");

@@ -5,21 +5,22 @@ use std::sync::Arc;
 use nalgebra::{Vector2, Vector3};
 use serde::{Deserialize, Serialize};
 
-use crate::geometry::{Polygon, SectionPlane, TriangleMesh};
-use crate::invalid_setting::InvalidSetting;
-use crate::knife::Knife;
-use crate::material::Material;
-use crate::section::{CrossSection, SectionError, SectionGeometry, SectionSettings};
+use shearcut_sim::geometry::{Polygon, SectionPlane, TriangleMesh};
+use shearcut_sim::invalid_setting::InvalidSetting;
+use shearcut_sim::knife::Knife;
+use shearcut_sim::material::Material;
+use shearcut_sim::section::{CrossSection, SectionError, SectionGeometry, SectionSettings};
 
-use super::contact_arc::{
-    EdgeSegment, contact_arc, knife_plane_silhouette, ray_hit, segment_grid, span_arc,
-};
 use super::crack_front::CrackFront;
 use super::ft_sensor::{FtSensor, FtSensorSettings};
 use super::successor::{Preparation, SectionFactory, SuccessorJob, SuccessorWorker};
-use super::wrench::{SegmentLoad, Wrench, wrench_at};
-pub use crate::arm::ArmStatus as PlantStatus;
-use crate::arm::{ArmLimitMonitor, ArmLimits, ArmReading, KnifeCommand};
+use super::wrench::{SegmentLoad, wrench_at};
+use shearcut_sim::arm::{ArmLimitMonitor, ArmLimits, ArmReading, ArmStatus, KnifeCommand};
+use shearcut_sim::knife_plane::contact_arc::{
+    EdgeSegment, contact_arc, knife_plane_silhouette, ray_hit, segment_grid, span_arc,
+};
+
+use crate::plant_step::{PlantStep, PlantTruth};
 
 /// Settings of the plant.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -141,65 +142,6 @@ pub enum PlantError {
         /// Why.
         source: SectionError,
     },
-}
-
-/// The measurement after a tick: what an arm and an F/T sensor report, plus
-/// the model's cut state.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Measurement {
-    /// Simulated time, s.
-    pub time: f64,
-    /// Knife frame origin (heel end of the edge) in the world frame, m.
-    pub position: Vector3<f64>,
-    /// Knife velocity actually executed, m/s.
-    pub velocity: Vector3<f64>,
-    /// F/T sensor reading [fx, fy, fz, tx, ty, tz] at the sensor, N and N·m
-    /// (object on knife; with noise and bias).
-    pub wrench: [f64; 6],
-    /// The noise-free wrench at the sensor.
-    pub true_wrench: Wrench,
-    /// Depth of the crack front below the object's top, m: the top's height
-    /// (the object's in the knife plane) less the mean height of the crack
-    /// tips over the active sections (those whose plane cuts the object; 0
-    /// when none is). Under a straight edge on a flat top (a cuboid) this
-    /// is the sections' mean crack depth. On a dome it is not: a section
-    /// that enters contact on the flank starts with no crack, and the
-    /// sections' mean crack depth *falls* when it does (by 1.4 mm pressing
-    /// the 30 mm half potato of the plant tests, by up to 1.0 mm in the
-    /// main job's cut), while its crack tip, at its surface where the edge
-    /// touches, is about as deep below the top as the rest of the front.
-    /// The cut's depth is what a cook means by it: how far below the top
-    /// the cut has gone. It is not a crack's depth in every respect: before
-    /// the first fracture on a dome it is already the depth of the
-    /// sections' tops in contact (3 mm on the whole eggplant when its skin
-    /// fractured), and under a curved edge, whose sections' planes tilt, it
-    /// can still fall by a few tenths of a millimetre as sections enter
-    /// (0.16–0.47 mm in `fig8-potato`, 0.48 mm on the eggplant).
-    pub crack_depth: f64,
-    /// Length of edge in contact with material, m.
-    pub contact_length: f64,
-    /// Number of sections that have fractured.
-    pub fractured_sections: usize,
-    /// Cumulative knife work on the object, J.
-    pub work: f64,
-    /// Largest surface deformation next to the blade over the sections, m.
-    pub deformation: f64,
-    /// Outcome of the tick.
-    pub status: PlantStatus,
-}
-
-impl Measurement {
-    /// What the arm reports of this tick: time, pose, executed twist, the
-    /// sensor's wrench and the arm's status; none of the model's cut state.
-    pub fn reading(&self) -> ArmReading {
-        ArmReading {
-            time: self.time,
-            position: self.position,
-            velocity: self.velocity,
-            wrench: self.wrench,
-            status: self.status,
-        }
-    }
 }
 
 /// One segment's section and its bookkeeping.
@@ -653,7 +595,7 @@ impl Plant {
     }
 
     /// The sections' current states, heel to tip.
-    pub fn section_states(&self) -> impl Iterator<Item = &crate::section::SectionStep> {
+    pub fn section_states(&self) -> impl Iterator<Item = &shearcut_sim::section::SectionStep> {
         self.sections.iter().map(|s| s.section.state())
     }
 
@@ -666,14 +608,14 @@ impl Plant {
     ///
     /// # Errors
     /// A section's step fails, or a re-chosen section cannot be built.
-    pub fn step(&mut self, command: &KnifeCommand, dt: f64) -> Result<Measurement, SectionError> {
+    pub fn step(&mut self, command: &KnifeCommand, dt: f64) -> Result<PlantStep, SectionError> {
         let mut v = command.velocity;
         let status = match self.monitor.check(v, dt) {
-            Ok(()) => PlantStatus::Moving,
+            Ok(()) => ArmStatus::Moving,
             Err(violation) => {
                 v = Vector3::zeros();
                 self.monitor.reset();
-                PlantStatus::LimitViolation(violation)
+                ArmStatus::LimitViolation(violation)
             }
         };
         let dt = if dt.is_finite() && dt > 0.0 { dt } else { 0.0 };
@@ -758,22 +700,26 @@ impl Plant {
         let sensor_origin = self.position + self.sensor_offset;
         let true_wrench = wrench_at(&sensor_origin, &self.loads);
         let wrench = self.sensor.read(self.time, &true_wrench.to_array());
-        Ok(Measurement {
-            time: self.time,
-            position: self.position,
-            velocity: v,
-            wrench,
-            true_wrench,
-            crack_depth: if active > 0 {
-                self.top - tip_height_sum / active as f64
-            } else {
-                0.0
+        Ok(PlantStep {
+            reading: ArmReading {
+                time: self.time,
+                position: self.position,
+                velocity: v,
+                wrench,
+                status,
             },
-            contact_length,
-            fractured_sections: fractured,
-            work: self.work,
-            deformation,
-            status,
+            truth: PlantTruth {
+                wrench: true_wrench,
+                crack_depth: if active > 0 {
+                    self.top - tip_height_sum / active as f64
+                } else {
+                    0.0
+                },
+                contact_length,
+                fractured_sections: fractured,
+                work: self.work,
+                deformation,
+            },
         })
     }
 

@@ -2,10 +2,8 @@
 //! arm limits and determinism.
 
 use nalgebra::{Vector2, Vector3};
+use shearcut_plant::{ArmLimits, ArmStatus, KnifeCommand, LimitViolation, Plant, PlantSettings};
 use shearcut_sim::geometry::TriangleMesh;
-use shearcut_sim::plant::{
-    ArmLimits, KnifeCommand, LimitViolation, Plant, PlantSettings, PlantStatus,
-};
 use shearcut_sim::{
     CrossSection, Knife, KnifePreset, MaterialPreset, SectionGeometry, SectionSettings,
 };
@@ -14,7 +12,7 @@ use shearcut_sim::{
 fn settings(segments: usize) -> PlantSettings {
     PlantSettings {
         segments,
-        sensor: shearcut_sim::plant::FtSensorSettings {
+        sensor: shearcut_plant::FtSensorSettings {
             force_noise: 0.0,
             torque_noise: 0.0,
             ..Default::default()
@@ -117,22 +115,24 @@ fn straight_edge_plant_is_one_section_times_the_length() {
             // Same model, same increments: equal to rounding of the sums.
             let expect = st.force_vertical * l;
             assert!(
-                (m.true_wrench.force.y - expect).abs() <= 1e-9 * expect.abs().max(1e-9),
+                (m.truth.wrench.force.y - expect).abs() <= 1e-9 * expect.abs().max(1e-9),
                 "tick {k}: {} vs {expect}",
-                m.true_wrench.force.y
+                m.truth.wrench.force.y
             );
-            assert!((m.work - st.work.knife * l).abs() <= 1e-9 * (st.work.knife * l).max(1e-12));
+            assert!(
+                (m.truth.work - st.work.knife * l).abs() <= 1e-9 * (st.work.knife * l).max(1e-12)
+            );
             // A flat top under a straight edge: the depth below the top is
             // the section's crack depth.
             assert!(
-                (m.crack_depth - st.crack_depth).abs() <= 1e-12,
+                (m.truth.crack_depth - st.crack_depth).abs() <= 1e-12,
                 "tick {k}: depth {} vs {}",
-                m.crack_depth,
+                m.truth.crack_depth,
                 st.crack_depth
             );
             compared += 1;
         } else {
-            assert_eq!(m.true_wrench.force.norm(), 0.0, "no force before contact");
+            assert_eq!(m.truth.wrench.force.norm(), 0.0, "no force before contact");
         }
     }
     assert_eq!(compared, 800);
@@ -160,7 +160,7 @@ fn torque_is_the_moment_of_the_section_forces() {
     for _ in 0..900 {
         m = plant.step(&cmd, DT).unwrap();
     }
-    assert!(m.contact_length > 0.0);
+    assert!(m.truth.contact_length > 0.0);
     // Independent moment: each section's force per length × segment length,
     // applied at its midpoint, about the sensor.
     let sensor = plant.position() + knife.sensor_position();
@@ -183,7 +183,7 @@ fn torque_is_the_moment_of_the_section_forces() {
             r.x * f.y - r.y * f.x,
         );
     }
-    let w = m.true_wrench;
+    let w = m.truth.wrench;
     assert!((w.force - force).norm() <= 1e-12 * force.norm());
     assert!((w.torque - torque).norm() <= 1e-12 * torque.norm());
     // Everything lies in the knife plane x = 0: no F_x, and the torque is about x only.
@@ -221,11 +221,11 @@ fn curved_pressing(z0: f64) -> (f64, f64) {
     for k in 1..=2400 {
         let m = plant.step(&cmd, DT).unwrap();
         let d = k as f64 * SPEED * DT;
-        if full.is_none() && m.contact_length >= total - 1e-12 {
+        if full.is_none() && m.truth.contact_length >= total - 1e-12 {
             full = Some(d);
         }
         if k == 160 {
-            f_at_1mm = m.true_wrench.force.y;
+            f_at_1mm = m.truth.wrench.force.y;
         }
     }
     (full.unwrap_or(f64::INFINITY), f_at_1mm)
@@ -274,8 +274,8 @@ fn arm_limits_refuse_a_velocity_step() {
         )
         .unwrap();
     assert!(matches!(
-        m.status,
-        PlantStatus::LimitViolation(LimitViolation::Jerk(_))
+        m.reading.status,
+        ArmStatus::LimitViolation(LimitViolation::Jerk(_))
     ));
     assert_eq!(
         plant.position(),
@@ -291,7 +291,7 @@ fn arm_limits_refuse_a_velocity_step() {
             DT,
         )
         .unwrap();
-    assert_eq!(m.status, PlantStatus::Moving);
+    assert_eq!(m.reading.status, ArmStatus::Moving);
 }
 
 #[test]
@@ -308,7 +308,7 @@ fn same_seed_gives_bit_identical_measurements() {
             velocity: Vector3::new(0.0, -SPEED, -0.5 * SPEED),
         };
         (0..600)
-            .map(|_| plant.step(&cmd, DT).unwrap().wrench)
+            .map(|_| plant.step(&cmd, DT).unwrap().reading.wrench)
             .collect::<Vec<_>>()
     };
     let (a, b) = (run(), run());
@@ -373,7 +373,7 @@ fn slicing_straight_edge_moves_sections_along_the_cuboid() {
         // would show at 1e-16; 1e-12 leaves room for rounding only).
         assert!(worst_normal_misalignment(&plant) < 1e-12, "tick {k}");
         if k < ticks_to_touch {
-            assert_eq!(m.contact_length, 0.0);
+            assert_eq!(m.truth.contact_length, 0.0);
             continue;
         }
         // The section model advanced by each segment's increments: dn = dt =
@@ -382,11 +382,11 @@ fn slicing_straight_edge_moves_sections_along_the_cuboid() {
         // Every segment entered through the flat top at the same tick and
         // keeps its section when re-chosen (same rectangle), so the plant is
         // the single section × the contact length to rounding of the sums.
-        let expect = st.force_vertical * m.contact_length;
+        let expect = st.force_vertical * m.truth.contact_length;
         assert!(
-            (m.true_wrench.force.y - expect).abs() <= 1e-9 * expect.abs().max(1e-9),
+            (m.truth.wrench.force.y - expect).abs() <= 1e-9 * expect.abs().max(1e-9),
             "tick {k}: {} vs {expect}",
-            m.true_wrench.force.y
+            m.truth.wrench.force.y
         );
         // Sliding off the far end deactivates. The plane is re-chosen through
         // q, the crack front on the midpoint's path (which may lead or trail
@@ -409,7 +409,7 @@ fn slicing_straight_edge_moves_sections_along_the_cuboid() {
                 went_inactive = true;
             }
         }
-        assert!(m.contact_length <= l + seg_len + 1e-12);
+        assert!(m.truth.contact_length <= l + seg_len + 1e-12);
         // The crack front fitted at a re-choice passes through the tips it was
         // fitted over: a flat front for a straight edge (equal tips).
         if plant.rechoices() > last_rechoices {
@@ -468,9 +468,9 @@ fn the_depth_on_a_dome_is_below_its_top_and_does_not_fall_as_sections_enter() {
         travel += 4.0 * SPEED * DT;
         let cracks: Vec<f64> = plant.section_states().map(|st| st.crack_depth).collect();
         let now_mean = cracks.iter().sum::<f64>() / cracks.len() as f64;
-        depth_drop = depth_drop.max(depth - m.crack_depth);
+        depth_drop = depth_drop.max(depth - m.truth.crack_depth);
         mean_drop = mean_drop.max(mean - now_mean);
-        depth = depth.max(m.crack_depth);
+        depth = depth.max(m.truth.crack_depth);
         mean = mean.max(now_mean);
     }
     // The sections' mean crack depth falls by over a millimetre (1.4 mm
@@ -508,8 +508,12 @@ fn half_potato_sections_are_rebuilt_work_never_drops_deterministic() {
             .map(|k| {
                 let m = plant.step(&cmd, DT).unwrap();
                 // Rebuilds keep the predecessor's work: never a drop.
-                assert!(m.work >= prev, "tick {k}: work {} < {prev}", m.work);
-                prev = m.work;
+                assert!(
+                    m.truth.work >= prev,
+                    "tick {k}: work {} < {prev}",
+                    m.truth.work
+                );
+                prev = m.truth.work;
                 assert!(worst_normal_misalignment(&plant) < 1e-12, "tick {k}");
                 // Right after a re-choice every tip is on the fitted front:
                 // kept sections' tips are fitted exactly (at most three, a
@@ -536,14 +540,19 @@ fn half_potato_sections_are_rebuilt_work_never_drops_deterministic() {
         "the potato's sections change shape: {rebuilds}"
     );
     assert!(rechoices >= rebuilds);
-    assert!(a.last().unwrap().work > 0.0);
+    assert!(a.last().unwrap().truth.work > 0.0);
     let (b, ..) = run();
-    let bits = |m: &shearcut_sim::plant::Measurement| {
-        let mut v: Vec<u64> = m.wrench.iter().map(|x| x.to_bits()).collect();
+    let bits = |m: &shearcut_plant::PlantStep| {
+        let mut v: Vec<u64> = m.reading.wrench.iter().map(|x| x.to_bits()).collect();
         v.extend(
-            [m.work, m.crack_depth, m.contact_length, m.deformation]
-                .iter()
-                .map(|x| x.to_bits()),
+            [
+                m.truth.work,
+                m.truth.crack_depth,
+                m.truth.contact_length,
+                m.truth.deformation,
+            ]
+            .iter()
+            .map(|x| x.to_bits()),
         );
         v
     };
@@ -601,11 +610,11 @@ fn steep_slice_gives_near_face_segments_their_sections() {
     // the near face.
     for k in 0..4200 {
         m = plant.step(&cmd, DT).unwrap();
-        assert!(m.work >= prev_work, "tick {k}");
-        prev_work = m.work;
+        assert!(m.truth.work >= prev_work, "tick {k}");
+        prev_work = m.truth.work;
         assert!(worst_normal_misalignment(&plant) < 1e-12, "tick {k}");
     }
-    assert!(m.crack_depth > 0.005 && m.crack_depth < h - 1e-3);
+    assert!(m.truth.crack_depth > 0.005 && m.truth.crack_depth < h - 1e-3);
     assert!(
         plant.woken_segments() >= 2,
         "near-face segments placed behind the front: {}",
@@ -628,9 +637,9 @@ fn steep_slice_gives_near_face_segments_their_sections() {
         }
     }
     assert!(
-        (m.contact_length - l).abs() <= seg_len,
+        (m.truth.contact_length - l).abs() <= seg_len,
         "contact {} vs piece length {l} (segment {seg_len})",
-        m.contact_length
+        m.truth.contact_length
     );
     // A straight edge cuts a cuboid the same way everywhere: the sections
     // placed behind the front took over their neighbours' cut (crack, edge,
@@ -689,13 +698,13 @@ fn slice_angle_changing_mid_cut_moves_sections_along_the_executed_path() {
             unforeseen_before_reversal = plant.unforeseen_rechoices();
         }
         let m = plant.step(&cmd, DT).unwrap();
-        assert_eq!(m.status, PlantStatus::Moving);
+        assert_eq!(m.reading.status, ArmStatus::Moving);
         assert!(
-            m.work >= prev_work,
+            m.truth.work >= prev_work,
             "tick {k}: work {} < {prev_work}",
-            m.work
+            m.truth.work
         );
-        prev_work = m.work;
+        prev_work = m.truth.work;
         assert!(worst_normal_misalignment(&plant) < 1e-12, "tick {k}");
         assert!((plant.direction_of_motion() - u).norm() < 1e-12, "tick {k}");
         if (1200..2400).contains(&k) {
@@ -815,20 +824,25 @@ fn sections_go_where_the_edge_arrives_whatever_the_planned_direction() {
         )
     };
     let (a, contacts_a, grid_a) = run(u);
-    assert!(a.crack_depth > 0.005, "{}", a.crack_depth);
+    assert!(a.truth.crack_depth > 0.005, "{}", a.truth.crack_depth);
     for planned in [Vector2::new(0.0, -1.0), Vector2::new(1.5, -1.0).normalize()] {
         let (b, contacts_b, grid_b) = run(planned);
         assert_eq!(grid_a, grid_b);
         assert_eq!(contacts_a, contacts_b);
         let close = |x: f64, y: f64| (x - y).abs() <= 1e-9 * x.abs().max(y.abs()).max(1e-12);
-        assert!(close(a.work, b.work), "work {} vs {}", a.work, b.work);
         assert!(
-            close(a.true_wrench.force.y, b.true_wrench.force.y),
-            "F_y {} vs {}",
-            a.true_wrench.force.y,
-            b.true_wrench.force.y
+            close(a.truth.work, b.truth.work),
+            "work {} vs {}",
+            a.truth.work,
+            b.truth.work
         );
-        assert!(close(a.crack_depth, b.crack_depth));
+        assert!(
+            close(a.truth.wrench.force.y, b.truth.wrench.force.y),
+            "F_y {} vs {}",
+            a.truth.wrench.force.y,
+            b.truth.wrench.force.y
+        );
+        assert!(close(a.truth.crack_depth, b.truth.crack_depth));
     }
 }
 
@@ -928,8 +942,8 @@ fn sawing_back_over_a_side_face_re_enters_behind_the_current_front() {
         );
     }
     assert!(
-        m.crack_depth > 0.010 && m.crack_depth < 0.0135,
+        m.truth.crack_depth > 0.010 && m.truth.crack_depth < 0.0135,
         "{}",
-        m.crack_depth
+        m.truth.crack_depth
     );
 }

@@ -11,7 +11,7 @@
 //! them, and the mean crack depth lagged the knife by tens of millimetres.
 
 use nalgebra::{Vector2, Vector3};
-use shearcut_sim::plant::{ArmLimits, KnifeCommand, Plant, PlantSettings};
+use shearcut_plant::{ArmLimits, KnifeCommand, Plant, PlantSettings};
 use shearcut_sim::{
     BladeSection, CrossSection, Knife, KnifePreset, MaterialPreset, ObjectShape, SectionGeometry,
     SectionSettings,
@@ -100,9 +100,9 @@ fn sections_under_a_tough_skin_fracture_across_rechoices() {
     // 1.3 s: 26 mm of travel along d, the edge ~23 mm below the top.
     for k in 0..1300 {
         let m = plant.step(&cmd, dt).unwrap();
-        assert!(m.work >= prev_work, "tick {k}: work dropped");
-        prev_work = m.work;
-        max_deformation = max_deformation.max(m.deformation);
+        assert!(m.truth.work >= prev_work, "tick {k}: work dropped");
+        prev_work = m.truth.work;
+        max_deformation = max_deformation.max(m.truth.deformation);
         let position = plant.position();
         for ((segment, plane, active), st) in plant.section_planes().zip(plant.section_states()) {
             if !active || st.knife_displacement <= 0.0 {

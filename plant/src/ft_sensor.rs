@@ -6,7 +6,7 @@ use rand_chacha::ChaCha8Rng;
 use rand_distr::{Distribution, Normal};
 use serde::{Deserialize, Serialize};
 
-use crate::invalid_setting::{InvalidSetting, non_negative, positive};
+use shearcut_sim::invalid_setting::{InvalidSetting, non_negative, positive};
 
 /// Settings of the simulated F/T sensor.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]

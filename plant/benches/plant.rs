@@ -19,7 +19,7 @@ use std::hint::black_box;
 use std::time::Instant;
 
 use nalgebra::{Vector2, Vector3};
-use shearcut_sim::plant::{ArmLimits, KnifeCommand, Plant, PlantSettings};
+use shearcut_plant::{ArmLimits, KnifeCommand, Plant, PlantSettings};
 use shearcut_sim::{Knife, KnifePreset, MaterialPreset, ObjectShape, SectionSettings};
 
 fn main() {
@@ -123,9 +123,9 @@ fn run(section: &SectionSettings, alpha: f64, z0: f64) {
     );
     println!(
         "end state: crack depth {:.1} mm (mean of sections), {} sections fractured, F_y {:.1} N",
-        m.crack_depth * 1e3,
-        m.fractured_sections,
-        m.true_wrench.force.y
+        m.truth.crack_depth * 1e3,
+        m.truth.fractured_sections,
+        m.truth.wrench.force.y
     );
     println!(
         "re-choices {}, rebuilds {} (built on the worker thread), unforeseen {}, ticks that waited for the worker {}, sections built and dropped untaken {}",

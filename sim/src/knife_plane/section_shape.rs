@@ -3,7 +3,7 @@
 use nalgebra::Vector3;
 
 use crate::geometry::{Polygon, SectionPlane, TriangleMesh};
-use crate::plant::knife_plane_silhouette;
+use crate::knife_plane::knife_plane_silhouette;
 use crate::section::{SectionError, SectionGeometry};
 
 /// The section model's geometry of `mesh`'s section normal to a straight

@@ -7,18 +7,19 @@
 //! (noise, bias and sample rate of the F/T signal), `successor` (successor
 //! sections built ahead of their re-choices on a worker thread).
 
-pub mod contact_arc;
 pub mod crack_front;
 pub mod ft_sensor;
 #[allow(clippy::module_inception)]
 pub mod plant;
-pub mod section_shape;
+mod plant_step;
 mod successor;
 pub mod wrench;
 
-pub use crate::arm::{ArmLimitMonitor, ArmLimits, KnifeCommand, LimitViolation};
-pub use contact_arc::{EdgeSegment, contact_arc, knife_plane_silhouette, segments};
 pub use crack_front::CrackFront;
 pub use ft_sensor::{FtSensor, FtSensorSettings};
-pub use plant::{Measurement, Plant, PlantError, PlantSettings, PlantStatus};
+pub use plant::{Plant, PlantError, PlantSettings};
+pub use plant_step::{PlantStep, PlantTruth};
+pub use shearcut_sim::arm::{ArmLimitMonitor, ArmLimits, KnifeCommand, LimitViolation};
+pub use shearcut_sim::arm::{ArmReading, ArmStatus};
+pub use shearcut_sim::knife_plane::{EdgeSegment, contact_arc, knife_plane_silhouette, segments};
 pub use wrench::{SegmentLoad, Wrench, wrench_at};

@@ -19,12 +19,12 @@
 use std::sync::{Arc, Condvar, Mutex, MutexGuard};
 use std::thread::JoinHandle;
 
-use crate::blade::BladeSection;
-use crate::geometry::{SectionPlane, TriangleMesh};
-use crate::material::Material;
-use crate::section::{CrossSection, SectionError, SectionGeometry, SectionSettings};
+use shearcut_sim::blade::BladeSection;
+use shearcut_sim::geometry::{SectionPlane, TriangleMesh};
+use shearcut_sim::material::Material;
+use shearcut_sim::section::{CrossSection, SectionError, SectionGeometry, SectionSettings};
 
-use super::section_shape::section_geometry;
+use shearcut_sim::knife_plane::section_shape::section_geometry;
 
 /// What the plant needs to cut sections: fixed at construction.
 #[derive(Debug, Clone)]
@@ -414,7 +414,7 @@ mod tests {
     use nalgebra::Vector3;
 
     use super::*;
-    use crate::material::MaterialPreset;
+    use shearcut_sim::material::MaterialPreset;
 
     /// A worker over a 30 × 20 × 30 mm potato cuboid (coarse sections).
     fn worker(segments: usize) -> SuccessorWorker {

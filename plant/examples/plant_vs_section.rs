@@ -18,7 +18,7 @@
 //! [T S]` (scale factors of R_c, R'_c and E, default 1 1; friction nominal).
 
 use nalgebra::{Vector2, Vector3};
-use shearcut_sim::plant::{ArmLimits, KnifeCommand, Plant, PlantSettings};
+use shearcut_plant::{ArmLimits, KnifeCommand, Plant, PlantSettings};
 use shearcut_sim::section::SectionSettings;
 use shearcut_sim::surrogate::{
     CutState, ScaleFactors, Surrogate, SweepCase, SweepSettings, run_sweep, scaled_material,
@@ -144,22 +144,26 @@ fn plant_work(
     let mut acc = [0.0; 4];
     for _ in 0..20_000 {
         let m = plant.step(&command, dt).expect("plant steps");
-        let (v_n, v_t, l) = (-m.velocity.y, m.velocity.z.abs(), m.contact_length);
-        if m.crack_depth >= TARGET {
+        let (v_n, v_t, l) = (
+            -m.reading.velocity.y,
+            m.reading.velocity.z.abs(),
+            m.truth.contact_length,
+        );
+        if m.truth.crack_depth >= TARGET {
             break;
         }
-        if m.fractured_sections == 0 || !(v_n > 0.0 && l > 0.0) {
+        if m.truth.fractured_sections == 0 || !(v_n > 0.0 && l > 0.0) {
             continue;
         }
-        let depth = m.crack_depth.max(0.0);
+        let depth = m.truth.crack_depth.max(0.0);
         let since = depth - *fracture.get_or_insert(depth);
         if since < SETTLE {
             continue;
         }
-        let w = m.true_wrench.to_array();
+        let w = m.truth.wrench.to_array();
         let f = model(s, scale, xi, depth, since);
         acc[0] += w[1] * v_n * dt / l;
-        acc[1] += -w[2] * m.velocity.z.signum() * v_t * dt / l;
+        acc[1] += -w[2] * m.reading.velocity.z.signum() * v_t * dt / l;
         acc[2] += f[0] * v_n * dt;
         acc[3] += f[1] * v_t * dt;
     }
