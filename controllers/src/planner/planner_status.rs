@@ -53,8 +53,9 @@ pub struct PlannerStats {
     pub refused: u64,
     /// Plans that became visible.
     pub delivered: u64,
-    /// Accepted requests that were replaced by a newer one before the
-    /// planner took them up (`Realtime` only), counted when a later plan
-    /// arrives.
+    /// Accepted requests whose plan never became visible (`Realtime`
+    /// only): replaced by a newer request before the planner took them up,
+    /// or their plan replaced by a newer plan before a poll took it.
+    /// Counted when a later plan arrives.
     pub superseded: u64,
 }
