@@ -3,4 +3,5 @@
 
 pub mod controller;
 pub mod mpc;
+pub mod planner;
 pub mod trajectory;
