@@ -11,10 +11,12 @@ use shearcut_controllers::controller::{Controller, CutTask, MotionLimits};
 use shearcut_controllers::mpc::{
     DepthProfile, DepthQp, Mpc, MpcSettings, QpLimits, SliceModel, StageCost, StageData, StageState,
 };
+use shearcut_controllers::planner::{LatencyMode, PlannerSettings};
 use shearcut_sim::arm::{ArmReading, ArmStatus};
 
 /// w(ξ) = 150 − 120ξ + 45ξ² N/m, f(ξ) = 140/(1+ξ) N/m: the shape of the
 /// potato surrogate (a minimum near ξ = 1.3).
+#[derive(Debug, Clone, Copy)]
 struct Quadratic;
 
 impl SliceModel for Quadratic {
@@ -96,40 +98,55 @@ fn main() {
         8 * n + 1
     );
 
-    // Whole planning ticks of the controller (estimation, linearisation,
-    // solve, shaping) against a measurement stream.
-    let task = CutTask {
-        target_depth: 1.0,
-        touch_height: 0.0,
-        period: 1e-3,
-        blade_budget: 1.0,
-        limits: MotionLimits::within_arm(0.05, 0.1, 9.0, 4500.0, 0.9),
-    };
-    let profile = DepthProfile::new(vec![0.0, 0.03], vec![0.02, 0.065], 0.03, 0.015).unwrap();
-    let mut mpc = Mpc::new(&task, &settings, Quadratic, profile, 0.5).unwrap();
-    let mut plan_times = Vec::new();
-    for i in 0..50_000u64 {
-        let depth = 1e-6 * i as f64 % 0.9;
-        // The force drops from 20 to 10 N after 100 ticks: the first
-        // fracture, so that the plans are the cutting phase's.
-        let normal_force = if i < 100 { 20.0 } else { 10.0 };
-        let m = ArmReading {
-            time: i as f64 * 1e-3,
-            position: nalgebra::Vector3::new(0.0, -depth, 0.0),
-            velocity: nalgebra::Vector3::new(0.0, -0.02, 0.02),
-            wrench: [0.0, normal_force, -3.0, 0.0, 0.0, 0.0],
-            status: ArmStatus::Moving,
+    // The controller's servo ticks against a reading stream: with the plan
+    // made on the tick (`inline`: estimation, linearisation, solve,
+    // shaping on the planning ticks) and off it (`lockstep`: the tick only
+    // observes, submits and shapes; the planner thread solves).
+    for latency in [LatencyMode::Inline, LatencyMode::Lockstep] {
+        let settings = MpcSettings {
+            planner: PlannerSettings {
+                latency,
+                ..PlannerSettings::default()
+            },
+            ..settings
         };
-        let start = Instant::now();
-        std::hint::black_box(mpc.tick(&m));
-        let us = start.elapsed().as_secs_f64() * 1e6;
-        if mpc.replanned() {
-            plan_times.push(us);
+        let task = CutTask {
+            target_depth: 1.0,
+            touch_height: 0.0,
+            period: 1e-3,
+            blade_budget: 1.0,
+            limits: MotionLimits::within_arm(0.05, 0.1, 9.0, 4500.0, 0.9),
+        };
+        let profile =
+            DepthProfile::new(vec![0.0, 0.03], vec![0.02, 0.065], 0.03, 0.015).unwrap();
+        let mut mpc = Mpc::new(&task, &settings, Quadratic, profile, 0.5).unwrap();
+        let (mut plan_ticks, mut all_ticks) = (Vec::new(), Vec::new());
+        for i in 0..50_000u64 {
+            let depth = 1e-6 * i as f64 % 0.9;
+            // The force drops from 20 to 10 N after 100 ticks: the first
+            // fracture, so that the plans are the cutting phase's.
+            let normal_force = if i < 100 { 20.0 } else { 10.0 };
+            let m = ArmReading {
+                time: i as f64 * 1e-3,
+                position: nalgebra::Vector3::new(0.0, -depth, 0.0),
+                velocity: nalgebra::Vector3::new(0.0, -0.02, 0.02),
+                wrench: [0.0, normal_force, -3.0, 0.0, 0.0, 0.0],
+                status: ArmStatus::Moving,
+            };
+            let start = Instant::now();
+            std::hint::black_box(mpc.tick(&m));
+            let us = start.elapsed().as_secs_f64() * 1e6;
+            all_ticks.push(us);
+            if mpc.replanned() {
+                plan_ticks.push(us);
+            }
         }
+        let (med, p99, max) = stats(plan_ticks);
+        let (all_med, all_p99, all_max) = stats(all_ticks);
+        println!(
+            "Mpc::tick, planner {latency:?}: planning ticks median {med:.1} us, p99 {p99:.1} us, max {max:.1} us; all ticks median {all_med:.2} us, p99 {all_p99:.1} us, max {all_max:.1} us; plans {}, fallbacks {}",
+            mpc.stats().plans,
+            mpc.stats().fallbacks
+        );
     }
-    let (med, p99, max) = stats(plan_times);
-    println!(
-        "Mpc::tick on planning ticks (estimate + linearise + solve + shape): median {med:.1} us, p99 {p99:.1} us, max {max:.1} us; fallbacks {}",
-        mpc.stats().fallbacks
-    );
 }

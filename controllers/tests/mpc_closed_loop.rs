@@ -8,6 +8,7 @@ mod synthetic_arm;
 
 use shearcut_controllers::controller::{Controller, CutPhase, StrokePhase};
 use shearcut_controllers::mpc::{DepthProfile, Mpc, MpcSettings};
+use shearcut_controllers::planner::{LatencyMode, PlannerSettings};
 use shearcut_sim::arm::ArmStatus;
 use synthetic_arm::{QuadraticModel, SyntheticArm, task};
 
@@ -205,8 +206,9 @@ fn while_estimating_the_mpc_touches_at_the_touch_speed_until_the_first_fracture(
 /// (ξ* = 4/3 + 40·(0.01 − d), 1.73 at the top, 0.93 at 20 mm) so that the
 /// plan's stages differ, and failing (a NaN work slope) while `failing` is set: the
 /// subproblem then cannot be solved.
+#[derive(Clone)]
 struct FailingModel {
-    failing: std::rc::Rc<std::cell::Cell<bool>>,
+    failing: std::sync::Arc<std::sync::atomic::AtomicBool>,
 }
 
 impl shearcut_controllers::mpc::SliceModel for FailingModel {
@@ -217,7 +219,7 @@ impl shearcut_controllers::mpc::SliceModel for FailingModel {
     ) -> shearcut_controllers::mpc::StageCost {
         let shifted = xi - 40.0 * (0.01 - state.depth);
         let mut c = QuadraticModel.stage(shifted, state);
-        if self.failing.get() {
+        if self.failing.load(std::sync::atomic::Ordering::SeqCst) {
             c.work_per_depth_slope = f64::NAN;
         }
         c
@@ -242,15 +244,27 @@ fn run_failing(
     initial_xi: f64,
     mut observe: impl FnMut(&Mpc<FailingModel>, &shearcut_sim::arm::KnifeCommand),
 ) -> (Mpc<FailingModel>, SyntheticArm) {
-    let failing = std::rc::Rc::new(std::cell::Cell::new(false));
+    let failing = std::sync::Arc::new(std::sync::atomic::AtomicBool::new(false));
     let model = FailingModel {
         failing: failing.clone(),
     };
-    let mut mpc = Mpc::new(&task(0.02, budget), settings, model, profile, initial_xi).unwrap();
+    // The test flips the failure between ticks, so each plan is made on the
+    // tick that asks for it.
+    let settings = MpcSettings {
+        planner: PlannerSettings {
+            latency: LatencyMode::Inline,
+            ..PlannerSettings::default()
+        },
+        ..*settings
+    };
+    let mut mpc = Mpc::new(&task(0.02, budget), &settings, model, profile, initial_xi).unwrap();
     let mut arm = SyntheticArm::new(0.0);
     let mut m = arm.measure(ArmStatus::Moving);
     for _ in 0..20_000 {
-        failing.set((0.006..0.012).contains(&arm.depth()));
+        failing.store(
+            (0.006..0.012).contains(&arm.depth()),
+            std::sync::atomic::Ordering::SeqCst,
+        );
         let c = mpc.tick(&m);
         m = arm.step(&c);
         observe(&mpc, &c);

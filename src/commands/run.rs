@@ -133,8 +133,7 @@ pub fn mpc_start(task: &CutTask) -> f64 {
 }
 
 /// The ratio the MPC is going to cut along: the mean ratio of its first
-/// plan from the intact object ([`Mpc::planned_ratio_from_rest`], on a
-/// controller built for it and dropped). The plant builds its first
+/// plan from the intact object ([`Mpc::planned_ratio_from_rest`]). The plant builds its first
 /// sections for it before the loop starts, so that a real-time loop finds
 /// them ready (its results do not depend on it: the sections are placed
 /// where the edge arrives).
@@ -143,7 +142,15 @@ pub fn mpc_cutting_ratio(
     task: &CutTask,
     profile: &DepthProfile,
 ) -> Result<f64, RunError> {
-    Ok(make_mpc(s, task, profile.clone())?.planned_ratio_from_rest())
+    let surrogate = surrogate_for(s).map_err(|e| invalid(s, e))?;
+    Mpc::planned_ratio_from_rest(
+        task,
+        &s.controller.mpc,
+        SurrogateModel::new(surrogate),
+        profile.clone(),
+        mpc_start(task),
+    )
+    .map_err(|e| invalid(s, e.prefixed("controller")))
 }
 
 /// The scenario's MPC for `task`, seeing the object as `profile`, on the

@@ -5,16 +5,17 @@ use shearcut_sim::InvalidSetting;
 use shearcut_sim::arm::{ArmReading, ArmStatus, KnifeCommand};
 
 use super::depth_profile::DepthProfile;
-use super::depth_qp::{DepthQp, QpLimits, QpStatus, StageData};
+use super::depth_qp::QpStatus;
 use super::force_tare::ForceTare;
 use super::fracture_onset::FractureOnset;
+use super::plan_job::{MpcPlan, MpcPlanJob, PlanRequest};
 use super::scale_estimator::ScaleEstimator;
 use super::settings::MpcSettings;
 use super::slice_model::{SliceModel, StageState};
 use crate::controller::{
     BladeBudget, Controller, ControllerTelemetry, CutTask, SawingStroke, VelocityShaper,
-    stopping_distance, stopping_duration,
 };
+use crate::planner::{PlanJob, Planner, SubmitStatus};
 
 /// Counters of the MPC's plans.
 #[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
@@ -52,6 +53,16 @@ pub const FIRST_PLAN_ITERATIONS: usize = 50;
 
 /// Model-predictive control of the slice (DESIGN §4).
 ///
+/// The servo tick ([`Controller::tick`]) reads the arm, updates the
+/// observers (the sensor's tare, the first fracture, the edge's depth and
+/// contact length from the task's touch height and the object's profile)
+/// and the estimator, follows the plan in force through the jerk-limited
+/// shaper, and every `1/rate_hz` hands a [`PlanRequest`] to the planning
+/// half ([`MpcPlanJob`]) on a [`Planner`] thread (`[controller.mpc.planner]`:
+/// in lockstep the plan arrives a fixed number of ticks later, so runs are
+/// bit-identical; in realtime when it is ready). The tick never solves,
+/// waits (but for a lockstep plan that is due) or allocates.
+///
 /// Every `1/rate_hz` the remaining depth to the target is split into N
 /// stages (a shrinking horizon that always ends at the target, so the blade
 /// budget is planned over the whole rest of the cut), the [`SliceModel`] is
@@ -82,15 +93,14 @@ pub const FIRST_PLAN_ITERATIONS: usize = 50;
 /// `time_weight`) is lower. The knife then reverses at the stroke's end at
 /// constant ξ ([`SawingStroke`]). ξ is planned as a magnitude: seed 000's
 /// r(ξ, ν) (eq. 6) and the surrogate depend on |ξ| only.
-pub struct Mpc<M: SliceModel> {
+pub struct Mpc<M: SliceModel + Clone + Send + 'static> {
     task: CutTask,
     settings: MpcSettings,
+    /// The model, for the estimator's force rows on the tick (the planner
+    /// has its own copy).
     model: M,
     profile: DepthProfile,
-    qp: DepthQp,
-    limits: QpLimits,
-    stages: Vec<StageData>,
-    plan_xi: Vec<f64>,
+    planner: Planner<MpcPlanJob<M>>,
     ticks_per_plan: u64,
     ticks: u64,
     normal_speed: f64,
@@ -102,16 +112,6 @@ pub struct Mpc<M: SliceModel> {
     stroke: SawingStroke,
     /// Whether the plan in force needs more blade than the stroke has.
     saw: bool,
-    /// The plan within the current stroke (ξ and τ per stage) while the
-    /// sawing plan is solved.
-    stroke_xi: Vec<f64>,
-    stroke_tau: Vec<f64>,
-    /// The plan in force: τ per stage (s/m), its stages starting at the
-    /// edge's depth `plan_origin` (m), each `plan_step` deep (m; 0 before
-    /// the first solved plan). A fallback shifts it ([`Mpc::shift_plan`]).
-    plan_tau: Vec<f64>,
-    plan_origin: f64,
-    plan_step: f64,
     stats: MpcStats,
     replanned: bool,
     estimator: Option<ScaleEstimator>,
@@ -119,14 +119,14 @@ pub struct Mpc<M: SliceModel> {
     tare: ForceTare,
     /// The first fracture, from the normal force.
     onset: FractureOnset,
-    /// The edge's depth after the last measurement, m (below the object's
-    /// top; the model's state is the sections' mean depth there,
+    /// The edge's depth after the last reading, m (below the touch point;
+    /// the model's state is the sections' mean depth there,
     /// [`DepthProfile::section_depth`]).
     depth: f64,
     telemetry: ControllerTelemetry,
 }
 
-impl<M: SliceModel> std::fmt::Debug for Mpc<M> {
+impl<M: SliceModel + Clone + Send + 'static> std::fmt::Debug for Mpc<M> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Mpc")
             .field("settings", &self.settings)
@@ -135,12 +135,13 @@ impl<M: SliceModel> std::fmt::Debug for Mpc<M> {
     }
 }
 
-impl<M: SliceModel> Mpc<M> {
+impl<M: SliceModel + Clone + Send + 'static> Mpc<M> {
     /// An MPC for `task` with `model` of the material and `profile` of the
-    /// object, starting from the plan ξ = `initial_xi` at every stage.
+    /// object, starting from the plan ξ = `initial_xi` at every stage; its
+    /// planner thread starts here.
     ///
     /// # Errors
-    /// Invalid settings or task.
+    /// Invalid settings or task, or the planner thread cannot start.
     pub fn new(
         task: &CutTask,
         settings: &MpcSettings,
@@ -150,31 +151,23 @@ impl<M: SliceModel> Mpc<M> {
     ) -> Result<Self, InvalidSetting> {
         task.validate()?;
         settings.validate().map_err(|e| e.prefixed("mpc"))?;
-        let n = settings.stages;
-        let l = &task.limits;
-        let limits = QpLimits {
-            xi_max: settings.max_slice_push_ratio,
-            trust_region: settings.trust_region,
-            normal_speed: l.normal_speed,
-            tangential_speed: l.tangential_speed,
-            max_force: settings.max_force.unwrap_or(f64::INFINITY),
-            time_weight: settings.time_weight,
-            smoothness_weight: settings.smoothness_weight,
-            deformation_weight: settings.deformation_weight,
-            force_penalty: settings.force_penalty,
-        };
+        let policy = settings
+            .planner
+            .policy()
+            .map_err(|e| e.prefixed("mpc.planner"))?;
         let shaper = VelocityShaper::for_task(task)?;
         let ticks_per_plan = ((1.0 / settings.rate_hz) / task.period).round().max(1.0) as u64;
-        let xi0 = initial_xi.clamp(0.0, settings.max_slice_push_ratio);
+        let job = MpcPlanJob::new(task, settings, model.clone(), profile.clone(), initial_xi);
+        let initial = job.initial_plan();
+        let planner = Planner::new(job, initial, policy).map_err(|e| {
+            InvalidSetting::new("mpc.planner", "thread", format!("cannot start: {e}"))
+        })?;
         Ok(Self {
             task: *task,
             settings: *settings,
             model,
             profile,
-            qp: DepthQp::new(n, settings.max_iterations),
-            limits,
-            stages: vec![StageData::default(); n],
-            plan_xi: vec![xi0; n],
+            planner,
             ticks_per_plan,
             ticks: 0,
             normal_speed: 0.0,
@@ -184,11 +177,6 @@ impl<M: SliceModel> Mpc<M> {
             shaper,
             stroke: SawingStroke::new(settings.max_reversals),
             saw: false,
-            stroke_xi: vec![0.0; n],
-            stroke_tau: vec![0.0; n],
-            plan_tau: vec![0.0; n],
-            plan_origin: 0.0,
-            plan_step: 0.0,
             stats: MpcStats::default(),
             replanned: false,
             estimator: settings.estimate.then(|| {
@@ -210,7 +198,7 @@ impl<M: SliceModel> Mpc<M> {
         &self.stats
     }
 
-    /// Whether the last tick planned (solved the subproblem).
+    /// Whether the last tick asked for a plan.
     pub fn replanned(&self) -> bool {
         self.replanned
     }
@@ -220,21 +208,16 @@ impl<M: SliceModel> Mpc<M> {
         &self.stroke
     }
 
-    /// The current plan's ratios, stage by stage.
+    /// The plan in force: its ratios, stage by stage.
     pub fn plan(&self) -> &[f64] {
-        &self.plan_xi
+        &self.planner.plan().plan.xi
     }
 
-    /// The current plan's times per unit depth τ (s/m), stage by stage (0
-    /// before the first solved plan): its first stage's normal speed is
+    /// The plan in force: its times per unit depth τ (s/m), stage by stage
+    /// (0 before the first solved plan); its first stage's normal speed is
     /// 1/τ₀ within the speed limit.
     pub fn plan_times(&self) -> &[f64] {
-        &self.plan_tau
-    }
-
-    /// The model (e.g. to update its scale factors).
-    pub fn model_mut(&mut self) -> &mut M {
-        &mut self.model
+        &self.planner.plan().plan.tau
     }
 
     /// The scale factors (toughness, stiffness, friction) believed now.
@@ -242,6 +225,55 @@ impl<M: SliceModel> Mpc<M> {
         self.estimator
             .as_ref()
             .map_or([1.0; 3], ScaleEstimator::factors)
+    }
+
+    /// The blade the first plan from the intact object asks for per unit
+    /// depth: its mean slice-push ratio Σ Δd_k ξ_k / Σ Δd_k over the whole
+    /// cut (with the sawing strokes it plans, if they pay), for an MPC of
+    /// these arguments ([`Mpc::new`]'s). A plant plans its contact arc and
+    /// first sections for a direction of motion; this is the one the MPC
+    /// is going to cut along. Successive plans re-linearise within a trust
+    /// region, so it replans (at most [`FIRST_PLAN_ITERATIONS`] times)
+    /// until the plan settles. Plans here, on the caller's thread.
+    ///
+    /// # Errors
+    /// Invalid settings or task.
+    pub fn planned_ratio_from_rest(
+        task: &CutTask,
+        settings: &MpcSettings,
+        model: M,
+        profile: DepthProfile,
+        initial_xi: f64,
+    ) -> Result<f64, InvalidSetting> {
+        task.validate()?;
+        settings.validate().map_err(|e| e.prefixed("mpc"))?;
+        let mut job = MpcPlanJob::new(task, settings, model, profile, initial_xi);
+        let mut plan = job.initial_plan();
+        let budget = BladeBudget::new(task.blade_budget);
+        let request = PlanRequest {
+            edge_depth: 0.0,
+            remaining: task.target_depth,
+            fractured: false,
+            depth_at_fracture: None,
+            scale: [1.0; 3],
+            blade_left: budget.remaining_towards(1.0),
+            stroke_length: budget.stroke_length(),
+            reversals_left: settings.max_reversals,
+            normal_speed: 0.0,
+            tangential_speed: 0.0,
+            normal_limit: normal_speed_limit(task, settings, settings.estimate, false),
+        };
+        let mean = |xi: &[f64]| xi.iter().sum::<f64>() / xi.len() as f64;
+        let mut last = f64::NAN;
+        for _ in 0..FIRST_PLAN_ITERATIONS {
+            job.plan(&request, &mut plan);
+            let now = mean(&plan.xi);
+            if (now - last).abs() < 1e-4 {
+                break;
+            }
+            last = now;
+        }
+        Ok(mean(&plan.xi))
     }
 
     /// Feeds the measured forces per unit length of edge in contact to the
@@ -289,235 +321,65 @@ impl<M: SliceModel> Mpc<M> {
         }
     }
 
-    /// The blade the first plan from the intact object asks for per unit
-    /// depth: its mean slice-push ratio Σ Δd_k ξ_k / Σ Δd_k over the whole
-    /// cut (with the sawing strokes it plans, if they pay). A plant plans its
-    /// contact arc and first sections for a direction of motion; this is
-    /// the one the MPC is going to cut along. Successive plans re-linearise
-    /// within a trust region, so it replans (at most
-    /// [`FIRST_PLAN_ITERATIONS`] times) until the plan settles. Plans on
-    /// this controller, so call it on a fresh one that is then dropped.
-    pub fn planned_ratio_from_rest(&mut self) -> f64 {
-        let mean = |xi: &[f64]| xi.iter().sum::<f64>() / xi.len() as f64;
-        let mut last = f64::NAN;
-        for _ in 0..FIRST_PLAN_ITERATIONS {
-            self.replan_at(0.0, self.task.target_depth, false);
-            let now = mean(&self.plan_xi);
-            if (now - last).abs() < 1e-4 {
-                break;
-            }
-            last = now;
-        }
-        mean(&self.plan_xi)
-    }
-
-    fn replan(&mut self, fractured: bool) {
-        let remaining = self.task.target_depth - self.depth;
-        self.replan_at(self.depth, remaining, fractured);
-    }
-
-    /// Plans from the edge's depth `d0` (m, [`CutTask::edge_depth`]) for the cut to
-    /// deepen by `remaining` (m), `fractured` or not.
-    ///
-    /// The plant's depth is the crack front's below the object's top, which
-    /// the edge's travel advances one for one (the crack's lead over the
-    /// edge is steady), so the stages split `remaining` of the edge's
-    /// travel; each stage's model state is the sections' mean depth there
-    /// ([`DepthProfile::section_depth`]), and its work is per unit of the
-    /// edge's travel.
-    fn replan_at(&mut self, d0: f64, remaining: f64, fractured: bool) {
-        let n = self.settings.stages;
-        let dd = remaining.max(1e-6) / n as f64;
-        let since = self.depth_at_fracture;
-        let section_depth = |d: f64| self.profile.section_depth(d);
-        let s0 = section_depth(d0);
-        let [t, st, f] = self.scale();
-        self.model.set_scale(t, st, f);
-        // Before the first fracture the onset's cost covers the catch-up
-        // after it, whose length the ratio at the fracture sets; the later
-        // stages are priced at the rates after that span (`SliceModel`).
-        let span = if fractured {
-            0.0
-        } else {
-            let first = StageState {
-                depth: section_depth(d0 + 0.5 * dd),
-                height: self.profile.height(),
-                half_width: self.profile.half_width(),
-                fractured: false,
-                travel_since_fracture: 0.0,
-            };
-            self.model.catch_up_span(self.plan_xi[0], &first)
-        };
-        for k in 0..n {
-            let edge = d0 + (k as f64 + 0.5) * dd;
-            let depth = section_depth(edge);
-            let state = StageState {
-                depth,
-                height: self.profile.height(),
-                half_width: self.profile.half_width(),
-                fractured: fractured || k > 0,
-                travel_since_fracture: match since {
-                    Some(at) if fractured => (depth - at).max(0.0),
-                    _ if k == 0 => span,
-                    _ => (depth - s0).max(span),
-                },
-            };
-            let xi_bar = self.plan_xi[k];
-            self.stages[k] = StageData {
-                depth_step: dd,
-                contact_length: self.profile.contact_length(edge),
-                xi_bar,
-                cost: self.model.stage(xi_bar, &state),
-                before_fracture: !fractured && k == 0,
-            };
-        }
-        let l = self.task.limits;
-        let normal_limit = self.normal_speed_limit();
-        // Keep what stopping at the current tangential speed needs.
-        let reserve = stopping_distance(self.tangential_speed, l.acceleration, l.jerk);
-        let blade = (self.budget.remaining_towards(self.stroke.direction()) - reserve).max(0.0);
-        let previous = self.plan_xi[0];
-        let mut status = self.qp.solve(&self.stages, &self.limits, previous, blade);
+    /// Takes the plan that arrived this tick: its velocity target and
+    /// counters.
+    fn apply(&mut self) {
+        let p: &MpcPlan = self.planner.plan().plan;
+        let (v_n, v_t, saw) = (p.normal_speed, p.tangential_speed, p.saw);
+        let (solves, fallback, status, iterations) = (p.solves, p.fallback, p.status, p.iterations);
+        self.normal_speed = v_n;
+        self.tangential_speed = v_t;
+        self.saw = saw;
         self.stats.plans += 1;
-        self.stats.solves += 1;
-        self.stats.last_iterations = self.qp.iterations();
-        self.stats.max_iterations = self.stats.max_iterations.max(self.qp.iterations());
-        let within = status == QpStatus::Solved;
-        if within {
-            self.stroke_xi.copy_from_slice(self.qp.xi());
-            self.stroke_tau.copy_from_slice(self.qp.tau());
-        }
-        self.saw = self.stroke.reversals_left() > 0 && self.sawing_pays(previous, blade, within);
-        if self.saw {
-            status = QpStatus::Solved;
-            self.stroke_xi.copy_from_slice(self.qp.xi());
-            self.stroke_tau.copy_from_slice(self.qp.tau());
-        }
-        self.stats.last_status = Some(status);
-        if status == QpStatus::Solved {
-            self.plan_xi.copy_from_slice(&self.stroke_xi);
-            self.plan_tau.copy_from_slice(&self.stroke_tau);
-            self.plan_origin = d0;
-            self.plan_step = dd;
-            let tau = self.stroke_tau[0];
-            self.normal_speed = (1.0 / tau).min(normal_limit);
-            self.tangential_speed = (self.plan_xi[0] * self.normal_speed).min(l.tangential_speed);
-        } else {
-            self.stats.fallbacks += 1;
-            self.shift_plan(d0);
-            // The trust region around a plan that no longer fits the blade
-            // (after the last allowed reversal, say) leaves the next
-            // subproblem infeasible too: linearise it around ratios that fit.
-            let cap = blade / remaining;
-            for x in &mut self.plan_xi {
-                *x = x.min(cap);
-            }
-            if self.plan_step == 0.0 {
-                // No plan yet: start at the initial plan's ratio, full speed.
-                self.normal_speed =
-                    normal_limit.min(l.tangential_speed / self.plan_xi[0].max(1e-12));
-            } else {
-                // The shifted plan's stage under the edge now.
-                self.normal_speed = (1.0 / self.plan_tau[0]).min(normal_limit);
-            }
-            self.tangential_speed = (self.plan_xi[0] * self.normal_speed).min(l.tangential_speed);
-        }
+        self.stats.solves += u64::from(solves);
+        self.stats.fallbacks += u64::from(fallback);
+        self.stats.last_status = status;
+        self.stats.last_iterations = iterations;
+        self.stats.max_iterations = self.stats.max_iterations.max(iterations);
     }
 
-    /// The fallback's plan: the last solved plan shifted to the edge's depth
-    /// `d0`, so that its first stage is the one the edge is in (stages past
-    /// the plan's end repeat its last). Nothing before the first solved plan.
-    fn shift_plan(&mut self, d0: f64) {
-        if self.plan_step <= 0.0 {
-            return;
+    /// The request for a plan from the state after this tick's reading.
+    fn request(&self, fractured: bool) -> PlanRequest {
+        PlanRequest {
+            edge_depth: self.depth,
+            remaining: self.task.target_depth - self.depth,
+            fractured,
+            depth_at_fracture: self.depth_at_fracture,
+            scale: self.scale(),
+            blade_left: self.budget.remaining_towards(self.stroke.direction()),
+            stroke_length: self.budget.stroke_length(),
+            reversals_left: self.stroke.reversals_left(),
+            normal_speed: self.normal_speed,
+            tangential_speed: self.tangential_speed,
+            normal_limit: normal_speed_limit(
+                &self.task,
+                &self.settings,
+                self.estimator.is_some(),
+                self.depth_at_fracture.is_some(),
+            ),
         }
-        let n = self.plan_xi.len();
-        let passed = ((d0 - self.plan_origin) / self.plan_step).floor();
-        let j = if passed.is_finite() {
-            passed.clamp(0.0, (n - 1) as f64) as usize
-        } else {
-            0
-        };
-        if j == 0 {
-            return;
-        }
-        for plan in [&mut self.plan_xi, &mut self.plan_tau] {
-            plan.copy_within(j.., 0);
-            let last = plan[n - 1 - j];
-            plan[n - j..].fill(last);
-        }
-        self.plan_origin += j as f64 * self.plan_step;
-    }
-
-    /// The normal speed allowed now, m/s: the arm's, or while estimating
-    /// before the first fracture the guarded touch's
-    /// ([`MpcSettings::touch_speed`]), so that the indentation, which alone
-    /// identifies the stiffness, spans many ticks.
-    fn normal_speed_limit(&self) -> f64 {
-        let l = self.task.limits.normal_speed;
-        if self.estimator.is_some() && self.depth_at_fracture.is_none() {
-            l.min(self.settings.touch_speed)
-        } else {
-            l
-        }
-    }
-
-    /// Whether sawing pays, after the plan within the stroke (`blade` m
-    /// left) was solved (`within`; its solution in `stroke_xi`/`stroke_tau`)
-    /// or not: if that plan's budget row binds, or it failed (the trust
-    /// region around a sawing plan can leave no ratio that fits the
-    /// stroke), solves again with every reversal still allowed adding a
-    /// stroke, and compares the objectives, charging the second the time
-    /// each reversal it needs loses. True leaves the sawing plan in the
-    /// solver.
-    fn sawing_pays(&mut self, previous: f64, blade: f64, within: bool) -> bool {
-        let demand = |stages: &[StageData], xi: &[f64]| -> f64 {
-            stages.iter().zip(xi).map(|(s, x)| s.depth_step * x).sum()
-        };
-        if within && demand(&self.stages, &self.stroke_xi) < blade * (1.0 - 1e-6) {
-            return false;
-        }
-        let stroke = 0.98 * self.budget.stroke_length();
-        let extra = f64::from(self.stroke.reversals_left()) * stroke;
-        self.stats.solves += 1;
-        if self
-            .qp
-            .solve(&self.stages, &self.limits, previous, blade + extra)
-            != QpStatus::Solved
-        {
-            return false;
-        }
-        self.stats.last_iterations = self.qp.iterations();
-        self.stats.max_iterations = self.stats.max_iterations.max(self.qp.iterations());
-        if !within {
-            return true;
-        }
-        let xi = self.qp.xi();
-        let needed = ((demand(&self.stages, xi) - blade) / stroke)
-            .ceil()
-            .max(0.0);
-        if needed < 1.0 {
-            return false;
-        }
-        let l = &self.task.limits;
-        let speed = self
-            .normal_speed
-            .hypot(self.tangential_speed)
-            .max(l.normal_speed);
-        let reversal = self.limits.time_weight * stopping_duration(speed, l.acceleration, l.jerk);
-        let within = DepthQp::objective(
-            &self.stages,
-            &self.limits,
-            previous,
-            &self.stroke_xi,
-            &self.stroke_tau,
-        );
-        let sawing = DepthQp::objective(&self.stages, &self.limits, previous, xi, self.qp.tau());
-        sawing + needed * reversal < within
     }
 }
 
-impl<M: SliceModel> Controller for Mpc<M> {
+/// The normal speed allowed, m/s: the arm's, or while estimating before the
+/// first fracture the guarded touch's ([`MpcSettings::touch_speed`]), so
+/// that the indentation, which alone identifies the stiffness, spans many
+/// ticks.
+fn normal_speed_limit(
+    task: &CutTask,
+    settings: &MpcSettings,
+    estimating: bool,
+    fractured: bool,
+) -> f64 {
+    let l = task.limits.normal_speed;
+    if estimating && !fractured {
+        l.min(settings.touch_speed)
+    } else {
+        l
+    }
+}
+
+impl<M: SliceModel + Clone + Send + 'static> Controller for Mpc<M> {
     fn name(&self) -> &str {
         "mpc"
     }
@@ -545,10 +407,14 @@ impl<M: SliceModel> Controller for Mpc<M> {
         }
         self.estimate(m, contact, fractured);
         let done = self.task.reached(m.position.y);
-        self.replanned = false;
-        if !done && self.ticks.is_multiple_of(self.ticks_per_plan) {
-            self.replan(fractured);
-            self.replanned = true;
+        // The plan due now (lockstep) or the newest (realtime).
+        let arrived = self.planner.poll().fresh;
+        self.replanned = !done
+            && self.ticks.is_multiple_of(self.ticks_per_plan)
+            && self.planner.submit(&self.request(fractured)) == SubmitStatus::Accepted;
+        // Inline plans arrive in the submit.
+        if arrived || self.planner.plan().fresh {
+            self.apply();
         }
         self.ticks += 1;
         let (command, v_n, v_t) = if done {

@@ -9,6 +9,8 @@
 //! - [`ScaleEstimator`]: online R_c, E, μ scale factors from the forces,
 //!   with [`IndentationStiffness`] for E before the first fracture;
 //! - [`SurrogateModel`]: the fitted surrogate as a [`SliceModel`];
+//! - [`MpcPlanJob`]: the planning half, run off the servo tick by a
+//!   [`Planner`](crate::planner::Planner);
 //! - [`Mpc`]: the controller.
 
 mod controller;
@@ -17,6 +19,7 @@ mod depth_qp;
 mod force_tare;
 mod fracture_onset;
 mod indentation_stiffness;
+mod plan_job;
 mod scale_estimator;
 mod settings;
 mod slice_model;
@@ -28,6 +31,7 @@ pub use depth_qp::{DepthQp, QpLimits, QpStatus, StageData};
 pub use force_tare::ForceTare;
 pub use fracture_onset::FractureOnset;
 pub use indentation_stiffness::IndentationStiffness;
+pub use plan_job::{MpcPlan, MpcPlanJob, PlanRequest};
 pub use scale_estimator::ScaleEstimator;
 pub use settings::MpcSettings;
 pub use slice_model::{ForceModel, SliceModel, StageCost, StageState};

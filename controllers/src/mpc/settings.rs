@@ -3,6 +3,8 @@
 use serde::{Deserialize, Serialize};
 use shearcut_sim::InvalidSetting;
 
+use crate::planner::PlannerSettings;
+
 /// Settings of the [`super::Mpc`].
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -65,6 +67,9 @@ pub struct MpcSettings {
     /// of the blade budget). A plan uses strokes only if their cost (the
     /// time a reversal loses, at `time_weight`) is below the work they save.
     pub max_reversals: u32,
+    /// How plans reach the servo tick (`[controller.mpc.planner]`; default
+    /// lockstep, one tick after their request).
+    pub planner: PlannerSettings,
 }
 
 impl Default for MpcSettings {
@@ -84,6 +89,7 @@ impl Default for MpcSettings {
             forgetting: 1.0,
             touch_speed: 0.005,
             max_reversals: 16,
+            planner: PlannerSettings::default(),
         }
     }
 }

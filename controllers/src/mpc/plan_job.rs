@@ -1,0 +1,352 @@
+//! The MPC's planning half: one convexified subproblem per plan, run off
+//! the servo tick by a [`Planner`](crate::planner::Planner).
+
+use super::depth_profile::DepthProfile;
+use super::depth_qp::{DepthQp, QpLimits, QpStatus, StageData};
+use super::settings::MpcSettings;
+use super::slice_model::{SliceModel, StageState};
+use crate::controller::{CutTask, stopping_distance, stopping_duration};
+use crate::planner::PlanJob;
+
+/// What the servo tick knows when it asks for a plan.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlanRequest {
+    /// The edge's depth below the touch point, m.
+    pub edge_depth: f64,
+    /// Edge travel left to the target depth, m.
+    pub remaining: f64,
+    /// Whether the first fracture has been seen.
+    pub fractured: bool,
+    /// The sections' mean depth at the first fracture, m.
+    pub depth_at_fracture: Option<f64>,
+    /// Scale factors (toughness, stiffness, friction) believed now.
+    pub scale: [f64; 3],
+    /// Blade left in the current stroke's direction, m.
+    pub blade_left: f64,
+    /// Length of a full sawing stroke, m.
+    pub stroke_length: f64,
+    /// Sawing reversals still allowed.
+    pub reversals_left: u32,
+    /// Normal speed commanded now, m/s.
+    pub normal_speed: f64,
+    /// Tangential speed commanded now, m/s.
+    pub tangential_speed: f64,
+    /// The normal speed allowed now, m/s (the guarded touch's before the
+    /// first fracture while estimating).
+    pub normal_limit: f64,
+}
+
+/// A plan: ξ and τ per stage from the edge's depth `origin`, and the
+/// velocity target of its first stage.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MpcPlan {
+    /// Slice-push ratio per stage.
+    pub xi: Vec<f64>,
+    /// Time per unit depth per stage, s/m (0 before the first solved plan).
+    pub tau: Vec<f64>,
+    /// The edge's depth where the stages start, m.
+    pub origin: f64,
+    /// Depth of each stage, m (0 before the first solved plan).
+    pub step: f64,
+    /// Normal speed to command, m/s.
+    pub normal_speed: f64,
+    /// Tangential speed magnitude to command, m/s.
+    pub tangential_speed: f64,
+    /// Whether the plan saws (needs more blade than the stroke has).
+    pub saw: bool,
+    /// Status of the plan's subproblem (`None` for the initial plan).
+    pub status: Option<QpStatus>,
+    /// Whether the plan fell back to the previous one, shifted.
+    pub fallback: bool,
+    /// Subproblems solved for it.
+    pub solves: u32,
+    /// Interior-point iterations of its last solve.
+    pub iterations: u32,
+}
+
+impl MpcPlan {
+    /// The plan before any solve: ξ = `xi0` at every one of `n` stages,
+    /// at rest.
+    pub fn initial(n: usize, xi0: f64) -> Self {
+        Self {
+            xi: vec![xi0; n],
+            tau: vec![0.0; n],
+            origin: 0.0,
+            step: 0.0,
+            normal_speed: 0.0,
+            tangential_speed: 0.0,
+            saw: false,
+            status: None,
+            fallback: false,
+            solves: 0,
+            iterations: 0,
+        }
+    }
+}
+
+/// The MPC's planning half (DESIGN §4): owns the model, the object's
+/// profile and the persistent subproblem; each plan linearises the model
+/// around the previous plan (a real-time iteration with a trust region)
+/// and solves [`DepthQp`], twice when sawing is considered.
+///
+/// ## Memory allocation
+/// Everything at construction (n stages); a plan allocates nothing in our
+/// code (clarabel 0.11.1 allocates one block per solve in its timers).
+pub struct MpcPlanJob<M: SliceModel> {
+    task: CutTask,
+    settings: MpcSettings,
+    model: M,
+    profile: DepthProfile,
+    qp: DepthQp,
+    limits: QpLimits,
+    stages: Vec<StageData>,
+    /// The previous plan: the linearisation point, and the fallback.
+    last: MpcPlan,
+    /// The plan within the current stroke while the sawing plan is solved.
+    stroke_xi: Vec<f64>,
+    stroke_tau: Vec<f64>,
+}
+
+impl<M: SliceModel> MpcPlanJob<M> {
+    /// The job for `task` with `model` of the material and `profile` of the
+    /// object, starting from ξ = `initial_xi` at every stage (settings and
+    /// task already validated).
+    pub fn new(
+        task: &CutTask,
+        settings: &MpcSettings,
+        model: M,
+        profile: DepthProfile,
+        initial_xi: f64,
+    ) -> Self {
+        let n = settings.stages;
+        let l = &task.limits;
+        let limits = QpLimits {
+            xi_max: settings.max_slice_push_ratio,
+            trust_region: settings.trust_region,
+            normal_speed: l.normal_speed,
+            tangential_speed: l.tangential_speed,
+            max_force: settings.max_force.unwrap_or(f64::INFINITY),
+            time_weight: settings.time_weight,
+            smoothness_weight: settings.smoothness_weight,
+            deformation_weight: settings.deformation_weight,
+            force_penalty: settings.force_penalty,
+        };
+        Self {
+            task: *task,
+            settings: *settings,
+            model,
+            profile,
+            qp: DepthQp::new(n, settings.max_iterations),
+            limits,
+            stages: vec![StageData::default(); n],
+            last: MpcPlan::initial(n, initial_xi.clamp(0.0, settings.max_slice_push_ratio)),
+            stroke_xi: vec![0.0; n],
+            stroke_tau: vec![0.0; n],
+        }
+    }
+
+    /// The plan the job starts from.
+    pub fn initial_plan(&self) -> MpcPlan {
+        self.last.clone()
+    }
+
+    /// The last plan made.
+    pub fn last_plan(&self) -> &MpcPlan {
+        &self.last
+    }
+
+    /// Plans from the edge's depth `r.edge_depth` for the cut to deepen by
+    /// `r.remaining` (m).
+    ///
+    /// The stages split the edge's remaining travel; each stage's model
+    /// state is the sections' mean depth there
+    /// ([`DepthProfile::section_depth`]), and its work is per unit of the
+    /// edge's travel.
+    fn replan(&mut self, r: &PlanRequest) {
+        let n = self.settings.stages;
+        let d0 = r.edge_depth;
+        let remaining = r.remaining;
+        let fractured = r.fractured;
+        let dd = remaining.max(1e-6) / n as f64;
+        let since = r.depth_at_fracture;
+        let section_depth = |d: f64| self.profile.section_depth(d);
+        let s0 = section_depth(d0);
+        let [t, st, f] = r.scale;
+        self.model.set_scale(t, st, f);
+        // Before the first fracture the onset's cost covers the catch-up
+        // after it, whose length the ratio at the fracture sets; the later
+        // stages are priced at the rates after that span (`SliceModel`).
+        let span = if fractured {
+            0.0
+        } else {
+            let first = StageState {
+                depth: section_depth(d0 + 0.5 * dd),
+                height: self.profile.height(),
+                half_width: self.profile.half_width(),
+                fractured: false,
+                travel_since_fracture: 0.0,
+            };
+            self.model.catch_up_span(self.last.xi[0], &first)
+        };
+        for k in 0..n {
+            let edge = d0 + (k as f64 + 0.5) * dd;
+            let depth = section_depth(edge);
+            let state = StageState {
+                depth,
+                height: self.profile.height(),
+                half_width: self.profile.half_width(),
+                fractured: fractured || k > 0,
+                travel_since_fracture: match since {
+                    Some(at) if fractured => (depth - at).max(0.0),
+                    _ if k == 0 => span,
+                    _ => (depth - s0).max(span),
+                },
+            };
+            let xi_bar = self.last.xi[k];
+            self.stages[k] = StageData {
+                depth_step: dd,
+                contact_length: self.profile.contact_length(edge),
+                xi_bar,
+                cost: self.model.stage(xi_bar, &state),
+                before_fracture: !fractured && k == 0,
+            };
+        }
+        let l = self.task.limits;
+        // Keep what stopping at the current tangential speed needs.
+        let reserve = stopping_distance(r.tangential_speed, l.acceleration, l.jerk);
+        let blade = (r.blade_left - reserve).max(0.0);
+        let previous = self.last.xi[0];
+        let mut status = self.qp.solve(&self.stages, &self.limits, previous, blade);
+        self.last.solves = 1;
+        self.last.iterations = self.qp.iterations();
+        let within = status == QpStatus::Solved;
+        if within {
+            self.stroke_xi.copy_from_slice(self.qp.xi());
+            self.stroke_tau.copy_from_slice(self.qp.tau());
+        }
+        let saw = r.reversals_left > 0 && self.sawing_pays(r, previous, blade, within);
+        if saw {
+            status = QpStatus::Solved;
+            self.stroke_xi.copy_from_slice(self.qp.xi());
+            self.stroke_tau.copy_from_slice(self.qp.tau());
+        }
+        let plan = &mut self.last;
+        plan.saw = saw;
+        plan.status = Some(status);
+        plan.fallback = status != QpStatus::Solved;
+        if status == QpStatus::Solved {
+            plan.xi.copy_from_slice(&self.stroke_xi);
+            plan.tau.copy_from_slice(&self.stroke_tau);
+            plan.origin = d0;
+            plan.step = dd;
+            plan.normal_speed = (1.0 / plan.tau[0]).min(r.normal_limit);
+            plan.tangential_speed = (plan.xi[0] * plan.normal_speed).min(l.tangential_speed);
+        } else {
+            shift_plan(plan, d0);
+            // The trust region around a plan that no longer fits the blade
+            // (after the last allowed reversal, say) leaves the next
+            // subproblem infeasible too: linearise it around ratios that fit.
+            let cap = blade / remaining;
+            for x in &mut plan.xi {
+                *x = x.min(cap);
+            }
+            plan.normal_speed = if plan.step == 0.0 {
+                // No plan yet: start at the initial plan's ratio, full speed.
+                r.normal_limit
+                    .min(l.tangential_speed / plan.xi[0].max(1e-12))
+            } else {
+                // The shifted plan's stage under the edge now.
+                (1.0 / plan.tau[0]).min(r.normal_limit)
+            };
+            plan.tangential_speed = (plan.xi[0] * plan.normal_speed).min(l.tangential_speed);
+        }
+    }
+
+    /// Whether sawing pays, after the plan within the stroke (`blade` m
+    /// left) was solved (`within`; its solution in `stroke_xi`/`stroke_tau`)
+    /// or not: if that plan's budget row binds, or it failed (the trust
+    /// region around a sawing plan can leave no ratio that fits the
+    /// stroke), solves again with every reversal still allowed adding a
+    /// stroke, and compares the objectives, charging the second the time
+    /// each reversal it needs loses. True leaves the sawing plan in the
+    /// solver.
+    fn sawing_pays(&mut self, r: &PlanRequest, previous: f64, blade: f64, within: bool) -> bool {
+        let demand = |stages: &[StageData], xi: &[f64]| -> f64 {
+            stages.iter().zip(xi).map(|(s, x)| s.depth_step * x).sum()
+        };
+        if within && demand(&self.stages, &self.stroke_xi) < blade * (1.0 - 1e-6) {
+            return false;
+        }
+        let stroke = 0.98 * r.stroke_length;
+        let extra = f64::from(r.reversals_left) * stroke;
+        self.last.solves += 1;
+        if self
+            .qp
+            .solve(&self.stages, &self.limits, previous, blade + extra)
+            != QpStatus::Solved
+        {
+            return false;
+        }
+        self.last.iterations = self.qp.iterations();
+        if !within {
+            return true;
+        }
+        let xi = self.qp.xi();
+        let needed = ((demand(&self.stages, xi) - blade) / stroke)
+            .ceil()
+            .max(0.0);
+        if needed < 1.0 {
+            return false;
+        }
+        let l = &self.task.limits;
+        let speed = r
+            .normal_speed
+            .hypot(r.tangential_speed)
+            .max(l.normal_speed);
+        let reversal = self.limits.time_weight * stopping_duration(speed, l.acceleration, l.jerk);
+        let within = DepthQp::objective(
+            &self.stages,
+            &self.limits,
+            previous,
+            &self.stroke_xi,
+            &self.stroke_tau,
+        );
+        let sawing = DepthQp::objective(&self.stages, &self.limits, previous, xi, self.qp.tau());
+        sawing + needed * reversal < within
+    }
+}
+
+/// The fallback's plan: the last solved plan shifted to the edge's depth
+/// `d0`, so that its first stage is the one the edge is in (stages past
+/// the plan's end repeat its last). Nothing before the first solved plan.
+fn shift_plan(plan: &mut MpcPlan, d0: f64) {
+    if plan.step <= 0.0 {
+        return;
+    }
+    let n = plan.xi.len();
+    let passed = ((d0 - plan.origin) / plan.step).floor();
+    let j = if passed.is_finite() {
+        passed.clamp(0.0, (n - 1) as f64) as usize
+    } else {
+        0
+    };
+    if j == 0 {
+        return;
+    }
+    for stages in [&mut plan.xi, &mut plan.tau] {
+        stages.copy_within(j.., 0);
+        let last = stages[n - 1 - j];
+        stages[n - j..].fill(last);
+    }
+    plan.origin += j as f64 * plan.step;
+}
+
+impl<M: SliceModel + Send + 'static> PlanJob for MpcPlanJob<M> {
+    type Request = PlanRequest;
+    type Plan = MpcPlan;
+
+    fn plan(&mut self, request: &PlanRequest, out: &mut MpcPlan) {
+        self.replan(request);
+        out.clone_from(&self.last);
+    }
+}
