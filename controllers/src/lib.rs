@@ -3,4 +3,5 @@
 
 pub mod controller;
 pub mod mpc;
+pub mod observer;
 pub mod trajectory;
