@@ -53,10 +53,11 @@ fn the_first_fracture_on_a_dome_is_found_within_its_bound() {
     let f = es[detected].fracture.unwrap();
     // Never before the truth.
     assert!(detected >= truth, "detected {detected}, truth {truth}");
-    // The first section's fracture drops the total by under 2 %; the next
-    // sections follow within a few ticks with drops of 5 % (measured: 5
-    // ticks late). The contract is the plateau rule's 1 mm of travel past
-    // the peak, 50 ticks at 20 mm/s.
+    // The first section's fracture drops the total by a few per cent at
+    // most (on these coarse sections it is found on its own tick; on the
+    // scenario's finer ones, 5 ticks late, at the next sections' drops:
+    // docs/observers.md). The contract is the plateau rule's 1 mm of travel
+    // past the peak, 50 ticks at 20 mm/s.
     let step = travel_per_tick(&ms);
     let bound = (1e-3 / step).ceil() as usize;
     assert!(detected - truth <= bound, "{} ticks late", detected - truth);
@@ -80,9 +81,10 @@ fn the_contact_length_on_a_dome_follows_the_sections_in_contact() {
     errors.sort_by(f64::total_cmp);
     let median = errors[errors.len() / 2];
     // The plant counts whole segments of 4.5 mm whose midpoints have
-    // passed the surface: against the 40–55 mm in contact 2–5 mm deep, a
-    // segment at each end is ±10 %; the edge inside the outline is
-    // continuous.
-    assert!(median.abs() < 0.1, "median {median}");
-    assert!(errors.iter().all(|e| e.abs() < 0.25), "{errors:?}");
+    // passed the surface; the edge inside the outline is continuous. A
+    // segment at each end of the 40–55 mm in contact 2–5 mm deep is up to
+    // ±11 % (measured: −8.7 % to +7.7 %); the rounding goes both ways, so
+    // the median is near 0 (measured −0.7 %).
+    assert!(median.abs() < 0.03, "median {median}");
+    assert!(errors.iter().all(|e| e.abs() < 0.15), "{errors:?}");
 }
