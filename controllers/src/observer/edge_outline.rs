@@ -26,8 +26,8 @@ const OUTLINE_COLUMNS: usize = 2001;
 /// it lies between them.
 ///
 /// # Cost
-/// Construction tabulates the edge at [`EDGE_SAMPLES`] points and the
-/// outline at [`OUTLINE_COLUMNS`] columns (allocates). Each query walks the
+/// Construction tabulates the edge at 401 points and the outline at 2001
+/// columns (allocates). Each query walks the
 /// edge samples once with a table look-up per sample: a fixed cost per tick,
 /// no allocation.
 #[derive(Debug, Clone, PartialEq)]
