@@ -21,9 +21,9 @@ use shearcut_controllers::mpc::DepthProfile;
 use shearcut_controllers::observer::{CutEstimate, CutObserver, CutObserverSettings, CutTarget};
 use shearcut_sim::arm::{ArmReading, ArmStatus};
 use shearcut_sim::geometry::{Polygon, TriangleMesh};
-use shearcut_sim::plant::{
-    ArmLimits, FtSensor, FtSensorSettings, Plant, PlantSettings, knife_plane_silhouette,
-};
+use shearcut_plant::{FtSensor, FtSensorSettings, Plant, PlantSettings};
+use shearcut_sim::arm::ArmLimits;
+use shearcut_sim::knife_plane::knife_plane_silhouette;
 use shearcut_sim::section::SectionSettings;
 use shearcut_sim::{Cuboid, Knife, KnifePreset, Material, MaterialPreset, ObjectShape};
 
@@ -282,19 +282,19 @@ fn record(
     let mut m = plant
         .step(&Default::default(), PERIOD)
         .expect("plant steps");
-    let z_start = m.position.z;
+    let z_start = m.reading.position.z;
     let (mut truth_done, mut tail) = (false, 0);
     for _ in 0..MAX_TICKS {
-        let e = obs.observe(&m.reading());
-        truth_done |= m.crack_depth >= s.depth;
+        let e = obs.observe(&m.reading);
+        truth_done |= m.truth.crack_depth >= s.depth;
         ticks.push(Tick {
-            time: m.time,
-            position: m.position,
-            velocity: m.velocity,
-            true_wrench: m.true_wrench.to_array(),
-            contact_length: m.contact_length,
-            fractured: m.fractured_sections > 0,
-            crack_depth: m.crack_depth,
+            time: m.reading.time,
+            position: m.reading.position,
+            velocity: m.reading.velocity,
+            true_wrench: m.truth.wrench.to_array(),
+            contact_length: m.truth.contact_length,
+            fractured: m.truth.fractured_sections > 0,
+            crack_depth: m.truth.crack_depth,
         });
         if truth_done && e.done {
             tail += 1;
@@ -312,7 +312,7 @@ fn record(
         } else {
             full
         };
-        let remaining = s.blade_budget - (m.position.z - z_start);
+        let remaining = s.blade_budget - (m.reading.position.z - z_start);
         let v_t = xi * v_n;
         let v_t = if stopping_distance(v_t, limits.acceleration, limits.jerk) < 0.99 * remaining {
             v_t

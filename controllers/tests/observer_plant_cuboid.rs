@@ -8,9 +8,8 @@
 mod observer_support;
 
 use observer_support::{Cut, first, noisy, quiet, travel_per_tick};
-use shearcut_controllers::mpc::EdgeDepth as TruthEdgeDepth;
 use shearcut_controllers::observer::{CutEstimate, CutTarget};
-use shearcut_sim::plant::Measurement;
+use shearcut_plant::PlantStep as Measurement;
 
 /// Height of the cuboid's top, m (the straight edge lies at the knife
 /// frame's y = 0, so the knife frame origin is at this height at the touch).
@@ -24,7 +23,7 @@ fn press(cut: &Cut, ticks: usize) -> Vec<Measurement> {
 
 fn estimates(cut: &Cut, ms: &[Measurement], target: CutTarget) -> Vec<CutEstimate> {
     let mut obs = cut.observer(target);
-    ms.iter().map(|m| obs.observe(&m.reading())).collect()
+    ms.iter().map(|m| obs.observe(&m.reading)).collect()
 }
 
 #[test]
@@ -33,7 +32,7 @@ fn the_tare_finds_the_bias_and_the_noise_in_free_air() {
     let ms = press(&cut, 120);
     let mut obs = cut.observer(CutTarget::Depth(0.02));
     for m in &ms {
-        obs.observe(&m.reading());
+        obs.observe(&m.reading);
     }
     let tare = obs.tare();
     assert!(tare.frozen());
@@ -69,7 +68,7 @@ fn the_touch_is_back_dated_to_the_top() {
         let cut = Cut::potato_cuboid(sensor);
         let ms = press(&cut, 120);
         let es = estimates(&cut, &ms, CutTarget::Depth(0.02));
-        let truth = first(&ms, |m| m.contact_length > 0.0).expect("touches");
+        let truth = first(&ms, |m| m.truth.contact_length > 0.0).expect("touches");
         let detected = es.iter().position(|e| e.touch.is_some()).unwrap();
         let touch = es[detected].touch.unwrap();
         assert!(
@@ -92,14 +91,14 @@ fn the_first_fracture_is_the_peak_before_the_drop() {
         let cut = Cut::potato_cuboid(sensor);
         let ms = press(&cut, 140);
         let es = estimates(&cut, &ms, CutTarget::Depth(0.02));
-        let truth = first(&ms, |m| m.fractured_sections > 0).expect("fractures");
+        let truth = first(&ms, |m| m.truth.fractured_sections > 0).expect("fractures");
         let detected = es.iter().position(|e| e.fracture.is_some()).unwrap();
         let f = es[detected].fracture.unwrap();
         // The fracture's tick drops the force by about 30 %: detected on it.
         assert_eq!(detected, truth, "{:?}", sensor.bias);
         // The peak is the reading before it: the crack started within that
         // tick.
-        assert_eq!(f.time, ms[truth - 1].time);
+        assert_eq!(f.time, ms[truth - 1].reading.time);
         assert!(es[..truth].iter().all(|e| e.fracture.is_none()));
         // The peak force: R'_c = 150 N/m over 30 mm plus friction, 4.5–9 N.
         assert!((4.5..9.0).contains(&f.force), "{}", f.force);
@@ -112,11 +111,17 @@ fn edge_depth_contact_length_and_done_follow_the_truth() {
     let ms = press(&cut, 260);
     let es = estimates(&cut, &ms, CutTarget::Depth(3e-3));
     let step = travel_per_tick(&ms);
-    let mut truth_depth = TruthEdgeDepth::default();
+    // The truth's edge depth: the knife's travel below its height on the
+    // first tick the plant reports edge in contact.
+    let mut truth_touch: Option<f64> = None;
     let mut done = None;
     for (k, (m, e)) in ms.iter().zip(&es).enumerate() {
-        let truth = truth_depth.observe(m.position.y, m.contact_length);
-        if e.touch.is_some() && m.contact_length > 0.0 {
+        let y = m.reading.position.y;
+        if truth_touch.is_none() && m.truth.contact_length > 0.0 {
+            truth_touch = Some(y);
+        }
+        let truth = truth_touch.map_or(0.0, |t| (t - y).max(0.0));
+        if e.touch.is_some() && m.truth.contact_length > 0.0 {
             // The truth's depth counts from its first tick in contact, up
             // to a tick's travel below the top; the observer's from the
             // top itself (to 3 µm, above).
@@ -131,7 +136,7 @@ fn edge_depth_contact_length_and_done_follow_the_truth() {
             );
             // The crack never lags the edge by more than the indentation
             // before the first fracture (0.4 mm).
-            assert!(m.crack_depth > e.edge_depth - 4e-4);
+            assert!(m.truth.crack_depth > e.edge_depth - 4e-4);
         }
         if e.done && done.is_none() {
             done = Some(k);

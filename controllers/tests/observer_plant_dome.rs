@@ -7,11 +7,11 @@ mod observer_support;
 
 use observer_support::{Cut, first, noisy, travel_per_tick};
 use shearcut_controllers::observer::{CutEstimate, CutTarget};
-use shearcut_sim::plant::Measurement;
+use shearcut_plant::PlantStep as Measurement;
 
 fn estimates(cut: &Cut, ms: &[Measurement]) -> Vec<CutEstimate> {
     let mut obs = cut.observer(CutTarget::Depth(0.025));
-    ms.iter().map(|m| obs.observe(&m.reading())).collect()
+    ms.iter().map(|m| obs.observe(&m.reading)).collect()
 }
 
 /// Pressing at 20 mm/s for `ticks`: the touch after about 55 ticks, the
@@ -25,7 +25,7 @@ fn the_touch_on_a_dome_is_never_before_the_truth_and_a_tick_after_at_most() {
     let cut = Cut::half_potato(noisy(0.5));
     let ms = press(&cut, 120);
     let es = estimates(&cut, &ms);
-    let truth = first(&ms, |m| m.contact_length > 0.0).expect("touches");
+    let truth = first(&ms, |m| m.truth.contact_length > 0.0).expect("touches");
     let detected = es.iter().position(|e| e.touch.is_some()).unwrap();
     let touch = es[detected].touch.unwrap();
     // One segment at the crest: the force rises 0.05 N per tick, so the
@@ -39,8 +39,8 @@ fn the_touch_on_a_dome_is_never_before_the_truth_and_a_tick_after_at_most() {
     // and above the first reading in contact plus one tick.
     let step = travel_per_tick(&ms);
     let y = touch.position.y;
-    assert!(y <= ms[truth - 1].position.y + 8e-6, "{y}");
-    assert!(y >= ms[truth].position.y - step, "{y}");
+    assert!(y <= ms[truth - 1].reading.position.y + 8e-6, "{y}");
+    assert!(y >= ms[truth].reading.position.y - step, "{y}");
 }
 
 #[test]
@@ -48,7 +48,7 @@ fn the_first_fracture_on_a_dome_is_found_within_its_bound() {
     let cut = Cut::half_potato(noisy(0.5));
     let ms = press(&cut, 240);
     let es = estimates(&cut, &ms);
-    let truth = first(&ms, |m| m.fractured_sections > 0).expect("fractures");
+    let truth = first(&ms, |m| m.truth.fractured_sections > 0).expect("fractures");
     let detected = es.iter().position(|e| e.fracture.is_some()).unwrap();
     let f = es[detected].fracture.unwrap();
     // Never before the truth.
@@ -63,7 +63,7 @@ fn the_first_fracture_on_a_dome_is_found_within_its_bound() {
     assert!(detected - truth <= bound, "{} ticks late", detected - truth);
     // The peak is not after the detection and not before the truth's
     // previous tick.
-    assert!(f.time >= ms[truth - 1].time && f.time <= ms[detected].time);
+    assert!(f.time >= ms[truth - 1].reading.time && f.time <= ms[detected].reading.time);
 }
 
 #[test]
@@ -74,8 +74,8 @@ fn the_contact_length_on_a_dome_follows_the_sections_in_contact() {
     let mut errors: Vec<f64> = ms
         .iter()
         .zip(&es)
-        .filter(|(m, e)| e.edge_depth > 2e-3 && m.contact_length > 0.0)
-        .map(|(m, e)| (e.contact_length - m.contact_length) / m.contact_length)
+        .filter(|(m, e)| e.edge_depth > 2e-3 && m.truth.contact_length > 0.0)
+        .map(|(m, e)| (e.contact_length - m.truth.contact_length) / m.truth.contact_length)
         .collect();
     assert!(errors.len() > 150, "{} ticks compared", errors.len());
     errors.sort_by(f64::total_cmp);

@@ -6,8 +6,6 @@ use shearcut_sim::arm::{ArmReading, ArmStatus, KnifeCommand};
 
 use super::depth_profile::DepthProfile;
 use super::depth_qp::QpStatus;
-use super::force_tare::ForceTare;
-use super::fracture_onset::FractureOnset;
 use super::plan_job::{MpcPlan, MpcPlanJob, PlanRequest};
 use super::scale_estimator::ScaleEstimator;
 use super::settings::MpcSettings;
@@ -15,6 +13,7 @@ use super::slice_model::{SliceModel, StageState};
 use crate::controller::{
     BladeBudget, Controller, ControllerTelemetry, CutTask, SawingStroke, VelocityShaper,
 };
+use crate::observer::{FractureDetector, FractureSettings, WrenchTare, WrenchTareSettings};
 use crate::planner::{PlanJob, Planner, SubmitStatus};
 
 /// Counters of the MPC's plans.
@@ -115,10 +114,11 @@ pub struct Mpc<M: SliceModel + Clone + Send + 'static> {
     stats: MpcStats,
     replanned: bool,
     estimator: Option<ScaleEstimator>,
-    /// The sensor's bias, from the free-air readings.
-    tare: ForceTare,
-    /// The first fracture, from the normal force.
-    onset: FractureOnset,
+    /// The sensor's bias and noise, from the free-air readings (the edge
+    /// above the task's touch height).
+    tare: WrenchTare,
+    /// The first fracture, from the tared normal force after the touch.
+    fracture: FractureDetector,
     /// The edge's depth after the last reading, m (below the touch point;
     /// the model's state is the sections' mean depth there,
     /// [`DepthProfile::section_depth`]).
@@ -186,8 +186,8 @@ impl<M: SliceModel + Clone + Send + 'static> Mpc<M> {
                     ESTIMATOR_RELATIVE_ERROR,
                 )
             }),
-            tare: ForceTare::default(),
-            onset: FractureOnset::default(),
+            tare: WrenchTare::new(WrenchTareSettings::default())?,
+            fracture: FractureDetector::new(FractureSettings::default())?,
             depth: 0.0,
             telemetry: ControllerTelemetry::default(),
         })
@@ -390,13 +390,15 @@ impl<M: SliceModel + Clone + Send + 'static> Controller for Mpc<M> {
         }
         self.budget.observe(m);
         self.depth = self.task.edge_depth(m.position.y);
-        let in_air = m.position.y > self.task.touch_height;
-        self.tare.observe(&m.wrench, in_air);
+        self.tare
+            .observe(&m.wrench, m.position.y - self.task.touch_height);
         let contact = self.profile.contact_length(self.depth);
-        if !in_air {
-            self.onset.observe(self.tare.tared(&m.wrench)[1]);
+        if m.position.y <= self.task.touch_height {
+            let force = self.tare.tared(&m.wrench)[1];
+            self.fracture
+                .observe(m.time, &m.position, force, self.tare.sigma()[1]);
         }
-        let fractured = self.onset.fractured();
+        let fractured = self.fracture.fracture().is_some();
         if fractured && self.depth_at_fracture.is_none() {
             self.depth_at_fracture = Some(self.profile.section_depth(self.depth));
             // E is identified by the indentation before the first fracture;

@@ -4,8 +4,6 @@
 //!   (work per unit depth with its ξ-derivatives, force, deflection);
 //! - [`DepthProfile`]: edge in contact and section size along the cut;
 //! - [`DepthQp`]: the convex subproblem over depth stages, persistent;
-//! - [`ForceTare`], [`FractureOnset`]: the sensor's bias and the first
-//!   fracture, inferred from the arm's reading;
 //! - [`ScaleEstimator`]: online R_c, E, μ scale factors from the forces,
 //!   with [`IndentationStiffness`] for E before the first fracture;
 //! - [`SurrogateModel`]: the fitted surrogate as a [`SliceModel`];
@@ -16,8 +14,6 @@
 mod controller;
 mod depth_profile;
 mod depth_qp;
-mod force_tare;
-mod fracture_onset;
 mod indentation_stiffness;
 mod plan_job;
 mod scale_estimator;
@@ -28,8 +24,6 @@ mod surrogate_model;
 pub use controller::{Mpc, MpcStats};
 pub use depth_profile::DepthProfile;
 pub use depth_qp::{DepthQp, QpLimits, QpStatus, StageData};
-pub use force_tare::ForceTare;
-pub use fracture_onset::FractureOnset;
 pub use indentation_stiffness::IndentationStiffness;
 pub use plan_job::{MpcPlan, MpcPlanJob, PlanRequest};
 pub use scale_estimator::ScaleEstimator;

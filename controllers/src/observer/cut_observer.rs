@@ -83,7 +83,7 @@ pub struct CutObserver {
 impl CutObserver {
     /// Observers for `knife` cutting the object whose outline in the knife
     /// plane is `outline` (world z, y, as
-    /// `shearcut_sim::plant::knife_plane_silhouette` gives it), to `target`.
+    /// `shearcut_sim::knife_plane::knife_plane_silhouette` gives it), to `target`.
     ///
     /// # Errors
     /// A setting or the target is out of range.

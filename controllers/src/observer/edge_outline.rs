@@ -46,7 +46,7 @@ pub struct EdgeOutline {
 
 impl EdgeOutline {
     /// The edge `edge` against `outline` (knife plane: x = world z, y = world
-    /// y, as `shearcut_sim::plant::knife_plane_silhouette` gives it).
+    /// y, as `shearcut_sim::knife_plane::knife_plane_silhouette` gives it).
     pub fn new(edge: &KnifeEdge, outline: &Polygon) -> Self {
         let len = edge.length();
         let samples = (0..EDGE_SAMPLES)

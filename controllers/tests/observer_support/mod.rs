@@ -7,9 +7,9 @@ use nalgebra::{Vector2, Vector3};
 use shearcut_controllers::controller::{MotionLimits, VelocityShaper};
 use shearcut_controllers::observer::{CutObserver, CutObserverSettings, CutTarget};
 use shearcut_sim::geometry::{Polygon, TriangleMesh};
-use shearcut_sim::plant::{
-    ArmLimits, FtSensorSettings, Measurement, Plant, PlantSettings, knife_plane_silhouette,
-};
+use shearcut_plant::{FtSensorSettings, Plant, PlantSettings, PlantStep as Measurement};
+use shearcut_sim::arm::ArmLimits;
+use shearcut_sim::knife_plane::knife_plane_silhouette;
 use shearcut_sim::section::SectionSettings;
 use shearcut_sim::{Cuboid, Knife, KnifePreset, MaterialPreset, ObjectShape};
 
@@ -131,7 +131,7 @@ pub fn first(ms: &[Measurement], f: impl Fn(&Measurement) -> bool) -> Option<usi
 /// The knife's downward travel per tick at the cruise of `ms` (the last
 /// measurement's normal speed), m.
 pub fn travel_per_tick(ms: &[Measurement]) -> f64 {
-    -ms.last().unwrap().velocity.y * PERIOD
+    -ms.last().unwrap().reading.velocity.y * PERIOD
 }
 
 /// The noise-free sensor.
@@ -154,5 +154,5 @@ pub fn noisy(fy: f64) -> FtSensorSettings {
 
 /// The knife frame origin of a measurement.
 pub fn position(m: &Measurement) -> Vector3<f64> {
-    m.position
+    m.reading.position
 }
