@@ -157,7 +157,20 @@ pub enum Command {
     },
     /// Validate a scenario and print its resolved values.
     Check {
-        /// Scenario TOML file, or the name of a built-in scenario (fig7-potato, fig7-eggplant).
+        /// Scenario TOML file, or the name of a built-in scenario (`shearcut scenarios`).
         scenario: String,
     },
+    /// List the built-in scenarios, one line each: name and description.
+    Scenarios,
+}
+
+impl Cli {
+    /// Parses the process's arguments; `--help` ends with the built-in
+    /// scenarios' names. Exits like [`Parser::parse`] on bad arguments.
+    pub fn parse_with_scenarios() -> Self {
+        let matches = <Self as clap::CommandFactory>::command()
+            .after_help(crate::commands::scenarios::names_help())
+            .get_matches();
+        <Self as clap::FromArgMatches>::from_arg_matches(&matches).unwrap_or_else(|e| e.exit())
+    }
 }

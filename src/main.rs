@@ -2,7 +2,6 @@
 
 use std::process::ExitCode;
 
-use clap::Parser;
 use shearcut::cli::{Cli, Command};
 use shearcut::commands;
 use shearcut::error::RunError;
@@ -10,7 +9,7 @@ use shearcut::run_replica::RunReplica;
 
 fn main() -> ExitCode {
     shearcut::logging::init();
-    let cli = Cli::parse();
+    let cli = Cli::parse_with_scenarios();
     let result: Result<(), RunError> = match cli.command {
         None => commands::default_job::run(),
         Some(Command::Toughness { nu, xi, plot }) => {
@@ -41,6 +40,7 @@ fn main() -> ExitCode {
             commands::trajectory::run(&cases, out.as_deref())
         }
         Some(Command::Check { scenario }) => commands::check::run(&scenario),
+        Some(Command::Scenarios) => commands::scenarios::run(),
         Some(Command::Fit {
             material,
             knife,

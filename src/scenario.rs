@@ -187,8 +187,9 @@ pub struct Scenario {
     pub controller: ControllerSettings,
 }
 
-/// Scenarios shipped with shearcut, available by name as well as by path.
-pub const BUILT_IN_SCENARIOS: [(&str, &str); 7] = [
+/// Scenarios shipped with shearcut (`config/scenarios/*.toml`), available by
+/// name as well as by path; `shearcut scenarios` lists them.
+pub const BUILT_IN_SCENARIOS: [(&str, &str); 11] = [
     (
         "fig7-potato",
         include_str!("../config/scenarios/fig7-potato.toml"),
@@ -196,6 +197,22 @@ pub const BUILT_IN_SCENARIOS: [(&str, &str); 7] = [
     (
         "fig7-eggplant",
         include_str!("../config/scenarios/fig7-eggplant.toml"),
+    ),
+    (
+        "fig8-potato",
+        include_str!("../config/scenarios/fig8-potato.toml"),
+    ),
+    (
+        "fig9-eggplant",
+        include_str!("../config/scenarios/fig9-eggplant.toml"),
+    ),
+    (
+        "fig10-potato-whole",
+        include_str!("../config/scenarios/fig10-potato-whole.toml"),
+    ),
+    (
+        "fig11-eggplant-whole",
+        include_str!("../config/scenarios/fig11-eggplant-whole.toml"),
     ),
     (
         "loop-potato-cuboid",

@@ -7,6 +7,7 @@ pub mod default_job;
 pub mod fit;
 pub mod plant;
 pub mod run;
+pub mod scenarios;
 pub mod simulate;
 pub mod toughness;
 pub mod trajectory;

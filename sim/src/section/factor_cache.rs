@@ -27,13 +27,9 @@
 //! A cached pattern of the default potato mesh (175 rows × 27 node columns)
 //! takes about 2.5 MB for the in-plane problem and 0.8 MB for the antiplane
 //! one; at most [`CAPACITY`] are kept (least recently used dropped), so at
-//! most about 210 MB. The default closed-loop run (`loop-potato-whole`)
-//! builds about 345 sections on 114 distinct topologies (228 patterns), and
-//! looks a pattern up 690 times: with room for 32 patterns 475 lookups
-//! missed, with 128 only 265 (an LRU replay of the run's lookups; 256 would
-//! miss only the 228 first uses, for twice the memory). The number of
-//! builds varies by a few with the worker's timing, their results do not.
-//! The scratch
+//! most about 210 MB (how often a closed loop misses: `docs/benchmarks.md`,
+//! "Section construction"). The number of builds varies by a few with the
+//! worker's timing, their results do not. The scratch
 //! memory ([`FactorMemory`]: the factor's values, 8 MB for that mesh, faer's
 //! stack and the dense trailing factor and its inverse, 3 MB) is kept for
 //! the next build, at most [`SPARE_MEMORY`] sets.

@@ -11,15 +11,11 @@
 //!
 //! The section is a tall strip (175 rows × 27 columns for the default half
 //! potato) whose kept DOFs (the cut line, column 0 and the strip columns)
-//! are ordered after the interior. Splitting by rows only (the former
-//! order) leaves ≈ 60 leaves of three rows, each eliminated between two
-//! separators 27 nodes long; splitting the strip into near-square blocks and
-//! those by columns and rows in turn needs fewer floating-point operations.
-//! For the default half potato's mesh (175 rows × 27 columns), counted from
-//! faer's supernodes (w³/3 + w²p + wp² per supernode of w columns and p
-//! rows below them): the in-plane partial factorisation 225 → 130 MFlop
-//! (of which 64 in the trailing dense block of the 525 kept DOFs, the same
-//! in both orders), the antiplane one 23 → 13 MFlop.
+//! are ordered after the interior. Splitting by rows only leaves ≈ 60
+//! leaves of three rows, each eliminated between two separators 27 nodes
+//! long; splitting the strip into near-square blocks and those by columns
+//! and rows in turn needs fewer floating-point operations
+//! (`docs/benchmarks.md`, "Section construction", counts them).
 
 use super::mesh::SectionMesh;
 

@@ -226,7 +226,7 @@ pub struct AccuracyReport {
 }
 
 /// One held-out run at scale factors (T, S) ≠ (1, 1): the surrogate with its
-/// ratio corrections and with them zeroed (linear scaling, format 3).
+/// ratio corrections and with them zeroed (linear scaling).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RatioRunAccuracy {

@@ -39,10 +39,8 @@ pub fn size_features(height: f64, half_width: f64, edge_width: f64) -> (f64, f64
 /// Under the edge the load spreads over the section's width 2w and then
 /// compresses (or, antiplane, shears) a column of that width over the rest
 /// of its height, a compliance ∝ H/(2w) on top of the logarithmic one of the
-/// spreading: without it the indentation compliances of the fit's sizes
-/// were 4 % (normal) and 10 % (antiplane) off at the fit's own sizes and
-/// 12 % / 28 % over H ∈ [15, 60] mm, w ∈ [10, 30] mm; with it 1.3 % / 1 %
-/// (`docs/surrogates.md`, "Before the first fracture").
+/// spreading (how well the compliances follow the section model with and
+/// without it: `docs/surrogates.md`, "Structure").
 #[inline]
 pub fn column_aspect(height: f64, half_width: f64, edge_width: f64) -> f64 {
     height.max(edge_width) / half_width.max(edge_width)

@@ -21,10 +21,7 @@
 //! gate's centre may lead the knee by a·h_b (x = (s − L + a·h_b)/W + ½, a
 //! from the same grid search): the full model's F_n starts to climb before
 //! its crack grows again, as the edge loads the material ahead of the tip
-//! (whole eggplant, ξ = 0.6, 40 × 12 mm: F_n rises from 1.7 mm before the
-//! crack moves). A gate that starts at the knee (x = (s − L)/W) was tried:
-//! it follows the full model's F_n 1–1.3 points of range worse for
-//! eggplant. g multiplies the fracture term and, with the progress v of the
+//! (`docs/surrogates.md`, "Structure", has the measured lead). g multiplies the fracture term and, with the progress v of the
 //! catch-up ([`progress`], C¹: min(s/L, 1) with its corner rounded), enters
 //! the face reaction's basis.
 

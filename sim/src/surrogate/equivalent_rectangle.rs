@@ -21,16 +21,12 @@ const DEPTH_FRACTION: f64 = 0.8;
 ///
 /// The surrogates are fitted on rectangles (`docs/surrogates.md`) and take a
 /// section's size as its height and half width. A section narrower at the
-/// top than its bounding box is more compliant than the box: on the half
-/// potato's crest section (a half ellipse 35 mm high and 60 mm wide) the
-/// section model's forces after the first fracture are 0.966 (F_n) and
-/// 0.926 (F_t) of the 35 × 60 mm rectangle's at ξ = 0.6, and a rectangle
-/// 0.9 as wide matches them within 0.2 % and 1.8 %, with the work within
-/// 0.3–0.9 % at ξ = 0, 0.6 and 1.5: the equivalence is the shape's, not the
-/// ratio's, so pressing finds it. A rectangle is its own equivalent
-/// (returned without a run). Three to eleven runs of the section model
-/// (pressing to 25 mm: about 0.7 s at the default 0.2 mm rows, 0.15 s at
-/// 0.4 mm, on this 2-core machine).
+/// top than its bounding box is more compliant than the box. The
+/// equivalence found pressing holds at other ratios too: it is the
+/// shape's, not the ratio's (`docs/controllers.md`, "Which section", has
+/// the half potato's figures). A rectangle is its own equivalent (returned
+/// without a run); any other section takes three to eleven runs of the
+/// section model, pressing to `depth` (`docs/benchmarks.md` for their cost).
 ///
 /// # Errors
 /// A section run fails.

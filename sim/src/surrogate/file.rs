@@ -68,8 +68,7 @@ impl Surrogate {
     }
 
     /// Parses a surrogate from TOML: the `version` must be within
-    /// [`OLDEST_READ_FORMAT_VERSION`]..=[`SURROGATE_FORMAT_VERSION`] (both 4
-    /// now), every key present and known (the `[ratio]` table whole or not
+    /// [`OLDEST_READ_FORMAT_VERSION`]..=[`SURROGATE_FORMAT_VERSION`], every key present and known (the `[ratio]` table whole or not
     /// at all: a file without one reads as zero correction, the surrogate
     /// then linear in the scale factors), every coefficient finite and the
     /// material and blade constants positive.

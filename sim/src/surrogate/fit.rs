@@ -99,8 +99,8 @@ impl<const N: usize> Rows<N> {
 /// since fracture ≥ [`WINDOW_TRAVEL`]), pushed as one more row weighted as
 /// √n samples × the window weight ([`Surrogate::fit_window_weight`]): the
 /// per-sample rows alone let the basis, the same at every ξ, trade the
-/// window's mean for the transient after the fracture (2.8 % of F_n on the
-/// potato cuboid at E/R_c ×1.86, `docs/surrogates.md`). Used alike by the
+/// window's mean for the transient after the fracture (`docs/surrogates.md`,
+/// "The strain rate's settled mean"). Used alike by the
 /// nominal fit and the ratio corrections' fit.
 struct WindowMean<const N: usize> {
     row: [f64; N],

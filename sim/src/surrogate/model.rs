@@ -181,11 +181,10 @@ pub struct PostFracture {
     /// The face reaction's dependence on ξ in steady cutting, N/(E·Δ) on
     /// [ξ, ξ², ξ/(1+ξ²)] (`ratio::slice_basis`), added to
     /// `face_reaction`: how far the crack runs ahead of the edge depends on
-    /// ξ (potato, 30 × 15 mm: 0.34, 0.41, 0.47, 0.55, 0.45 mm at ξ = 0,
-    /// 0.3, 0.6, 1, 2.5), and the further it leads, the less the bevel
-    /// presses on the faces (the section's N is lowest near ξ = 1, 6 %
-    /// under its pressing value), which ξ² alone cannot follow. Zero when
-    /// absent (files fitted before it: outputs bit for bit as before).
+    /// ξ, and the further it leads, the less the bevel presses on the faces
+    /// (lowest near ξ = 1; `docs/surrogates.md`, "The normal force's mean
+    /// after fracture"), which ξ² alone cannot follow. Zero when absent from
+    /// a file, which then gives the outputs of a surrogate without the term.
     #[serde(default)]
     pub face_reaction_slice: [f64; SLICE_TERMS],
 }
@@ -696,8 +695,8 @@ impl Surrogate {
 
     /// The nominal strain-energy rate U̇₀/(E·Δ²) (1/m): the wedge's part on
     /// `strain_basis` plus the steady part on [1, λ_H, λ_w]/H
-    /// (`strain_depth_rate`, skipped when zero so that files fitted before
-    /// it evaluate bit for bit as before).
+    /// (`strain_depth_rate`, skipped when zero, so that a file without the
+    /// term evaluates bit for bit as the surrogate without it).
     #[inline]
     pub(super) fn nominal_strain_rate(
         &self,

@@ -103,16 +103,12 @@ pub struct RatioCorrection {
     /// N₁ += N₀·Σ c_k·ψ_k with ψ = φ_j(ξ)·[λ_H, λ_w, H/w]
     /// ([`slice_size_basis`]). How much steeper slices lower the faces'
     /// reaction at another ρ depends on the section: the crack's lead over
-    /// the edge grows steeply with ρ (potato, 30 × 15 mm, ξ = 1, travel
-    /// 8–12 mm past the onset: 0.34, 0.69 and 3.6 mm at ρ = 0.5, 1 and 2),
-    /// by how much depends on how stiff the halves are, which their size
-    /// sets as it sets the compliances (`basis::compliance_basis`).
-    /// Without it, at E × 2 in steady cutting, the
-    /// section's F_n friction over the surrogate's went from ξ = 0.3 to 1 by
-    /// +0.025 at H/w = 0.8 (20 × 25 mm) but by −0.064 at 30 × 15 mm and
-    /// −0.113 at 45 × 10 mm (`docs/surrogates.md`, "The friction's mean at
-    /// other ratios and the depth it is evaluated at"). Zero when absent (files fitted before it: outputs bit
-    /// for bit as before).
+    /// the edge grows steeply with ρ, by how much depends on how stiff the
+    /// halves are, which their size sets as it sets the compliances
+    /// (`basis::compliance_basis`; measured in `docs/surrogates.md`, "The
+    /// friction's mean at other ratios, and the depth it is evaluated at").
+    /// Zero when absent from a file, which then gives the outputs of a
+    /// surrogate without the term.
     #[serde(default)]
     pub face_reaction_slice_size_linear: [f64; SLICE_SIZE_TERMS],
     /// The same for N₂.
