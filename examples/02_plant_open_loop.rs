@@ -24,7 +24,8 @@
 //! ```
 
 use nalgebra::{Vector2, Vector3};
-use shearcut_sim::plant::{ArmLimits, KnifeCommand, Measurement, Plant, PlantSettings};
+use shearcut_plant::{Plant, PlantSettings, PlantStep};
+use shearcut_sim::arm::{ArmLimits, KnifeCommand};
 use shearcut_sim::{Knife, KnifePreset, MaterialPreset, ObjectShape, SectionSettings};
 
 /// Slice-push ratio of the prescribed motion, ξ = v_t / v_n.
@@ -45,13 +46,13 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         " t (s)  travel (mm)  crack (mm)  contact (mm)     Fx      Fy      Fz (N)     Tx      Ty      Tz (N m)"
     );
     for m in cut.samples.iter() {
-        let w = m.wrench;
+        let w = m.reading.wrench;
         println!(
             "{:6.3} {:11.2} {:11.2} {:13.1} {:7.2} {:7.2} {:7.2} {:10.3} {:7.3} {:7.3}",
-            m.time,
-            (cut.start_height - m.position.y) * 1e3,
-            m.crack_depth * 1e3,
-            m.contact_length * 1e3,
+            m.reading.time,
+            (cut.start_height - m.reading.position.y) * 1e3,
+            m.truth.crack_depth * 1e3,
+            m.truth.contact_length * 1e3,
             w[0],
             w[1],
             w[2],
@@ -62,9 +63,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     println!(
         "work {:.4} J; first fracture at {:.3} s; {} sections fractured, {} re-chosen through the crack front",
-        cut.last.work,
+        cut.last.truth.work,
         cut.first_fracture.unwrap_or(f64::NAN),
-        cut.last.fractured_sections,
+        cut.last.truth.fractured_sections,
         cut.rechoices
     );
     Ok(())
@@ -73,9 +74,9 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 /// What the example's cut produced.
 struct Cut {
     /// The measurement every 100 ms and the last one.
-    samples: Vec<Measurement>,
+    samples: Vec<PlantStep>,
     /// The last measurement.
-    last: Measurement,
+    last: PlantStep,
     /// Time of the first tick with a fractured section, s.
     first_fracture: Option<f64>,
     /// Height of the knife frame's origin at the start, m.
@@ -119,10 +120,10 @@ fn cut() -> Result<Cut, Box<dyn std::error::Error>> {
             velocity: Vector3::new(0.0, direction.y, direction.x) * speed,
         };
         let m = plant.step(&command, DT)?;
-        if first_fracture.is_none() && m.fractured_sections > 0 {
-            first_fracture = Some(m.time);
+        if first_fracture.is_none() && m.truth.fractured_sections > 0 {
+            first_fracture = Some(m.reading.time);
         }
-        let done = m.crack_depth >= DEPTH || tick >= 10_000;
+        let done = m.truth.crack_depth >= DEPTH || tick >= 10_000;
         if tick.is_multiple_of(100) || done {
             samples.push(m);
         }
@@ -147,12 +148,12 @@ mod tests {
     #[test]
     fn the_example_cuts_to_depth() {
         let cut = cut().unwrap();
-        assert!(cut.last.crack_depth >= DEPTH, "{:?}", cut.last);
+        assert!(cut.last.truth.crack_depth >= DEPTH, "{:?}", cut.last);
         assert_eq!(
-            cut.last.status,
-            shearcut_sim::plant::PlantStatus::Moving,
+            cut.last.reading.status,
+            shearcut_sim::arm::ArmStatus::Moving,
             "the ramp keeps the arm's limits"
         );
-        assert!(cut.first_fracture.is_some() && cut.last.work > 0.0);
+        assert!(cut.first_fracture.is_some() && cut.last.truth.work > 0.0);
     }
 }
