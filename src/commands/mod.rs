@@ -10,3 +10,4 @@ pub mod run;
 pub mod simulate;
 pub mod toughness;
 pub mod trajectory;
+pub mod tune;
