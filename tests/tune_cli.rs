@@ -296,3 +296,20 @@ fn bad_sweep_files_exit_2_with_one_line() {
     let e = String::from_utf8_lossy(&o.stderr);
     assert!(e.contains("`--shard` = 3/3"), "{e}");
 }
+
+#[test]
+fn shipped_sweeps_all_load() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("config/sweeps");
+    let mut n = 0;
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "toml") {
+            let sweep = shearcut::tune::sweep_file::Sweep::load(&path)
+                .unwrap_or_else(|e| panic!("{e}"));
+            let list = shearcut::tune::job_list::JobList::new(&sweep, s(&path)).unwrap();
+            assert!(!list.jobs.is_empty(), "{}", path.display());
+            n += 1;
+        }
+    }
+    assert!(n >= 3, "{n} sweeps in {}", dir.display());
+}
