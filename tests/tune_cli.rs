@@ -140,6 +140,18 @@ fn a_sweep_is_deterministic_resumable_and_analysed() {
     ] {
         assert!(a.join(f).exists(), "{f}");
     }
+    // The MPC's weight is compared among the MPC's runs only (pressing's
+    // rows carry the default weight it does not use).
+    let effects = read(&a.join("effects.csv"));
+    let weight_levels: Vec<&str> = effects
+        .lines()
+        .filter(|l| l.contains(",controller.mpc.deformation_weight,"))
+        .collect();
+    assert_eq!(weight_levels.len(), 2, "{effects}");
+    assert!(
+        weight_levels.iter().all(|l| l.contains(",mpc,")),
+        "{effects}"
+    );
     let block = read(&a.join("recommended/small-potato-least-work.toml"));
     assert!(
         block.contains("[controller.mpc]") || block.contains("kind = \"press\""),
@@ -304,8 +316,8 @@ fn shipped_sweeps_all_load() {
     for entry in std::fs::read_dir(&dir).unwrap() {
         let path = entry.unwrap().path();
         if path.extension().is_some_and(|e| e == "toml") {
-            let sweep = shearcut::tune::sweep_file::Sweep::load(&path)
-                .unwrap_or_else(|e| panic!("{e}"));
+            let sweep =
+                shearcut::tune::sweep_file::Sweep::load(&path).unwrap_or_else(|e| panic!("{e}"));
             let list = shearcut::tune::job_list::JobList::new(&sweep, s(&path)).unwrap();
             assert!(!list.jobs.is_empty(), "{}", path.display());
             n += 1;

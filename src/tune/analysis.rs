@@ -123,6 +123,7 @@ pub fn analyse(dir: &Path, catalog: &JobCatalog, rows: &[JobRow]) -> Result<Stri
     let mut header = vec![
         "scenario".to_string(),
         "column".into(),
+        "controller_family".into(),
         "value".into(),
         "runs".into(),
     ];
@@ -160,6 +161,7 @@ pub fn analyse(dir: &Path, catalog: &JobCatalog, rows: &[JobRow]) -> Result<Stri
             let mut cells = vec![
                 name.clone(),
                 l.column.clone(),
+                l.family.clone(),
                 l.value.clone(),
                 l.runs.to_string(),
             ];
@@ -264,6 +266,13 @@ fn group_summary(
         t += &format!("\n{incomplete} settings did not complete every run and are left out.\n");
     }
     for span in front_spans(group) {
+        if span.least_work == span.least_deformation {
+            t += &format!(
+                "\n{} settings alone: setting {} has both the least work and the least deformation (no trade-off among them).\n",
+                span.family, span.least_work
+            );
+            continue;
+        }
         t += &format!(
             "\n{} settings alone: the front spans {:.2}× in max deformation between its least-work end (setting {}) and its least-deformation end (setting {}).\n",
             span.family, span.ratio, span.least_work, span.least_deformation

@@ -12,15 +12,17 @@ use crate::tune::setting_effect::EffectLevel;
 /// Most panels drawn (the table has them all).
 pub const MAX_PANELS: usize = 12;
 
-/// The columns of `levels`, in order, at most [`MAX_PANELS`].
-pub fn panel_columns(levels: &[EffectLevel]) -> Vec<&str> {
-    let mut columns: Vec<&str> = Vec::new();
+/// The (column, family) panels of `levels`, in order, at most
+/// [`MAX_PANELS`].
+pub fn panel_columns(levels: &[EffectLevel]) -> Vec<(&str, &str)> {
+    let mut panels: Vec<(&str, &str)> = Vec::new();
     for l in levels {
-        if !columns.contains(&l.column.as_str()) && columns.len() < MAX_PANELS {
-            columns.push(&l.column);
+        let key = (l.column.as_str(), l.family.as_str());
+        if !panels.contains(&key) && panels.len() < MAX_PANELS {
+            panels.push(key);
         }
     }
-    columns
+    panels
 }
 
 /// Draws the effects `levels` of one scenario.
@@ -35,8 +37,16 @@ pub fn draw_effects<DB: DrawingBackend>(
     let across = columns.len().clamp(1, 3);
     let down = columns.len().div_ceil(across).max(1);
     let panels = root.split_evenly((down, across));
-    for (area, column) in panels.iter().zip(&columns) {
-        let of: Vec<&EffectLevel> = levels.iter().filter(|l| l.column == *column).collect();
+    for (area, (column, family)) in panels.iter().zip(&columns) {
+        let of: Vec<&EffectLevel> = levels
+            .iter()
+            .filter(|l| l.column == *column && l.family == *family)
+            .collect();
+        let caption = if family.is_empty() {
+            column.to_string()
+        } else {
+            format!("{column} ({family} runs)")
+        };
         let relative: Vec<[f64; 4]> = {
             let n = of.len() as f64;
             let mean: [f64; 4] =
@@ -53,7 +63,7 @@ pub fn draw_effects<DB: DrawingBackend>(
         let pad = 0.1 * (hi - lo).max(0.01);
         let short = column.rsplit('.').next().unwrap_or(column);
         let mut chart = ChartBuilder::on(area)
-            .caption(*column, ("sans-serif", 14))
+            .caption(caption, ("sans-serif", 14))
             .margin(8)
             .x_label_area_size(35)
             .y_label_area_size(50)

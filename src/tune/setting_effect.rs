@@ -3,6 +3,11 @@
 //! controller itself), the mean of each objective over the completed runs
 //! with each value — the main effect of that column, averaged over
 //! everything else the sweep varied.
+//!
+//! A controller's own keys (`controller.*` but `controller.kind`) are
+//! compared within each controller family (`mpc`, `slice`, `press`,
+//! `force`) only: a baseline's row carries the MPC's default weights, which
+//! it does not use, and would blur the MPC's levels.
 
 use serde::Serialize;
 
@@ -15,6 +20,9 @@ use crate::tune::objective::Objective;
 pub struct EffectLevel {
     /// The column (e.g. `controller.mpc.deformation_weight`).
     pub column: String,
+    /// The controller family the runs are of (`mpc`, `slice`, …), or
+    /// empty for all the scenario's runs.
+    pub family: String,
     /// The value, as in the results table.
     pub value: String,
     /// Completed runs with this value.
@@ -35,35 +43,53 @@ pub fn effects(
         .iter()
         .filter(|(j, r)| j.scenario == scenario && r.outcome.completed)
         .collect();
+    let family = |j: &JobRecord| j.controller.split(':').next().unwrap_or("").to_string();
+    let mut families: Vec<String> = runs.iter().map(|(j, _)| family(j)).collect();
+    families.sort();
+    families.dedup();
     let mut out = Vec::new();
     for (c, column) in catalog.setting_columns.iter().enumerate() {
-        let mut values: Vec<&str> = Vec::new();
-        for (j, _) in &runs {
-            if !values.contains(&j.cells[c].as_str()) {
-                values.push(&j.cells[c]);
-            }
-        }
-        if values.len() < 2 {
-            continue;
-        }
-        for v in values {
-            let with: Vec<&JobRow> = runs
+        let per_family = column.starts_with("controller.") && column != "controller.kind";
+        let scopes: Vec<String> = if per_family {
+            families.clone()
+        } else {
+            vec![String::new()]
+        };
+        for scope in scopes {
+            let of: Vec<&(&JobRecord, &JobRow)> = runs
                 .iter()
-                .filter(|(j, _)| j.cells[c] == v)
-                .map(|(_, r)| *r)
+                .copied()
+                .filter(|(j, _)| scope.is_empty() || family(j) == scope)
                 .collect();
-            let n = with.len() as f64;
-            out.push(EffectLevel {
-                column: column.clone(),
-                value: v.to_string(),
-                runs: with.len(),
-                mean: std::array::from_fn(|i| {
-                    with.iter()
-                        .map(|r| Objective::ALL[i].of(&r.outcome))
-                        .sum::<f64>()
-                        / n
-                }),
-            });
+            let mut values: Vec<&str> = Vec::new();
+            for (j, _) in &of {
+                if !values.contains(&j.cells[c].as_str()) {
+                    values.push(&j.cells[c]);
+                }
+            }
+            if values.len() < 2 {
+                continue;
+            }
+            for v in values {
+                let with: Vec<&JobRow> = of
+                    .iter()
+                    .filter(|(j, _)| j.cells[c] == v)
+                    .map(|(_, r)| *r)
+                    .collect();
+                let n = with.len() as f64;
+                out.push(EffectLevel {
+                    column: column.clone(),
+                    family: scope.clone(),
+                    value: v.to_string(),
+                    runs: with.len(),
+                    mean: std::array::from_fn(|i| {
+                        with.iter()
+                            .map(|r| Objective::ALL[i].of(&r.outcome))
+                            .sum::<f64>()
+                            / n
+                    }),
+                });
+            }
         }
     }
     out
