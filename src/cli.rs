@@ -81,6 +81,10 @@ pub enum Command {
         #[arg(long, value_name = "DIR")]
         out: Option<PathBuf>,
     },
+    /// Tune controllers: run a sweep of controller settings over scenarios
+    /// and perturbed variants (in parallel, resumably, or one shard of it),
+    /// and write one row per run; `tune merge DIR…` combines shards.
+    Tune(crate::commands::tune::TuneArgs),
     /// Run time-optimal jerk-limited trajectory cases (one JSON object per
     /// line, ruckig's field names) and write one JSON result per line.
     Trajectory {

@@ -18,3 +18,4 @@ pub mod scenario;
 pub mod surrogates;
 pub mod trajectory_cases;
 pub mod transport;
+pub mod tune;

@@ -36,6 +36,7 @@ fn main() -> ExitCode {
             replicas,
             out,
         }) => commands::compare::run(&scenario, replicas, out.as_deref()),
+        Some(Command::Tune(args)) => commands::tune::run(args),
         Some(Command::Trajectory { cases, out }) => {
             commands::trajectory::run(&cases, out.as_deref())
         }

@@ -277,7 +277,7 @@ impl Scenario {
 }
 
 /// A one-line parse error with line and column.
-fn parse_error(origin: &str, text: &str, e: &toml::de::Error) -> ConfigError {
+pub(crate) fn parse_error(origin: &str, text: &str, e: &toml::de::Error) -> ConfigError {
     let (line, column) = match e.span() {
         Some(span) => {
             let before = &text[..span.start.min(text.len())];

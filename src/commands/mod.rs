@@ -11,3 +11,4 @@ pub mod scenarios;
 pub mod simulate;
 pub mod toughness;
 pub mod trajectory;
+pub mod tune;

@@ -1,0 +1,314 @@
+//! The job list of a sweep: every (scenario, controller setting, variant,
+//! replica), in a fixed order, each named by a hash of what it runs.
+//!
+//! Order: scenarios as listed; within one, the controller settings as the
+//! sweep expands them; within one setting, the variants; within one
+//! variant, the replicas. The order and every job's scenario depend only on
+//! the sweep file and the scenarios it names, so every machine and every
+//! shard builds the same list.
+//!
+//! A job's id is the first 16 hex digits of the SHA-1 of shearcut's version,
+//! the job's fully resolved scenario (variant and setting applied: TOML,
+//! every number in its exact shortest form, including the noise seed) and
+//! its replica. Equal ids are equal runs: a re-run finds a job's result
+//! under its id whatever else the sweep file gained or lost.
+
+use serde::{Deserialize, Serialize};
+use shearcut_sim::InvalidSetting;
+
+use crate::commands::check::resolved_toml;
+use crate::controller_choice::ControllerChoice;
+use crate::error::ConfigError;
+use crate::run_replica::RunReplica;
+use crate::scenario::Scenario;
+use crate::tune::controller_setting::{ControllerSetting, controller_cells, value_cell};
+use crate::tune::perturbation::VARIANT_COLUMNS;
+use crate::tune::sweep_file::Sweep;
+
+/// Columns naming a job, first in every results table.
+pub const JOB_COLUMNS: [&str; 7] = [
+    "job",
+    "id",
+    "scenario",
+    "setting",
+    "variant",
+    "replica",
+    "controller",
+];
+
+/// What a job is, as recorded in `jobs.json` (enough to tabulate and
+/// analyse results without the scenarios).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct JobRecord {
+    /// Position in the job list.
+    pub index: usize,
+    /// Hash of the run (see the module doc).
+    pub id: String,
+    /// Index of the scenario in the sweep.
+    pub scenario: usize,
+    /// Index of the controller setting in the sweep.
+    pub setting: usize,
+    /// Index of the variant in the sweep.
+    pub variant: usize,
+    /// The replica.
+    pub replica: u32,
+    /// The controller (`mpc`, `slice:0.5`, …).
+    pub controller: String,
+    /// The settings' cells, aligned with [`JobCatalog::setting_columns`].
+    pub cells: Vec<String>,
+}
+
+/// One controller setting on one scenario, as `jobs.json` keeps it.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SettingRecord {
+    /// The controller.
+    pub controller: String,
+    /// The keys the sweep set, `key = value` each (dotted below
+    /// `[controller]`).
+    pub overrides: Vec<String>,
+    /// The scenario's whole `[controller]` table under this setting (no
+    /// variant), TOML: what a recommendation writes out.
+    pub controller_toml: String,
+}
+
+/// Everything about a sweep's jobs the results need, written to
+/// `jobs.json` in every result directory (shards of one sweep write
+/// identical files; `tune merge` checks that they do).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct JobCatalog {
+    /// The sweep's name.
+    pub sweep: String,
+    /// The scenarios' names.
+    pub scenarios: Vec<String>,
+    /// Per scenario, per setting.
+    pub settings: Vec<Vec<SettingRecord>>,
+    /// The settings' columns: the variant's, then every `controller.*` key.
+    pub setting_columns: Vec<String>,
+    /// The jobs, in order.
+    pub jobs: Vec<JobRecord>,
+    /// The sweep's weightings, by name.
+    pub weightings: std::collections::BTreeMap<String, crate::tune::weighting::Weighting>,
+}
+
+/// One runnable job.
+#[derive(Debug, Clone)]
+pub struct Job {
+    /// Its record.
+    pub record: JobRecord,
+    /// The scenario to run: variant and setting applied.
+    pub scenario: Scenario,
+    /// The controller.
+    pub choice: ControllerChoice,
+    /// The replica.
+    pub replica: RunReplica,
+}
+
+/// The jobs of a sweep and their catalogue.
+#[derive(Debug, Clone)]
+pub struct JobList {
+    /// The jobs, in order.
+    pub jobs: Vec<Job>,
+    /// Their catalogue.
+    pub catalog: JobCatalog,
+}
+
+impl JobList {
+    /// Expands `sweep` into its jobs; `origin` names the sweep in errors.
+    pub fn new(sweep: &Sweep, origin: &str) -> Result<Self, ConfigError> {
+        let invalid = |setting: InvalidSetting| ConfigError::Invalid {
+            path: origin.to_string(),
+            setting,
+        };
+        let mut jobs = Vec::new();
+        let mut settings = Vec::new();
+        let mut columns: Vec<String> = VARIANT_COLUMNS.iter().map(|c| c.to_string()).collect();
+        let mut job_cells: Vec<Vec<(String, String)>> = Vec::new();
+        for (si, base) in sweep.scenarios.iter().enumerate() {
+            let mut of_scenario = Vec::new();
+            for (ki, setting) in sweep.settings.iter().enumerate() {
+                let at = |e: InvalidSetting| {
+                    invalid(e.prefixed(&format!("setting {ki} on {}", base.name)))
+                };
+                let nominal = setting.apply(base).map_err(at)?;
+                of_scenario.push(setting_record(setting, &nominal));
+                for (vi, variant) in sweep.variants.iter().enumerate() {
+                    let perturbed = variant.apply(base).map_err(at)?;
+                    let scenario = setting.apply(&perturbed).map_err(at)?;
+                    let mut cells: Vec<(String, String)> = VARIANT_COLUMNS
+                        .iter()
+                        .map(|c| c.to_string())
+                        .zip(variant.cells(&scenario))
+                        .collect();
+                    cells.extend(controller_cells(&scenario));
+                    for (key, _) in &cells {
+                        if !columns.contains(key) {
+                            columns.push(key.clone());
+                        }
+                    }
+                    let resolved = resolved_toml(&scenario);
+                    for r in 0..sweep.replicas {
+                        let index = jobs.len();
+                        let id = job_id(&resolved, r);
+                        jobs.push(Job {
+                            record: JobRecord {
+                                index,
+                                id,
+                                scenario: si,
+                                setting: ki,
+                                variant: vi,
+                                replica: r,
+                                controller: setting.choice.to_string(),
+                                cells: Vec::new(),
+                            },
+                            scenario: scenario.clone(),
+                            choice: setting.choice,
+                            replica: RunReplica { index: r },
+                        });
+                        job_cells.push(cells.clone());
+                    }
+                }
+            }
+            settings.push(of_scenario);
+        }
+        for (job, cells) in jobs.iter_mut().zip(&job_cells) {
+            job.record.cells = columns
+                .iter()
+                .map(|c| {
+                    cells
+                        .iter()
+                        .find(|(k, _)| k == c)
+                        .map_or(String::new(), |(_, v)| v.clone())
+                })
+                .collect();
+        }
+        for (i, job) in jobs.iter().enumerate() {
+            if let Some(j) = jobs[..i].iter().position(|o| o.record.id == job.record.id) {
+                return Err(invalid(InvalidSetting::new(
+                    "(the sweep)",
+                    format!("jobs {j} and {i}"),
+                    "run the same scenario, controller, settings and replica: list each once",
+                )));
+            }
+        }
+        let catalog = JobCatalog {
+            sweep: sweep.name.clone(),
+            scenarios: sweep.scenarios.iter().map(|s| s.name.clone()).collect(),
+            settings,
+            setting_columns: columns,
+            jobs: jobs.iter().map(|j| j.record.clone()).collect(),
+            weightings: sweep.weightings.clone(),
+        };
+        Ok(Self { jobs, catalog })
+    }
+}
+
+/// The record of `setting` on a scenario, `applied` being the scenario
+/// under it.
+fn setting_record(setting: &ControllerSetting, applied: &Scenario) -> SettingRecord {
+    #[derive(Serialize)]
+    struct ControllerTable<'a> {
+        controller: &'a crate::controller_settings::ControllerSettings,
+    }
+    SettingRecord {
+        controller: setting.choice.to_string(),
+        overrides: setting
+            .overrides
+            .iter()
+            .map(|(k, v)| format!("{k} = {}", value_cell(v)))
+            .collect(),
+        controller_toml: toml::to_string_pretty(&ControllerTable {
+            controller: &applied.controller,
+        })
+        .unwrap_or_default(),
+    }
+}
+
+/// The id of the run of resolved scenario `resolved` as replica `replica`.
+pub fn job_id(resolved: &str, replica: u32) -> String {
+    let mut h = sha1_smol::Sha1::new();
+    h.update(concat!("shearcut ", env!("CARGO_PKG_VERSION"), "\n").as_bytes());
+    h.update(resolved.as_bytes());
+    h.update(format!("\nreplica = {replica}\n").as_bytes());
+    h.digest().to_string()[..16].to_string()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const SWEEP: &str = r#"
+        scenarios = ["loop-potato-cuboid", "loop-potato-whole"]
+        replicas = 2
+        [variants]
+        youngs_modulus_scale = [0.8, 1.25]
+        [[controllers]]
+        kind = "mpc"
+        grid = { "mpc.deformation_weight" = [0.0, 100.0] }
+        [[controllers]]
+        kind = "press"
+    "#;
+
+    #[test]
+    fn the_list_is_ordered_and_its_ids_are_stable_and_distinct() {
+        let sweep = Sweep::parse(SWEEP, "s.toml", "s", None).unwrap();
+        let a = JobList::new(&sweep, "s.toml").unwrap();
+        let b = JobList::new(&sweep, "s.toml").unwrap();
+        assert_eq!(a.catalog, b.catalog);
+        // 2 scenarios × 3 settings × 2 variants × 2 replicas.
+        assert_eq!(a.jobs.len(), 24);
+        let order: Vec<(usize, usize, usize, u32)> = a
+            .jobs
+            .iter()
+            .map(|j| {
+                (
+                    j.record.scenario,
+                    j.record.setting,
+                    j.record.variant,
+                    j.record.replica,
+                )
+            })
+            .collect();
+        let mut sorted = order.clone();
+        sorted.sort();
+        assert_eq!(order, sorted, "scenario, setting, variant, replica");
+        let j = &a.jobs[5];
+        assert_eq!(
+            (j.record.setting, j.record.variant, j.record.replica),
+            (1, 0, 1)
+        );
+        assert_eq!(j.scenario.controller.mpc.deformation_weight, 100.0);
+        assert_eq!(j.scenario.material.youngs_modulus, 0.8 * 2.0e6);
+        let col = |name: &str| {
+            a.catalog
+                .setting_columns
+                .iter()
+                .position(|c| c == name)
+                .unwrap()
+        };
+        assert_eq!(
+            j.record.cells[col("controller.mpc.deformation_weight")],
+            "100.0"
+        );
+        assert_eq!(j.record.cells[col("variant.youngs_modulus_scale")], "0.8");
+        // A job's id does not depend on what else the sweep holds.
+        let alone = Sweep::parse(
+            &SWEEP
+                .replace("\"loop-potato-cuboid\", ", "")
+                .replace("[0.8, 1.25]", "0.8"),
+            "s.toml",
+            "s",
+            None,
+        )
+        .unwrap();
+        let alone = JobList::new(&alone, "s.toml").unwrap();
+        let whole_first = &a.jobs[12];
+        assert_eq!(alone.jobs[0].record.id, whole_first.record.id);
+        let mut ids: Vec<&str> = a.jobs.iter().map(|j| j.record.id.as_str()).collect();
+        ids.sort_unstable();
+        ids.dedup();
+        assert_eq!(ids.len(), 24);
+    }
+}

@@ -1,0 +1,91 @@
+//! `shearcut tune merge DIR…`: the shards of a sweep combined into one
+//! result directory, equal to a local run's.
+//!
+//! Every DIR must hold the same sweep (`jobs.json` equal). Each job's row
+//! is taken from whichever DIR has it and copied byte for byte into the
+//! output's `rows/`; the tables are then written by the same code, in the
+//! same job order, as a local run's, so the merged `results.csv` equals the
+//! local one bit for bit.
+
+use std::path::{Path, PathBuf};
+
+use shearcut_sim::InvalidSetting;
+
+use crate::error::{ConfigError, RunError};
+use crate::tune::job_list::JobCatalog;
+use crate::tune::job_outcome::JobRow;
+use crate::tune::result_dir::{read_catalog, write_catalog};
+
+/// The merged sweep: its catalogue and every job's row, in job order.
+#[derive(Debug, Clone)]
+pub struct Merged {
+    /// The catalogue.
+    pub catalog: JobCatalog,
+    /// The sweep file's text.
+    pub sweep_text: String,
+    /// Every job's row.
+    pub rows: Vec<JobRow>,
+}
+
+/// Reads the shards in `dirs` and writes their union under `out` (catalogue
+/// and row files); the tables and analysis are the caller's.
+pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<Merged, RunError> {
+    let argument = |key: &str, value: String, why: String| {
+        RunError::Config(ConfigError::Argument(InvalidSetting::new(key, value, why)))
+    };
+    let Some(first) = dirs.first() else {
+        return Err(argument(
+            "DIR",
+            "(none)".into(),
+            "name at least one shard directory".into(),
+        ));
+    };
+    let (catalog, sweep_text) = read_catalog(first)?;
+    for d in &dirs[1..] {
+        let (other, _) = read_catalog(d)?;
+        if other != catalog {
+            return Err(argument(
+                "DIR",
+                d.display().to_string(),
+                format!("holds another sweep's jobs than {}", first.display()),
+            ));
+        }
+    }
+    write_catalog(out, &catalog, &sweep_text)?;
+    let mut rows = Vec::with_capacity(catalog.jobs.len());
+    let mut missing = Vec::new();
+    for job in &catalog.jobs {
+        let found = dirs
+            .iter()
+            .find_map(|d| JobRow::read(d, &job.id).map(|row| (d, row)));
+        match found {
+            Some((d, row)) => {
+                let (from, to) = (JobRow::path(d, &job.id), JobRow::path(out, &job.id));
+                if from != to {
+                    std::fs::copy(&from, &to).map_err(|e| RunError::write(&to, e))?;
+                }
+                rows.push(row);
+            }
+            None => missing.push(job.index),
+        }
+    }
+    if let Some(first_missing) = missing.first() {
+        return Err(argument(
+            "DIR",
+            dirs.iter()
+                .map(|d| d.display().to_string())
+                .collect::<Vec<_>>()
+                .join(" "),
+            format!(
+                "{} of {} jobs have no result (first: job {first_missing}): run their shards, then merge again",
+                missing.len(),
+                catalog.jobs.len()
+            ),
+        ));
+    }
+    Ok(Merged {
+        catalog,
+        sweep_text,
+        rows,
+    })
+}

@@ -1,0 +1,325 @@
+//! A perturbed variant of a scenario: the food and the sensor a setting will
+//! meet rather than the preset — the material's E, R_c and μ scaled, the
+//! object scaled, another knife, the F/T sensor's noise and bias, another
+//! noise seed.
+//!
+//! A variant changes the plant only. The controller keeps the model it
+//! would have in a lab: the MPC's surrogate stays the one of the scenario's
+//! nominal material (pinned by [`Perturbation::apply`] when the scenario
+//! names none), for the variant's knife (a lab knows its knife).
+
+use serde::{Deserialize, Serialize};
+use shearcut_sim::{InvalidSetting, KnifePreset, MaterialPreset, ObjectShape};
+
+use crate::scenario::Scenario;
+use crate::surrogates::BUILT_IN_SURROGATES;
+
+/// Smallest and largest material scale factor accepted.
+pub const MATERIAL_SCALE_RANGE: [f64; 2] = [0.1, 10.0];
+/// Smallest and largest object size factor accepted.
+pub const SIZE_SCALE_RANGE: [f64; 2] = [0.5, 2.0];
+
+/// One variant: every field left at its default leaves the scenario as it is.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct Perturbation {
+    /// Factor on the material's Young's modulus E (default 1; in [0.1, 10]).
+    pub youngs_modulus_scale: f64,
+    /// Factor on the material's fracture toughness, interior R_c and
+    /// initial R'_c alike (default 1; in [0.1, 10]).
+    pub fracture_toughness_scale: f64,
+    /// Factor on the blade–material friction coefficient μ (default 1; in
+    /// [0.1, 10]).
+    pub friction_scale: f64,
+    /// Factor on every dimension of the object, and on `[motion] depth`
+    /// when the scenario gives one, so the cut keeps its share of the
+    /// object (default 1; in [0.5, 2]; only 1 for a mesh object).
+    pub size_scale: f64,
+    /// Knife preset replacing the scenario's knife: straight, chef or wire
+    /// (default: the scenario's knife).
+    pub knife: Option<String>,
+    /// Standard deviation of the F/T sensor's white noise on each force
+    /// axis, N (default: the scenario's `[plant.sensor] force_noise`; >= 0).
+    pub force_noise: Option<f64>,
+    /// Constant bias of the F/T sensor's forces [fx, fy, fz] in the sensor
+    /// frame, N (default: the scenario's; finite).
+    pub force_bias: Option<[f64; 3]>,
+    /// Seed of the scenario's random processes, the sensor noise (default:
+    /// the scenario's `seed`).
+    pub seed: Option<u64>,
+}
+
+impl Default for Perturbation {
+    fn default() -> Self {
+        Self {
+            youngs_modulus_scale: 1.0,
+            fracture_toughness_scale: 1.0,
+            friction_scale: 1.0,
+            size_scale: 1.0,
+            knife: None,
+            force_noise: None,
+            force_bias: None,
+            seed: None,
+        }
+    }
+}
+
+/// Names of the result columns a variant fills ([`Perturbation::cells`]).
+pub const VARIANT_COLUMNS: [&str; 10] = [
+    "variant.youngs_modulus_scale",
+    "variant.fracture_toughness_scale",
+    "variant.friction_scale",
+    "variant.size_scale",
+    "variant.knife",
+    "variant.force_noise_n",
+    "variant.force_bias_x_n",
+    "variant.force_bias_y_n",
+    "variant.force_bias_z_n",
+    "variant.seed",
+];
+
+impl Perturbation {
+    /// Checks every field against its range; keys are the field names.
+    pub fn validate(&self) -> Result<(), InvalidSetting> {
+        let [lo, hi] = MATERIAL_SCALE_RANGE;
+        for (key, v) in [
+            ("youngs_modulus_scale", self.youngs_modulus_scale),
+            ("fracture_toughness_scale", self.fracture_toughness_scale),
+            ("friction_scale", self.friction_scale),
+        ] {
+            if !(v.is_finite() && (lo..=hi).contains(&v)) {
+                return Err(InvalidSetting::new(
+                    key,
+                    v,
+                    format!("must be in [{lo}, {hi}]"),
+                ));
+            }
+        }
+        let [lo, hi] = SIZE_SCALE_RANGE;
+        if !(self.size_scale.is_finite() && (lo..=hi).contains(&self.size_scale)) {
+            return Err(InvalidSetting::new(
+                "size_scale",
+                self.size_scale,
+                format!("must be in [{lo}, {hi}]"),
+            ));
+        }
+        if let Some(name) = &self.knife
+            && KnifePreset::from_name(name).is_none()
+        {
+            return Err(InvalidSetting::new(
+                "knife",
+                format!("{name:?}"),
+                format!(
+                    "must be one of {}",
+                    KnifePreset::ALL.map(|p| p.name()).join(", ")
+                ),
+            ));
+        }
+        if let Some(n) = self.force_noise
+            && !(n.is_finite() && n >= 0.0)
+        {
+            return Err(InvalidSetting::new(
+                "force_noise",
+                n,
+                "must be a finite number >= 0 N",
+            ));
+        }
+        if let Some(b) = self.force_bias
+            && let Some(x) = b.iter().find(|x| !x.is_finite())
+        {
+            return Err(InvalidSetting::new("force_bias", x, "must be finite (N)"));
+        }
+        Ok(())
+    }
+
+    /// The scenario `base` under this variant. The MPC's surrogate is
+    /// pinned to the nominal material's (see the module doc); the result is
+    /// validated again by the caller when it re-reads the scenario.
+    pub fn apply(&self, base: &Scenario) -> Result<Scenario, InvalidSetting> {
+        let mut s = base.clone();
+        if let Some(name) = &self.knife {
+            let preset = KnifePreset::from_name(name)
+                .ok_or_else(|| InvalidSetting::new("knife", name, "a knife preset"))?;
+            s.knife = preset.settings();
+        }
+        if s.controller.surrogate.is_none() {
+            s.controller.surrogate = nominal_surrogate(base, &s);
+        }
+        let m = &mut s.material;
+        m.youngs_modulus *= self.youngs_modulus_scale;
+        m.fracture_toughness *= self.fracture_toughness_scale;
+        m.initial_fracture_toughness *= self.fracture_toughness_scale;
+        m.friction_coefficient *= self.friction_scale;
+        if self.size_scale != 1.0 {
+            scale_object(&mut s.object, self.size_scale)?;
+            s.motion.depth = s.motion.depth.map(|d| d * self.size_scale);
+        }
+        if let Some(n) = self.force_noise {
+            s.plant.sensor.force_noise = n;
+        }
+        if let Some(b) = self.force_bias {
+            s.plant.sensor.bias[..3].copy_from_slice(&b);
+        }
+        if let Some(seed) = self.seed {
+            s.seed = seed;
+        }
+        Ok(s)
+    }
+
+    /// The variant's result cells for scenario `s` after [`apply`](Self::apply),
+    /// in the order of [`VARIANT_COLUMNS`]: the factors, and the knife,
+    /// sensor and seed the run had.
+    pub fn cells(&self, s: &Scenario) -> Vec<String> {
+        let knife = KnifePreset::ALL
+            .into_iter()
+            .find(|p| p.settings() == s.knife)
+            .map_or("custom", |p| p.name());
+        let bias = &s.plant.sensor.bias;
+        vec![
+            float_cell(self.youngs_modulus_scale),
+            float_cell(self.fracture_toughness_scale),
+            float_cell(self.friction_scale),
+            float_cell(self.size_scale),
+            knife.to_string(),
+            float_cell(s.plant.sensor.force_noise),
+            float_cell(bias[0]),
+            float_cell(bias[1]),
+            float_cell(bias[2]),
+            s.seed.to_string(),
+        ]
+    }
+}
+
+/// A number as a result cell: the shortest text that reads back to the same
+/// bits (Rust's `Debug` form of `f64`).
+pub fn float_cell(x: f64) -> String {
+    format!("{x:?}")
+}
+
+/// The built-in surrogate the scenario `base` plans with by default (its
+/// material preset's, for `variant`'s knife), if it has one.
+fn nominal_surrogate(base: &Scenario, variant: &Scenario) -> Option<String> {
+    let material = MaterialPreset::ALL
+        .into_iter()
+        .find(|p| p.material() == base.material)?;
+    let knife = KnifePreset::ALL
+        .into_iter()
+        .find(|p| p.settings() == variant.knife)?;
+    let name = format!("{}-{}", material.name(), knife.name());
+    BUILT_IN_SURROGATES
+        .iter()
+        .any(|(n, _)| *n == name)
+        .then_some(name)
+}
+
+/// Scales every dimension of `object` by `k`.
+fn scale_object(object: &mut ObjectShape, k: f64) -> Result<(), InvalidSetting> {
+    match object {
+        ObjectShape::Cuboid(c) => {
+            c.width *= k;
+            c.height *= k;
+            c.length *= k;
+        }
+        ObjectShape::HalfPotato {
+            length,
+            width,
+            height,
+        } => {
+            *length *= k;
+            *width *= k;
+            *height *= k;
+        }
+        ObjectShape::Eggplant {
+            length,
+            diameter,
+            flat,
+        } => {
+            *length *= k;
+            *diameter *= k;
+            *flat *= k;
+        }
+        ObjectShape::Mesh { .. } => {
+            return Err(InvalidSetting::new(
+                "size_scale",
+                k,
+                "must be 1 for a mesh object (scale the mesh file instead)",
+            ));
+        }
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_default_variant_is_the_scenario_with_its_surrogate_named() {
+        let s = Scenario::load("loop-potato-whole").unwrap();
+        let v = Perturbation::default().apply(&s).unwrap();
+        assert_eq!(v.controller.surrogate.as_deref(), Some("potato-whole-chef"));
+        let mut unpinned = v.clone();
+        unpinned.controller.surrogate = None;
+        assert_eq!(unpinned, s);
+    }
+
+    #[test]
+    fn factors_scale_the_material_object_and_depth() {
+        let s = Scenario::load("loop-potato-whole").unwrap();
+        let p = Perturbation {
+            youngs_modulus_scale: 1.5,
+            fracture_toughness_scale: 0.5,
+            friction_scale: 2.0,
+            size_scale: 0.8,
+            knife: Some("straight".into()),
+            force_noise: Some(0.1),
+            force_bias: Some([0.0, 0.5, 0.0]),
+            seed: Some(7),
+        };
+        let v = p.apply(&s).unwrap();
+        assert_eq!(v.material.youngs_modulus, 1.5 * s.material.youngs_modulus);
+        assert_eq!(
+            v.material.initial_fracture_toughness,
+            0.5 * s.material.initial_fracture_toughness
+        );
+        assert_eq!(v.material.friction_coefficient, 0.2);
+        assert_eq!(v.motion.depth, Some(0.025 * 0.8));
+        assert_eq!(
+            v.object.nominal_height(),
+            s.object.nominal_height().map(|h| h * 0.8)
+        );
+        // The controller keeps the nominal potato's model, for its knife.
+        assert_eq!(
+            v.controller.surrogate.as_deref(),
+            Some("potato-whole-straight")
+        );
+        let cells = p.cells(&v);
+        assert_eq!(cells.len(), VARIANT_COLUMNS.len());
+        assert_eq!(cells[4], "straight");
+        assert_eq!(cells[7], "0.5");
+        assert_eq!(cells[9], "7");
+    }
+
+    #[test]
+    fn out_of_range_factors_name_their_key() {
+        let p = Perturbation {
+            size_scale: 3.0,
+            ..Perturbation::default()
+        };
+        let e = p.validate().unwrap_err();
+        assert_eq!(e.to_string(), "`size_scale` = 3: must be in [0.5, 2]");
+        let p = Perturbation {
+            knife: Some("sword".into()),
+            ..Perturbation::default()
+        };
+        assert_eq!(p.validate().unwrap_err().key, "knife");
+    }
+
+    #[test]
+    fn float_cells_read_back_to_the_same_bits() {
+        for x in [0.1, 1.0 / 3.0, 1e-20, 2.5e7, 0.0] {
+            let back: f64 = float_cell(x).parse().unwrap();
+            assert_eq!(back.to_bits(), x.to_bits());
+        }
+    }
+}

@@ -1,0 +1,72 @@
+//! A sweep's result directory:
+//!
+//! - `sweep.toml`: the sweep file as read;
+//! - `jobs.json`: the job catalogue ([`JobCatalog`]), the same in every
+//!   shard of a sweep;
+//! - `rows/<id>.json`: one file per finished job ([`JobRow`]);
+//! - `results.csv`, `timings.csv`: the tables ([`write_tables`]);
+//! - for a complete sweep, its analysis (see [`crate::tune::analysis`]).
+
+use std::path::Path;
+
+use shearcut_sim::InvalidSetting;
+
+use crate::error::{ConfigError, RunError};
+use crate::tune::job_list::JobCatalog;
+use crate::tune::job_outcome::JobRow;
+use crate::tune::result_table::write_tables;
+
+/// Writes `sweep.toml` and `jobs.json` under `dir` (created if needed).
+pub fn write_catalog(dir: &Path, catalog: &JobCatalog, sweep_text: &str) -> Result<(), RunError> {
+    std::fs::create_dir_all(dir.join("rows")).map_err(|e| RunError::write(dir, e))?;
+    let path = dir.join("sweep.toml");
+    std::fs::write(&path, sweep_text).map_err(|e| RunError::write(&path, e))?;
+    let path = dir.join("jobs.json");
+    let text = serde_json::to_string_pretty(catalog).map_err(|e| RunError::write(&path, e))?;
+    std::fs::write(&path, text + "\n").map_err(|e| RunError::write(&path, e))
+}
+
+/// Reads `dir/jobs.json` and `dir/sweep.toml`.
+pub fn read_catalog(dir: &Path) -> Result<(JobCatalog, String), ConfigError> {
+    let not_a_result = |why: String| {
+        ConfigError::Argument(InvalidSetting::new(
+            "DIR",
+            dir.display(),
+            format!("is not a `shearcut tune` result directory: {why}"),
+        ))
+    };
+    let path = dir.join("jobs.json");
+    let text = std::fs::read_to_string(&path)
+        .map_err(|e| not_a_result(format!("{}: {e}", path.display())))?;
+    let catalog: JobCatalog = serde_json::from_str(&text)
+        .map_err(|e| not_a_result(format!("{}: {e}", path.display())))?;
+    let sweep = std::fs::read_to_string(dir.join("sweep.toml")).unwrap_or_default();
+    Ok((catalog, sweep))
+}
+
+/// The row of every job of `catalog` found under `dir`, in job order
+/// (`None` where a job has none).
+pub fn read_rows(dir: &Path, catalog: &JobCatalog) -> Vec<Option<JobRow>> {
+    catalog
+        .jobs
+        .iter()
+        .map(|j| JobRow::read(dir, &j.id))
+        .collect()
+}
+
+/// Writes the tables of the jobs of `rows` that have one (in job order)
+/// under `dir`; the number of jobs tabulated.
+pub fn tabulate(
+    dir: &Path,
+    catalog: &JobCatalog,
+    rows: &[Option<JobRow>],
+) -> Result<usize, RunError> {
+    let finished: Vec<_> = catalog
+        .jobs
+        .iter()
+        .zip(rows)
+        .filter_map(|(j, r)| r.as_ref().map(|r| (j, r)))
+        .collect();
+    write_tables(dir, catalog, &finished)?;
+    Ok(finished.len())
+}

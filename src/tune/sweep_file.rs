@@ -1,0 +1,610 @@
+//! Sweep files (`shearcut tune SWEEP.toml`): scenarios, perturbed variants
+//! of them, controllers with grids or lists of their settings, replicas,
+//! and the weightings a recommendation is made for. See
+//! `config/sweeps/` and docs/tuning.md.
+//!
+//! ```toml
+//! name = "potato-weights"              # default: the file stem
+//! scenarios = ["loop-potato-whole"]    # built-in names or paths (relative to this file)
+//! replicas = 2                         # replica k starts the knife k·5 µm higher
+//!
+//! [variants]                           # the cross product of these lists
+//! youngs_modulus_scale = [0.8, 1.0, 1.25]
+//!
+//! [[controllers]]
+//! kind = "mpc"
+//! [controllers.grid]                   # keys below [controller]; the cross product
+//! "mpc.deformation_weight" = [0.0, 1.0, 100.0, 10000.0]
+//!
+//! [[controllers]]
+//! kind = ["press", "slice:0.5"]
+//! ```
+//!
+//! Every table denies unknown keys; every value is checked on load, and an
+//! error names the file, the key, the value and what is allowed (exit 2).
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use serde::Deserialize;
+use shearcut_sim::InvalidSetting;
+
+use crate::controller_choice::ControllerChoice;
+use crate::error::ConfigError;
+use crate::scenario::Scenario;
+use crate::tune::controller_setting::ControllerSetting;
+use crate::tune::perturbation::Perturbation;
+use crate::tune::weighting::{Weighting, default_weightings};
+
+/// Most replicas a sweep may ask for (as `compare`).
+pub const MAX_REPLICAS: u32 = crate::commands::compare::MAX_REPLICAS as u32;
+/// Most jobs a sweep may expand to (a guard against a typo in a grid).
+pub const MAX_JOBS: usize = 100_000;
+
+/// A sweep file as written.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct SweepFile {
+    /// Name of the sweep (default: the file stem): the default result
+    /// directory is `runs/tune-<name>`.
+    pub name: Option<String>,
+    /// Scenarios to run on: built-in names or TOML paths, relative to the
+    /// sweep file (at least one).
+    pub scenarios: Vec<String>,
+    /// Replicas of every run, 1–21 (default 1): replica k starts the knife
+    /// k·5 µm higher ([`crate::run_replica::RunReplica`]).
+    pub replicas: Option<u32>,
+    /// Perturbed variants as a grid: each key a value or a list, the
+    /// variants the cross product (default: the scenario as given).
+    pub variants: Option<VariantGrid>,
+    /// Perturbed variants listed one by one (`[[variant]]`; instead of
+    /// `[variants]`).
+    pub variant: Vec<Perturbation>,
+    /// Controllers and their settings (`[[controllers]]`, at least one).
+    pub controllers: Vec<ControllerSweep>,
+    /// Named weightings of the recommendation (default: least-work,
+    /// least-deformation, least-force, fastest, balanced).
+    pub weightings: Option<BTreeMap<String, Weighting>>,
+}
+
+/// `[variants]`: lists whose cross product are the variants (fields as in
+/// [`Perturbation`]; last key fastest in the job order).
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct VariantGrid {
+    /// Factors on E (default [1]).
+    pub youngs_modulus_scale: OneOrMany<f64>,
+    /// Factors on R_c and R'_c (default [1]).
+    pub fracture_toughness_scale: OneOrMany<f64>,
+    /// Factors on μ (default [1]).
+    pub friction_scale: OneOrMany<f64>,
+    /// Factors on the object's size (default [1]).
+    pub size_scale: OneOrMany<f64>,
+    /// Knife presets (default: the scenario's knife).
+    pub knife: OneOrMany<String>,
+    /// Sensor force noise, N (default: the scenario's).
+    pub force_noise: OneOrMany<f64>,
+    /// Sensor force biases [fx, fy, fz], N (default: the scenario's).
+    pub force_bias: Vec<[f64; 3]>,
+    /// Noise seeds (default: the scenario's).
+    pub seed: OneOrMany<u64>,
+}
+
+/// `[[controllers]]`: one or more controllers, with a grid or a list of
+/// settings.
+#[derive(Debug, Clone, Default, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct ControllerSweep {
+    /// The controllers: `mpc`, `press`, `slice:XI`, `force:N`, one or a list.
+    pub kind: OneOrMany<String>,
+    /// Keys below `[controller]` (dotted or as sub-tables, e.g.
+    /// `"mpc.deformation_weight" = [0.0, 100.0]`), each a value or a list:
+    /// the settings are the cross product (keys in sorted order, the last
+    /// fastest).
+    pub grid: toml::Table,
+    /// Settings listed one by one, each a table of keys below
+    /// `[controller]` (instead of `grid`).
+    pub sets: Vec<toml::Table>,
+}
+
+/// A value or a list of values.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(untagged)]
+pub enum OneOrMany<T> {
+    /// One value.
+    One(T),
+    /// A list.
+    Many(Vec<T>),
+}
+
+impl<T> Default for OneOrMany<T> {
+    fn default() -> Self {
+        Self::Many(Vec::new())
+    }
+}
+
+impl<T: Clone> OneOrMany<T> {
+    /// The values as a list.
+    pub fn to_vec(&self) -> Vec<T> {
+        match self {
+            Self::One(v) => vec![v.clone()],
+            Self::Many(v) => v.clone(),
+        }
+    }
+}
+
+/// A sweep with its scenarios loaded and its lists expanded, every value
+/// checked.
+#[derive(Debug, Clone)]
+pub struct Sweep {
+    /// The sweep's name.
+    pub name: String,
+    /// The sweep file's text, as read (copied into the result directory).
+    pub text: String,
+    /// The scenarios, in the file's order.
+    pub scenarios: Vec<Scenario>,
+    /// The variants, in grid or list order.
+    pub variants: Vec<Perturbation>,
+    /// The controller settings, in the file's order.
+    pub settings: Vec<ControllerSetting>,
+    /// Replicas per run.
+    pub replicas: u32,
+    /// Named weightings of the recommendation, by name.
+    pub weightings: BTreeMap<String, Weighting>,
+}
+
+impl Sweep {
+    /// Reads, expands and checks a sweep file.
+    pub fn load(path: &Path) -> Result<Self, ConfigError> {
+        let text = std::fs::read_to_string(path).map_err(|source| ConfigError::Read {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        let origin = path.display().to_string();
+        let stem = path.file_stem().and_then(|s| s.to_str()).unwrap_or("sweep");
+        Self::parse(&text, &origin, stem, path.parent())
+    }
+
+    /// Expands and checks sweep TOML; `origin` names it in errors, `stem`
+    /// is the default name, scenario paths are relative to `dir`.
+    pub fn parse(
+        text: &str,
+        origin: &str,
+        stem: &str,
+        dir: Option<&Path>,
+    ) -> Result<Self, ConfigError> {
+        let file: SweepFile =
+            toml::from_str(text).map_err(|e| crate::scenario::parse_error(origin, text, &e))?;
+        let invalid = |setting: InvalidSetting| ConfigError::Invalid {
+            path: origin.to_string(),
+            setting,
+        };
+        let name = file.name.clone().unwrap_or_else(|| stem.to_string());
+        if name.is_empty()
+            || !name
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || "-_.".contains(c))
+        {
+            return Err(invalid(InvalidSetting::new(
+                "name",
+                format!("{name:?}"),
+                "must be non-empty: letters, digits, '-', '_', '.'",
+            )));
+        }
+        let replicas = file.replicas.unwrap_or(1);
+        if !(1..=MAX_REPLICAS).contains(&replicas) {
+            return Err(invalid(InvalidSetting::new(
+                "replicas",
+                replicas,
+                format!("must be in 1..={MAX_REPLICAS}"),
+            )));
+        }
+        if file.scenarios.is_empty() {
+            return Err(invalid(InvalidSetting::new(
+                "scenarios",
+                "[]",
+                "name at least one scenario (built-in name or path)",
+            )));
+        }
+        let mut scenarios = Vec::new();
+        for (i, name) in file.scenarios.iter().enumerate() {
+            let relative = dir.map(|d| d.join(name));
+            let path = match &relative {
+                Some(p) if p.exists() => p.display().to_string(),
+                _ => name.clone(),
+            };
+            let s = Scenario::load(&path).map_err(|e| {
+                invalid(InvalidSetting::new(
+                    format!("scenarios[{i}]"),
+                    format!("{name:?}"),
+                    e.to_string(),
+                ))
+            })?;
+            if scenarios.iter().any(|t: &Scenario| t.name == s.name) {
+                return Err(invalid(InvalidSetting::new(
+                    format!("scenarios[{i}]"),
+                    format!("{name:?}"),
+                    format!("a second scenario named {:?}: names must differ", s.name),
+                )));
+            }
+            scenarios.push(s);
+        }
+        let variants = expand_variants(&file).map_err(invalid)?;
+        let settings = expand_settings(&file.controllers).map_err(invalid)?;
+        // Every variant and every setting alone, on every scenario: the
+        // error names the sweep's own key.
+        for s in &scenarios {
+            for (i, v) in variants.iter().enumerate() {
+                let key = if file.variant.is_empty() {
+                    "variants".to_string()
+                } else {
+                    format!("variant[{i}]")
+                };
+                let applied = v.apply(s).map_err(|e| invalid(e.prefixed(&key)))?;
+                ControllerSetting {
+                    choice: s.controller.kind,
+                    overrides: Vec::new(),
+                }
+                .apply(&applied)
+                .map_err(|e| invalid(e.prefixed(&format!("{key} on {}", s.name))))?;
+            }
+            for (i, entry) in file.controllers.iter().enumerate() {
+                for (key, value) in grid_axes(&entry.grid)
+                    .into_iter()
+                    .flat_map(|(k, vs)| vs.into_iter().map(move |v| (k.clone(), v)))
+                    .chain(entry.sets.iter().flat_map(flat_keys))
+                {
+                    let single = ControllerSetting {
+                        choice: ControllerChoice::Mpc,
+                        overrides: vec![(key, value)],
+                    };
+                    single
+                        .apply(s)
+                        .map_err(|e| invalid(e.prefixed(&format!("controllers[{i}]"))))?;
+                }
+            }
+        }
+        let weightings = file.weightings.clone().unwrap_or_else(default_weightings);
+        if weightings.is_empty() {
+            return Err(invalid(InvalidSetting::new(
+                "weightings",
+                "{}",
+                "name at least one weighting, or leave the table out for the defaults",
+            )));
+        }
+        for (name, w) in &weightings {
+            w.validate()
+                .map_err(|e| invalid(e.prefixed(&format!("weightings.{name}"))))?;
+        }
+        let jobs = scenarios.len() * variants.len() * settings.len() * replicas as usize;
+        if jobs > MAX_JOBS {
+            return Err(invalid(InvalidSetting::new(
+                "(the sweep)",
+                format!("{jobs} jobs"),
+                format!("at most {MAX_JOBS}: shrink the grids"),
+            )));
+        }
+        Ok(Self {
+            name,
+            text: text.to_string(),
+            scenarios,
+            variants,
+            settings,
+            replicas,
+            weightings,
+        })
+    }
+}
+
+/// The variants: the listed ones, the grid's cross product, or the
+/// scenario as given.
+fn expand_variants(file: &SweepFile) -> Result<Vec<Perturbation>, InvalidSetting> {
+    let listed = !file.variant.is_empty();
+    let variants = match (&file.variants, listed) {
+        (Some(_), true) => {
+            return Err(InvalidSetting::new(
+                "variant",
+                format!("{} listed", file.variant.len()),
+                "give either a [variants] grid or [[variant]] tables, not both",
+            ));
+        }
+        (None, true) => file.variant.clone(),
+        (None, false) => vec![Perturbation::default()],
+        (Some(g), false) => {
+            let or_one = |v: Vec<f64>| if v.is_empty() { vec![1.0] } else { v };
+            let mut out = Vec::new();
+            for &e in &or_one(g.youngs_modulus_scale.to_vec()) {
+                for &r in &or_one(g.fracture_toughness_scale.to_vec()) {
+                    for &mu in &or_one(g.friction_scale.to_vec()) {
+                        for &size in &or_one(g.size_scale.to_vec()) {
+                            for knife in &opt(g.knife.to_vec()) {
+                                for &noise in &opt(g.force_noise.to_vec()) {
+                                    for &bias in &opt(g.force_bias.clone()) {
+                                        for &seed in &opt(g.seed.to_vec()) {
+                                            out.push(Perturbation {
+                                                youngs_modulus_scale: e,
+                                                fracture_toughness_scale: r,
+                                                friction_scale: mu,
+                                                size_scale: size,
+                                                knife: knife.clone(),
+                                                force_noise: noise,
+                                                force_bias: bias,
+                                                seed,
+                                            });
+                                        }
+                                    }
+                                }
+                            }
+                        }
+                    }
+                }
+            }
+            out
+        }
+    };
+    let key = if listed { "variant" } else { "variants" };
+    for (i, v) in variants.iter().enumerate() {
+        v.validate().map_err(|e| {
+            if listed {
+                e.prefixed(&format!("{key}[{i}]"))
+            } else {
+                e.prefixed(key)
+            }
+        })?;
+    }
+    for (i, v) in variants.iter().enumerate() {
+        if let Some(j) = variants[..i].iter().position(|w| w == v) {
+            return Err(InvalidSetting::new(
+                key,
+                format!("variants {j} and {i}"),
+                "are the same: list each variant once",
+            ));
+        }
+    }
+    Ok(variants)
+}
+
+/// The values of an optional axis: `None` alone (the scenario's) when the
+/// list is empty.
+fn opt<T>(v: Vec<T>) -> Vec<Option<T>> {
+    if v.is_empty() {
+        vec![None]
+    } else {
+        v.into_iter().map(Some).collect()
+    }
+}
+
+/// The controller settings of every `[[controllers]]` entry, in order:
+/// per entry, per kind, the grid's cross product (or the listed sets).
+fn expand_settings(entries: &[ControllerSweep]) -> Result<Vec<ControllerSetting>, InvalidSetting> {
+    if entries.is_empty() {
+        return Err(InvalidSetting::new(
+            "controllers",
+            "[]",
+            "add at least one [[controllers]] table with a `kind`",
+        ));
+    }
+    let mut out: Vec<ControllerSetting> = Vec::new();
+    for (i, entry) in entries.iter().enumerate() {
+        let at = |key: &str| format!("controllers[{i}].{key}");
+        let kinds = entry.kind.to_vec();
+        if kinds.is_empty() {
+            return Err(InvalidSetting::new(
+                at("kind"),
+                "missing",
+                "one of mpc, press, slice:XI, force:N, or a list of them",
+            ));
+        }
+        if !entry.grid.is_empty() && !entry.sets.is_empty() {
+            return Err(InvalidSetting::new(
+                at("sets"),
+                format!("{} listed", entry.sets.len()),
+                "give either a grid or sets, not both",
+            ));
+        }
+        let points: Vec<Vec<(String, toml::Value)>> = if entry.sets.is_empty() {
+            let axes = grid_axes(&entry.grid);
+            if let Some((k, _)) = axes.iter().find(|(_, vs)| vs.is_empty()) {
+                return Err(InvalidSetting::new(
+                    at(&format!("grid.{k}")),
+                    "[]",
+                    "needs at least one value",
+                ));
+            }
+            cross_product(&axes)
+        } else {
+            entry.sets.iter().map(flat_keys).collect()
+        };
+        for text in &kinds {
+            let choice: ControllerChoice = text.parse().map_err(|e: InvalidSetting| {
+                InvalidSetting::new(at("kind"), &e.value, e.allowed)
+            })?;
+            for overrides in &points {
+                let setting = ControllerSetting {
+                    choice,
+                    overrides: overrides.clone(),
+                };
+                if out.contains(&setting) {
+                    return Err(InvalidSetting::new(
+                        at("kind"),
+                        text,
+                        "the same setting twice: list each setting once",
+                    ));
+                }
+                out.push(setting);
+            }
+        }
+    }
+    Ok(out)
+}
+
+/// The grid's axes: every leaf key (dotted below the grid table) with its
+/// values (a lone value is a list of one), in sorted key order.
+fn grid_axes(grid: &toml::Table) -> Vec<(String, Vec<toml::Value>)> {
+    let mut axes = Vec::new();
+    collect_axes("", grid, &mut axes);
+    axes.sort_by(|a, b| a.0.cmp(&b.0));
+    axes
+}
+
+fn collect_axes(prefix: &str, t: &toml::Table, out: &mut Vec<(String, Vec<toml::Value>)>) {
+    for (k, v) in t {
+        let key = if prefix.is_empty() {
+            k.clone()
+        } else {
+            format!("{prefix}.{k}")
+        };
+        match v {
+            toml::Value::Table(sub) => collect_axes(&key, sub, out),
+            toml::Value::Array(a) => out.push((key, a.clone())),
+            other => out.push((key, vec![other.clone()])),
+        }
+    }
+}
+
+/// A listed set's keys, dotted below the set's table, in sorted order.
+fn flat_keys(t: &toml::Table) -> Vec<(String, toml::Value)> {
+    let mut axes = Vec::new();
+    collect_leaves("", t, &mut axes);
+    axes.sort_by(|a, b| a.0.cmp(&b.0));
+    axes
+}
+
+fn collect_leaves(prefix: &str, t: &toml::Table, out: &mut Vec<(String, toml::Value)>) {
+    for (k, v) in t {
+        let key = if prefix.is_empty() {
+            k.clone()
+        } else {
+            format!("{prefix}.{k}")
+        };
+        match v {
+            toml::Value::Table(sub) => collect_leaves(&key, sub, out),
+            other => out.push((key, other.clone())),
+        }
+    }
+}
+
+/// Every combination of the axes' values, the last axis fastest.
+fn cross_product(axes: &[(String, Vec<toml::Value>)]) -> Vec<Vec<(String, toml::Value)>> {
+    let mut points = vec![Vec::new()];
+    for (key, values) in axes {
+        points = points
+            .into_iter()
+            .flat_map(|p: Vec<(String, toml::Value)>| {
+                values.iter().map(move |v| {
+                    let mut q = p.clone();
+                    q.push((key.clone(), v.clone()));
+                    q
+                })
+            })
+            .collect();
+    }
+    points
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const SWEEP: &str = r#"
+        scenarios = ["loop-potato-cuboid"]
+        replicas = 2
+        [variants]
+        youngs_modulus_scale = [0.8, 1.25]
+        friction_scale = 1.5
+        [[controllers]]
+        kind = "mpc"
+        [controllers.grid.mpc]
+        deformation_weight = [0.0, 100.0]
+        stages = [5, 10]
+        [[controllers]]
+        kind = ["press", "slice:0.5"]
+    "#;
+
+    fn parse(text: &str) -> Result<Sweep, ConfigError> {
+        Sweep::parse(text, "s.toml", "s", None)
+    }
+
+    #[test]
+    fn grids_expand_in_order_last_key_fastest() {
+        let s = parse(SWEEP).unwrap();
+        assert_eq!(s.name, "s");
+        assert_eq!(s.replicas, 2);
+        assert_eq!(s.variants.len(), 2);
+        assert_eq!(s.variants[1].youngs_modulus_scale, 1.25);
+        assert_eq!(s.variants[1].friction_scale, 1.5);
+        let names: Vec<String> = s
+            .settings
+            .iter()
+            .map(|c| {
+                let keys: Vec<String> = c
+                    .overrides
+                    .iter()
+                    .map(|(k, v)| format!("{k}={v}"))
+                    .collect();
+                format!("{} {}", c.choice, keys.join(" "))
+            })
+            .collect();
+        assert_eq!(
+            names,
+            [
+                "mpc mpc.deformation_weight=0.0 mpc.stages=5",
+                "mpc mpc.deformation_weight=0.0 mpc.stages=10",
+                "mpc mpc.deformation_weight=100.0 mpc.stages=5",
+                "mpc mpc.deformation_weight=100.0 mpc.stages=10",
+                "press ",
+                "slice:0.5 ",
+            ]
+        );
+        assert_eq!(s.weightings.len(), 5);
+    }
+
+    fn error(text: &str) -> String {
+        let e = parse(text).unwrap_err().to_string();
+        assert!(!e.contains('\n'), "{e}");
+        e
+    }
+
+    #[test]
+    fn bad_sweeps_are_one_line_naming_the_key() {
+        let e = error(&SWEEP.replace("replicas = 2", "replicas = 0"));
+        assert_eq!(e, "s.toml: `replicas` = 0: must be in 1..=21");
+        let e = error(&SWEEP.replace("replicas = 2", "replica = 2"));
+        assert!(e.starts_with("s.toml:3:") && e.contains("replica"), "{e}");
+        let e = error(&SWEEP.replace("stages = [5, 10]", "stages = [5, 0]"));
+        assert_eq!(
+            e,
+            "s.toml: `controllers[0].controller.mpc.stages` = 0: in 1..=200"
+        );
+        let e = error(&SWEEP.replace("deformation_weight", "deformation_weigth"));
+        assert!(
+            e.starts_with("s.toml: `controllers[0].controller.mpc.deformation_weigth` = ")
+                && e.contains("unknown field"),
+            "{e}"
+        );
+        let e = error(&SWEEP.replace("friction_scale = 1.5", "friction_scale = 50.0"));
+        assert_eq!(
+            e,
+            "s.toml: `variants.friction_scale` = 50: must be in [0.1, 10]"
+        );
+        let e = error(&SWEEP.replace("\"slice:0.5\"", "\"slice:-1\""));
+        assert!(
+            e.starts_with("s.toml: `controllers[1].kind` = slice:-1: "),
+            "{e}"
+        );
+        let e = error(&SWEEP.replace("loop-potato-cuboid", "no-such-scenario"));
+        assert!(
+            e.starts_with("s.toml: `scenarios[0]` = \"no-such-scenario\": "),
+            "{e}"
+        );
+        let e = error("scenarios = [\"loop-potato-cuboid\"]\n");
+        assert!(e.contains("`controllers` = []"), "{e}");
+        let e = error(&(SWEEP.to_string() + "[weightings.odd]\nwork = -1.0\n"));
+        assert!(e.contains("`weightings.odd.work` = -1"), "{e}");
+        let e = error(&SWEEP.replace(
+            "kind = [\"press\", \"slice:0.5\"]",
+            "kind = [\"press\", \"press\"]",
+        ));
+        assert!(e.contains("the same setting twice"), "{e}");
+    }
+}

@@ -1,0 +1,327 @@
+//! `shearcut tune` as a user meets it: a small sweep run locally in
+//! parallel is deterministic whatever the thread count, resumes where it
+//! stopped, shards and merges to the same table bit for bit (by flag and by
+//! the Slurm and Kubernetes environment), and bad sweep files exit 2 with
+//! one line.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// A private directory for one test, removed on drop.
+struct TempDir(PathBuf);
+
+impl TempDir {
+    fn new(tag: &str) -> Self {
+        let dir = std::env::temp_dir().join(format!("shearcut-tune-{tag}-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        Self(dir)
+    }
+}
+
+impl Drop for TempDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+/// Fig. 7's potato cuboid, 6 mm deep, coarse (as tests/closed_loop.rs):
+/// a closed-loop run takes a fraction of a second.
+fn small_potato() -> String {
+    include_str!("../config/scenarios/fig7-potato.toml")
+        .replace("name = \"fig7-potato\"", "name = \"small-potato\"")
+        .replace("depth = 0.02", "depth = 0.006")
+        + "\n[plant]\nsegments = 2\n\n[section]\nrow_spacing = 0.0005\n"
+}
+
+/// Six runs: the MPC at two deformation weights and pressing, each on the
+/// potato 10 % softer and 10 % stiffer.
+const SWEEP: &str = r#"
+scenarios = ["small-potato.toml"]
+
+[variants]
+youngs_modulus_scale = [0.9, 1.1]
+
+[[controllers]]
+kind = "mpc"
+grid = { "mpc.deformation_weight" = [0.0, 100.0] }
+
+[[controllers]]
+kind = "press"
+"#;
+
+/// Writes the scenario and `sweep` into `dir`; the sweep's path.
+fn write_sweep(dir: &Path, sweep: &str) -> PathBuf {
+    std::fs::write(dir.join("small-potato.toml"), small_potato()).unwrap();
+    let path = dir.join("sweep.toml");
+    std::fs::write(&path, sweep).unwrap();
+    path
+}
+
+fn tune(args: &[&str], env: &[(&str, &str)]) -> Output {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_shearcut"));
+    c.arg("tune").args(args).env("RUST_LOG", "error");
+    for k in [
+        "SLURM_ARRAY_TASK_ID",
+        "SLURM_ARRAY_TASK_MIN",
+        "SLURM_ARRAY_TASK_COUNT",
+        "JOB_COMPLETION_INDEX",
+        "SHEARCUT_SHARDS",
+    ] {
+        c.env_remove(k);
+    }
+    for (k, v) in env {
+        c.env(k, v);
+    }
+    c.output().expect("the shearcut binary runs")
+}
+
+fn ok(o: &Output) -> String {
+    let out = String::from_utf8_lossy(&o.stdout).into_owned();
+    assert!(
+        o.status.success(),
+        "{out}\n{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    out
+}
+
+fn read(path: &Path) -> String {
+    std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+#[test]
+fn a_sweep_is_deterministic_resumable_and_analysed() {
+    let t = TempDir::new("local");
+    let sweep = write_sweep(&t.0, SWEEP);
+    let (a, b) = (t.0.join("a"), t.0.join("b"));
+    let out = ok(&tune(&[s(&sweep), "--jobs", "2", "--out", s(&a)], &[]));
+    assert!(
+        out.contains("6 runs (1 scenarios × 3 settings × 2 variants × 1 replicas)"),
+        "{out}"
+    );
+    let results = read(&a.join("results.csv"));
+    let lines: Vec<&str> = results.lines().collect();
+    assert_eq!(lines.len(), 7, "a header and one row per run:\n{results}");
+    assert!(lines[0].starts_with("job,id,scenario,setting,variant,replica,controller,"));
+    for column in [
+        "variant.youngs_modulus_scale",
+        "controller.mpc.deformation_weight",
+        "work_j",
+        "max_deformation_m",
+        "peak_force_vertical_n",
+        "duration_s",
+        "blade_path_m",
+        "reversals",
+        "limit_faults",
+        "plan_fallbacks",
+        "completed",
+    ] {
+        assert!(lines[0].split(',').any(|c| c == column), "{column}");
+    }
+    // Every run completed, and pressing the stiffer potato (variant 1)
+    // took more force than the softer (variant 0): the variants reach the
+    // plant.
+    let rows: Vec<Vec<&str>> = lines[1..].iter().map(|l| l.split(',').collect()).collect();
+    let col = |name: &str| lines[0].split(',').position(|c| c == name).unwrap();
+    assert!(rows.iter().all(|r| r[col("completed")] == "true"));
+    let force = |r: &Vec<&str>| r[col("peak_force_vertical_n")].parse::<f64>().unwrap();
+    assert!(force(&rows[5]) > force(&rows[4]), "{results}");
+    assert!(read(&a.join("timings.csv")).lines().count() == 7);
+    for f in [
+        "summary.md",
+        "front.csv",
+        "effects.csv",
+        "front-small-potato.svg",
+    ] {
+        assert!(a.join(f).exists(), "{f}");
+    }
+    // The MPC's weight is compared among the MPC's runs only (pressing's
+    // rows carry the default weight it does not use).
+    let effects = read(&a.join("effects.csv"));
+    let weight_levels: Vec<&str> = effects
+        .lines()
+        .filter(|l| l.contains(",controller.mpc.deformation_weight,"))
+        .collect();
+    assert_eq!(weight_levels.len(), 2, "{effects}");
+    assert!(
+        weight_levels.iter().all(|l| l.contains(",mpc,")),
+        "{effects}"
+    );
+    let block = read(&a.join("recommended/small-potato-least-work.toml"));
+    assert!(
+        block.contains("[controller.mpc]") || block.contains("kind = \"press\""),
+        "{block}"
+    );
+    // One thread gives the same table bit for bit.
+    ok(&tune(&[s(&sweep), "--jobs", "1", "--out", s(&b)], &[]));
+    assert_eq!(read(&b.join("results.csv")), results);
+    // Resumption: with two row files gone, a re-run runs those two only
+    // and ends with the same table.
+    let ids: Vec<&str> = rows.iter().map(|r| r[col("id")]).collect();
+    for id in &ids[1..3] {
+        std::fs::remove_file(a.join("rows").join(format!("{id}.json"))).unwrap();
+    }
+    let out = ok(&tune(&[s(&sweep), "--out", s(&a)], &[]));
+    assert!(out.contains("4 runs already done"), "{out}");
+    assert_eq!(
+        out.matches("[1/2] job").count() + out.matches("[2/2] job").count(),
+        2,
+        "{out}"
+    );
+    assert_eq!(read(&a.join("results.csv")), results);
+    // Nothing left to run: nothing runs.
+    let out = ok(&tune(&[s(&sweep), "--out", s(&a)], &[]));
+    assert!(
+        out.contains("6 runs already done") && !out.contains("] job"),
+        "{out}"
+    );
+}
+
+#[test]
+fn shards_merge_to_the_local_table_bit_for_bit() {
+    let t = TempDir::new("shards");
+    let sweep = write_sweep(&t.0, SWEEP);
+    let local = t.0.join("local");
+    ok(&tune(&[s(&sweep), "--out", s(&local)], &[]));
+    // Shard 0 of 3 by flag, 1 by Slurm's array variables (ids 5–7), 2 by
+    // Kubernetes' completion index.
+    let sharded = t.0.join("sharded");
+    let out = ok(&tune(
+        &[s(&sweep), "--shard", "0/3", "--out", s(&sharded)],
+        &[],
+    ));
+    assert!(out.contains("shard 0/3: 2 of them"), "{out}");
+    ok(&tune(
+        &[s(&sweep), "--out", s(&sharded)],
+        &[
+            ("SLURM_ARRAY_TASK_ID", "6"),
+            ("SLURM_ARRAY_TASK_MIN", "5"),
+            ("SLURM_ARRAY_TASK_COUNT", "3"),
+        ],
+    ));
+    ok(&tune(
+        &[s(&sweep), "--out", s(&sharded)],
+        &[("JOB_COMPLETION_INDEX", "2"), ("SHEARCUT_SHARDS", "3")],
+    ));
+    let shards: Vec<PathBuf> = (0..3)
+        .map(|i| sharded.join(format!("shard-{i}-of-3")))
+        .collect();
+    for (i, d) in shards.iter().enumerate() {
+        // Jobs i and i + 3.
+        assert_eq!(read(&d.join("results.csv")).lines().count(), 3, "shard {i}");
+    }
+    // Merging two of the three is refused, naming what is missing.
+    let merged = t.0.join("merged");
+    let o = tune(
+        &["merge", s(&shards[0]), s(&shards[1]), "--out", s(&merged)],
+        &[],
+    );
+    assert_eq!(o.status.code(), Some(2));
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        e.contains("2 of 6 jobs have no result (first: job 2)"),
+        "{e}"
+    );
+    let mut args = vec!["merge"];
+    args.extend(shards.iter().map(|d| s(d)));
+    args.extend(["--out", s(&merged)]);
+    ok(&tune(&args, &[]));
+    assert_eq!(
+        read(&merged.join("results.csv")),
+        read(&local.join("results.csv"))
+    );
+    assert_eq!(
+        read(&merged.join("front.csv")),
+        read(&local.join("front.csv"))
+    );
+    assert_eq!(
+        read(&merged.join("summary.md")),
+        read(&local.join("summary.md"))
+    );
+}
+
+/// The sweep file with `from` replaced by `to` gives exit code 2 and one
+/// line on stderr containing `expected`.
+fn refused(t: &TempDir, from: &str, to: &str, expected: &str) {
+    assert!(SWEEP.contains(from), "{from}");
+    let sweep = write_sweep(&t.0, &SWEEP.replace(from, to));
+    let o = tune(&[s(&sweep), "--out", s(&t.0.join("never"))], &[]);
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(2), "{from} -> {to}: {e}");
+    assert_eq!(e.trim_end().lines().count(), 1, "{e}");
+    assert!(e.contains(expected), "{from} -> {to}: {e}");
+    assert!(
+        !t.0.join("never").exists(),
+        "nothing is written for a bad sweep"
+    );
+}
+
+#[test]
+fn bad_sweep_files_exit_2_with_one_line() {
+    let t = TempDir::new("bad");
+    refused(&t, "[variants]", "[variant]", "sweep.toml:4:");
+    refused(
+        &t,
+        "youngs_modulus_scale = [0.9, 1.1]",
+        "youngs_modulus_scale = [0.9, 11.0]",
+        "`variants.youngs_modulus_scale` = 11: must be in [0.1, 10]",
+    );
+    refused(
+        &t,
+        "\"mpc.deformation_weight\" = [0.0, 100.0]",
+        "\"mpc.deformation_weight\" = [0.0, -1.0]",
+        "`controllers[0].controller.mpc.deformation_weight` = -1: a finite number >= 0",
+    );
+    refused(
+        &t,
+        "\"mpc.deformation_weight\"",
+        "\"mpc.deformation_wieght\"",
+        "`controllers[0].controller.mpc.deformation_wieght`",
+    );
+    refused(
+        &t,
+        "kind = \"press\"",
+        "kind = \"pid\"",
+        "`controllers[1].kind` = pid",
+    );
+    refused(
+        &t,
+        "small-potato.toml",
+        "missing.toml",
+        "`scenarios[0]` = \"missing.toml\"",
+    );
+    refused(
+        &t,
+        "kind = \"press\"",
+        "kind = \"press\"\nreplicas = 2",
+        "replicas",
+    );
+    let o = tune(&["/nonexistent/sweep.toml"], &[]);
+    assert_eq!(o.status.code(), Some(2));
+    let o = tune(&["x.toml", "--shard", "3/3"], &[]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(e.contains("`--shard` = 3/3"), "{e}");
+}
+
+#[test]
+fn shipped_sweeps_all_load() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("config/sweeps");
+    let mut n = 0;
+    for entry in std::fs::read_dir(&dir).unwrap() {
+        let path = entry.unwrap().path();
+        if path.extension().is_some_and(|e| e == "toml") {
+            let sweep =
+                shearcut::tune::sweep_file::Sweep::load(&path).unwrap_or_else(|e| panic!("{e}"));
+            let list = shearcut::tune::job_list::JobList::new(&sweep, s(&path)).unwrap();
+            assert!(!list.jobs.is_empty(), "{}", path.display());
+            n += 1;
+        }
+    }
+    assert!(n >= 3, "{n} sweeps in {}", dir.display());
+}
