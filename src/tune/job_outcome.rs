@@ -121,6 +121,7 @@ impl JobOutcome {
             completed: c.completed,
             end: match &o.end {
                 LoopEnd::Completed => "completed".to_string(),
+                LoopEnd::ControllerDone => "controller_done".to_string(),
                 LoopEnd::TimedOut => "timed_out".to_string(),
                 LoopEnd::Failed(why) => format!("failed: {why}"),
             },
