@@ -6,16 +6,21 @@
 //! the multi-section plant and its surrogates. SI units throughout.
 
 pub mod arm;
+pub mod array_lengths;
 pub mod blade;
+pub mod capped_read;
 pub mod geometry;
 pub mod invalid_setting;
 pub mod knife;
 pub mod material;
 pub mod mechanics;
 pub mod object;
+pub mod physical_range;
 pub mod plant;
+pub mod resource_budget;
 pub mod section;
 pub mod surrogate;
+pub mod toml_error;
 
 pub use blade::BladeSection;
 pub use invalid_setting::InvalidSetting;
