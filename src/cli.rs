@@ -1,8 +1,21 @@
 //! The `shearcut` command line.
 
+use std::io::Write;
 use std::path::PathBuf;
 
 use clap::{Parser, Subcommand};
+
+use crate::error::RunError;
+
+/// Prints `text` to stdout and flushes it. A failed write is an error, not
+/// a panic: a closed pipe ends the command quietly (exit 141), a full
+/// device with one line (exit 1).
+pub fn print(text: &str) -> Result<(), RunError> {
+    let mut out = std::io::stdout().lock();
+    out.write_all(text.as_bytes())
+        .and_then(|()| out.flush())
+        .map_err(RunError::Stdout)
+}
 
 /// shearcut: robotic slicing of fruits and vegetables — a fracture-mechanics
 /// cutting model (seed 000), its surrogates, an MPC and an arm-style loop.
@@ -25,7 +38,7 @@ pub enum Command {
         /// Poisson's ratio ν, in (0, 0.5).
         #[arg(long, allow_negative_numbers = true)]
         nu: f64,
-        /// Slice-push ratio ξ = tan α, ≥ 0.
+        /// Slice-push ratio ξ = tan α, in [0, 20].
         #[arg(long, allow_negative_numbers = true)]
         xi: f64,
         /// Draw Fig. 3 (r against ν for several ξ) to this .svg or .png file;

@@ -1,20 +1,29 @@
 //! The application's errors and their exit codes.
+//!
+//! | code | meaning |
+//! |---|---|
+//! | 0 | success |
+//! | 1 | a run that failed after it started (peer lost, solver failure, a result that cannot be written) |
+//! | 2 | bad input: config, file, argument, or a model that cannot run with the given settings |
+//! | 130, 143 | stopped by SIGINT, SIGTERM after a clean stop |
+//! | 141 | stdout closed by its reader (`| head -1`): ends quietly, as a Unix tool killed by SIGPIPE |
 
 use std::path::PathBuf;
 
 use shearcut_sim::InvalidSetting;
+use shearcut_sim::capped_read::CappedReadError;
 
 /// Anything the user gave that cannot be used: a config, a file, an argument.
 /// Exit code 2, one line, no backtrace.
 #[derive(Debug, thiserror::Error)]
 pub enum ConfigError {
-    /// A file could not be read.
+    /// A file could not be read (missing, too large, not text).
     #[error("cannot read `{path}`: {source}")]
     Read {
         /// The file.
         path: PathBuf,
         /// Why.
-        source: std::io::Error,
+        source: CappedReadError,
     },
     /// A TOML file does not parse or has an unknown or missing key.
     #[error("{path}:{line}:{column}: {message}")]
@@ -59,15 +68,30 @@ pub enum RunError {
     /// stopped): exit code 1.
     #[error("{0}")]
     Loop(String),
+    /// Printing to stdout failed: a closed pipe (exit 141, nothing printed)
+    /// or a full or failing device (exit 1).
+    #[error("cannot write to stdout: {0}")]
+    Stdout(std::io::Error),
 }
 
+/// Exit code of a process whose stdout reader went away (128 + SIGPIPE).
+pub const EXIT_CLOSED_PIPE: u8 = 141;
+
 impl RunError {
-    /// The process exit code for this error: 2 for bad input, 1 otherwise.
+    /// The process exit code for this error: 2 for bad input,
+    /// [`EXIT_CLOSED_PIPE`] for a closed stdout, 1 otherwise.
     pub fn exit_code(&self) -> u8 {
         match self {
             RunError::Config(_) => 2,
-            RunError::Write { .. } | RunError::Loop(_) => 1,
+            RunError::Stdout(e) if e.kind() == std::io::ErrorKind::BrokenPipe => EXIT_CLOSED_PIPE,
+            RunError::Write { .. } | RunError::Loop(_) | RunError::Stdout(_) => 1,
         }
+    }
+
+    /// Whether the error is reported by its exit code alone (a closed
+    /// stdout: its reader wants no more, on either stream).
+    pub fn is_quiet(&self) -> bool {
+        self.exit_code() == EXIT_CLOSED_PIPE
     }
 
     /// A write error for `path`.

@@ -1,5 +1,6 @@
 //! The `shearcut` binary.
 
+use std::io::Write;
 use std::process::ExitCode;
 
 use shearcut::cli::{Cli, Command};
@@ -71,7 +72,10 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(e) => {
-            eprintln!("error: {e}");
+            if !e.is_quiet() {
+                // A closed stderr leaves the exit code as the only report.
+                let _ = writeln!(std::io::stderr(), "error: {e}");
+            }
             ExitCode::from(e.exit_code())
         }
     }

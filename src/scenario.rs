@@ -4,17 +4,35 @@
 //! "Config format"). Every table is `deny_unknown_fields`; after parsing, the
 //! scenario is resolved (presets expanded) and validated, and every error names
 //! the key, the value and what is allowed.
+//!
+//! Validation has three layers, all run on load and by `shearcut check`:
+//! every number against its physical range (`shearcut_sim::physical_range`;
+//! the model's settings check their own, this module those of the loop, the
+//! plant's sensor and the controller), every array exactly as long as its
+//! key takes (`shearcut_sim::array_lengths`), and the run's resource
+//! estimate (section meshes, series length) against its budget
+//! (`shearcut_sim::resource_budget`). A scenario file is read with a size
+//! cap and only as UTF-8 TOML; a mesh it names is read and checked too.
 
 use std::path::Path;
 
 use serde::{Deserialize, Serialize};
 use shearcut_plant::PlantSettings;
 use shearcut_sim::arm::ArmLimits;
+use shearcut_sim::array_lengths::check_array_lengths;
+use shearcut_sim::capped_read::read_capped_text;
+use shearcut_sim::physical_range::{
+    EDGE_OFFSET, FORCE, FORCE_NOISE, KNIFE_SPEED, MAX_CUTS, MIN_STEP_PER_ROW, MISSED_COMMANDS,
+    MOTION_STEP, OBJECT_SIZE, PLANT_DISTANCE, RATE, RUN_DURATION, SENSOR_BIAS, SLICE_PUSH_RATIO,
+    TORQUE_NOISE, UPDATE_DISTANCE, check_count,
+};
+use shearcut_sim::resource_budget::{CONFIG_FILE_BYTES, ResourceEstimate, section_nodes};
 use shearcut_sim::{
-    BladeSection, EdgeShape, InvalidSetting, KnifePreset, KnifeSettings, Material, MaterialPreset,
-    ObjectShape, SectionSettings, SensorMount,
+    BladeSection, EdgeShape, InvalidSetting, Knife, KnifePreset, KnifeSettings, Material,
+    MaterialPreset, ObjectShape, SectionSettings, SensorMount,
 };
 
+use crate::controller_choice::ControllerChoice;
 use crate::controller_settings::ControllerSettings;
 use crate::error::ConfigError;
 
@@ -238,6 +256,7 @@ pub const BUILT_IN_SCENARIOS: [(&str, &str); 11] = [
 
 impl Scenario {
     /// Loads a scenario from a path, or by the name of a built-in scenario.
+    /// A file is read with a cap of [`CONFIG_FILE_BYTES`] and must be UTF-8.
     pub fn load(path_or_name: &str) -> Result<Self, ConfigError> {
         let path = Path::new(path_or_name);
         if !path.exists()
@@ -245,15 +264,17 @@ impl Scenario {
         {
             return Self::parse(text, name, name);
         }
-        let text = std::fs::read_to_string(path).map_err(|source| ConfigError::Read {
-            path: path.to_path_buf(),
-            source,
-        })?;
+        let text =
+            read_capped_text(path, CONFIG_FILE_BYTES).map_err(|source| ConfigError::Read {
+                path: path.to_path_buf(),
+                source,
+            })?;
         let stem = path
             .file_stem()
             .and_then(|s| s.to_str())
             .unwrap_or("scenario");
-        let mut scenario = Self::parse(&text, &path.display().to_string(), stem)?;
+        let origin = path.display().to_string();
+        let mut scenario = Self::parse_resolved(&text, &origin, stem)?;
         // A mesh path is relative to the scenario file, not to the working directory.
         if let ObjectShape::Mesh { path: mesh } = &mut scenario.object
             && mesh.is_relative()
@@ -261,37 +282,145 @@ impl Scenario {
         {
             *mesh = dir.join(&*mesh);
         }
+        scenario.check_extent_and_resources(&origin)?;
         Ok(scenario)
     }
 
-    /// Parses, resolves and validates scenario TOML. `origin` names the text in
-    /// errors; `default_name` is used when the file has no `name`.
+    /// Parses, resolves and validates scenario TOML, including the object's
+    /// extent and the resource estimate (a mesh path is taken as it is).
+    /// `origin` names the text in errors; `default_name` is used when the
+    /// file has no `name`.
     pub fn parse(text: &str, origin: &str, default_name: &str) -> Result<Self, ConfigError> {
+        let scenario = Self::parse_resolved(text, origin, default_name)?;
+        scenario.check_extent_and_resources(origin)?;
+        Ok(scenario)
+    }
+
+    /// Parses and resolves, checking ranges and array lengths.
+    fn parse_resolved(text: &str, origin: &str, default_name: &str) -> Result<Self, ConfigError> {
+        let invalid = |setting| ConfigError::Invalid {
+            path: origin.to_string(),
+            setting,
+        };
         let file: ScenarioFile = toml::from_str(text).map_err(|e| parse_error(origin, text, &e))?;
-        file.resolve(default_name)
-            .map_err(|setting| ConfigError::Invalid {
-                path: origin.to_string(),
-                setting,
-            })
+        let written: toml::Value =
+            toml::from_str(text).map_err(|e| parse_error(origin, text, &e))?;
+        let read = toml::Value::try_from(&file).map_err(|e| {
+            invalid(InvalidSetting::new(
+                "(scenario)",
+                "(as read)",
+                format!("does not serialise back: {e}"),
+            ))
+        })?;
+        check_array_lengths(&written, &read).map_err(invalid)?;
+        file.resolve(default_name).map_err(invalid)
+    }
+
+    /// The object's bounding-box extent [x, y, z], m: from the shape, or
+    /// read from its mesh file.
+    pub fn object_extent(&self) -> Result<[f64; 3], InvalidSetting> {
+        if let Some(e) = self.object.nominal_extent() {
+            return Ok(e);
+        }
+        let mesh = self
+            .object
+            .mesh()
+            .map_err(|e| InvalidSetting::new("object.path", "(mesh)", e.to_string()))?;
+        let (lo, hi) = mesh.bounds();
+        Ok([hi.x - lo.x, hi.y - lo.y, hi.z - lo.z])
+    }
+
+    /// Checks the object's extent (a mesh's bounding box against the
+    /// object size range, the depth against its height) and the resource
+    /// estimate against its budget.
+    fn check_extent_and_resources(&self, origin: &str) -> Result<(), ConfigError> {
+        let invalid = |setting| ConfigError::Invalid {
+            path: origin.to_string(),
+            setting,
+        };
+        let extent = self.object_extent().map_err(invalid)?;
+        if self.object.nominal_extent().is_none() {
+            for (axis, v) in ["x", "y", "z"].into_iter().zip(extent) {
+                OBJECT_SIZE
+                    .check(&format!("object.path (bounding box along {axis})"), v)
+                    .map_err(invalid)?;
+            }
+            if let Some(d) = self.motion.depth
+                && d >= extent[1]
+            {
+                return Err(invalid(InvalidSetting::new(
+                    "motion.depth",
+                    d,
+                    format!("must be below the mesh's height {} m", extent[1]),
+                )));
+            }
+        }
+        self.resources(extent).check().map_err(invalid)
+    }
+
+    /// Whether `shearcut simulate` cuts this scenario as one section × the
+    /// piece's length (a cuboid under a straight edge or a wire) rather
+    /// than with the multi-section plant.
+    pub fn simulates_one_section(&self) -> bool {
+        matches!(
+            (&self.object, &self.knife.edge),
+            (
+                ObjectShape::Cuboid(_),
+                EdgeShape::Straight { .. } | EdgeShape::Wire { .. }
+            )
+        )
+    }
+
+    /// Upper bounds of what the scenario costs to simulate or run, for an
+    /// object of bounding-box `extent` [x, y, z], m.
+    ///
+    /// - Section mesh: one section × the piece: half the width and the
+    ///   height; the plant's sections, oblique to the object, at most half
+    ///   the horizontal diagonal wide.
+    /// - Plant: a section per segment and one successor building for each.
+    /// - Series: `simulate` on one section runs at most height/step steps
+    ///   per cut; on the plant, at most (2·height + gap)/(v·cos α) of
+    ///   loop ticks per cut (its stop rule); `run` at most
+    ///   `max_duration × rate_hz` ticks. The longest counts.
+    pub fn resources(&self, extent: [f64; 3]) -> ResourceEstimate {
+        let [x, height, z] = extent;
+        let edge_width =
+            Knife::new(&self.knife).map_or(self.knife.blade.edge_width, |k| k.blade().edge_width);
+        let plant_section = section_nodes(0.5 * x.hypot(z), height, edge_width, &self.section);
+        let one_section = section_nodes(0.5 * x, height, edge_width, &self.section);
+        let dt = 1.0 / self.control_loop.rate_hz;
+        let cuts = self.motion.cuts();
+        let simulate_rows: f64 = if self.simulates_one_section() {
+            cuts.len() as f64 * (height / self.motion.step).ceil()
+        } else {
+            cuts.iter()
+                .map(|&(xi, _)| {
+                    let v_down = self.motion.speed * xi.atan().cos();
+                    ((2.0 * height + self.plant.start_gap) / (v_down * dt)).ceil()
+                })
+                .sum()
+        };
+        let run_rows = (self.controller.max_duration * self.control_loop.rate_hz).ceil();
+        ResourceEstimate {
+            section_nodes: if self.simulates_one_section() {
+                one_section.max(plant_section)
+            } else {
+                plant_section
+            },
+            plant_nodes: 2.0 * self.plant.segments as f64 * plant_section,
+            series_rows: simulate_rows.max(run_rows),
+        }
     }
 }
 
-/// A one-line parse error with line and column.
+/// A one-line parse error with line and column, never quoting the text.
 pub(crate) fn parse_error(origin: &str, text: &str, e: &toml::de::Error) -> ConfigError {
-    let (line, column) = match e.span() {
-        Some(span) => {
-            let before = &text[..span.start.min(text.len())];
-            let line = before.matches('\n').count() + 1;
-            let column = before.len() - before.rfind('\n').map_or(0, |i| i + 1) + 1;
-            (line, column)
-        }
-        None => (1, 1),
-    };
+    let (line, column) = shearcut_sim::toml_error::position(text, e);
     ConfigError::Parse {
         path: origin.to_string(),
         line,
         column,
-        message: e.message().split_whitespace().collect::<Vec<_>>().join(" "),
+        message: shearcut_sim::toml_error::message(e),
     }
 }
 
@@ -304,17 +433,19 @@ impl ScenarioFile {
             .map_err(|e| e.prefixed("material"))?;
         let knife = self.knife.resolve().map_err(|e| e.prefixed("knife"))?;
         self.object.validate().map_err(|e| e.prefixed("object"))?;
-        self.motion
-            .validate(self.object.nominal_height())
-            .map_err(|e| e.prefixed("motion"))?;
         self.section.validate().map_err(|e| e.prefixed("section"))?;
+        self.motion
+            .validate(self.object.nominal_height(), self.section.row_spacing)
+            .map_err(|e| e.prefixed("motion"))?;
         self.plant.validate().map_err(|e| e.prefixed("plant"))?;
+        check_plant_ranges(&self.plant).map_err(|e| e.prefixed("plant"))?;
         self.control_loop
             .validate()
             .map_err(|e| e.prefixed("loop"))?;
         self.controller
             .validate()
             .map_err(|e| e.prefixed("controller"))?;
+        check_controller_ranges(&self.controller).map_err(|e| e.prefixed("controller"))?;
         let name = self.name.unwrap_or_else(|| default_name.to_string());
         if name.is_empty() || name.contains(['/', '\\']) {
             return Err(InvalidSetting::new(
@@ -439,41 +570,28 @@ impl KnifeSpec {
 }
 
 impl MotionSettings {
-    /// Checks speed, ratios, z₀ and depth against an object of height
-    /// `object_height` (when known before loading a mesh).
-    pub fn validate(&self, object_height: Option<f64>) -> Result<(), InvalidSetting> {
-        if !(self.speed.is_finite() && self.speed > 0.0) {
-            return Err(InvalidSetting::new(
-                "speed",
-                self.speed,
-                "must be a finite number > 0 m/s",
-            ));
-        }
-        if self.slice_push_ratios.is_empty() {
-            return Err(InvalidSetting::new(
-                "slice_push_ratios",
-                "[]",
-                "needs at least one ratio",
-            ));
-        }
-        for (i, xi) in self.slice_push_ratios.iter().enumerate() {
-            if !(xi.is_finite() && *xi >= 0.0 && *xi <= 20.0) {
-                return Err(InvalidSetting::new(
-                    format!("slice_push_ratios[{i}]"),
-                    xi,
-                    "must be in [0, 20] (ξ = tan α; 20 is α ≈ 87°)",
-                ));
-            }
-        }
-        for (i, z0) in self.z0.iter().enumerate() {
-            if !(z0.is_finite() && *z0 >= 0.0) {
-                return Err(InvalidSetting::new(
-                    format!("z0[{i}]"),
-                    z0,
-                    "must be a finite number >= 0 m",
-                ));
-            }
-        }
+    /// Checks speed, ratios, z₀, step and depth against their physical
+    /// ranges, an object of height `object_height` (when known before
+    /// loading a mesh) and a section mesh of `row_spacing` (the step is at
+    /// least [`MIN_STEP_PER_ROW`] of it).
+    pub fn validate(
+        &self,
+        object_height: Option<f64>,
+        row_spacing: f64,
+    ) -> Result<(), InvalidSetting> {
+        KNIFE_SPEED.check("speed", self.speed)?;
+        check_count(
+            "slice_push_ratios",
+            self.slice_push_ratios.len() as u64,
+            1,
+            MAX_CUTS,
+        )
+        .map_err(|e| InvalidSetting {
+            value: format!("{} ratio(s)", self.slice_push_ratios.len()),
+            ..e
+        })?;
+        SLICE_PUSH_RATIO.check_each("slice_push_ratios", &self.slice_push_ratios)?;
+        EDGE_OFFSET.check_each("z0", &self.z0)?;
         let (nx, nz) = (self.slice_push_ratios.len(), self.z0.len());
         if nz == 0 || (nx != nz && nx != 1 && nz != 1) {
             return Err(InvalidSetting::new(
@@ -482,15 +600,11 @@ impl MotionSettings {
                 format!("must be one value or as many as slice_push_ratios ({nx})"),
             ));
         }
-        if !(self.step.is_finite() && self.step > 0.0 && self.step <= 1e-3) {
-            return Err(InvalidSetting::new(
-                "step",
-                self.step,
-                "must be in (0, 0.001] m",
-            ));
-        }
+        MOTION_STEP
+            .at_least(MIN_STEP_PER_ROW * row_spacing)
+            .check("step", self.step)?;
         if let Some(d) = self.depth {
-            let h = object_height.unwrap_or(f64::INFINITY);
+            let h = object_height.unwrap_or(OBJECT_SIZE.max);
             if !(d.is_finite() && d > 0.0 && d < h) {
                 return Err(InvalidSetting::new(
                     "depth",
@@ -532,22 +646,17 @@ fn one_or_many<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Vec<f64>, D::Er
 }
 
 impl LoopSettings {
-    /// Checks rate, limits and the missed-command limit.
+    /// Checks rate, limits and the missed-command limit against their
+    /// physical ranges.
     pub fn validate(&self) -> Result<(), InvalidSetting> {
-        if !(self.rate_hz.is_finite() && self.rate_hz >= 1.0 && self.rate_hz <= 20_000.0) {
-            return Err(InvalidSetting::new(
-                "rate_hz",
-                self.rate_hz,
-                "must be in [1, 20000] Hz",
-            ));
-        }
-        if self.missed_command_limit == 0 {
-            return Err(InvalidSetting::new(
-                "missed_command_limit",
-                0,
-                "must be at least 1",
-            ));
-        }
+        RATE.at_most(LOOP_RATE_MAX).check("rate_hz", self.rate_hz)?;
+        let (lo, hi) = MISSED_COMMANDS;
+        check_count(
+            "missed_command_limit",
+            u64::from(self.missed_command_limit),
+            lo,
+            hi,
+        )?;
         if !(self.connect_timeout.is_finite()
             && self.connect_timeout >= 0.1
             && self.connect_timeout <= 3600.0)
@@ -561,6 +670,41 @@ impl LoopSettings {
         self.arm_limits
             .validate()
             .map_err(|e| e.prefixed("arm_limits"))
+    }
+}
+
+/// Highest loop rate, Hz: an arm's servo loop runs at 0.5–1 kHz.
+pub const LOOP_RATE_MAX: f64 = 20_000.0;
+
+/// The physical ranges of the plant's settings that its own validation
+/// leaves open (sensor rate, noise and bias; start gap, reach and update
+/// distance); keys are relative to `[plant]`.
+pub fn check_plant_ranges(p: &PlantSettings) -> Result<(), InvalidSetting> {
+    PLANT_DISTANCE.check("start_gap", p.start_gap)?;
+    PLANT_DISTANCE.check("reach", p.reach)?;
+    UPDATE_DISTANCE.check("update_distance", p.update_distance)?;
+    RATE.check("sensor.rate_hz", p.sensor.rate_hz)?;
+    FORCE_NOISE.check("sensor.force_noise", p.sensor.force_noise)?;
+    TORQUE_NOISE.check("sensor.torque_noise", p.sensor.torque_noise)?;
+    SENSOR_BIAS.check_each("sensor.bias", &p.sensor.bias)
+}
+
+/// The physical ranges of the controller's settings (speeds, duration,
+/// force setpoint, blade budget, the constant ratio or force of `kind`);
+/// keys are relative to `[controller]`.
+pub fn check_controller_ranges(c: &ControllerSettings) -> Result<(), InvalidSetting> {
+    KNIFE_SPEED.check("speed", c.speed)?;
+    KNIFE_SPEED.check("max_normal_speed", c.max_normal_speed)?;
+    KNIFE_SPEED.check("max_tangential_speed", c.max_tangential_speed)?;
+    RUN_DURATION.check("max_duration", c.max_duration)?;
+    FORCE.check("force_setpoint", c.force_setpoint)?;
+    if let Some(b) = c.blade_budget {
+        EDGE_OFFSET.check("blade_budget", b)?;
+    }
+    match c.kind {
+        ControllerChoice::Slice(xi) => SLICE_PUSH_RATIO.check("kind (slice ratio)", xi),
+        ControllerChoice::Force(f) => FORCE.check("kind (force setpoint)", f),
+        ControllerChoice::Mpc | ControllerChoice::Press => Ok(()),
     }
 }
 

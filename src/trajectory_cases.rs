@@ -10,8 +10,14 @@
 //! `acceleration_extrema` (per DoF `[min, max]`) and `independent_min_durations`. Malformed lines
 //! get an error line; the other lines still run. Blank lines and lines starting with `#` are
 //! skipped.
+//!
+//! Limits (docs/reliability.md): the file is read with a cap of [`CASES_FILE_BYTES`]; a line
+//! that is not UTF-8 gets an error line; `cycle_time` must be in [1e-5, 1] s; `sample_count` is
+//! at most [`MAX_CASE_SAMPLES`] and all cases of a file together at most
+//! [`CASES_SAMPLES_BUDGET`] samples, so that a short line cannot ask for gigabytes of output; a
+//! result that is not finite is an error line, never `null`.
 
-use std::io::{BufRead, BufReader, Write};
+use std::io::Write;
 use std::path::Path;
 
 use serde::Deserialize;
@@ -20,9 +26,31 @@ use shearcut_controllers::trajectory::{
     ControlInterface, DurationDiscretization, Synchronization, Trajectory, TrajectoryGenerator,
     TrajectoryInput, TrajectorySettings, TrajectoryStatus,
 };
+use shearcut_sim::capped_read::{CappedReadError, read_capped};
+use shearcut_sim::physical_range::CYCLE_TIME;
 
 /// Largest DoF count the runner accepts.
 pub const MAX_CASE_DOFS: usize = 8;
+
+/// Largest cases file read, bytes.
+pub const CASES_FILE_BYTES: u64 = 64 << 20;
+
+/// Most samples one case may ask for (`sample_count`): with 8 DoF about 5 MB of output.
+pub const MAX_CASE_SAMPLES: usize = 100_000;
+
+/// Most samples all cases of a file may ask for together: with 8 DoF about 100 MB of output.
+pub const CASES_SAMPLES_BUDGET: usize = 200_000;
+
+/// Why a case file could not be run.
+#[derive(Debug, thiserror::Error)]
+pub enum CasesError {
+    /// The input could not be read (missing, too large): bad input.
+    #[error("{0}")]
+    Read(#[from] CappedReadError),
+    /// The output could not be written.
+    #[error("{0}")]
+    Write(#[from] std::io::Error),
+}
 
 /// Counts of a case run.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
@@ -102,6 +130,9 @@ fn run_n<const N: usize>(c: &Case) -> Result<Value, String> {
     }
     let mut settings = TrajectorySettings::default();
     if let Some(dt) = c.cycle_time {
+        CYCLE_TIME
+            .check("cycle_time", dt)
+            .map_err(|e| e.to_string())?;
         settings.cycle_time = dt;
     }
     let otg = TrajectoryGenerator::<N>::new(settings).map_err(|e| e.to_string())?;
@@ -112,6 +143,11 @@ fn run_n<const N: usize>(c: &Case) -> Result<Value, String> {
     let t = traj.duration();
     let (mut p, mut v, mut a) = ([0.0; N], [0.0; N], [0.0; N]);
     traj.at_time(t, &mut p, &mut v, &mut a);
+    if !(t.is_finite() && p.iter().chain(&v).chain(&a).all(|x| x.is_finite())) {
+        return Err(format!(
+            "the generator returned a non-finite result (duration {t}): the limits or states are out of its numeric range"
+        ));
+    }
     let ext = traj.extrema();
     let status = match status {
         TrajectoryStatus::Working => "working",
@@ -120,7 +156,6 @@ fn run_n<const N: usize>(c: &Case) -> Result<Value, String> {
     };
     let mut samples = Value::Null;
     if let Some(k) = c.sample_count.filter(|&k| k > 0) {
-        let k = k.min(1_000_000);
         let (mut ts, mut ps, mut vs, mut as_) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
         for i in 0..=k {
             let ti = t * i as f64 / k as f64;
@@ -149,9 +184,29 @@ fn run_n<const N: usize>(c: &Case) -> Result<Value, String> {
     }))
 }
 
-fn run_case(line: &str) -> Result<(Option<Value>, Value), (Option<Value>, String)> {
+fn run_case(
+    line: &str,
+    samples_left: &mut usize,
+) -> Result<(Option<Value>, Value), (Option<Value>, String)> {
     let c: Case = serde_json::from_str(line).map_err(|e| (None, format!("malformed case: {e}")))?;
     let id = c.id.clone();
+    let samples = c.sample_count.unwrap_or(0);
+    if samples > MAX_CASE_SAMPLES {
+        return Err((
+            id,
+            format!("`sample_count` = {samples}: must be at most {MAX_CASE_SAMPLES}"),
+        ));
+    }
+    if samples > *samples_left {
+        return Err((
+            id,
+            format!(
+                "`sample_count` = {samples}: the file's cases may ask for {CASES_SAMPLES_BUDGET} samples in all, {} are left",
+                *samples_left
+            ),
+        ));
+    }
+    *samples_left -= samples;
     let n = c.current_position.len();
     let r = match n {
         1 => run_n::<1>(&c),
@@ -172,28 +227,55 @@ fn run_case(line: &str) -> Result<(Option<Value>, Value), (Option<Value>, String
     }
 }
 
-/// Runs every case of the JSONL file `input`, writing one JSON line per case to `output`.
-/// I/O errors abort; a bad case only produces an error line.
-pub fn run_cases(input: &Path, output: &mut dyn Write) -> Result<CasesReport, std::io::Error> {
-    let file = std::fs::File::open(input)?;
-    let mut report = CasesReport::default();
-    for (k, line) in BufReader::new(file).lines().enumerate() {
-        let line = line?;
-        let trimmed = line.trim();
-        if trimmed.is_empty() || trimmed.starts_with('#') {
-            continue;
+/// The output line of one input line (1-based `line_number`), or `None`
+/// for a blank or comment line. `samples_left` is the file's remaining
+/// sample budget; a case's samples are taken from it.
+pub fn case_line(
+    line: &[u8],
+    line_number: usize,
+    samples_left: &mut usize,
+) -> Option<Result<Value, Value>> {
+    let Ok(text) = std::str::from_utf8(line) else {
+        return Some(Err(
+            json!({"line": line_number, "id": Value::Null, "error": "the line is not UTF-8 text"}),
+        ));
+    };
+    let trimmed = text.trim();
+    if trimmed.is_empty() || trimmed.starts_with('#') {
+        return None;
+    }
+    Some(match run_case(trimmed, samples_left) {
+        Ok((id, mut v)) => {
+            v["line"] = json!(line_number);
+            v["id"] = id.unwrap_or(Value::Null);
+            Ok(v)
         }
+        Err((id, e)) => {
+            Err(json!({"line": line_number, "id": id.unwrap_or(Value::Null), "error": e}))
+        }
+    })
+}
+
+/// Runs every case of the JSONL file `input` (read with a cap of
+/// [`CASES_FILE_BYTES`]), writing one JSON line per case to `output`.
+/// Read and write errors abort; a bad case only produces an error line.
+pub fn run_cases(input: &Path, output: &mut dyn Write) -> Result<CasesReport, CasesError> {
+    let bytes = read_capped(input, CASES_FILE_BYTES)?;
+    let mut report = CasesReport::default();
+    let mut samples_left = CASES_SAMPLES_BUDGET;
+    for (k, line) in bytes.split(|&b| b == b'\n').enumerate() {
+        let Some(result) = case_line(line, k + 1, &mut samples_left) else {
+            continue;
+        };
         report.cases += 1;
-        let out = match run_case(trimmed) {
-            Ok((id, mut v)) => {
+        let out = match result {
+            Ok(v) => {
                 report.ok += 1;
-                v["line"] = json!(k + 1);
-                v["id"] = id.unwrap_or(Value::Null);
                 v
             }
-            Err((id, e)) => {
+            Err(v) => {
                 report.errors += 1;
-                json!({"line": k + 1, "id": id.unwrap_or(Value::Null), "error": e})
+                v
             }
         };
         writeln!(output, "{out}")?;

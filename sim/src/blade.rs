@@ -2,7 +2,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::invalid_setting::{InvalidSetting, positive};
+use crate::invalid_setting::InvalidSetting;
+use crate::physical_range::{BEVEL_ANGLE, BLADE_THICKNESS, EDGE_WIDTH};
 
 /// Cross section of the blade in a plane normal to the edge (DESIGN §3.2).
 ///
@@ -47,26 +48,14 @@ impl BladeSection {
         (0.5 * (self.thickness - self.edge_width)).max(0.0) / self.bevel_angle.tan()
     }
 
-    /// Checks every field; the error names the key.
+    /// Checks every field against its physical range; the edge flat is at
+    /// most the blade's thickness. The error names the key.
     pub fn validate(&self) -> Result<(), InvalidSetting> {
-        positive("thickness", self.thickness)?;
-        positive("edge_width", self.edge_width)?;
-        let b = self.bevel_angle;
-        if !(b.is_finite() && b > 0.0 && b < std::f64::consts::FRAC_PI_2) {
-            return Err(InvalidSetting::new(
-                "bevel_angle",
-                b,
-                "must be in the open interval (0, pi/2) rad",
-            ));
-        }
-        if self.edge_width > self.thickness {
-            return Err(InvalidSetting::new(
-                "edge_width",
-                self.edge_width,
-                format!("must not exceed the blade thickness {}", self.thickness),
-            ));
-        }
-        Ok(())
+        BLADE_THICKNESS.check("thickness", self.thickness)?;
+        EDGE_WIDTH
+            .at_most(self.thickness)
+            .check("edge_width", self.edge_width)?;
+        BEVEL_ANGLE.check("bevel_angle", self.bevel_angle)
     }
 }
 

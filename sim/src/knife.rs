@@ -9,7 +9,10 @@ use nalgebra::{Vector2, Vector3};
 use serde::{Deserialize, Serialize};
 
 use crate::blade::BladeSection;
-use crate::invalid_setting::{InvalidSetting, positive};
+use crate::invalid_setting::InvalidSetting;
+use crate::physical_range::{
+    EDGE_LENGTH, KNIFE_COORDINATE, MAX_EDGE_POINTS, MIN_EDGE_CHORD, WIRE_RADIUS, check_count,
+};
 
 /// Shape of the edge, as written in a knife config (`edge = { kind = … }`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -55,7 +58,8 @@ pub const CHEF_CHORDS: usize = 200;
 #[serde(default, deny_unknown_fields)]
 pub struct SensorMount {
     /// Sensor origin [x, y, z] in the knife frame, m (default [0, 0.03, −0.03]:
-    /// 3 cm above the edge and 3 cm behind the heel, inside the handle).
+    /// 3 cm above the edge and 3 cm behind the heel, inside the handle);
+    /// exactly three numbers, each in [−1, 1] m.
     pub position: [f64; 3],
 }
 
@@ -141,10 +145,7 @@ impl KnifeSettings {
         if !matches!(self.edge, EdgeShape::Wire { .. }) {
             self.blade.validate().map_err(|e| e.prefixed("blade"))?;
         }
-        if let Some(v) = self.sensor.position.iter().find(|v| !v.is_finite()) {
-            return Err(InvalidSetting::new("sensor.position", v, "must be finite"));
-        }
-        Ok(())
+        KNIFE_COORDINATE.check_each("sensor.position", &self.sensor.position)
     }
 }
 
@@ -152,13 +153,13 @@ impl EdgeShape {
     /// Checks the shape's fields; keys are relative to the edge table.
     pub fn validate(&self) -> Result<(), InvalidSetting> {
         match self {
-            EdgeShape::Straight { length } => positive("length", *length),
+            EdgeShape::Straight { length } => EDGE_LENGTH.check("length", *length),
             EdgeShape::Chef {
                 length,
                 flat_length,
                 tip_rise,
             } => {
-                positive("length", *length)?;
+                EDGE_LENGTH.check("length", *length)?;
                 if !(flat_length.is_finite() && *flat_length >= 0.0 && flat_length < length) {
                     return Err(InvalidSetting::new(
                         "flat_length",
@@ -166,31 +167,39 @@ impl EdgeShape {
                         format!("must be in [0, length = {length})"),
                     ));
                 }
-                positive("tip_rise", *tip_rise)
+                EDGE_LENGTH
+                    .at_least(MIN_EDGE_CHORD)
+                    .check("tip_rise", *tip_rise)
             }
             EdgeShape::Polyline { points } => {
-                if points.len() < 2 {
-                    return Err(InvalidSetting::new(
-                        "points",
-                        format!("{} point(s)", points.len()),
-                        "needs at least 2 points",
-                    ));
+                check_count("points", points.len() as u64, 2, MAX_EDGE_POINTS).map_err(|e| {
+                    InvalidSetting {
+                        value: format!("{} point(s)", points.len()),
+                        ..e
+                    }
+                })?;
+                for (i, p) in points.iter().enumerate() {
+                    KNIFE_COORDINATE.check_each(&format!("points[{i}]"), p)?;
                 }
                 for (i, w) in points.windows(2).enumerate() {
-                    if !(w[0].iter().chain(w[1].iter()).all(|v| v.is_finite()) && w[1][0] > w[0][0])
-                    {
+                    if w[1][0] - w[0][0] < MIN_EDGE_CHORD {
                         return Err(InvalidSetting::new(
                             format!("points[{}]", i + 1),
                             format!("{:?}", w[1]),
-                            "coordinates must be finite and z must increase strictly from heel to tip",
+                            format!(
+                                "z must increase from heel to tip by at least {MIN_EDGE_CHORD} m a point"
+                            ),
                         ));
                     }
                 }
-                Ok(())
+                EDGE_LENGTH.check(
+                    "points (z extent)",
+                    points[points.len() - 1][0] - points[0][0],
+                )
             }
             EdgeShape::Wire { length, radius } => {
-                positive("length", *length)?;
-                positive("radius", *radius)
+                EDGE_LENGTH.check("length", *length)?;
+                WIRE_RADIUS.check("radius", *radius)
             }
         }
     }

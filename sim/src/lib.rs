@@ -6,7 +6,9 @@
 //! the multi-section plant and its surrogates. SI units throughout.
 
 pub mod arm;
+pub mod array_lengths;
 pub mod blade;
+pub mod capped_read;
 pub mod geometry;
 pub mod invalid_setting;
 pub mod knife;
@@ -14,8 +16,11 @@ pub mod knife_plane;
 pub mod material;
 pub mod mechanics;
 pub mod object;
+pub mod physical_range;
+pub mod resource_budget;
 pub mod section;
 pub mod surrogate;
+pub mod toml_error;
 
 pub use blade::BladeSection;
 pub use invalid_setting::InvalidSetting;

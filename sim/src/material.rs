@@ -5,7 +5,10 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::invalid_setting::{InvalidSetting, non_negative, positive};
+use crate::invalid_setting::InvalidSetting;
+use crate::physical_range::{
+    FRACTURE_TOUGHNESS, FRICTION_COEFFICIENT, POISSON_RATIO, SKIN_THICKNESS, YOUNGS_MODULUS,
+};
 
 /// Mechanical properties of a food material (seed 000 Table I).
 ///
@@ -16,7 +19,8 @@ use crate::invalid_setting::{InvalidSetting, non_negative, positive};
 pub struct Material {
     /// Young's modulus E, Pa.
     pub youngs_modulus: f64,
-    /// Poisson's ratio ν, dimensionless, in the open interval (0, 0.5).
+    /// Poisson's ratio ν, dimensionless, in [0, 0.49] (see
+    /// [`crate::physical_range::POISSON_RATIO`]).
     pub poisson_ratio: f64,
     /// Coefficient of Coulomb friction μ between blade and material, dimensionless.
     pub friction_coefficient: f64,
@@ -172,31 +176,20 @@ impl Material {
         self.youngs_modulus / (1.0 - self.poisson_ratio * self.poisson_ratio)
     }
 
-    /// Checks every field; the error names the key, the value and the allowed range.
+    /// Checks every field against its physical range
+    /// ([`crate::physical_range`]); the error names the key, the value and
+    /// the range.
     pub fn validate(&self) -> Result<(), InvalidSetting> {
-        positive("youngs_modulus", self.youngs_modulus)?;
-        let nu = self.poisson_ratio;
-        if !(nu.is_finite() && nu > 0.0 && nu < 0.5) {
-            return Err(InvalidSetting::new(
-                "poisson_ratio",
-                nu,
-                "must be in the open interval (0, 0.5)",
-            ));
-        }
-        non_negative("friction_coefficient", self.friction_coefficient)?;
-        positive("fracture_toughness", self.fracture_toughness)?;
-        positive(
+        YOUNGS_MODULUS.check("youngs_modulus", self.youngs_modulus)?;
+        POISSON_RATIO.check("poisson_ratio", self.poisson_ratio)?;
+        FRICTION_COEFFICIENT.check("friction_coefficient", self.friction_coefficient)?;
+        FRACTURE_TOUGHNESS.check("fracture_toughness", self.fracture_toughness)?;
+        FRACTURE_TOUGHNESS.check(
             "initial_fracture_toughness",
             self.initial_fracture_toughness,
         )?;
-        if let Some(t) = self.skin_thickness
-            && !(t.is_finite() && t >= 0.0)
-        {
-            return Err(InvalidSetting::new(
-                "skin_thickness",
-                t,
-                "must be a finite number >= 0 m (or left out: R'_c until the first fracture)",
-            ));
+        if let Some(t) = self.skin_thickness {
+            SKIN_THICKNESS.check("skin_thickness", t)?;
         }
         Ok(())
     }
@@ -267,6 +260,6 @@ mod tests {
         m.poisson_ratio = 0.7;
         let e = m.validate().unwrap_err();
         assert_eq!(e.key, "poisson_ratio");
-        assert!(e.to_string().contains("(0, 0.5)"));
+        assert!(e.to_string().contains("[0, 0.49]"), "{e}");
     }
 }

@@ -13,7 +13,8 @@ use nalgebra::Vector3;
 
 use crate::geometry::natural_shapes::{Tessellation, eggplant, half_potato};
 use crate::geometry::{MeshError, TriangleMesh, read_mesh};
-use crate::invalid_setting::{InvalidSetting, positive};
+use crate::invalid_setting::InvalidSetting;
+use crate::physical_range::OBJECT_SIZE;
 
 /// An object's shape and size, as written in config (`object = { kind = … }`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -24,19 +25,19 @@ pub enum ObjectShape {
     /// A potato halved lengthwise and laid on its flat cut (seed 000 §V.C): half
     /// an ellipsoid.
     HalfPotato {
-        /// Extent along the edge (world z), m.
+        /// Extent along the edge (world z), m, in [0.001, 1].
         length: f64,
-        /// Extent across the cut (world x), m.
+        /// Extent across the cut (world x), m, in [0.001, 1].
         width: f64,
-        /// Height above the board, m.
+        /// Height above the board, m, in [0.001, 1].
         height: f64,
     },
     /// An eggplant lying across the knife (its axis along world x, the knife
     /// plane through its middle), slightly flattened where it rests on the board.
     Eggplant {
-        /// Length along its axis (world x), m.
+        /// Length along its axis (world x), m, in [0.001, 1].
         length: f64,
-        /// Largest diameter, m.
+        /// Largest diameter, m, in [0.001, 1].
         diameter: f64,
         /// Depth of the flat on which it rests, m (default 0.004).
         #[serde(default = "default_eggplant_flat")]
@@ -59,20 +60,20 @@ fn default_eggplant_flat() -> f64 {
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Cuboid {
-    /// Extent across the cut (world x), m.
+    /// Extent across the cut (world x), m, in [0.001, 1].
     pub width: f64,
-    /// Height above the board (world y), m.
+    /// Height above the board (world y), m, in [0.001, 1].
     pub height: f64,
-    /// Extent along the edge (world z), m.
+    /// Extent along the edge (world z), m, in [0.001, 1].
     pub length: f64,
 }
 
 impl Cuboid {
     /// Checks every field.
     pub fn validate(&self) -> Result<(), InvalidSetting> {
-        positive("width", self.width)?;
-        positive("height", self.height)?;
-        positive("length", self.length)
+        OBJECT_SIZE.check("width", self.width)?;
+        OBJECT_SIZE.check("height", self.height)?;
+        OBJECT_SIZE.check("length", self.length)
     }
 }
 
@@ -86,17 +87,17 @@ impl ObjectShape {
                 width,
                 height,
             } => {
-                positive("length", *length)?;
-                positive("width", *width)?;
-                positive("height", *height)
+                OBJECT_SIZE.check("length", *length)?;
+                OBJECT_SIZE.check("width", *width)?;
+                OBJECT_SIZE.check("height", *height)
             }
             ObjectShape::Eggplant {
                 length,
                 diameter,
                 flat,
             } => {
-                positive("length", *length)?;
-                positive("diameter", *diameter)?;
+                OBJECT_SIZE.check("length", *length)?;
+                OBJECT_SIZE.check("diameter", *diameter)?;
                 if !(flat.is_finite() && *flat >= 0.0 && *flat < 0.25 * diameter) {
                     return Err(InvalidSetting::new(
                         "flat",
@@ -116,6 +117,25 @@ impl ObjectShape {
                 }
                 Ok(())
             }
+        }
+    }
+
+    /// Extent [x, y, z] of the built-in shapes' bounding box, m (None for
+    /// a mesh file, known only once it is read).
+    pub fn nominal_extent(&self) -> Option<[f64; 3]> {
+        match self {
+            ObjectShape::Cuboid(c) => Some([c.width, c.height, c.length]),
+            ObjectShape::HalfPotato {
+                length,
+                width,
+                height,
+            } => Some([*width, *height, *length]),
+            ObjectShape::Eggplant {
+                length,
+                diameter,
+                flat,
+            } => Some([*length, diameter - flat, *diameter]),
+            ObjectShape::Mesh { .. } => None,
         }
     }
 

@@ -16,6 +16,7 @@ use shearcut_sim::surrogate::{
 };
 use shearcut_sim::{EdgeShape, InvalidSetting, KnifePreset, MaterialPreset};
 
+use crate::cli::print;
 use crate::error::{ConfigError, RunError};
 use crate::plot::ensure_parent;
 use crate::plot::surrogate_fit::draw_surrogate_fit;
@@ -181,12 +182,11 @@ pub fn run(
         ),
         &output.comparisons
     ))?;
-    print!("{}", output.report.table());
-    println!(
-        "wrote {}, {}, {}",
+    print(&format!(
+        "{}wrote {}, {}, {}\n",
+        output.report.table(),
         path.display(),
         report_path.display(),
         plot_path.display()
-    );
-    Ok(())
+    ))
 }

@@ -18,6 +18,7 @@ use shearcut_sim::arm::{ArmStatus, KnifeCommand};
 use shearcut_sim::section::{CrossSection, SectionGeometry, SectionStep};
 use shearcut_sim::{Cuboid, EdgeShape, InvalidSetting, Knife, ObjectShape};
 
+use crate::cli::print;
 use crate::cut_record::{CutSample, CutSummary, write_json, write_timeseries};
 use crate::error::{ConfigError, RunError};
 use crate::plot::cut_curves::draw_cut_curves;
@@ -326,21 +327,22 @@ pub fn run_scenario(s: &Scenario, out: Option<&Path>) -> Result<(), RunError> {
             root, &title, &cuts, per_length
         ))?;
     }
-    print_summary(s, output.model, &output.summaries);
-    println!(
-        "results: {}/ (timeseries.csv, summary.json, scenario.toml, forces_work.svg/.png)",
+    print(&format!(
+        "{}results: {}/ (timeseries.csv, summary.json, scenario.toml, forces_work.svg/.png)\n",
+        summary_table(s, output.model, &output.summaries),
         dir.display()
-    );
-    Ok(())
+    ))
 }
 
-fn print_summary(s: &Scenario, model: &str, summaries: &[CutSummary]) {
-    println!("{}: {} [{model}]", s.name, s.description);
-    println!(
-        "   xi   z0 (m)  work (J)  peak Fv (N)  peak Fh (N)  peak torque (Nm)  first fracture (mm)  max deform. (mm)  depth (mm)  completed"
+fn summary_table(s: &Scenario, model: &str, summaries: &[CutSummary]) -> String {
+    use std::fmt::Write;
+    let mut t = format!(
+        "{}: {} [{model}]\n   xi   z0 (m)  work (J)  peak Fv (N)  peak Fh (N)  peak torque (Nm)  first fracture (mm)  max deform. (mm)  depth (mm)  completed\n",
+        s.name, s.description
     );
     for c in summaries {
-        println!(
+        let _ = writeln!(
+            t,
             "{:>5.2}  {:>7.4}  {:>8.4}  {:>11.3}  {:>11.3}  {:>16.4}  {:>19}  {:>16.3}  {:>10.2}  {}",
             c.xi,
             c.z0_m,
@@ -355,4 +357,5 @@ fn print_summary(s: &Scenario, model: &str, summaries: &[CutSummary]) {
             c.completed
         );
     }
+    t
 }

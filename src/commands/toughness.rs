@@ -4,7 +4,9 @@ use std::path::{Path, PathBuf};
 
 use shearcut_sim::InvalidSetting;
 use shearcut_sim::mechanics::{force_ratio, normal_force_ratio, toughness_ratio};
+use shearcut_sim::physical_range::SLICE_PUSH_RATIO;
 
+use crate::cli::print;
 use crate::error::{ConfigError, RunError};
 use crate::plot::ensure_parent;
 use crate::plot::toughness_ratio::{FIG3_SLICE_PUSH_RATIOS, draw_fig3, fig3_table};
@@ -13,7 +15,7 @@ use crate::render_plot;
 /// The law evaluated at one (ξ, ν).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ToughnessReport {
-    /// Slice-push ratio ξ.
+    /// Slice-push ratio ξ, in [0, 20].
     pub xi: f64,
     /// Poisson's ratio ν.
     pub nu: f64,
@@ -34,13 +36,9 @@ pub fn evaluate(nu: f64, xi: f64) -> Result<ToughnessReport, ConfigError> {
             "must be in the open interval (0, 0.5)",
         )));
     }
-    if !(xi.is_finite() && xi >= 0.0) {
-        return Err(ConfigError::Argument(InvalidSetting::new(
-            "--xi",
-            xi,
-            "must be a finite number >= 0",
-        )));
-    }
+    SLICE_PUSH_RATIO
+        .check("--xi", xi)
+        .map_err(ConfigError::Argument)?;
     Ok(ToughnessReport {
         xi,
         nu,
@@ -53,12 +51,13 @@ pub fn evaluate(nu: f64, xi: f64) -> Result<ToughnessReport, ConfigError> {
 /// Runs the subcommand: prints the law and, with `plot`, draws Fig. 3 and writes its CSV.
 pub fn run(nu: f64, xi: f64, plot: Option<&Path>) -> Result<(), RunError> {
     let r = evaluate(nu, xi)?;
-    println!("r(xi={}, nu={}) = {:.4}", r.xi, r.nu, r.toughness_ratio);
-    println!("F_t/F_n         = {:.4}", r.force_ratio);
-    println!("f_n^s/f_n^p     = {:.4}", r.normal_force_ratio);
+    print(&format!(
+        "r(xi={}, nu={}) = {:.4}\nF_t/F_n         = {:.4}\nf_n^s/f_n^p     = {:.4}\n",
+        r.xi, r.nu, r.toughness_ratio, r.force_ratio, r.normal_force_ratio
+    ))?;
     if let Some(path) = plot {
         let csv = write_fig3(path)?;
-        println!("wrote {} and {}", path.display(), csv.display());
+        print(&format!("wrote {} and {}\n", path.display(), csv.display()))?;
     }
     Ok(())
 }
@@ -93,6 +92,14 @@ mod tests {
         let r = evaluate(0.4, 0.75).unwrap();
         assert_eq!(format!("{:.4}", r.toughness_ratio), "0.6224");
         assert_eq!(format!("{:.4}", r.force_ratio), "0.2679");
+    }
+
+    #[test]
+    fn xi_out_of_range_is_refused_before_the_law_turns_nan() {
+        let e = evaluate(0.4, 1e300).unwrap_err().to_string();
+        assert_eq!(e, "`--xi` = 1e300: must be in [0, 20]");
+        let r = evaluate(0.4, 20.0).unwrap();
+        assert!(r.toughness_ratio.is_finite() && r.toughness_ratio > 0.0);
     }
 
     #[test]

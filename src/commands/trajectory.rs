@@ -4,38 +4,53 @@ use std::io::Write;
 use std::path::Path;
 
 use crate::error::{ConfigError, RunError};
-use crate::trajectory_cases::run_cases;
+use crate::trajectory_cases::{CasesError, CasesReport, run_cases};
 
 /// Reads one case per line from `cases` (ruckig's field names, see
 /// `docs/trajectory.md`) and writes one JSON result line per case to `out`
 /// (default stdout). Malformed lines get an error line; the rest still run.
+/// An unreadable `cases` file is bad input (exit 2); a failed write exits 1,
+/// a closed stdout quietly (141).
 pub fn run(cases: &Path, out: Option<&Path>) -> Result<(), RunError> {
-    if !cases.is_file() {
-        return Err(ConfigError::Read {
+    let read_error = |source| {
+        RunError::Config(ConfigError::Read {
             path: cases.to_path_buf(),
-            source: std::io::Error::new(std::io::ErrorKind::NotFound, "no such file"),
-        }
-        .into());
-    }
+            source,
+        })
+    };
     let report = match out {
         Some(path) => {
             let file = std::fs::File::create(path).map_err(|e| RunError::write(path, e))?;
             let mut w = std::io::BufWriter::new(file);
-            let r = run_cases(cases, &mut w).map_err(|e| RunError::write(path, e))?;
+            let r = run_cases(cases, &mut w).map_err(|e| match e {
+                CasesError::Read(e) => read_error(e),
+                CasesError::Write(e) => RunError::write(path, e),
+            })?;
             w.flush().map_err(|e| RunError::write(path, e))?;
             r
         }
         None => {
             let stdout = std::io::stdout();
             let mut w = std::io::BufWriter::new(stdout.lock());
-            let r = run_cases(cases, &mut w).map_err(|e| RunError::write("stdout", e))?;
-            w.flush().map_err(|e| RunError::write("stdout", e))?;
+            let r = run_cases(cases, &mut w).map_err(|e| match e {
+                CasesError::Read(e) => read_error(e),
+                CasesError::Write(e) => RunError::Stdout(e),
+            })?;
+            w.flush().map_err(RunError::Stdout)?;
             r
         }
     };
-    eprintln!(
-        "{} cases: {} ok, {} errors",
-        report.cases, report.ok, report.errors
-    );
+    report_counts(&report);
     Ok(())
+}
+
+/// The counts line on stderr (a closed stderr is ignored).
+fn report_counts(report: &CasesReport) {
+    let _ = writeln!(
+        std::io::stderr(),
+        "{} cases: {} ok, {} errors",
+        report.cases,
+        report.ok,
+        report.errors
+    );
 }

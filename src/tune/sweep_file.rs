@@ -156,7 +156,11 @@ pub struct Sweep {
 impl Sweep {
     /// Reads, expands and checks a sweep file.
     pub fn load(path: &Path) -> Result<Self, ConfigError> {
-        let text = std::fs::read_to_string(path).map_err(|source| ConfigError::Read {
+        let text = shearcut_sim::capped_read::read_capped_text(
+            path,
+            shearcut_sim::resource_budget::CONFIG_FILE_BYTES,
+        )
+        .map_err(|source| ConfigError::Read {
             path: path.to_path_buf(),
             source,
         })?;

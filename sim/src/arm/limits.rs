@@ -4,7 +4,8 @@
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
-use crate::invalid_setting::{InvalidSetting, positive};
+use crate::invalid_setting::InvalidSetting;
+use crate::physical_range::{ARM_ACCELERATION, ARM_JERK, ARM_VELOCITY};
 
 /// Cartesian translation limits of the arm (defaults: Franka FR3).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -29,11 +30,13 @@ impl Default for ArmLimits {
 }
 
 impl ArmLimits {
-    /// Checks every limit is finite and positive.
+    /// Checks every limit against its physical range
+    /// ([`crate::physical_range`]: velocity [1e-3, 10] m/s, acceleration
+    /// [1e-2, 100] m/s², jerk [1, 1e5] m/s³).
     pub fn validate(&self) -> Result<(), InvalidSetting> {
-        positive("velocity", self.velocity)?;
-        positive("acceleration", self.acceleration)?;
-        positive("jerk", self.jerk)
+        ARM_VELOCITY.check("velocity", self.velocity)?;
+        ARM_ACCELERATION.check("acceleration", self.acceleration)?;
+        ARM_JERK.check("jerk", self.jerk)
     }
 }
 

@@ -2,46 +2,92 @@
 //! (ASCII or binary, via `stl_io`). Coordinates are metres in the world frame.
 
 use std::fs::File;
-use std::io::{BufReader, Write};
+use std::io::{Cursor, Write};
 use std::path::Path;
 
 use nalgebra::Vector3;
 
 use super::triangle_mesh::{MeshError, TriangleMesh};
+use crate::capped_read::read_capped;
+use crate::resource_budget::{MESH_FILE_BYTES, MESH_TRIANGLES_BUDGET};
 
-/// Reads a closed mesh from an `.obj` or `.stl` file and checks it.
+/// The mesh file formats read.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum MeshFormat {
+    /// Wavefront OBJ (text; polygons are triangulated, materials ignored).
+    Obj,
+    /// STL, ASCII or binary.
+    Stl,
+}
+
+impl MeshFormat {
+    /// The format named by a path's extension (`.obj`, `.stl`, any case).
+    pub fn from_path(path: &Path) -> Option<Self> {
+        match path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase)
+            .as_deref()
+        {
+            Some("obj") => Some(Self::Obj),
+            Some("stl") => Some(Self::Stl),
+            _ => None,
+        }
+    }
+}
+
+/// Reads a closed mesh from an `.obj` or `.stl` file and checks it. At
+/// most [`MESH_FILE_BYTES`] are read; the file is parsed only as the format
+/// its extension names, and no referenced file (an OBJ's material library)
+/// is opened.
 pub fn read_mesh(path: &Path) -> Result<TriangleMesh, MeshError> {
     let name = path.display().to_string();
-    let ext = path
-        .extension()
-        .and_then(|e| e.to_str())
-        .map(str::to_ascii_lowercase);
-    let (vertices, triangles) = match ext.as_deref() {
-        Some("obj") => read_obj(path, &name)?,
-        Some("stl") => read_stl(path, &name)?,
-        _ => return Err(MeshError::UnknownFormat { path: name }),
+    let format = MeshFormat::from_path(path)
+        .ok_or_else(|| MeshError::UnknownFormat { path: name.clone() })?;
+    let bytes = read_capped(path, MESH_FILE_BYTES).map_err(|e| MeshError::Read {
+        path: name.clone(),
+        message: e.to_string(),
+    })?;
+    parse_mesh(&bytes, format, &name)
+}
+
+/// Parses a closed mesh from the bytes of a file of `format`; `name` names
+/// it in errors. Errors never quote the file's contents. More than
+/// [`MESH_TRIANGLES_BUDGET`] triangles are refused.
+pub fn parse_mesh(bytes: &[u8], format: MeshFormat, name: &str) -> Result<TriangleMesh, MeshError> {
+    let (vertices, triangles) = match format {
+        MeshFormat::Obj => parse_obj(bytes, name)?,
+        MeshFormat::Stl => parse_stl(bytes, name)?,
     };
+    if triangles.len() > MESH_TRIANGLES_BUDGET {
+        return Err(MeshError::Malformed {
+            path: name.to_string(),
+            message: format!(
+                "{} triangles, more than the {MESH_TRIANGLES_BUDGET} a mesh may have (docs/reliability.md)",
+                triangles.len()
+            ),
+        });
+    }
     TriangleMesh::new(vertices, triangles)
 }
 
 type Soup = (Vec<Vector3<f64>>, Vec<[usize; 3]>);
 
-fn read_obj(path: &Path, name: &str) -> Result<Soup, MeshError> {
-    if let Err(e) = std::fs::metadata(path) {
-        return Err(MeshError::Read {
-            path: name.to_string(),
-            message: e.to_string(),
-        });
-    }
+fn parse_obj(bytes: &[u8], name: &str) -> Result<Soup, MeshError> {
     let opts = tobj::LoadOptions {
         triangulate: true,
         single_index: true,
         ..Default::default()
     };
-    let (models, _) = tobj::load_obj(path, &opts).map_err(|e| MeshError::Malformed {
-        path: name.to_string(),
-        message: e.to_string(),
-    })?;
+    let mut reader = Cursor::new(bytes);
+    // Material libraries are not opened: a mesh file names only its geometry.
+    let (models, _) =
+        tobj::load_obj_buf(&mut reader, &opts, |_| Err(tobj::LoadError::OpenFileFailed)).map_err(
+            |e| MeshError::Malformed {
+                path: name.to_string(),
+                message: e.to_string(),
+            },
+        )?;
     let mut vertices = Vec::new();
     let mut triangles = Vec::new();
     for m in models {
@@ -68,15 +114,11 @@ fn read_obj(path: &Path, name: &str) -> Result<Soup, MeshError> {
     Ok((vertices, triangles))
 }
 
-fn read_stl(path: &Path, name: &str) -> Result<Soup, MeshError> {
-    let file = File::open(path).map_err(|e| MeshError::Read {
+fn parse_stl(bytes: &[u8], name: &str) -> Result<Soup, MeshError> {
+    // stl_io's messages quote the offending line: report the format only.
+    let mesh = stl_io::read_stl(&mut Cursor::new(bytes)).map_err(|_| MeshError::Malformed {
         path: name.to_string(),
-        message: e.to_string(),
-    })?;
-    let mut reader = BufReader::new(file);
-    let mesh = stl_io::read_stl(&mut reader).map_err(|e| MeshError::Malformed {
-        path: name.to_string(),
-        message: e.to_string(),
+        message: "not a valid ASCII or binary STL file (truncated, or text that is not STL)".into(),
     })?;
     let vertices = mesh
         .vertices

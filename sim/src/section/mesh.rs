@@ -114,6 +114,27 @@ impl SectionMesh {
 mod tests {
     use super::*;
 
+    /// `resource_budget::section_nodes` bounds the mesh built here, and not
+    /// by much (within 20 % and a few columns): on the default settings, a
+    /// uniform width (ratio 1) and a steep grading on fine rows.
+    #[test]
+    fn the_resource_estimate_bounds_the_built_mesh() {
+        let g = SectionGeometry::rectangle(0.03, 0.025).unwrap();
+        for (ratio, rows) in [(1.3, 2e-4), (1.0, 2e-4), (2.0, 5e-5)] {
+            let s = SectionSettings {
+                grading_ratio: ratio,
+                row_spacing: rows,
+                ..Default::default()
+            };
+            let built = SectionMesh::new(&g, 1e-4, &s).unwrap().node_count() as f64;
+            let estimate = crate::resource_budget::section_nodes(0.015, 0.025, 1e-4, &s);
+            assert!(
+                estimate >= built && estimate <= 1.2 * built + 4.0 * (0.025 / rows + 1.0),
+                "ratio {ratio}: estimate {estimate}, built {built}"
+            );
+        }
+    }
+
     #[test]
     fn graded_columns_resolve_the_flat_and_cover_the_section() {
         let g = SectionGeometry::rectangle(0.03, 0.02).unwrap();

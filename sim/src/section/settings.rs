@@ -2,7 +2,11 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::invalid_setting::{InvalidSetting, positive};
+use crate::invalid_setting::InvalidSetting;
+use crate::physical_range::{
+    BRACKET_DOUBLINGS, ELEMENT_WIDTH, GRADING_RATIO, INITIAL_CRACK_EXTENSION, ROOT_ITERATIONS,
+    ROOT_TOLERANCE, ROW_SPACING, check_count,
+};
 
 /// Settings of one cross section (DESIGN §3.2; seed 000 §III.C).
 ///
@@ -12,7 +16,8 @@ use crate::invalid_setting::{InvalidSetting, positive};
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct SectionSettings {
-    /// Height of the elements along the cut line, m (default 2e-4). The crack
+    /// Height of the elements along the cut line, m (default 2e-4; in
+    /// [1e-5, 5e-3]). The crack
     /// tip travels down this line, so its spacing is uniform; the tip position
     /// between two rows is interpolated (see `CrossSection`).
     pub row_spacing: f64,
@@ -34,9 +39,11 @@ pub struct SectionSettings {
     /// |R − R_c^s| ≤ tol·R_c^s (default 1e-7).
     pub bisection_tolerance: f64,
     /// Most doublings of the trial extension while bracketing R = R_c^s
-    /// (default 60). Beyond it the step reports an unbracketed status.
+    /// (default 60; in [30, 200], enough to take the smallest flaw past the
+    /// largest object). Beyond it the step reports an unbracketed status.
     pub max_bracket_doublings: u32,
-    /// Most root-search iterations on the bracket per step (default 200).
+    /// Most root-search iterations on the bracket per step (default 200; in
+    /// [60, 10000]).
     pub max_bisection_iterations: u32,
 }
 
@@ -56,49 +63,33 @@ impl Default for SectionSettings {
 }
 
 impl SectionSettings {
-    /// Checks every field; the error names the key.
+    /// Checks every field against its physical range
+    /// ([`crate::physical_range`]); δ₀ is at most the row spacing. The
+    /// error names the key. The mesh's size is bounded separately
+    /// ([`crate::resource_budget::section_nodes`]).
     pub fn validate(&self) -> Result<(), InvalidSetting> {
-        positive("row_spacing", self.row_spacing)?;
-        if !(1..=8).contains(&self.strip_elements) {
-            return Err(InvalidSetting::new(
-                "strip_elements",
-                self.strip_elements,
-                "must be an integer in 1..=8",
-            ));
-        }
-        let g = self.grading_ratio;
-        if !(g.is_finite() && (1.0..=3.0).contains(&g)) {
-            return Err(InvalidSetting::new(
-                "grading_ratio",
-                g,
-                "must be in the interval [1, 3]",
-            ));
-        }
-        positive("max_element_width", self.max_element_width)?;
-        positive("initial_crack_extension", self.initial_crack_extension)?;
-        let t = self.bisection_tolerance;
-        if !(t.is_finite() && t > 0.0 && t < 0.1) {
-            return Err(InvalidSetting::new(
-                "bisection_tolerance",
-                t,
-                "must be in the open interval (0, 0.1)",
-            ));
-        }
-        if self.max_bracket_doublings == 0 || self.max_bracket_doublings > 200 {
-            return Err(InvalidSetting::new(
-                "max_bracket_doublings",
-                self.max_bracket_doublings,
-                "must be an integer in 1..=200",
-            ));
-        }
-        if self.max_bisection_iterations == 0 {
-            return Err(InvalidSetting::new(
-                "max_bisection_iterations",
-                self.max_bisection_iterations,
-                "must be an integer >= 1",
-            ));
-        }
-        Ok(())
+        ROW_SPACING.check("row_spacing", self.row_spacing)?;
+        check_count("strip_elements", self.strip_elements as u64, 1, 8)?;
+        GRADING_RATIO.check("grading_ratio", self.grading_ratio)?;
+        ELEMENT_WIDTH.check("max_element_width", self.max_element_width)?;
+        INITIAL_CRACK_EXTENSION
+            .at_most(self.row_spacing)
+            .check("initial_crack_extension", self.initial_crack_extension)?;
+        ROOT_TOLERANCE.check("bisection_tolerance", self.bisection_tolerance)?;
+        let (lo, hi) = BRACKET_DOUBLINGS;
+        check_count(
+            "max_bracket_doublings",
+            u64::from(self.max_bracket_doublings),
+            lo,
+            hi,
+        )?;
+        let (lo, hi) = ROOT_ITERATIONS;
+        check_count(
+            "max_bisection_iterations",
+            u64::from(self.max_bisection_iterations),
+            lo,
+            hi,
+        )
     }
 }
 

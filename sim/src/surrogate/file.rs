@@ -2,7 +2,12 @@
 
 use std::path::{Path, PathBuf};
 
+use crate::array_lengths::check_array_lengths;
+use crate::capped_read::{CappedReadError, read_capped_text};
 use crate::invalid_setting::InvalidSetting;
+use crate::resource_budget::CONFIG_FILE_BYTES;
+
+use crate::toml_error::one_line;
 
 use super::model::{OLDEST_READ_FORMAT_VERSION, SURROGATE_FORMAT_VERSION, Surrogate};
 
@@ -15,7 +20,7 @@ pub enum SurrogateFileError {
         /// The file.
         path: PathBuf,
         /// Why.
-        source: std::io::Error,
+        source: CappedReadError,
     },
     /// Not TOML, or a key is missing, unknown or of the wrong type.
     #[error("surrogate file: {0}")]
@@ -58,11 +63,14 @@ pub enum SurrogateFileError {
 }
 
 impl Surrogate {
-    /// Reads a surrogate file (see [`Self::from_toml_str`]).
+    /// Reads a surrogate file (see [`Self::from_toml_str`]): at most
+    /// [`CONFIG_FILE_BYTES`] of UTF-8 text.
     pub fn from_path(path: &Path) -> Result<Self, SurrogateFileError> {
-        let text = std::fs::read_to_string(path).map_err(|source| SurrogateFileError::Read {
-            path: path.to_path_buf(),
-            source,
+        let text = read_capped_text(path, CONFIG_FILE_BYTES).map_err(|source| {
+            SurrogateFileError::Read {
+                path: path.to_path_buf(),
+                source,
+            }
         })?;
         Self::from_toml_str(&text)
     }
@@ -71,10 +79,11 @@ impl Surrogate {
     /// [`OLDEST_READ_FORMAT_VERSION`]..=[`SURROGATE_FORMAT_VERSION`], every key present and known (the `[ratio]` table whole or not
     /// at all: a file without one reads as zero correction, the surrogate
     /// then linear in the scale factors), every coefficient finite and the
-    /// material and blade constants positive.
+    /// material and blade constants within their physical ranges; every
+    /// array exactly as long as its key takes. Errors never quote the text.
     pub fn from_toml_str(text: &str) -> Result<Self, SurrogateFileError> {
         let table: toml::Table =
-            toml::from_str(text).map_err(|e| SurrogateFileError::Format(one_line(&e)))?;
+            toml::from_str(text).map_err(|e| SurrogateFileError::Format(one_line(text, &e)))?;
         match table.get("version").and_then(toml::Value::as_integer) {
             None => {
                 return Err(SurrogateFileError::MissingVersion {
@@ -96,7 +105,11 @@ impl Surrogate {
             Some(_) => {}
         }
         let s: Surrogate =
-            toml::from_str(text).map_err(|e| SurrogateFileError::Format(one_line(&e)))?;
+            toml::from_str(text).map_err(|e| SurrogateFileError::Format(one_line(text, &e)))?;
+        let read =
+            toml::Value::try_from(&s).map_err(|e| SurrogateFileError::Format(e.to_string()))?;
+        check_array_lengths(&toml::Value::Table(table), &read)
+            .map_err(SurrogateFileError::Invalid)?;
         s.validate()?;
         Ok(s)
     }
@@ -257,12 +270,4 @@ impl Surrogate {
             .map_err(|e| SurrogateFileError::Invalid(e.prefixed("blade")))?;
         Ok(())
     }
-}
-
-/// A TOML error on one line.
-fn one_line(e: &toml::de::Error) -> String {
-    e.to_string()
-        .split_whitespace()
-        .collect::<Vec<_>>()
-        .join(" ")
 }

@@ -1,0 +1,89 @@
+//! The bodies of the fuzz targets, shared with the stable regression test
+//! `tests/reliability_fuzz_regressions.rs` (both include this file with
+//! `#[path]`), so every crash the fuzzer keeps runs again in CI.
+//!
+//! Each body feeds bytes to one reader of the input surface and asserts
+//! what the reader promises: a value that passed validation is usable
+//! (finite, buildable), a refusal is one line.
+
+#![allow(dead_code)]
+
+use shearcut::scenario::Scenario;
+use shearcut::trajectory_cases::{CASES_SAMPLES_BUDGET, case_line};
+use shearcut_sim::geometry::{MeshFormat, SectionPlane, parse_mesh};
+use shearcut_sim::surrogate::Surrogate;
+
+fn one_line(message: &str) {
+    assert!(!message.contains('\n'), "an error is one line: {message}");
+}
+
+/// Scenario TOML: parsed, resolved and validated, or one line. A valid
+/// scenario's object builds as a closed mesh.
+pub fn scenario_toml(data: &[u8]) {
+    let Ok(text) = std::str::from_utf8(data) else {
+        return;
+    };
+    match Scenario::parse(text, "fuzz", "fuzz") {
+        Ok(s) => {
+            let mesh = s
+                .object
+                .mesh()
+                .expect("a validated object builds as a closed mesh");
+            let (lo, hi) = mesh.bounds();
+            assert!((hi - lo).iter().all(|d| d.is_finite() && *d > 0.0));
+        }
+        Err(e) => one_line(&e.to_string()),
+    }
+}
+
+/// An OBJ (first byte even) or STL (odd) file: read as a closed mesh and
+/// cut through its middle, or one line.
+pub fn mesh_file(data: &[u8]) {
+    let Some((&selector, bytes)) = data.split_first() else {
+        return;
+    };
+    let format = if selector % 2 == 0 {
+        MeshFormat::Obj
+    } else {
+        MeshFormat::Stl
+    };
+    match parse_mesh(bytes, format, "fuzz") {
+        Ok(mesh) => {
+            let (lo, hi) = mesh.bounds();
+            assert!(lo.iter().chain(hi.iter()).all(|v| v.is_finite()));
+            let mid = 0.5 * (lo + hi);
+            let plane = SectionPlane::normal_to_segment(mid, nalgebra::Vector3::y());
+            let _ = plane.loops(&mesh);
+        }
+        Err(e) => one_line(&e.to_string()),
+    }
+}
+
+/// A surrogate file: read and validated, or one line.
+pub fn surrogate_file(data: &[u8]) {
+    let Ok(text) = std::str::from_utf8(data) else {
+        return;
+    };
+    if let Err(e) = Surrogate::from_toml_str(text) {
+        one_line(&e.to_string());
+    }
+}
+
+/// A JSONL file of trajectory cases: every line runs or gets an error
+/// line; a result's duration is a finite number.
+pub fn trajectory_cases(data: &[u8]) {
+    let mut samples_left = CASES_SAMPLES_BUDGET;
+    for (k, line) in data.split(|&b| b == b'\n').enumerate() {
+        match case_line(line, k + 1, &mut samples_left) {
+            None => {}
+            Some(Ok(v)) => {
+                let t = v["duration"]
+                    .as_f64()
+                    .expect("a result has a numeric duration");
+                assert!(t.is_finite() && t >= 0.0, "duration {t}");
+                one_line(&v.to_string());
+            }
+            Some(Err(v)) => one_line(&v.to_string()),
+        }
+    }
+}

@@ -1,0 +1,463 @@
+//! Issue 27's hostile campaign, the reproducers of the commands `check`,
+//! `simulate`, `toughness` and `trajectory`: each is a test of the binary.
+//! Bad input exits 2 with one line naming the key, the value and the
+//! range; nothing panics (exit 101), nothing runs away, nothing echoes a
+//! file; a closed stdout ends quietly (141), a full one with one line (1).
+
+use std::path::PathBuf;
+use std::process::{Command, Output, Stdio};
+
+fn shearcut_with(args: &[&str], stdout: Stdio) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_shearcut"))
+        .args(args)
+        .env("RUST_LOG", "error")
+        .env("RUST_BACKTRACE", "0")
+        .stdout(stdout)
+        .stderr(Stdio::piped())
+        .output()
+        .expect("the shearcut binary runs")
+}
+
+fn shearcut(args: &[&str]) -> Output {
+    shearcut_with(args, Stdio::piped())
+}
+
+fn stderr(o: &Output) -> String {
+    String::from_utf8_lossy(&o.stderr).into_owned()
+}
+
+/// A private directory for one test, removed on drop.
+struct Dir(PathBuf);
+
+impl Dir {
+    fn new(tag: &str) -> Self {
+        let d = std::env::temp_dir().join(format!("shearcut-reliab-{tag}-{}", std::process::id()));
+        std::fs::create_dir_all(&d).unwrap();
+        Self(d)
+    }
+
+    fn file(&self, name: &str, text: &str) -> String {
+        let p = self.0.join(name);
+        std::fs::write(&p, text).unwrap();
+        p.to_str().unwrap().to_string()
+    }
+}
+
+impl Drop for Dir {
+    fn drop(&mut self) {
+        std::fs::remove_dir_all(&self.0).ok();
+    }
+}
+
+const FIG7: &str = include_str!("../config/scenarios/fig7-potato.toml");
+const LOOP_CUBOID: &str = include_str!("../config/scenarios/loop-potato-cuboid.toml");
+
+/// Asserts exit 2 with exactly one stderr line that contains every `needle`.
+fn assert_refused(o: &Output, needles: &[&str]) {
+    let e = stderr(o);
+    assert_eq!(o.status.code(), Some(2), "stderr: {e}");
+    assert_eq!(e.lines().count(), 1, "one line: {e}");
+    for n in needles {
+        assert!(e.contains(n), "`{n}` not in: {e}");
+    }
+}
+
+/// `check` refuses `text` (a scenario) naming `needles`.
+fn check_refuses(tag: &str, text: &str, needles: &[&str]) {
+    let d = Dir::new(tag);
+    let path = d.file("s.toml", text);
+    assert_refused(&shearcut(&["check", &path]), needles);
+}
+
+fn with_table(base: &str, table: &str) -> String {
+    format!("{base}\n{table}\n")
+}
+
+#[test]
+fn issue_27_huge_or_tiny_object_sizes_are_refused_not_a_panic() {
+    for (key, value) in [
+        ("width", "1e300"),
+        ("height", "1e300"),
+        ("length", "1e300"),
+        ("width", "1e-300"),
+        ("length", "1e-300"),
+        ("length", "1e-9"),
+    ] {
+        let text =
+            LOOP_CUBOID.replacen(&format!("{key} = "), &format!("{key} = {value}\n# was "), 1);
+        check_refuses(
+            "object",
+            &text,
+            &[&format!("`object.{key}` = {value}"), "[0.001, 1] m"],
+        );
+    }
+}
+
+#[test]
+fn issue_27_row_spacing_1e_300_is_refused() {
+    check_refuses(
+        "rows",
+        &with_table(LOOP_CUBOID, "[section]\nrow_spacing = 1e-300"),
+        &["`section.row_spacing` = 1e-300", "[1e-5, 0.005] m"],
+    );
+}
+
+/// A row spacing inside its range on the tallest object still asks for a
+/// mesh beyond the budget: refused by the resource estimate.
+#[test]
+fn a_fine_mesh_on_a_tall_object_is_refused_by_the_resource_estimate() {
+    let text = with_table(
+        &FIG7
+            .replace("height = 0.025", "height = 1.0")
+            .replace("width = 0.03 ", "width = 1.0 "),
+        "[section]\nrow_spacing = 1e-5\ngrading_ratio = 1.0",
+    );
+    check_refuses("mesh", &text, &["`resources.section_mesh`", "nodes"]);
+}
+
+#[test]
+fn issue_27_motion_step_1e_12_is_refused_with_its_geometric_bound() {
+    let text = FIG7.replace("depth = 0.02", "depth = 0.02\nstep = 1e-12");
+    check_refuses(
+        "step",
+        &text,
+        &["`motion.step` = 1e-12", "must be in [2e-7, 0.001] m"],
+    );
+}
+
+#[test]
+fn a_slow_knife_at_a_high_loop_rate_is_refused_by_the_series_budget() {
+    let text = with_table(
+        &LOOP_CUBOID.replace("[controller]", "[controller]\nmax_duration = 3600"),
+        "[loop]\nrate_hz = 20000",
+    );
+    check_refuses("series", &text, &["`resources.series`", "rows"]);
+}
+
+#[test]
+fn issue_27_sensor_rate_1e300_is_refused() {
+    let text = LOOP_CUBOID.replace(
+        "segments = 20",
+        "segments = 20\nsensor = { rate_hz = 1e300 }",
+    );
+    check_refuses(
+        "rate",
+        &text,
+        &["`plant.sensor.rate_hz` = 1e300", "[1, 100000] Hz"],
+    );
+}
+
+#[test]
+fn issue_27_arm_jerk_1e300_is_refused() {
+    check_refuses(
+        "jerk",
+        &with_table(LOOP_CUBOID, "[loop.arm_limits]\njerk = 1e300"),
+        &["`loop.arm_limits.jerk` = 1e300"],
+    );
+}
+
+#[test]
+fn issue_27_one_bracket_doubling_is_refused() {
+    check_refuses(
+        "doublings",
+        &with_table(FIG7, "[section]\nmax_bracket_doublings = 1"),
+        &[
+            "`section.max_bracket_doublings` = 1",
+            "integer in [30, 200]",
+        ],
+    );
+}
+
+#[test]
+fn issue_27_friction_1e300_and_poisson_0_4999999_are_refused() {
+    for (key, value) in [
+        ("friction_coefficient", "1e300"),
+        ("poisson_ratio", "0.4999999"),
+    ] {
+        let text = FIG7.replace(
+            "preset = \"potato-cuboid\"",
+            &format!("preset = \"potato-cuboid\"\n{key} = {value}"),
+        );
+        check_refuses("material", &text, &[&format!("`material.{key}` = {value}")]);
+    }
+}
+
+#[test]
+fn issue_27_arrays_of_the_wrong_length_are_refused() {
+    let text = LOOP_CUBOID.replace(
+        "preset = \"straight\"",
+        "preset = \"straight\"\nsensor = { position = [0, 0.03, -0.03, 1] }",
+    );
+    check_refuses(
+        "position",
+        &text,
+        &["`knife.sensor.position` = 4 element(s)", "exactly 3"],
+    );
+    let text = LOOP_CUBOID.replace(
+        "segments = 20",
+        "segments = 20\nsensor = { bias = [0, 0, 0, 0, 0, 0, 0] }",
+    );
+    check_refuses(
+        "bias",
+        &text,
+        &["`plant.sensor.bias` = 7 element(s)", "exactly 6"],
+    );
+}
+
+#[test]
+fn issue_27_surrogate_dev_zero_is_refused_by_the_size_cap() {
+    let text = LOOP_CUBOID.replace(
+        "kind = \"mpc\"",
+        "kind = \"mpc\"\nsurrogate = \"/dev/zero\"",
+    );
+    check_refuses(
+        "zero",
+        &text,
+        &[
+            "`controller.surrogate` = /dev/zero",
+            "larger than 1048576 bytes",
+        ],
+    );
+}
+
+#[test]
+fn issue_27_surrogate_etc_passwd_is_described_never_echoed() {
+    let d = Dir::new("passwd");
+    let secret = d.file(
+        "secret.toml",
+        "root:x:0:0:SECRET-CONTENT:/root:/bin/bash\nmore = \"SECRET\"\n",
+    );
+    let text = LOOP_CUBOID.replace(
+        "kind = \"mpc\"",
+        &format!("kind = \"mpc\"\nsurrogate = \"{secret}\""),
+    );
+    let path = d.file("s.toml", &text);
+    let o = shearcut(&["check", &path]);
+    assert_refused(&o, &["`controller.surrogate`", "surrogate file: 1:"]);
+    assert!(!stderr(&o).contains("SECRET"), "{}", stderr(&o));
+}
+
+#[test]
+fn issue_27_check_dev_zero_is_refused_by_the_size_cap() {
+    assert_refused(
+        &shearcut(&["check", "/dev/zero"]),
+        &["cannot read `/dev/zero`", "larger than 1048576 bytes"],
+    );
+}
+
+#[test]
+fn a_scenario_that_is_not_text_is_refused_without_echo() {
+    let d = Dir::new("binary");
+    let p = d.0.join("s.toml");
+    std::fs::write(&p, [b'a', 0xff, 0xfe, b'\n']).unwrap();
+    assert_refused(
+        &shearcut(&["check", p.to_str().unwrap()]),
+        &["not UTF-8 text"],
+    );
+}
+
+#[test]
+fn check_opens_the_mesh_and_refuses_an_open_surface() {
+    let d = Dir::new("mesh");
+    d.file("open.obj", "v 0 0 0\nv 0.05 0 0\nv 0 0.05 0\nf 1 2 3\n");
+    let text = FIG7
+        .replace(
+            "kind = \"cuboid\"\nwidth = 0.03    # m, across the cut (world x)\nheight = 0.025  # m, above the board (world y)\nlength = 0.03   # m, along the edge (world z)",
+            "kind = \"mesh\"\npath = \"open.obj\"",
+        )
+        .replace("depth = 0.02", "depth = 0.01");
+    assert!(text.contains("open.obj"), "the fixture replaced the object");
+    let path = d.file("s.toml", &text);
+    assert_refused(
+        &shearcut(&["check", &path]),
+        &["`object.path`", "not closed"],
+    );
+}
+
+#[test]
+fn a_mesh_larger_than_a_metre_is_refused_by_its_bounding_box() {
+    let d = Dir::new("bigmesh");
+    // A closed tetrahedron 2 m across.
+    d.file(
+        "big.obj",
+        "v 0 0 0\nv 2 0 0\nv 0 0.05 0\nv 0 0 0.05\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n",
+    );
+    let text = FIG7
+        .replace(
+            "kind = \"cuboid\"\nwidth = 0.03    # m, across the cut (world x)\nheight = 0.025  # m, above the board (world y)\nlength = 0.03   # m, along the edge (world z)",
+            "kind = \"mesh\"\npath = \"big.obj\"",
+        )
+        .replace("depth = 0.02", "depth = 0.01");
+    let path = d.file("s.toml", &text);
+    assert_refused(
+        &shearcut(&["check", &path]),
+        &["`object.path (bounding box along x)` = 2"],
+    );
+}
+
+#[test]
+fn issue_27_toughness_xi_1e300_is_refused_not_nan() {
+    let o = shearcut(&["toughness", "--nu", "0.4", "--xi", "1e300"]);
+    assert_refused(&o, &["`--xi` = 1e300", "[0, 20]"]);
+    assert!(o.stdout.is_empty());
+}
+
+/// A pipe whose reader is already gone: every write gets EPIPE.
+fn closed_pipe() -> Stdio {
+    let (reader, writer) = std::io::pipe().unwrap();
+    drop(reader);
+    Stdio::from(writer)
+}
+
+fn dev_full() -> Stdio {
+    Stdio::from(std::fs::File::create("/dev/full").unwrap())
+}
+
+#[test]
+fn issue_27_a_closed_stdout_ends_quietly_with_141() {
+    for args in [
+        &["check", "fig7-potato"][..],
+        &["toughness", "--nu", "0.4", "--xi", "0.75"][..],
+    ] {
+        let o = shearcut_with(args, closed_pipe());
+        assert_eq!(o.status.code(), Some(141), "{args:?}: {}", stderr(&o));
+        assert!(o.stderr.is_empty(), "{args:?}: {}", stderr(&o));
+    }
+}
+
+#[test]
+fn issue_27_a_full_stdout_is_one_line_and_exit_1() {
+    for args in [
+        &["check", "fig7-potato"][..],
+        &["toughness", "--nu", "0.4", "--xi", "0.75"][..],
+    ] {
+        let o = shearcut_with(args, dev_full());
+        assert_eq!(o.status.code(), Some(1), "{args:?}: {}", stderr(&o));
+        let e = stderr(&o);
+        assert_eq!(e.lines().count(), 1, "{e}");
+        assert!(e.contains("cannot write to stdout"), "{e}");
+    }
+}
+
+/// A quick single-section scenario: one ratio, a coarse mesh and steps.
+fn quick_simulation(d: &Dir) -> String {
+    let text = FIG7
+        .replace(
+            "slice_push_ratios = [0.0, 0.33, 0.75, 1.8]",
+            "slice_push_ratios = [0.75]",
+        )
+        .replace("depth = 0.02", "depth = 0.005\nstep = 1e-4")
+        + "\n[section]\nrow_spacing = 5e-4\n";
+    d.file("quick.toml", &text)
+}
+
+#[test]
+fn issue_27_simulate_to_a_closed_or_full_stdout_keeps_its_results() {
+    let d = Dir::new("simulate");
+    let scenario = quick_simulation(&d);
+    for (stdout, code, tag) in [(closed_pipe(), 141, "pipe"), (dev_full(), 1, "full")] {
+        let out = d.0.join(tag);
+        let o = shearcut_with(
+            &["simulate", &scenario, "--out", out.to_str().unwrap()],
+            stdout,
+        );
+        assert_eq!(o.status.code(), Some(code), "{tag}: {}", stderr(&o));
+        // The results were written before the summary was printed.
+        let summary = std::fs::read_to_string(out.join("summary.json")).unwrap();
+        let v: serde_json::Value = serde_json::from_str(&summary).unwrap();
+        assert!(v["cuts"][0]["work_j"].as_f64().unwrap() > 0.0, "{summary}");
+    }
+}
+
+fn cases(d: &Dir, lines: &[&[u8]]) -> String {
+    let p = d.0.join("cases.jsonl");
+    let mut bytes = Vec::new();
+    for l in lines {
+        bytes.extend_from_slice(l);
+        bytes.push(b'\n');
+    }
+    std::fs::write(&p, bytes).unwrap();
+    p.to_str().unwrap().to_string()
+}
+
+fn case_results(o: &Output) -> Vec<serde_json::Value> {
+    String::from_utf8(o.stdout.clone())
+        .unwrap()
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect()
+}
+
+const CASE: &[u8] = br#"{"current_position":[0],"target_position":[1],"max_velocity":[1],"max_acceleration":[1],"max_jerk":[1]}"#;
+
+#[test]
+fn issue_27_invalid_utf8_in_cases_is_an_error_line_and_the_rest_runs() {
+    let d = Dir::new("utf8");
+    let path = cases(&d, &[CASE, b"{\"id\": \"\xff\xfe\"}", CASE]);
+    let o = shearcut(&["trajectory", "--cases", &path]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let r = case_results(&o);
+    assert_eq!(r.len(), 3);
+    assert_eq!(r[1]["line"], 2);
+    assert!(r[1]["error"].as_str().unwrap().contains("not UTF-8"));
+    // The lines around it run: one DoF 0 → 1 at v = a = j = 1 takes
+    // 3.1748021039 s (ruckig's value, DEPENDENCIES.md), to 1e-9 s.
+    for i in [0, 2] {
+        assert!((r[i]["duration"].as_f64().unwrap() - 3.174_802_103_9).abs() < 1e-9);
+    }
+}
+
+#[test]
+fn issue_27_cycle_time_5e_324_is_an_error_not_a_null_duration() {
+    let d = Dir::new("cycle");
+    let line = br#"{"current_position":[0],"target_position":[1],"max_velocity":[1],"max_acceleration":[1],"max_jerk":[1],"cycle_time":5e-324,"duration_discretization":"discrete"}"#;
+    let o = shearcut(&["trajectory", "--cases", &cases(&d, &[line])]);
+    let r = case_results(&o);
+    let e = r[0]["error"].as_str().unwrap();
+    assert!(e.contains("`cycle_time` = 5e-324"), "{e}");
+    assert!(r[0].get("duration").is_none());
+}
+
+#[test]
+fn issue_27_a_short_case_cannot_ask_for_gigabytes_of_output() {
+    let d = Dir::new("samples");
+    let line = br#"{"current_position":[0,0,0,0,0,0,0,0],"target_position":[1,1,1,1,1,1,1,1],"max_velocity":[1,1,1,1,1,1,1,1],"max_acceleration":[1,1,1,1,1,1,1,1],"max_jerk":[1,1,1,1,1,1,1,1],"sample_count":1000000}"#;
+    assert!(line.len() < 250);
+    let o = shearcut(&["trajectory", "--cases", &cases(&d, &[line])]);
+    assert!(o.stdout.len() < 1000, "{} bytes", o.stdout.len());
+    let r = case_results(&o);
+    assert!(r[0]["error"].as_str().unwrap().contains("`sample_count`"));
+    // The file's budget is shared: two cases of 100 000 fit, a third does not.
+    let ok = br#"{"current_position":[0],"target_position":[1],"max_velocity":[1],"max_acceleration":[1],"max_jerk":[1],"sample_count":100000}"#;
+    let o = shearcut(&[
+        "trajectory",
+        "--cases",
+        &cases(&d, &[ok, ok, ok]),
+        "--out",
+        d.0.join("out.jsonl").to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let text = std::fs::read_to_string(d.0.join("out.jsonl")).unwrap();
+    let r: Vec<serde_json::Value> = text
+        .lines()
+        .map(|l| serde_json::from_str(l).unwrap())
+        .collect();
+    assert!(r[0]["error"].is_null() && r[1]["error"].is_null());
+    assert!(r[2]["error"].as_str().unwrap().contains("left"), "{}", r[2]);
+}
+
+#[test]
+fn cases_file_dev_zero_is_refused_by_the_size_cap_with_exit_2() {
+    assert_refused(
+        &shearcut(&["trajectory", "--cases", "/dev/zero"]),
+        &["cannot read `/dev/zero`", "larger than"],
+    );
+}
+
+#[test]
+fn a_missing_cases_file_is_exit_2() {
+    assert_refused(
+        &shearcut(&["trajectory", "--cases", "/nonexistent/cases.jsonl"]),
+        &["cannot read `/nonexistent/cases.jsonl`"],
+    );
+}
