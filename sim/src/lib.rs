@@ -7,6 +7,7 @@
 
 pub mod arm;
 pub mod blade;
+pub mod finite_strain;
 pub mod geometry;
 pub mod invalid_setting;
 pub mod knife;
