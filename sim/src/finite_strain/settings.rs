@@ -79,8 +79,9 @@ pub struct WireSlabSettings {
     pub newton_tolerance: f64,
     /// Most Newton iterations per load step (default 40).
     pub max_newton_iterations: usize,
-    /// Most solves per step to settle the friction caps μ_f f_n (default 3).
-    pub friction_passes: usize,
+    /// Most solves per load step while the contact sets (contact, stick or
+    /// slip, friction caps μ_f f_n) settle (default 8).
+    pub contact_passes: usize,
 }
 
 impl Default for WireSlabSettings {
@@ -105,7 +106,7 @@ impl Default for WireSlabSettings {
             nucleation_stress_ratio: 2.0,
             newton_tolerance: 1e-9,
             max_newton_iterations: 40,
-            friction_passes: 3,
+            contact_passes: 8,
         }
     }
 }
@@ -176,7 +177,7 @@ impl WireSlabSettings {
         )?;
         within("newton_tolerance", self.newton_tolerance, 1e-14, 1e-3)?;
         count_within("max_newton_iterations", self.max_newton_iterations, 1, 1000)?;
-        count_within("friction_passes", self.friction_passes, 1, 100)?;
+        count_within("contact_passes", self.contact_passes, 1, 100)?;
         Ok(())
     }
 

@@ -54,7 +54,7 @@ pub struct SlabState {
     /// positions X_i: a = 2 √(Σ f_i X_i² / Σ f_i), exact for Hertz's
     /// elliptical pressure, m.
     pub contact_half_width: f64,
-    /// Newton iterations of the step's last solve.
+    /// Newton iterations of the last load step (all its solves).
     pub newton_iterations: usize,
 }
 
@@ -105,7 +105,14 @@ pub struct WireSlab {
     depth: f64,
     angle: f64,
     tolerance: f64,
+    /// Newton's report of the step's first solve (the one that carries the
+    /// load increment).
     last: NewtonReport,
+    /// Newton iterations of the last step, over all its solves.
+    step_iterations: usize,
+    /// The last step's displacement increment and depth increment (m), for
+    /// the next step's predictor.
+    increment: Option<(Vec<f64>, f64)>,
 }
 
 /// Why a slab could not be set up or run.
@@ -162,15 +169,8 @@ impl WireSlab {
         let stiffness = (0..surface.len())
             .map(|k| s.contact_penalty * mu * mesh.top_tributary(k) / r)
             .collect();
-        let contact = WireContact {
-            centre: [0.0, s.slab_depth + r],
-            radius: r,
-            travel: 0.0,
-            stiffness,
-            anchors: vec![None; surface.len()],
-            caps: vec![0.0; surface.len()],
-            friction: s.friction_coefficient,
-        };
+        let mut contact = WireContact::new(r, s.friction_coefficient, stiffness);
+        contact.centre = [0.0, s.slab_depth + r];
         let material = NeoHookean {
             shear_modulus: mu,
             bulk_modulus: s.bulk_modulus_ratio * mu,
@@ -187,6 +187,8 @@ impl WireSlab {
             angle: 0.0,
             tolerance: s.newton_tolerance * mu * r,
             last: NewtonReport::default(),
+            step_iterations: 0,
+            increment: None,
         })
     }
 
@@ -211,13 +213,13 @@ impl WireSlab {
         self.u.fill(0.0);
         self.depth = 0.0;
         self.angle = angle;
-        self.contact.travel = 0.0;
+        self.contact.release();
         self.contact.centre[1] = self.settings.slab_depth + self.settings.wire_radius;
-        self.contact.anchors.fill(None);
-        self.contact.caps.fill(0.0);
+        self.increment = None;
     }
 
-    /// Newton's report of the last solve (residual history).
+    /// Newton's report of the last load step's first solve (its residual
+    /// history).
     pub fn last_newton(&self) -> &NewtonReport {
         &self.last
     }
@@ -235,61 +237,65 @@ impl WireSlab {
         (pos, uz)
     }
 
-    /// One load step to depth `depth` (m): Newton's method, repeated with the
-    /// friction caps refreshed (at most `friction_passes` solves). On failure
-    /// the state is left as it was.
+    /// One load step to depth `depth` (m): the last increment scaled as a
+    /// predictor, then Newton's method, repeated while the contact sets
+    /// change (at most `contact_passes` solves). On failure the state is left
+    /// as it was and `false` returned.
     fn try_step(&mut self, depth: f64) -> Result<bool, FiniteStrainError> {
         let saved_u = self.u.clone();
         let saved_contact = self.contact.clone();
         let r = self.settings.wire_radius;
+        let dd = depth - self.depth;
+        if let Some((du, last)) = &self.increment {
+            let scale = dd / last;
+            for (u, d) in self.u.iter_mut().zip(du) {
+                *u += scale * d;
+            }
+        }
         self.contact.centre[1] = self.settings.slab_depth + r - depth;
         self.contact.travel = depth * self.angle.tan();
         for &d in &self.punch {
             self.u[d] = -depth;
         }
-        let passes = self.settings.friction_passes;
+        let (pos, _) = self.surface_positions();
+        self.contact.activate(&pos);
+        let passes = self.settings.contact_passes;
+        let mut iterations = 0;
         for pass in 0..passes {
             let surface: &dyn SurfacePotential = match self.settings.indenter {
                 Indenter::Wire => &self.contact,
                 Indenter::FlatPunch => &NoSurface,
             };
-            let report = match minimise(
+            let report = minimise(
                 &mut self.system,
                 &mut self.u,
                 surface,
                 self.tolerance,
                 self.settings.max_newton_iterations,
-            ) {
-                Ok(r) => r,
-                Err(FiniteStrainError::Inverted) => {
-                    self.u = saved_u;
-                    self.contact = saved_contact;
-                    return Ok(false);
+            );
+            let converged = matches!(&report, Ok(r) if r.converged);
+            if let Ok(report) = report {
+                iterations += report.residuals.len() - 1;
+                if pass == 0 {
+                    self.last = report;
                 }
-                Err(e) => return Err(e),
-            };
-            let converged = report.converged;
-            self.last = report;
+            }
             if !converged {
                 self.u = saved_u;
                 self.contact = saved_contact;
                 return Ok(false);
             }
-            if self.contact.friction.is_infinite() || pass + 1 == passes {
-                break;
-            }
-            let (pos, _) = self.surface_positions();
-            let before = self.contact.caps.clone();
-            let change = self.contact.refresh_caps(&pos);
-            let largest = self.contact.caps.iter().fold(0.0f64, |a, &b| a.max(b));
-            if change <= 1e-6 * largest {
-                self.contact.caps = before;
+            let (pos, uz) = self.surface_positions();
+            if !self.contact.update(&pos, &uz) {
                 break;
             }
         }
-        let (pos, uz) = self.surface_positions();
-        self.contact.commit(&pos, &uz);
+        let (_, uz) = self.surface_positions();
+        self.contact.commit(&uz);
+        let du = self.u.iter().zip(&saved_u).map(|(a, b)| a - b).collect();
+        self.increment = Some((du, dd));
         self.depth = depth;
+        self.step_iterations = iterations;
         Ok(true)
     }
 
@@ -324,10 +330,10 @@ impl WireSlab {
                 let (pos, uz) = self.surface_positions();
                 for (slot, &n) in self.system.surface_nodes().iter().enumerate() {
                     let c = self.contact.normal(pos[slot]);
-                    if c.penetration > 0.0 {
-                        // Force on the wire: k·pen along −normal (towards the
+                    let f = self.contact.normal_force(slot, pos[slot]);
+                    if f > 0.0 {
+                        // Force on the wire: f along −normal (towards the
                         // wire's axis); its upward part resists.
-                        let f = self.contact.stiffness[slot] * c.penetration;
                         f_n -= f * c.normal[1];
                         let x = self.system.mesh.nodes[n][0];
                         extent = extent.max(x);
@@ -360,7 +366,7 @@ impl WireSlab {
             } else {
                 0.0
             },
-            newton_iterations: self.last.residuals.len().saturating_sub(1),
+            newton_iterations: self.step_iterations,
         }
     }
 
