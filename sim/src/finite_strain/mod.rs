@@ -8,7 +8,8 @@
 //! (graded half-slab mesh), `system` (assembly and sparse Cholesky, faer),
 //! `newton` (Newton's method with an energy line search), `wire_contact`
 //! (penalty normal contact, regularised Coulomb friction along the wire),
-//! `surface_stress` (σ₁ along the surface and over the slab), `slab`
+//! `surface_stress` (σ₁ along the surface and over the slab),
+//! `seed_comparison` (the seed's observations side by side), `slab`
 //! ([`WireSlab`]: load stepping, forces, nucleation), `sweep` (the kinematic
 //! angles), `settings`, `error`.
 
@@ -17,6 +18,7 @@ mod error;
 mod mesh;
 mod neo_hookean;
 mod newton;
+mod seed_comparison;
 mod settings;
 mod slab;
 mod surface_stress;
@@ -27,6 +29,7 @@ mod wire_contact;
 pub use error::FiniteStrainError;
 pub use neo_hookean::{NeoHookean, largest_principal};
 pub use newton::NewtonReport;
+pub use seed_comparison::SeedComparison;
 pub use settings::{Indenter, SideSupport, WireSlabSettings};
 pub use slab::{IndentationRun, Nucleation, SlabState, WireSlab, WireSlabError};
 pub use surface_stress::{StressField, SurfaceStress};

@@ -28,6 +28,8 @@
 //! carries force changes. A converged step then returns the anchors of sliding
 //! nodes onto the slip surface, as in incremental plasticity.
 
+#![allow(clippy::needless_range_loop)]
+
 use super::system::{NodeTerm, SurfacePotential};
 
 /// How a node in contact moves along the wire in the present solve.
