@@ -23,9 +23,10 @@ pub struct SeedComparison {
     pub normal_force_ratio: f64,
     /// Seed: about 5 between 0° and 75° (experiment and 3D simulation).
     pub seed_normal_force_ratio: f64,
-    /// First angle's run: f_n/(μR) (f_n per unit length) at the first state
-    /// whose surface σ₁ maximum lies within the contact; `None` if it never
-    /// does.
+    /// First angle's run: f_n/(μR) (f_n per unit length) from which on the
+    /// surface σ₁ maximum lies under the wire up to the run's end
+    /// ([`SlabState::maximum_under_wire`](super::SlabState::maximum_under_wire));
+    /// `None` if it never does.
     pub under_wire_from: Option<f64>,
     /// Seed (Fig. 2a, pure normal loading): about 12.
     pub seed_under_wire_from: f64,
@@ -59,12 +60,16 @@ impl SeedComparison {
                 .map_or(f64::NAN, |n| n.force_normal)
         };
         let under_wire_from = first.and_then(|run| {
-            run.states
+            // The start of the last stretch of states with the maximum under
+            // the wire (at small loads σ₁ is near zero everywhere and its
+            // maximum wanders).
+            let tail = run
+                .states
                 .iter()
-                .find(|st| {
-                    st.contact_extent > 0.0 && st.surface_stress_position < st.contact_extent
-                })
-                .map(|st| st.force_normal / h / (mu * r))
+                .rev()
+                .take_while(|st| st.maximum_under_wire())
+                .last()?;
+            Some(tail.force_normal / h / (mu * r))
         });
         Self {
             normal_slope,

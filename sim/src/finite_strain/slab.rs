@@ -58,6 +58,15 @@ pub struct SlabState {
     pub newton_iterations: usize,
 }
 
+impl SlabState {
+    /// Whether the surface σ₁ maximum lies under the wire: within the
+    /// central half of the contact (|X| < contact extent / 2), rather than on
+    /// the wings of the contact or beyond.
+    pub fn maximum_under_wire(&self) -> bool {
+        self.contact_extent > 0.0 && self.surface_stress_position < 0.5 * self.contact_extent
+    }
+}
+
 /// Where and at what forces the surface reached σ*.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Nucleation {
@@ -70,8 +79,8 @@ pub struct Nucleation {
     pub force_tangential: f64,
     /// Reference distance from the wire's plane of the σ₁ maximum, m.
     pub position: f64,
-    /// Whether the maximum lies within the contact (under the wire) rather
-    /// than on its wings.
+    /// Whether the maximum lies under the wire (see
+    /// [`SlabState::maximum_under_wire`]) rather than on the contact's wings.
     pub under_wire: bool,
 }
 
@@ -410,7 +419,7 @@ impl WireSlab {
                     force_normal: lerp(prev.force_normal, st.force_normal),
                     force_tangential: lerp(prev.force_tangential, st.force_tangential),
                     position: st.surface_stress_position,
-                    under_wire: st.surface_stress_position < st.contact_extent,
+                    under_wire: st.maximum_under_wire(),
                 });
                 break;
             }
