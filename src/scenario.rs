@@ -854,3 +854,131 @@ mod tests {
         assert!(e.contains("`motion.depth` = 0.05"), "{e}");
     }
 }
+
+/// Value of the top-level `model` key that marks a scenario of seed 001's
+/// finite-strain wire–slab model (run by `shearcut simulate`).
+pub const WIRE_SLAB_MODEL: &str = "finite-strain-wire";
+
+/// Built-in scenarios of the finite-strain wire–slab model.
+pub const BUILT_IN_WIRE_SLAB_SCENARIOS: [(&str, &str); 1] = [(
+    "seed001-agar-wire",
+    include_str!("../config/scenarios/seed001-agar-wire.toml"),
+)];
+
+/// A scenario of seed 001's finite-strain model: a periodic slab indented
+/// and sheared by a wire at several kinematic angles, up to crack nucleation.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct WireSlabScenario {
+    /// Must be `"finite-strain-wire"`.
+    pub model: String,
+    /// Name used in result directories (default: the file stem).
+    #[serde(default)]
+    pub name: String,
+    /// Free text.
+    #[serde(default)]
+    pub description: String,
+    /// The slab, wire, mesh, contact, loading and solver.
+    #[serde(default)]
+    pub slab: shearcut_sim::finite_strain::WireSlabSettings,
+    /// The kinematic angles.
+    #[serde(default)]
+    pub sweep: AngleSweepSettings,
+}
+
+/// `[sweep]` of a [`WireSlabScenario`].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(default, deny_unknown_fields)]
+pub struct AngleSweepSettings {
+    /// Kinematic angles θ = atan(V_t/V_n), degrees, each in [0, 85]
+    /// (default [0, 15, 30, 45, 60, 75], seed 001 Fig. 1e–f).
+    pub angles_deg: Vec<f64>,
+    /// Threads the angles are shared over, 1–64 (default 2).
+    pub threads: usize,
+}
+
+impl Default for AngleSweepSettings {
+    fn default() -> Self {
+        Self {
+            angles_deg: vec![0.0, 15.0, 30.0, 45.0, 60.0, 75.0],
+            threads: 2,
+        }
+    }
+}
+
+impl AngleSweepSettings {
+    /// Checks the angles and the thread count; errors name the key.
+    pub fn validate(&self) -> Result<(), InvalidSetting> {
+        if self.angles_deg.is_empty() || self.angles_deg.len() > 32 {
+            return Err(InvalidSetting::new(
+                "sweep.angles_deg",
+                self.angles_deg.len(),
+                "must list 1 to 32 angles",
+            ));
+        }
+        for a in &self.angles_deg {
+            if !(0.0..=85.0).contains(a) {
+                return Err(InvalidSetting::new(
+                    "sweep.angles_deg",
+                    a,
+                    "each angle must be in [0, 85] degrees",
+                ));
+            }
+        }
+        if !(1..=64).contains(&self.threads) {
+            return Err(InvalidSetting::new(
+                "sweep.threads",
+                self.threads,
+                "must be an integer in [1, 64]",
+            ));
+        }
+        Ok(())
+    }
+}
+
+impl WireSlabScenario {
+    /// Loads `path_or_name` (a path or a built-in name) if it is a
+    /// finite-strain wire–slab scenario (`model = "finite-strain-wire"`);
+    /// `Ok(None)` if it is another kind of scenario or not a file.
+    pub fn load(path_or_name: &str) -> Result<Option<Self>, ConfigError> {
+        let path = Path::new(path_or_name);
+        let (text, origin, stem) = if path.exists() {
+            let text =
+                read_capped_text(path, CONFIG_FILE_BYTES).map_err(|source| ConfigError::Read {
+                    path: path.to_path_buf(),
+                    source,
+                })?;
+            let stem = path
+                .file_stem()
+                .and_then(|s| s.to_str())
+                .unwrap_or("scenario")
+                .to_string();
+            (text, path.display().to_string(), stem)
+        } else if let Some((name, text)) = BUILT_IN_WIRE_SLAB_SCENARIOS
+            .iter()
+            .find(|(n, _)| *n == path_or_name)
+        {
+            (text.to_string(), name.to_string(), name.to_string())
+        } else {
+            return Ok(None);
+        };
+        let is_slab = toml::from_str::<toml::Table>(&text)
+            .ok()
+            .and_then(|t| t.get("model").and_then(|m| m.as_str().map(str::to_string)))
+            .is_some_and(|m| m == WIRE_SLAB_MODEL);
+        if !is_slab {
+            return Ok(None);
+        }
+        let mut s: Self = toml::from_str(&text).map_err(|e| parse_error(&origin, &text, &e))?;
+        if s.name.is_empty() {
+            s.name = stem;
+        }
+        let invalid = |setting: InvalidSetting| ConfigError::Invalid {
+            path: origin.clone(),
+            setting,
+        };
+        s.slab.validate().map_err(|e| invalid(e.prefixed("slab")))?;
+        s.sweep.validate().map_err(invalid)?;
+        Ok(Some(s))
+    }
+}

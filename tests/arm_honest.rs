@@ -25,7 +25,10 @@ fn the_controllers_crate_cannot_name_the_plant_truth() {
         "shearcut-controllers must not depend on shearcut-plant (the plant's truth)"
     );
     let dev = manifest["dev-dependencies"].as_table().unwrap();
-    assert!(dev.contains_key("shearcut-plant"), "its tests drive the plant");
+    assert!(
+        dev.contains_key("shearcut-plant"),
+        "its tests drive the plant"
+    );
 }
 
 /// The in-process plant with its truth replaced by nonsense that changes
@@ -94,6 +97,9 @@ fn every_controller_commands_the_same_whatever_the_truth() {
         let honest = commands(&s, choice, 400, false);
         let scrambled = commands(&s, choice, 400, true);
         assert_eq!(honest, scrambled, "{choice:?}");
-        assert!(honest.iter().any(|b| f64::from_bits(*b) != 0.0), "{choice:?} moved");
+        assert!(
+            honest.iter().any(|b| f64::from_bits(*b) != 0.0),
+            "{choice:?} moved"
+        );
     }
 }

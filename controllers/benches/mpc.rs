@@ -117,8 +117,7 @@ fn main() {
             blade_budget: 1.0,
             limits: MotionLimits::within_arm(0.05, 0.1, 9.0, 4500.0, 0.9),
         };
-        let profile =
-            DepthProfile::new(vec![0.0, 0.03], vec![0.02, 0.065], 0.03, 0.015).unwrap();
+        let profile = DepthProfile::new(vec![0.0, 0.03], vec![0.02, 0.065], 0.03, 0.015).unwrap();
         let mut mpc = Mpc::new(&task, &settings, Quadratic, profile, 0.5).unwrap();
         let (mut plan_ticks, mut all_ticks) = (Vec::new(), Vec::new());
         for i in 0..50_000u64 {

@@ -9,6 +9,7 @@ pub mod arm;
 pub mod array_lengths;
 pub mod blade;
 pub mod capped_read;
+pub mod finite_strain;
 pub mod geometry;
 pub mod invalid_setting;
 pub mod knife;

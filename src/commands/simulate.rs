@@ -24,7 +24,7 @@ use crate::error::{ConfigError, RunError};
 use crate::plot::cut_curves::draw_cut_curves;
 use crate::render_plot;
 use crate::run_dir;
-use crate::scenario::Scenario;
+use crate::scenario::{Scenario, WireSlabScenario};
 
 /// Everything a simulation produced.
 #[derive(Debug, Clone)]
@@ -285,6 +285,9 @@ fn simulate_plant(scenario: &Scenario, knife: &Knife) -> Result<SimulationOutput
 /// Runs the subcommand: simulate, write the results into `out` (or a fresh
 /// `runs/` directory) and print a summary.
 pub fn run(scenario: &str, out: Option<&Path>) -> Result<(), RunError> {
+    if let Some(s) = WireSlabScenario::load(scenario)? {
+        return run_wire_slab(&s, out);
+    }
     let s = Scenario::load(scenario)?;
     run_scenario(&s, out)
 }
@@ -358,4 +361,226 @@ fn summary_table(s: &Scenario, model: &str, summaries: &[CutSummary]) -> String 
         );
     }
     t
+}
+
+/// One row of a finite-strain run's series.
+#[derive(Debug, serde::Serialize)]
+struct SlabRow {
+    angle_deg: f64,
+    depth_m: f64,
+    travel_m: f64,
+    force_normal_n: f64,
+    force_tangential_n: f64,
+    surface_stress_pa: f64,
+    surface_stress_position_m: f64,
+    contact_extent_m: f64,
+    newton_iterations: usize,
+}
+
+/// Nucleation of one angle in the summary.
+#[derive(Debug, serde::Serialize)]
+struct SlabNucleation {
+    angle_deg: f64,
+    nucleated: bool,
+    depth_m: Option<f64>,
+    force_normal_n: Option<f64>,
+    force_tangential_n: Option<f64>,
+    position_m: Option<f64>,
+    under_wire: Option<bool>,
+    load_steps: usize,
+}
+
+/// The finite-strain run's summary file.
+#[derive(Debug, serde::Serialize)]
+struct SlabSummary<'a> {
+    scenario: &'a str,
+    model: &'static str,
+    nucleation_stress_pa: f64,
+    elements: usize,
+    unknowns: usize,
+    nucleation: Vec<SlabNucleation>,
+    seed_comparison: shearcut_sim::finite_strain::SeedComparison,
+}
+
+fn write_csv<T: serde::Serialize>(
+    path: &Path,
+    rows: impl IntoIterator<Item = T>,
+) -> Result<(), RunError> {
+    let mut w = csv::Writer::from_path(path).map_err(|e| RunError::write(path, e))?;
+    for r in rows {
+        w.serialize(r).map_err(|e| RunError::write(path, e))?;
+    }
+    w.flush().map_err(|e| RunError::write(path, e))
+}
+
+/// Runs seed 001's finite-strain wire–slab sweep and writes its series
+/// (`series.csv`), surface σ₁ profiles at nucleation (`surface.csv`), a
+/// summary with the seed's numbers side by side (`summary.json`), the resolved
+/// scenario and the plots in the seed's form.
+pub fn run_wire_slab(s: &WireSlabScenario, out: Option<&Path>) -> Result<(), RunError> {
+    use shearcut_sim::finite_strain::{SeedComparison, WireSlab, WireSlabError, sweep_angles};
+    let model_error = |e: WireSlabError| match e {
+        WireSlabError::Setting(setting) => RunError::Config(ConfigError::Invalid {
+            path: s.name.clone(),
+            setting: setting.prefixed("slab"),
+        }),
+        WireSlabError::Model(e) => RunError::Loop(format!("finite-strain model: {e}")),
+    };
+    let probe = WireSlab::new(&s.slab).map_err(model_error)?;
+    let sweep = sweep_angles(&s.slab, &s.sweep.angles_deg, s.sweep.threads).map_err(model_error)?;
+    let runs = &sweep.runs;
+    let dir = run_dir::create(&s.name, out)?;
+    write_csv(
+        &dir.join("series.csv"),
+        runs.iter().flat_map(|run| {
+            run.states.iter().map(move |st| SlabRow {
+                angle_deg: run.angle.to_degrees(),
+                depth_m: st.depth,
+                travel_m: st.travel,
+                force_normal_n: st.force_normal,
+                force_tangential_n: st.force_tangential,
+                surface_stress_pa: st.surface_stress,
+                surface_stress_position_m: st.surface_stress_position,
+                contact_extent_m: st.contact_extent,
+                newton_iterations: st.newton_iterations,
+            })
+        }),
+    )?;
+    write_csv(
+        &dir.join("surface.csv"),
+        runs.iter().flat_map(|run| {
+            run.surface_profile
+                .iter()
+                .map(move |p| (run.angle.to_degrees(), p.position, p.stress))
+        }),
+    )?;
+    let comparison = SeedComparison::new(&s.slab, runs);
+    let nucleation: Vec<SlabNucleation> = runs
+        .iter()
+        .map(|run| SlabNucleation {
+            angle_deg: run.angle.to_degrees(),
+            nucleated: run.nucleation.is_some(),
+            depth_m: run.nucleation.map(|n| n.depth),
+            force_normal_n: run.nucleation.map(|n| n.force_normal),
+            force_tangential_n: run.nucleation.map(|n| n.force_tangential),
+            position_m: run.nucleation.map(|n| n.position),
+            under_wire: run.nucleation.map(|n| n.under_wire),
+            load_steps: run.states.len(),
+        })
+        .collect();
+    write_json(
+        &dir.join("summary.json"),
+        &SlabSummary {
+            scenario: &s.name,
+            model: "finite-strain periodic slab and wire (seed 001)",
+            nucleation_stress_pa: s.slab.nucleation_stress(),
+            elements: probe.element_count(),
+            unknowns: probe.unknowns(),
+            nucleation,
+            seed_comparison: comparison,
+        },
+    )?;
+    let resolved = toml::to_string(s).map_err(|e| RunError::write(dir.join("scenario.toml"), e))?;
+    std::fs::write(dir.join("scenario.toml"), resolved)
+        .map_err(|e| RunError::write(dir.join("scenario.toml"), e))?;
+    let sl = &s.slab;
+    for ext in ["svg", "png"] {
+        render_plot!(
+            &dir.join(format!("forces_depth.{ext}")),
+            (1400, 550),
+            |root| {
+                crate::plot::wire_slab::draw_slab_forces(
+                    root,
+                    &format!(
+                        "{}: forces on the wire up to nucleation (seed 001 Figs. 1c-d, 3b-c)",
+                        s.name
+                    ),
+                    runs,
+                )
+            }
+        )?;
+        render_plot!(
+            &dir.join(format!("nucleation_angle.{ext}")),
+            (1400, 550),
+            |root| {
+                crate::plot::wire_slab::draw_nucleation_angles(
+                    root,
+                    &format!(
+                        "{}: forces at nucleation against the angle (seed 001 Figs. 1e-f, 3d-e)",
+                        s.name
+                    ),
+                    runs,
+                    comparison.seed_max_tangential_force,
+                )
+            }
+        )?;
+        render_plot!(
+            &dir.join(format!("stress_map.{ext}")),
+            (1500, 1000),
+            |root| {
+                crate::plot::wire_slab::draw_stress_maps(
+                    root,
+                    &format!(
+                        "{}: largest principal stress at nucleation (seed 001 Fig. 2)",
+                        s.name
+                    ),
+                    runs,
+                    sl.wire_radius,
+                    sl.slab_depth,
+                    sl.shear_modulus,
+                )
+            }
+        )?;
+    }
+    println!("{}: {}", s.name, s.description);
+    println!(
+        "  model: finite-strain periodic slab, {} elements, {} unknowns; sigma* = {:.0} Pa",
+        probe.element_count(),
+        probe.unknowns(),
+        s.slab.nucleation_stress()
+    );
+    println!("  theta (deg)  d_nuc (mm)  F_n (N)   F_t (N)   sigma1 max at (um)  under wire");
+    for run in runs {
+        match run.nucleation {
+            Some(n) => println!(
+                "  {:>11.0}  {:>10.3}  {:>7.4}  {:>7.4}  {:>18.1}  {}",
+                run.angle.to_degrees(),
+                n.depth * 1e3,
+                n.force_normal,
+                n.force_tangential,
+                n.position * 1e6,
+                n.under_wire
+            ),
+            None => println!(
+                "  {:>11.0}  no nucleation up to {:.3} mm",
+                run.angle.to_degrees(),
+                sl.max_depth * 1e3
+            ),
+        }
+    }
+    let c = comparison;
+    println!("  seed 001 side by side (model | seed):");
+    println!(
+        "    slope dF_n/dd (N/m)            {:>8.1} | {:>8.1}  (5 mu h / ln(B/R))",
+        c.normal_slope, c.seed_normal_slope
+    );
+    println!(
+        "    max F_t at nucleation (N)      {:>8.4} | {:>8.4}  (2 mu R h)",
+        c.max_tangential_force, c.seed_max_tangential_force
+    );
+    println!(
+        "    F_n ratio first/last angle     {:>8.2} | {:>8.2}",
+        c.normal_force_ratio, c.seed_normal_force_ratio
+    );
+    println!(
+        "    f_n/(mu R) where max moves under the wire {} | {:.0}",
+        c.under_wire_from
+            .map_or("never".to_string(), |v| format!("{v:.1}")),
+        c.seed_under_wire_from
+    );
+    println!(
+        "results: {}/ (series.csv, surface.csv, summary.json, scenario.toml, forces_depth, nucleation_angle, stress_map .svg/.png)",
+        dir.display()
+    );
+    Ok(())
 }

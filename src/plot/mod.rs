@@ -5,6 +5,7 @@ pub mod control_trace;
 pub mod cut_curves;
 pub mod surrogate_fit;
 pub mod toughness_ratio;
+pub mod wire_slab;
 
 use std::path::Path;
 

@@ -299,10 +299,7 @@ impl<M: SliceModel> MpcPlanJob<M> {
             return false;
         }
         let l = &self.task.limits;
-        let speed = r
-            .normal_speed
-            .hypot(r.tangential_speed)
-            .max(l.normal_speed);
+        let speed = r.normal_speed.hypot(r.tangential_speed).max(l.normal_speed);
         let reversal = self.limits.time_weight * stopping_duration(speed, l.acceleration, l.jerk);
         let within = DepthQp::objective(
             &self.stages,

@@ -6,9 +6,9 @@
 use nalgebra::{Vector2, Vector3};
 use shearcut_controllers::controller::{MotionLimits, VelocityShaper};
 use shearcut_controllers::observer::{CutObserver, CutObserverSettings, CutTarget};
-use shearcut_sim::geometry::{Polygon, TriangleMesh};
 use shearcut_plant::{FtSensorSettings, Plant, PlantSettings, PlantStep as Measurement};
 use shearcut_sim::arm::ArmLimits;
+use shearcut_sim::geometry::{Polygon, TriangleMesh};
 use shearcut_sim::knife_plane::knife_plane_silhouette;
 use shearcut_sim::section::SectionSettings;
 use shearcut_sim::{Cuboid, Knife, KnifePreset, MaterialPreset, ObjectShape};
