@@ -22,9 +22,9 @@ use shearcut_sim::arm::ArmLimits;
 use shearcut_sim::array_lengths::check_array_lengths;
 use shearcut_sim::capped_read::read_capped_text;
 use shearcut_sim::physical_range::{
-    EDGE_OFFSET, FORCE, FORCE_NOISE, KNIFE_SPEED, MAX_CUTS, MIN_STEP_PER_ROW, MISSED_COMMANDS,
-    MOTION_STEP, OBJECT_SIZE, PLANT_DISTANCE, RATE, RUN_DURATION, SENSOR_BIAS, SLICE_PUSH_RATIO,
-    TORQUE_NOISE, UPDATE_DISTANCE, check_count,
+    ARM_ACCELERATION, ARM_JERK, ARM_VELOCITY, EDGE_OFFSET, FORCE, FORCE_NOISE, KNIFE_SPEED,
+    MAX_CUTS, MIN_STEP_PER_ROW, MISSED_COMMANDS, MOTION_STEP, OBJECT_SIZE, PLANT_DISTANCE, RATE,
+    RUN_DURATION, SENSOR_BIAS, SLICE_PUSH_RATIO, TORQUE_NOISE, UPDATE_DISTANCE, check_count,
 };
 use shearcut_sim::resource_budget::{CONFIG_FILE_BYTES, ResourceEstimate, section_nodes};
 use shearcut_sim::{
@@ -420,7 +420,7 @@ pub(crate) fn parse_error(origin: &str, text: &str, e: &toml::de::Error) -> Conf
         path: origin.to_string(),
         line,
         column,
-        message: shearcut_sim::toml_error::message(e),
+        message: shearcut_sim::toml_error::message(text, e),
     }
 }
 
@@ -646,7 +646,7 @@ fn one_or_many<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Vec<f64>, D::Er
 }
 
 impl LoopSettings {
-    /// Checks rate, limits and the missed-command limit against their
+    /// Checks rate, arm limits and the missed-command limit against their
     /// physical ranges.
     pub fn validate(&self) -> Result<(), InvalidSetting> {
         RATE.at_most(LOOP_RATE_MAX).check("rate_hz", self.rate_hz)?;
@@ -669,7 +669,13 @@ impl LoopSettings {
         }
         self.arm_limits
             .validate()
-            .map_err(|e| e.prefixed("arm_limits"))
+            .map_err(|e| e.prefixed("arm_limits"))?;
+        // The model accepts any finite positive limits (its tests step the
+        // command freely); a configured arm must be one that could exist.
+        let limits = &self.arm_limits;
+        ARM_VELOCITY.check("arm_limits.velocity", limits.velocity)?;
+        ARM_ACCELERATION.check("arm_limits.acceleration", limits.acceleration)?;
+        ARM_JERK.check("arm_limits.jerk", limits.jerk)
     }
 }
 
@@ -795,7 +801,7 @@ mod tests {
             .to_string();
         assert_eq!(
             e,
-            "bad.toml: `material.poisson_ratio` = 0.7: must be in the open interval (0, 0.5)"
+            "bad.toml: `material.poisson_ratio` = 0.7: must be in [0, 0.49]"
         );
     }
 

@@ -5,7 +5,7 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::invalid_setting::InvalidSetting;
+use crate::invalid_setting::{InvalidSetting, non_negative, positive};
 use crate::physical_range::{
     FRACTURE_TOUGHNESS, FRICTION_COEFFICIENT, POISSON_RATIO, SKIN_THICKNESS, YOUNGS_MODULUS,
 };
@@ -177,8 +177,8 @@ impl Material {
     }
 
     /// Checks every field against its physical range
-    /// ([`crate::physical_range`]); the error names the key, the value and
-    /// the range.
+    /// ([`crate::physical_range`]), as a material read from a file must
+    /// be; the error names the key, the value and the range.
     pub fn validate(&self) -> Result<(), InvalidSetting> {
         YOUNGS_MODULUS.check("youngs_modulus", self.youngs_modulus)?;
         POISSON_RATIO.check("poisson_ratio", self.poisson_ratio)?;
@@ -192,6 +192,30 @@ impl Material {
             SKIN_THICKNESS.check("skin_thickness", t)?;
         }
         Ok(())
+    }
+
+    /// Checks only what the cross-section equations need (E and the
+    /// toughnesses finite and positive, ν in the open interval (0, 0.5),
+    /// μ and the skin finite and non-negative): a model built in code may
+    /// step outside the physical ranges, e.g. a toughness of 1e9 N/m to
+    /// keep a section from fracturing.
+    pub fn validate_domain(&self) -> Result<(), InvalidSetting> {
+        positive("youngs_modulus", self.youngs_modulus)?;
+        let nu = self.poisson_ratio;
+        if !(nu.is_finite() && nu > 0.0 && nu < 0.5) {
+            return Err(InvalidSetting::new(
+                "poisson_ratio",
+                nu,
+                "must be in the open interval (0, 0.5)",
+            ));
+        }
+        non_negative("friction_coefficient", self.friction_coefficient)?;
+        positive("fracture_toughness", self.fracture_toughness)?;
+        positive(
+            "initial_fracture_toughness",
+            self.initial_fracture_toughness,
+        )?;
+        non_negative("skin_thickness", self.skin_thickness.unwrap_or(0.0))
     }
 }
 

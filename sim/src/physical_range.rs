@@ -155,8 +155,9 @@ pub const MAX_EDGE_POINTS: u64 = 10_000;
 /// Shortest step in z between two polyline edge points, m.
 pub const MIN_EDGE_CHORD: f64 = 1e-6;
 
-/// Radius of a cutting wire, m (seed 001: about 150 µm).
-pub const WIRE_RADIUS: PhysicalRange = PhysicalRange::new(1e-5, 5e-3, "m");
+/// Radius of a cutting wire, m (seed 001: about 150 µm); at least 50 µm,
+/// so that the wedge standing in for it (2R thick) is a valid blade.
+pub const WIRE_RADIUS: PhysicalRange = PhysicalRange::new(5e-5, 5e-3, "m");
 
 /// Full thickness of a blade, m.
 pub const BLADE_THICKNESS: PhysicalRange = PhysicalRange::new(1e-4, 0.02, "m");

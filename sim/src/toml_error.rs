@@ -26,9 +26,26 @@ pub fn position(text: &str, e: &toml::de::Error) -> (usize, usize) {
     }
 }
 
-/// The parser's message on one line, at most [`MAX_MESSAGE_CHARS`] characters.
-pub fn message(e: &toml::de::Error) -> String {
-    let one_line = e.message().split_whitespace().collect::<Vec<_>>().join(" ");
+/// The bare key assigned on the error's line (`key = …`), if that line
+/// is an assignment to a bare key of at most 64 characters: the one part of
+/// the text an error may repeat, since it names what to fix.
+fn key_at(text: &str, e: &toml::de::Error) -> Option<String> {
+    let (line, _) = position(text, e);
+    let source = text.lines().nth(line - 1)?;
+    let (key, _) = source.split_once('=')?;
+    let key = key.trim();
+    let bare = |c: char| c.is_ascii_alphanumeric() || matches!(c, '_' | '-' | '.');
+    (!key.is_empty() && key.len() <= 64 && key.chars().all(bare)).then(|| key.to_string())
+}
+
+/// The parser's message on one line, at most [`MAX_MESSAGE_CHARS`]
+/// characters, after the key assigned on the error's line when there is one.
+pub fn message(text: &str, e: &toml::de::Error) -> String {
+    let parser = e.message().split_whitespace().collect::<Vec<_>>().join(" ");
+    let one_line = match key_at(text, e) {
+        Some(key) => format!("`{key}`: {parser}"),
+        None => parser,
+    };
     if one_line.chars().count() > MAX_MESSAGE_CHARS {
         let cut: String = one_line.chars().take(MAX_MESSAGE_CHARS).collect();
         format!("{cut}…")
@@ -40,7 +57,7 @@ pub fn message(e: &toml::de::Error) -> String {
 /// `LINE:COLUMN: message`.
 pub fn one_line(text: &str, e: &toml::de::Error) -> String {
     let (line, column) = position(text, e);
-    format!("{line}:{column}: {}", message(e))
+    format!("{line}:{column}: {}", message(text, e))
 }
 
 #[cfg(test)]

@@ -4,8 +4,7 @@
 use nalgebra::Vector3;
 use serde::{Deserialize, Serialize};
 
-use crate::invalid_setting::InvalidSetting;
-use crate::physical_range::{ARM_ACCELERATION, ARM_JERK, ARM_VELOCITY};
+use crate::invalid_setting::{InvalidSetting, positive};
 
 /// Cartesian translation limits of the arm (defaults: Franka FR3).
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -30,13 +29,11 @@ impl Default for ArmLimits {
 }
 
 impl ArmLimits {
-    /// Checks every limit against its physical range
-    /// ([`crate::physical_range`]: velocity [1e-3, 10] m/s, acceleration
-    /// [1e-2, 100] m/s², jerk [1, 1e5] m/s³).
+    /// Checks every limit is finite and positive.
     pub fn validate(&self) -> Result<(), InvalidSetting> {
-        ARM_VELOCITY.check("velocity", self.velocity)?;
-        ARM_ACCELERATION.check("acceleration", self.acceleration)?;
-        ARM_JERK.check("jerk", self.jerk)
+        positive("velocity", self.velocity)?;
+        positive("acceleration", self.acceleration)?;
+        positive("jerk", self.jerk)
     }
 }
 

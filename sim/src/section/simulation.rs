@@ -254,7 +254,9 @@ impl CrossSection {
         blade: &BladeSection,
         settings: &SectionSettings,
     ) -> Result<Self, SectionError> {
-        material.validate().map_err(|e| e.prefixed("material"))?;
+        material
+            .validate_domain()
+            .map_err(|e| e.prefixed("material"))?;
         blade.validate().map_err(|e| e.prefixed("blade"))?;
         settings.validate().map_err(|e| e.prefixed("section"))?;
         let mesh = SectionMesh::new(geometry, blade.edge_width, settings)?;
