@@ -10,7 +10,7 @@ use shearcut_sim::resource_budget::{PLANT_NODES_BUDGET, SECTION_NODES_BUDGET, SE
 use crate::cli::print;
 use crate::controller_choice::ControllerChoice;
 use crate::error::{ConfigError, RunError};
-use crate::scenario::Scenario;
+use crate::scenario::{Scenario, WireSlabScenario};
 use crate::surrogates::surrogate_for;
 
 /// Loads and validates `scenario` (a path or a built-in name), opens the
@@ -18,6 +18,15 @@ use crate::surrogates::surrogate_for;
 /// surrogate is named) and prints the resolved values as TOML with the
 /// resource estimate as a comment.
 pub fn run(scenario: &str) -> Result<(), RunError> {
+    if let Some(s) = WireSlabScenario::load(scenario)? {
+        println!("# {scenario}: valid. Resolved values (SI units):");
+        print!(
+            "{}",
+            toml::to_string_pretty(&s)
+                .expect("a resolved scenario is plain data and always serialises")
+        );
+        return Ok(());
+    }
     let s = Scenario::load(scenario)?;
     let invalid = |setting| {
         RunError::Config(ConfigError::Invalid {
