@@ -24,11 +24,13 @@ use super::{
 /// plans cross through one single-slot triple buffer each way.
 ///
 /// ## Guarantees of the tick side
-/// - Allocation-free and lock-free after construction: `poll` and `submit`
-///   are a few atomic operations, a copy of the request and an unpark.
-/// - Wait-free under `Realtime`: `poll` takes whatever plan is newest. The
-///   one wait is `Lockstep`'s, in the `poll` at which a plan is due and not
-///   yet ready (see [`LatencyPolicy::Lockstep`]).
+/// - Allocation-free after construction: `poll` and `submit` are a few
+///   atomic operations, a copy of the request and an unpark.
+/// - Wait-free under `Realtime`: `poll` takes whatever plan is newest and
+///   no lock is ever taken. The one wait is `Lockstep`'s, in the `poll` at
+///   which a plan is due and not yet ready (see
+///   [`LatencyPolicy::Lockstep`]): a mutex and condition variable that the
+///   planner thread holds only to ring it after a plan.
 /// - A valid plan is always in force (the initial plan until the first
 ///   arrives); its age in ticks is known ([`PlanInForce::age`]).
 /// - A panic in the job becomes [`PlannerStatus::JobPanicked`]: the last
