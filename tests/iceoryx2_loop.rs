@@ -51,7 +51,7 @@ fn realtime_extra(rate_hz: f64, limit: u32) -> String {
 fn killing_the_plant_stops_the_controller_with_a_named_error_and_readable_results() {
     let sb = Sandbox::new("killplant");
     // A high limit: a loaded machine's stalls must not brake the plant first.
-    let s = sb.scenario("long", 0.02, &realtime_extra(1000.0, 100_000));
+    let s = sb.scenario("long", 0.02, &realtime_extra(1000.0, 1000));
     let out = sb.dir.join("out");
     let (mut plant, controller) = sb.spawn_pair(&s, "kp", &out);
     std::thread::sleep(Duration::from_millis(1500));
@@ -117,7 +117,7 @@ fn two_runs_in_parallel_do_not_interfere() {
 #[test]
 fn a_run_killed_with_sigkill_leaves_nothing_that_blocks_the_next() {
     let sb = Sandbox::new("sigkill");
-    let s = sb.scenario("long", 0.02, &realtime_extra(1000.0, 100_000));
+    let s = sb.scenario("long", 0.02, &realtime_extra(1000.0, 1000));
     let (mut p, mut c) = sb.spawn_pair(&s, "sk", &sb.dir.join("killed"));
     std::thread::sleep(Duration::from_millis(1000));
     p.kill().unwrap();
@@ -130,7 +130,7 @@ fn a_run_killed_with_sigkill_leaves_nothing_that_blocks_the_next() {
 #[test]
 fn sigterm_stops_plant_and_controller_cleanly_with_partial_results() {
     let sb = Sandbox::new("sigterm");
-    let s = sb.scenario("long", 0.02, &realtime_extra(1000.0, 100_000));
+    let s = sb.scenario("long", 0.02, &realtime_extra(1000.0, 1000));
     let out = sb.dir.join("out");
     let mut run = sb.spawn_run(&s, "iceoryx2", &out);
     std::thread::sleep(Duration::from_millis(1500));
@@ -176,7 +176,7 @@ fn realtime_loop_stats_report_the_plants_missed_commands() {
     let sb = Sandbox::new("realtime");
     // 1 kHz, a 3 mm cut at 2 mm/s (about 2 s of wall time); a limit no
     // loaded machine reaches, so the run completes whatever it misses.
-    let s = sb.scenario("rt", 0.003, &realtime_extra(1000.0, 100_000));
+    let s = sb.scenario("rt", 0.003, &realtime_extra(1000.0, 1000));
     let out = sb.dir.join("out");
     let o = watchdog(sb.spawn_run(&s, "iceoryx2", &out), WATCHDOG);
     let err = stderr(&o);

@@ -90,9 +90,8 @@ fn controller_ticks_allocate_nothing() {
         "{solves} solves in {plans} plans: sawing never considered"
     );
     assert!(mpc.stroke().reversals() > 0, "no reversal");
+    // The tick allocates nothing, planning ticks included: the solves (and
+    // clarabel's one allocation per solve) run on the planner thread.
     assert_eq!(between, 0);
-    assert_eq!(
-        in_plans as u64, solves,
-        "one allocation per solve, inside clarabel"
-    );
+    assert_eq!(in_plans, 0, "{solves} solves off the tick");
 }

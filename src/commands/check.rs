@@ -19,12 +19,11 @@ use crate::surrogates::surrogate_for;
 /// resource estimate as a comment.
 pub fn run(scenario: &str) -> Result<(), RunError> {
     if let Some(s) = WireSlabScenario::load(scenario)? {
-        println!("# {scenario}: valid. Resolved values (SI units):");
-        print!(
-            "{}",
+        print(&format!(
+            "# {scenario}: valid. Resolved values (SI units):\n{}",
             toml::to_string_pretty(&s)
                 .expect("a resolved scenario is plain data and always serialises")
-        );
+        ))?;
         return Ok(());
     }
     let s = Scenario::load(scenario)?;
