@@ -223,22 +223,25 @@ impl LoopServices {
                 create_board(&node, &own_name, role, "command", WireCommand::empty())?,
                 None,
             ),
-            Role::Plant => (
-                create_board(
-                    &node,
-                    &own_name,
-                    role,
-                    "measurement",
-                    WireMeasurement::empty(),
-                )?,
-                Some(create_board(
+            Role::Plant => {
+                // The truth board first: a controller that finds the
+                // measurement board finds the truth board beside it.
+                let truth = create_board(
                     &node,
                     &service_name(TRUTH_BOARD)?,
                     role,
                     TRUTH_BOARD,
                     WireTruth::empty(),
-                )?),
-            ),
+                )?;
+                let own = create_board(
+                    &node,
+                    &own_name,
+                    role,
+                    "measurement",
+                    WireMeasurement::empty(),
+                )?;
+                (own, Some(truth))
+            }
         };
         Ok(Self {
             node,
