@@ -4,8 +4,12 @@ use serde::{Deserialize, Serialize};
 use shearcut_controllers::controller::ForceFeedbackGains;
 use shearcut_controllers::mpc::MpcSettings;
 use shearcut_sim::InvalidSetting;
+use shearcut_sim::physical_range::PhysicalRange;
 
 use crate::controller_choice::ControllerChoice;
+
+/// Allowed [`ControllerSettings::overtravel`]: up to 10 mm past the target.
+const OVERTRAVEL: PhysicalRange = PhysicalRange::new(0.0, 0.01, "m");
 
 /// `[controller]`: the closed loop's controller and its limits.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -31,6 +35,10 @@ pub struct ControllerSettings {
     /// along z minus z₀ minus the object's length along the edge, i.e. what
     /// keeps the whole contact on the blade).
     pub blade_budget: Option<f64>,
+    /// Edge travel past the target depth before a controller ends its cut,
+    /// m (default 0.002, at most 0.01): the crack front can lag the edge,
+    /// and a controller cannot see it (`CutTask::overtravel`).
+    pub overtravel: f64,
     /// Longest simulated run, s (default 30): a cut that has not reached its
     /// target depth by then stops as timed out.
     pub max_duration: f64,
@@ -55,6 +63,7 @@ impl Default for ControllerSettings {
             max_tangential_speed: 0.1,
             force_setpoint: 20.0,
             blade_budget: None,
+            overtravel: 0.002,
             max_duration: 30.0,
             force_gains: None,
             surrogate: None,
@@ -86,6 +95,7 @@ impl ControllerSettings {
                 "a finite length >= 0 m",
             ));
         }
+        OVERTRAVEL.check("overtravel", self.overtravel)?;
         if let Some(g) = self.force_gains {
             if !(g.proportional.is_finite() && g.proportional > 0.0) {
                 return Err(InvalidSetting::new(

@@ -163,6 +163,14 @@ pub struct LoopSettings {
     /// How long a controller process waits for its plant (or an arm
     /// bridge) to serve the run before it gives up, s (default 10).
     pub connect_timeout: f64,
+    /// Real-time priority of the controller process's servo thread: 0
+    /// (default) leaves it to the normal scheduler; 1–99 runs it under
+    /// `SCHED_FIFO` at that priority, as a real arm's servo loop runs,
+    /// once the MPC's planner thread has started at normal priority.
+    /// Needs `CAP_SYS_NICE` (or root); `shearcut controller` fails with
+    /// one line when it cannot be set. Only the separate controller
+    /// process (`--transport iceoryx2`) applies it.
+    pub servo_priority: u8,
 }
 
 impl Default for LoopSettings {
@@ -173,6 +181,7 @@ impl Default for LoopSettings {
             missed_command_limit: 20,
             arm_limits: ArmLimits::default(),
             connect_timeout: 10.0,
+            servo_priority: 0,
         }
     }
 }
@@ -667,6 +676,7 @@ impl LoopSettings {
                 "must be in [0.1, 3600] s",
             ));
         }
+        check_count("servo_priority", u64::from(self.servo_priority), 0, 99)?;
         self.arm_limits
             .validate()
             .map_err(|e| e.prefixed("arm_limits"))?;
@@ -851,6 +861,23 @@ mod tests {
             .unwrap_err()
             .to_string();
         assert!(e.contains("`material.skin_thickness` = -1"), "{e}");
+    }
+
+    /// Settings of the cut's end and the servo thread: defaults as documented,
+    /// out-of-range values named with their key and range.
+    #[test]
+    fn overtravel_and_servo_priority_defaults_and_ranges() {
+        let s = Scenario::parse(MINIMAL, "t", "minimal").unwrap();
+        assert_eq!(s.controller.overtravel, 0.002);
+        assert_eq!(s.control_loop.servo_priority, 0);
+        let text = format!("{MINIMAL}\n[controller]\novertravel = 0.02\n");
+        let e = Scenario::parse(&text, "x", "t").unwrap_err().to_string();
+        assert!(e.contains("`controller.overtravel` = 0.02"), "{e}");
+        assert!(e.contains("[0, 0.01] m"), "{e}");
+        let text = format!("{MINIMAL}\n[loop]\nservo_priority = 100\n");
+        let e = Scenario::parse(&text, "x", "t").unwrap_err().to_string();
+        assert!(e.contains("`loop.servo_priority` = 100"), "{e}");
+        assert!(e.contains("[0, 99]"), "{e}");
     }
 
     #[test]

@@ -113,6 +113,7 @@ fn main() {
         let task = CutTask {
             target_depth: 1.0,
             touch_height: 0.0,
+            overtravel: 0.0,
             period: 1e-3,
             blade_budget: 1.0,
             limits: MotionLimits::within_arm(0.05, 0.1, 9.0, 4500.0, 0.9),

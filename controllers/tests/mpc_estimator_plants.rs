@@ -182,6 +182,7 @@ fn end_of_cut(
     let task = CutTask {
         target_depth: setup.depth,
         touch_height: Plant::start_position(&knife, &mesh, setup.z0, 0.0).y,
+        overtravel: 0.0,
         period: 1e-3,
         blade_budget: setup.blade_budget,
         limits: MotionLimits::within_arm(

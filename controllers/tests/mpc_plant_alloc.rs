@@ -43,6 +43,7 @@ fn mpc_ticks_on_the_plant_allocate_only_inside_clarabel() {
     let task = CutTask {
         target_depth: 0.008,
         touch_height: Plant::start_position(&knife, &mesh, 0.02, 0.0).y,
+        overtravel: 0.0,
         period: 1e-3,
         blade_budget: 0.006,
         limits: MotionLimits::within_arm(0.05, 0.1, arm.acceleration, arm.jerk, 0.9),

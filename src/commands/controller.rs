@@ -16,6 +16,7 @@ use crate::run_dir;
 use crate::run_replica::RunReplica;
 use crate::scenario::{ClockMode, Scenario};
 use crate::transport::loop_services::prefix;
+use crate::transport::servo_priority::raise_servo_thread;
 use crate::transport::{Iceoryx2PlantLink, LinkTimeouts, LoopServices, Role, WaitMode};
 
 /// `loop_stats.json`: how the link between the processes behaved.
@@ -79,6 +80,10 @@ pub fn run(
     let setup = LoopSetup::new(&s, choice)?;
     let task = setup.task;
     let mut ctl = setup.controller(&s, choice)?;
+    // The MPC's planner thread has started (with the controller) at normal
+    // priority; only this, the servo thread, is raised.
+    raise_servo_thread(s.control_loop.servo_priority)
+        .map_err(|e| RunError::Loop(format!("controller/{run_id}: {e}")))?;
     // The knife's start, as the plant process builds it (same scenario and
     // direction), labels the samples exactly as the in-process loop does.
     let cut = setup.cut(&s);

@@ -114,6 +114,7 @@ pub fn cut_task(s: &Scenario, knife: &Knife, mesh: &TriangleMesh) -> CutTask {
     CutTask {
         target_depth: s.motion.depth.unwrap_or(0.8 * (hi.y - lo.y)),
         touch_height: Plant::start_position(knife, mesh, z0, 0.0).y,
+        overtravel: s.controller.overtravel,
         period: 1.0 / s.control_loop.rate_hz,
         blade_budget: budget,
         limits: MotionLimits::within_arm(

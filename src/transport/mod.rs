@@ -6,6 +6,7 @@ pub mod iceoryx2_link;
 pub mod loop_services;
 pub mod plant_server;
 pub mod run_supervisor;
+pub mod servo_priority;
 pub mod wait_mode;
 pub mod wire;
 

@@ -82,6 +82,11 @@ pub struct CutTask {
     /// A controller takes it as the edge's depth below the touch point (the
     /// knife's normal travel since the edge met the object's top).
     pub target_depth: f64,
+    /// Edge travel past the target depth before the cut is done, m. The
+    /// crack front can lag the edge (the material compressed under it), and
+    /// a controller, which cannot see the crack, lets the edge go this much
+    /// deeper so that the crack reaches the target.
+    pub overtravel: f64,
     /// Height of the knife frame's origin (world y, m; the board is y = 0)
     /// at which the edge meets the object's top: the edge's depth is
     /// `touch_height − y`.
@@ -102,10 +107,10 @@ impl CutTask {
         (self.touch_height - y).max(0.0)
     }
 
-    /// Whether the edge has reached the target depth with the knife frame's
-    /// origin at height `y` (m).
+    /// Whether the edge has reached the target depth plus the overtravel
+    /// with the knife frame's origin at height `y` (m): the cut is done.
     pub fn reached(&self, y: f64) -> bool {
-        self.edge_depth(y) >= self.target_depth
+        self.edge_depth(y) >= self.target_depth + self.overtravel
     }
 
     /// Checks the task, naming the offending key.
@@ -124,6 +129,13 @@ impl CutTask {
                 "a finite depth > 0 m",
             ));
         }
+        if !(self.overtravel.is_finite() && self.overtravel >= 0.0) {
+            return Err(InvalidSetting::new(
+                "overtravel",
+                self.overtravel,
+                "a finite length >= 0 m",
+            ));
+        }
         if !(self.period.is_finite() && self.period > 0.0) {
             return Err(InvalidSetting::new(
                 "period",
@@ -139,5 +151,39 @@ impl CutTask {
             ));
         }
         self.limits.validate().map_err(|e| e.prefixed("limits"))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn task(overtravel: f64) -> CutTask {
+        CutTask {
+            target_depth: 0.02,
+            overtravel,
+            touch_height: 0.05,
+            period: 1e-3,
+            blade_budget: 0.01,
+            limits: MotionLimits::within_arm(0.05, 0.1, 5.0, 500.0, 0.9),
+        }
+    }
+
+    /// The cut is done only once the edge is the overtravel past the target.
+    #[test]
+    fn done_after_the_overtravel() {
+        let t = task(0.002);
+        assert_eq!(t.edge_depth(0.06), 0.0);
+        assert!((t.edge_depth(0.03) - 0.02).abs() < 1e-15);
+        assert!(!t.reached(0.0301));
+        assert!(!t.reached(0.0285));
+        assert!(t.reached(0.0279));
+        assert!(task(0.0).reached(0.0299));
+    }
+
+    #[test]
+    fn negative_overtravel_is_named() {
+        let e = task(-1e-3).validate().unwrap_err().to_string();
+        assert!(e.contains("overtravel"), "{e}");
     }
 }

@@ -18,6 +18,7 @@ pub fn task(target_depth: f64, blade_budget: f64) -> CutTask {
     CutTask {
         target_depth,
         touch_height: 0.0,
+        overtravel: 0.0,
         period: PERIOD,
         blade_budget,
         limits: MotionLimits::within_arm(0.05, 0.1, arm.acceleration, arm.jerk, 0.9),
