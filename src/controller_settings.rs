@@ -36,7 +36,7 @@ pub struct ControllerSettings {
     /// keeps the whole contact on the blade).
     pub blade_budget: Option<f64>,
     /// Edge travel past the target depth before a controller ends its cut,
-    /// m (default 0.002, at most 0.01): the crack front can lag the edge,
+    /// m (default 0.005, at most 0.01): the crack front can lag the edge,
     /// and a controller cannot see it (`CutTask::overtravel`).
     pub overtravel: f64,
     /// Longest simulated run, s (default 30): a cut that has not reached its
@@ -63,7 +63,7 @@ impl Default for ControllerSettings {
             max_tangential_speed: 0.1,
             force_setpoint: 20.0,
             blade_budget: None,
-            overtravel: 0.002,
+            overtravel: 0.005,
             max_duration: 30.0,
             force_gains: None,
             surrogate: None,

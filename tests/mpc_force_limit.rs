@@ -86,9 +86,9 @@ fn peak_of_1mm_means(samples: &[CutSample]) -> f64 {
     peak
 }
 
-#[test]
-#[ignore = "fails with the arm-honest MPC: its model force reaches 36.5 N against the 22 N limit on the last tick of the cut (plans over the edge's remaining travel); a known regression, see docs/limitations.md"]
-fn the_force_limit_holds_the_models_force_and_lowers_the_plants_peaks() {
+/// The unconstrained run and the run at [`LIMIT_N`], both complete and
+/// within the arm's limits and the blade budget.
+fn free_and_limited() -> (Scenario, RunOutput, Scenario, RunOutput) {
     let (free_s, limited_s) = (half_potato(None), half_potato(Some(LIMIT_N)));
     let (free, limited) = std::thread::scope(|scope| {
         let free = scope.spawn(|| run_closed_loop(&free_s, ControllerChoice::Mpc).unwrap());
@@ -110,16 +110,17 @@ fn the_force_limit_holds_the_models_force_and_lowers_the_plants_peaks() {
             run.summary.blade_travel_m
         );
     }
-    let (peak_free, peak) = (
-        free.summary.peak_force_vertical_n,
-        limited.summary.peak_force_vertical_n,
-    );
+    (free_s, free, limited_s, limited)
+}
+
+#[test]
+fn the_force_limit_holds_the_models_force_and_the_plants_mean() {
+    let (free_s, free, limited_s, limited) = free_and_limited();
 
     // The MPC honours its own limit: the model's force along the plan it
-    // executed is within 2 % of it (measured 22.2 N, +0.9 %; +1.0 % at 20
-    // and 25 N: the force row is the tangent in ξ at each stage's midpoint,
-    // this is the surrogate at each tick); without the limit the model's
-    // force reaches 27.1 N.
+    // executed is within 2 % of it (the force row is the tangent in ξ at
+    // each stage's midpoint, this is the surrogate at each tick); without
+    // the limit the model's force is well above it.
     let model_peak = |s, r| model_forces(s, r).into_iter().fold(0.0, f64::max);
     let (model_free, model_limited) =
         (model_peak(&free_s, &free), model_peak(&limited_s, &limited));
@@ -132,15 +133,29 @@ fn the_force_limit_holds_the_models_force_and_lowers_the_plants_peaks() {
         "model peak {model_limited} N for a {LIMIT_N} N limit"
     );
 
-    // The plant's force over 1 mm of travel follows (measured 23.4 N,
-    // +6 %: the plant is above the model near the board); its peaks, the
-    // crack's jumps, are not in the model and ride about 19 % above the
-    // limit (measured 26.1 N; 30.8 N without the limit).
+    // The plant's force over 1 mm of travel follows (the plant is above
+    // the model near the board); its peaks, the crack's jumps, are not in
+    // the model.
     let mean_peak = peak_of_1mm_means(&limited.output.samples);
     assert!(
         mean_peak <= 1.10 * LIMIT_N,
         "1 mm mean peak {mean_peak} N for a {LIMIT_N} N limit"
     );
+    // The price: more blade per depth, a little more work.
+    assert!(limited.summary.blade_path_m > free.summary.blade_path_m);
+    assert!(limited.summary.work_j <= 1.05 * free.summary.work_j);
+}
+
+#[test]
+#[ignore = "the plant's peak with the limit is 28.4 N against 30.7 N without (2.3 N lower, asserted 3 N; 29 % above the limit, asserted 25 %): the crack's jumps are not in the MPC's model; docs/limitations.md"]
+fn the_force_limit_lowers_the_plants_peaks() {
+    let (_, free, _, limited) = free_and_limited();
+    let (peak_free, peak) = (
+        free.summary.peak_force_vertical_n,
+        limited.summary.peak_force_vertical_n,
+    );
+    // The crack's jumps ride above the limit, but the limit takes several
+    // newtons off the largest.
     assert!(
         peak < peak_free - 3.0,
         "peak {peak} N with the limit, {peak_free} N without"
@@ -149,7 +164,4 @@ fn the_force_limit_holds_the_models_force_and_lowers_the_plants_peaks() {
         peak <= 1.25 * LIMIT_N,
         "peak {peak} N for a {LIMIT_N} N limit"
     );
-    // The price: more blade per depth, a little more work (measured +1.9 %).
-    assert!(limited.summary.blade_path_m > free.summary.blade_path_m);
-    assert!(limited.summary.work_j <= 1.05 * free.summary.work_j);
 }

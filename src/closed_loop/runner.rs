@@ -10,6 +10,11 @@ use super::control_record::{ControlSample, TickTimes};
 use super::plant_link::{LinkError, PlantLink};
 use crate::cut_record::CutSample;
 
+/// Speed below which the knife is at rest, m/s: a nanometre per second, far
+/// below any arm's resolution, far above the residue a jerk-limited stop
+/// leaves in floating point (1e-20 m/s seen).
+const AT_REST: f64 = 1e-9;
+
 /// Why a loop stopped.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 #[serde(rename_all = "snake_case")]
@@ -140,7 +145,7 @@ pub fn run_loop(
                 break;
             }
         }
-        if telemetry.phase == CutPhase::Done && reading.velocity == Vector3::zeros() {
+        if telemetry.phase == CutPhase::Done && reading.velocity.norm() < AT_REST {
             end = LoopEnd::ControllerDone;
             break;
         }
@@ -171,5 +176,77 @@ fn failed(e: LinkError, wall_s: f64) -> LoopOutput {
         fallbacks: 0,
         wall_s,
         simulated_s: 0.0,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use shearcut_controllers::controller::ControllerTelemetry;
+    use shearcut_sim::arm::ArmReading;
+
+    use super::*;
+    use crate::closed_loop::LinkAnswer;
+
+    /// An arm with no simulated truth (as a real arm's bridge): it executes
+    /// each command exactly.
+    struct EchoArm {
+        reading: ArmReading,
+    }
+
+    impl PlantLink for EchoArm {
+        fn period(&self) -> f64 {
+            1e-3
+        }
+
+        fn exchange(&mut self, command: &KnifeCommand) -> Result<LinkAnswer, LinkError> {
+            self.reading.time += 1e-3;
+            self.reading.velocity = command.velocity;
+            self.reading.position += command.velocity * 1e-3;
+            Ok(LinkAnswer {
+                reading: self.reading,
+                truth: None,
+            })
+        }
+    }
+
+    /// A controller that has ended its cut and whose stop left the
+    /// floating-point residue of a jerk-limited trajectory.
+    struct StoppedWithResidue;
+
+    impl Controller for StoppedWithResidue {
+        fn name(&self) -> &str {
+            "stopped"
+        }
+
+        fn tick(&mut self, _: &ArmReading) -> KnifeCommand {
+            KnifeCommand {
+                velocity: Vector3::new(0.0, 0.0, -1.567e-20),
+            }
+        }
+
+        fn telemetry(&self) -> ControllerTelemetry {
+            ControllerTelemetry::moving(0.0, 0.0, 0.0, true)
+        }
+    }
+
+    /// A controller done with the knife at rest (to within floating-point
+    /// residue) ends the loop at once rather than idling until the time runs
+    /// out.
+    #[test]
+    fn a_done_controller_at_rest_ends_the_loop() {
+        let mut arm = EchoArm {
+            reading: ArmReading::at_rest(0.0, Vector3::new(0.0, 0.05, 0.0)),
+        };
+        let cut = LoopCut {
+            xi_label: 0.0,
+            z0: 0.02,
+            start: Vector3::new(0.0, 0.05, 0.0),
+            gap: 1e-3,
+            target_depth: 0.01,
+            max_duration: 1.0,
+        };
+        let out = run_loop(&mut arm, &mut StoppedWithResidue, &cut);
+        assert_eq!(out.end, LoopEnd::ControllerDone);
+        assert_eq!(out.control.len(), 1);
     }
 }

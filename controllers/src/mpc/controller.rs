@@ -50,6 +50,12 @@ const ESTIMATOR_RELATIVE_ERROR: f64 = 0.05;
 /// Most plans [`Mpc::planned_ratio_from_rest`] makes.
 pub const FIRST_PLAN_ITERATIONS: usize = 50;
 
+/// Least edge travel a plan covers, m. Near the target the crack runs ahead
+/// of the edge or lags it by up to a few millimetres (the indentation under
+/// the edge), and the cut goes on until the edge is the task's overtravel
+/// past the target: a plan's horizon does not shrink below this.
+const MIN_PLANNED_TRAVEL: f64 = 1e-3;
+
 /// Model-predictive control of the slice (DESIGN §4).
 ///
 /// The servo tick ([`Controller::tick`]) reads the arm, updates the
@@ -342,7 +348,7 @@ impl<M: SliceModel + Clone + Send + 'static> Mpc<M> {
     fn request(&self, fractured: bool) -> PlanRequest {
         PlanRequest {
             edge_depth: self.depth,
-            remaining: self.task.target_depth - self.depth,
+            remaining: (self.task.target_depth - self.depth).max(MIN_PLANNED_TRAVEL),
             fractured,
             depth_at_fracture: self.depth_at_fracture,
             scale: self.scale(),

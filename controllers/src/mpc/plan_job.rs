@@ -13,7 +13,9 @@ use crate::planner::PlanJob;
 pub struct PlanRequest {
     /// The edge's depth below the touch point, m.
     pub edge_depth: f64,
-    /// Edge travel left to the target depth, m.
+    /// Edge travel the plan covers, m: what is left to the target depth,
+    /// and at least a millimetre (the crack's place near the target is
+    /// uncertain by about that much).
     pub remaining: f64,
     /// Whether the first fracture has been seen.
     pub fractured: bool,
