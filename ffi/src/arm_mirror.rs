@@ -58,6 +58,7 @@ pub struct ShearcutCommand {
 }
 
 impl From<&ArmReading> for ShearcutReading {
+    #[inline]
     fn from(r: &ArmReading) -> Self {
         let (status, violation) = match r.status {
             ArmStatus::Moving => (SHEARCUT_ARM_MOVING, 0.0),
@@ -83,6 +84,7 @@ impl From<&ArmReading> for ShearcutReading {
 
 impl ShearcutReading {
     /// The reading as the controllers take it, or the unknown status code.
+    #[inline]
     pub fn to_arm(&self) -> Result<ArmReading, u32> {
         let status = match self.status {
             SHEARCUT_ARM_MOVING => ArmStatus::Moving,
@@ -109,6 +111,7 @@ impl ShearcutReading {
 }
 
 impl From<&KnifeCommand> for ShearcutCommand {
+    #[inline]
     fn from(c: &KnifeCommand) -> Self {
         Self {
             velocity: c.velocity.into(),
@@ -117,6 +120,7 @@ impl From<&KnifeCommand> for ShearcutCommand {
 }
 
 impl From<&ShearcutCommand> for KnifeCommand {
+    #[inline]
     fn from(c: &ShearcutCommand) -> Self {
         Self {
             velocity: Vector3::from(c.velocity),

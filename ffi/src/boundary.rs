@@ -9,19 +9,15 @@ use std::panic::{AssertUnwindSafe, catch_unwind};
 use crate::last_error::set_last_error;
 use crate::status::ShearcutStatus;
 
-/// A failed call: its status and, for the last error, its message.
-pub(crate) struct CallError {
-    pub(crate) status: ShearcutStatus,
-    pub(crate) message: String,
-}
+/// A failed call: its status and, for the last error, its message. Boxed,
+/// so that a call's `Result<(), CallError>` is one pointer wide and the
+/// success path (the servo tick's) moves nothing more.
+pub(crate) struct CallError(Box<(ShearcutStatus, String)>);
 
 impl CallError {
     /// A failure with `status` saying `message`.
     pub(crate) fn new(status: ShearcutStatus, message: impl Into<String>) -> Self {
-        Self {
-            status,
-            message: message.into(),
-        }
+        Self(Box::new((status, message.into())))
     }
 }
 
@@ -35,9 +31,9 @@ pub(crate) fn guarded(
 ) -> ShearcutStatus {
     match catch_unwind(AssertUnwindSafe(body)) {
         Ok(Ok(())) => ShearcutStatus::Ok,
-        Ok(Err(e)) => {
-            set_last_error(&format!("{what}: {}", e.message));
-            e.status
+        Ok(Err(CallError(e))) => {
+            set_last_error(&format!("{what}: {}", e.1));
+            e.0
         }
         Err(payload) => {
             set_last_error(&format!(

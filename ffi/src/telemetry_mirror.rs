@@ -33,6 +33,7 @@ pub struct ShearcutTelemetry {
 }
 
 impl From<&ControllerTelemetry> for ShearcutTelemetry {
+    #[inline]
     fn from(t: &ControllerTelemetry) -> Self {
         Self {
             slice_push_ratio: t.slice_push_ratio,

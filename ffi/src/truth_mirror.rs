@@ -28,6 +28,7 @@ pub struct ShearcutTruth {
 }
 
 impl From<&PlantTruth> for ShearcutTruth {
+    #[inline]
     fn from(t: &PlantTruth) -> Self {
         Self {
             force: t.wrench.force.into(),
@@ -42,6 +43,7 @@ impl From<&PlantTruth> for ShearcutTruth {
 }
 
 impl From<&ShearcutTruth> for PlantTruth {
+    #[inline]
     fn from(t: &ShearcutTruth) -> Self {
         Self {
             wrench: Wrench {

@@ -5,7 +5,7 @@ use numpy::IntoPyArray;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use shearcut::closed_loop::LoopEnd;
+use shearcut::closed_loop::{ControlSample, LoopEnd};
 use shearcut::commands::run::run_closed_loop;
 use shearcut::controller_choice::ControllerChoice;
 use shearcut::cut_record::CutSample;
@@ -17,6 +17,9 @@ use crate::scenario::Scenario;
 
 /// A column of the series: its name and how a sample gives it.
 type SampleColumn = (&'static str, fn(&CutSample) -> f64);
+
+/// A column of the plan series: its name and how a controller tick gives it.
+type PlanColumn = (&'static str, fn(&ControlSample) -> f64);
 
 /// Runs the closed loop in Rust, exactly as ``shearcut run SCENARIO
 /// --controller CONTROLLER --transport inproc``, and returns
@@ -90,27 +93,18 @@ pub(crate) fn run<'py>(
     for (name, f) in columns {
         series.set_item(name, column(f).into_pyarray(py))?;
     }
-    let plan = |f: fn(&shearcut::closed_loop::ControlSample) -> f64| {
-        o.control.iter().map(f).collect::<Vec<f64>>()
-    };
-    series.set_item("plan_time_s", plan(|c| c.time_s).into_pyarray(py))?;
-    series.set_item("plan_xi", plan(|c| c.xi_plan).into_pyarray(py))?;
-    series.set_item(
-        "plan_normal_speed_m_s",
-        plan(|c| c.normal_speed_plan_m_s).into_pyarray(py),
-    )?;
-    series.set_item(
-        "plan_tangential_speed_m_s",
-        plan(|c| c.tangential_speed_plan_m_s).into_pyarray(py),
-    )?;
-    series.set_item(
-        "plan_command_vy_m_s",
-        plan(|c| c.command_vy_m_s).into_pyarray(py),
-    )?;
-    series.set_item(
-        "plan_command_vz_m_s",
-        plan(|c| c.command_vz_m_s).into_pyarray(py),
-    )?;
+    let plans: [PlanColumn; 6] = [
+        ("plan_time_s", |c| c.time_s),
+        ("plan_xi", |c| c.xi_plan),
+        ("plan_normal_speed_m_s", |c| c.normal_speed_plan_m_s),
+        ("plan_tangential_speed_m_s", |c| c.tangential_speed_plan_m_s),
+        ("plan_command_vy_m_s", |c| c.command_vy_m_s),
+        ("plan_command_vz_m_s", |c| c.command_vz_m_s),
+    ];
+    for (name, f) in plans {
+        let values: Vec<f64> = o.control.iter().map(f).collect();
+        series.set_item(name, values.into_pyarray(py))?;
+    }
 
     let c = &out.summary;
     let summary = PyDict::new(py);
