@@ -81,8 +81,11 @@ int main(int argc, char **argv) {
         peak_fv = fmax(peak_fv, truth.force[1]);
         peak_fh = fmax(peak_fh, fabs(truth.force[2]));
         if (truth.crack_depth >= task.target_depth) { end = "completed"; break; }
-        if (telemetry.phase == SHEARCUT_PHASE_DONE && reading.velocity[0] == 0.0 &&
-            reading.velocity[1] == 0.0 && reading.velocity[2] == 0.0) { end = "controller_done"; break; }
+        /* At rest below 1 nm/s, as the Rust runner (src/closed_loop/runner.rs). */
+        double speed2 = reading.velocity[0] * reading.velocity[0] +
+                        reading.velocity[1] * reading.velocity[1] +
+                        reading.velocity[2] * reading.velocity[2];
+        if (telemetry.phase == SHEARCUT_PHASE_DONE && speed2 < 1e-18) { end = "controller_done"; break; }
         if (paced) { /* hold the 1 kHz (task.period) cadence against the wall clock */
             long step_ns = (long)(task.period * 1e9);
             next.tv_nsec += step_ns;

@@ -63,8 +63,11 @@ int main(int argc, char** argv) {
       peak_fv = std::max(peak_fv, truth.force[1]);
       peak_fh = std::max(peak_fh, std::fabs(truth.force[2]));
       if (truth.crack_depth >= task.target_depth) { end = "completed"; break; }
-      const bool at_rest = reading.velocity[0] == 0.0 && reading.velocity[1] == 0.0 &&
-                           reading.velocity[2] == 0.0;
+      // At rest below 1 nm/s, as the Rust runner (src/closed_loop/runner.rs).
+      const double speed2 = reading.velocity[0] * reading.velocity[0] +
+                            reading.velocity[1] * reading.velocity[1] +
+                            reading.velocity[2] * reading.velocity[2];
+      const bool at_rest = speed2 < 1e-18;
       if (telemetry.phase == SHEARCUT_PHASE_DONE && at_rest) { end = "controller_done"; break; }
       if (paced) {  // hold the servo period against the wall clock
         next += period;

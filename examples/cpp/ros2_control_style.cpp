@@ -178,8 +178,11 @@ int main(int argc, char** argv) {
     const shearcut::Truth& truth = hardware->truth();
     if (csv) write_tick_row(csv, tick, hardware->reading(), truth, controller.telemetry());
     if (truth.crack_depth >= task.target_depth) { end = "completed"; break; }
-    const bool at_rest = state.velocity[0] == 0.0 && state.velocity[1] == 0.0 &&
-                         state.velocity[2] == 0.0;
+    // At rest below 1 nm/s, as the Rust runner (src/closed_loop/runner.rs).
+    const double speed2 = state.velocity[0] * state.velocity[0] +
+                          state.velocity[1] * state.velocity[1] +
+                          state.velocity[2] * state.velocity[2];
+    const bool at_rest = speed2 < 1e-18;
     if (controller.telemetry().phase == SHEARCUT_PHASE_DONE && at_rest) {
       end = "controller_done";
       break;
