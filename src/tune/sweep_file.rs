@@ -88,6 +88,12 @@ pub struct VariantGrid {
     pub force_bias: Vec<[f64; 3]>,
     /// Noise seeds (default: the scenario's).
     pub seed: OneOrMany<u64>,
+    /// Places of the object along the edge (`[motion] z0`), m (default:
+    /// the scenario's).
+    pub z0: OneOrMany<f64>,
+    /// Blade budgets (`[controller] blade_budget`), m (default: the
+    /// scenario's).
+    pub blade_budget: OneOrMany<f64>,
 }
 
 /// `[[controllers]]`: one or more controllers, with a grid or a list of
@@ -315,34 +321,41 @@ fn expand_variants(file: &SweepFile) -> Result<Vec<Perturbation>, InvalidSetting
         (None, true) => file.variant.clone(),
         (None, false) => vec![Perturbation::default()],
         (Some(g), false) => {
-            let or_one = |v: Vec<f64>| if v.is_empty() { vec![1.0] } else { v };
-            let mut out = Vec::new();
-            for &e in &or_one(g.youngs_modulus_scale.to_vec()) {
-                for &r in &or_one(g.fracture_toughness_scale.to_vec()) {
-                    for &mu in &or_one(g.friction_scale.to_vec()) {
-                        for &size in &or_one(g.size_scale.to_vec()) {
-                            for knife in &opt(g.knife.to_vec()) {
-                                for &noise in &opt(g.force_noise.to_vec()) {
-                                    for &bias in &opt(g.force_bias.clone()) {
-                                        for &seed in &opt(g.seed.to_vec()) {
-                                            out.push(Perturbation {
-                                                youngs_modulus_scale: e,
-                                                fracture_toughness_scale: r,
-                                                friction_scale: mu,
-                                                size_scale: size,
-                                                knife: knife.clone(),
-                                                force_noise: noise,
-                                                force_bias: bias,
-                                                seed,
-                                            });
-                                        }
-                                    }
-                                }
-                            }
-                        }
-                    }
+            // The cross product, the first key slowest: each axis in turn
+            // splits every variant built so far.
+            let mut out = vec![Perturbation::default()];
+            fn axis<T: Clone>(
+                out: Vec<Perturbation>,
+                values: Vec<T>,
+                set: impl Fn(&mut Perturbation, T),
+            ) -> Vec<Perturbation> {
+                if values.is_empty() {
+                    return out;
                 }
+                out.into_iter()
+                    .flat_map(|p| values.iter().map(move |v| (p.clone(), v.clone())))
+                    .map(|(mut p, v)| {
+                        set(&mut p, v);
+                        p
+                    })
+                    .collect()
             }
+            out = axis(out, g.youngs_modulus_scale.to_vec(), |p, v| {
+                p.youngs_modulus_scale = v;
+            });
+            out = axis(out, g.fracture_toughness_scale.to_vec(), |p, v| {
+                p.fracture_toughness_scale = v;
+            });
+            out = axis(out, g.friction_scale.to_vec(), |p, v| p.friction_scale = v);
+            out = axis(out, g.size_scale.to_vec(), |p, v| p.size_scale = v);
+            out = axis(out, g.knife.to_vec(), |p, v| p.knife = Some(v));
+            out = axis(out, g.force_noise.to_vec(), |p, v| p.force_noise = Some(v));
+            out = axis(out, g.force_bias.clone(), |p, v| p.force_bias = Some(v));
+            out = axis(out, g.seed.to_vec(), |p, v| p.seed = Some(v));
+            out = axis(out, g.z0.to_vec(), |p, v| p.z0 = Some(v));
+            out = axis(out, g.blade_budget.to_vec(), |p, v| {
+                p.blade_budget = Some(v)
+            });
             out
         }
     };
@@ -366,16 +379,6 @@ fn expand_variants(file: &SweepFile) -> Result<Vec<Perturbation>, InvalidSetting
         }
     }
     Ok(variants)
-}
-
-/// The values of an optional axis: `None` alone (the scenario's) when the
-/// list is empty.
-fn opt<T>(v: Vec<T>) -> Vec<Option<T>> {
-    if v.is_empty() {
-        vec![None]
-    } else {
-        v.into_iter().map(Some).collect()
-    }
 }
 
 /// The controller settings of every `[[controllers]]` entry, in order:
@@ -561,6 +564,49 @@ mod tests {
             ]
         );
         assert_eq!(s.weightings.len(), 5);
+    }
+
+    #[test]
+    fn variant_grids_cross_the_place_and_the_blade_first_key_slowest() {
+        let s = parse(
+            r#"
+            scenarios = ["loop-potato-whole"]
+            [variants]
+            size_scale = [0.8, 1.0]
+            z0 = [0.03, 0.06]
+            blade_budget = 0.01
+            [[controllers]]
+            kind = "mpc"
+        "#,
+        )
+        .unwrap();
+        let v: Vec<(f64, Option<f64>, Option<f64>)> = s
+            .variants
+            .iter()
+            .map(|p| (p.size_scale, p.z0, p.blade_budget))
+            .collect();
+        assert_eq!(
+            v,
+            [
+                (0.8, Some(0.03), Some(0.01)),
+                (0.8, Some(0.06), Some(0.01)),
+                (1.0, Some(0.03), Some(0.01)),
+                (1.0, Some(0.06), Some(0.01)),
+            ]
+        );
+        let e = error(
+            r#"
+            scenarios = ["loop-potato-whole"]
+            [variants]
+            z0 = 0.15
+            [[controllers]]
+            kind = "mpc"
+        "#,
+        );
+        assert!(
+            e.starts_with("s.toml: `variants.z0` = 0.15: must be in [0.0150, 0.1100] m"),
+            "{e}"
+        );
     }
 
     fn error(text: &str) -> String {
