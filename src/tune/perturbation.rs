@@ -224,6 +224,46 @@ impl Perturbation {
         Ok(s)
     }
 
+    /// The variant's name in tables: its changes from the scenario, e.g.
+    /// `size ×1.25, z0 95 mm` (`as given` for none).
+    pub fn label(&self) -> String {
+        let mm = |x: f64| format!("{} mm", (x * 1e4).round() / 10.0);
+        let mut parts = Vec::new();
+        for (name, k) in [
+            ("E", self.youngs_modulus_scale),
+            ("R_c", self.fracture_toughness_scale),
+            ("μ", self.friction_scale),
+            ("size", self.size_scale),
+        ] {
+            if k != 1.0 {
+                parts.push(format!("{name} ×{k}"));
+            }
+        }
+        if let Some(k) = &self.knife {
+            parts.push(format!("knife {k}"));
+        }
+        if let Some(n) = self.force_noise {
+            parts.push(format!("noise {n} N"));
+        }
+        if let Some([x, y, z]) = self.force_bias {
+            parts.push(format!("bias [{x}, {y}, {z}] N"));
+        }
+        if let Some(seed) = self.seed {
+            parts.push(format!("seed {seed}"));
+        }
+        if let Some(z0) = self.z0 {
+            parts.push(format!("z0 {}", mm(z0)));
+        }
+        if let Some(b) = self.blade_budget {
+            parts.push(format!("blade {}", mm(b)));
+        }
+        if parts.is_empty() {
+            "as given".to_string()
+        } else {
+            parts.join(", ")
+        }
+    }
+
     /// The variant's result cells for scenario `s` after [`apply`](Self::apply),
     /// in the order of [`VARIANT_COLUMNS`]: the factors, and the knife,
     /// sensor and seed the run had.
@@ -441,13 +481,14 @@ mod tests {
             (v.motion.z0[0], v.controller.blade_budget),
             (0.04, Some(0.03))
         );
-        let cells = Perturbation {
+        let p = Perturbation {
             z0: Some(0.04),
             blade_budget: Some(0.03),
             ..Perturbation::default()
-        }
-        .cells(&v);
-        assert_eq!(&cells[10..], ["0.04", "0.03"]);
+        };
+        assert_eq!(&p.cells(&v)[10..], ["0.04", "0.03"]);
+        assert_eq!(p.label(), "z0 40 mm, blade 30 mm");
+        assert_eq!(Perturbation::default().label(), "as given");
         // Past the tip, past the heel over the stroke, a stroke longer
         // than the room behind the object, a budget out of range.
         let e = at(Some(0.12), None).unwrap_err();

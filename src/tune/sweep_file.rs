@@ -29,9 +29,11 @@ use std::path::Path;
 use serde::Deserialize;
 use shearcut_sim::InvalidSetting;
 
+use crate::commands::compare::SEARCH_POINTS;
 use crate::controller_choice::ControllerChoice;
 use crate::error::ConfigError;
 use crate::scenario::Scenario;
+use crate::tune::constant_grid::{BEST_CONSTANT_KIND, ConstantGridPoint, MAX_POINTS};
 use crate::tune::controller_setting::ControllerSetting;
 use crate::tune::perturbation::Perturbation;
 use crate::tune::weighting::{Weighting, default_weightings};
@@ -101,8 +103,16 @@ pub struct VariantGrid {
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct ControllerSweep {
-    /// The controllers: `mpc`, `press`, `slice:XI`, `force:N`, one or a list.
+    /// The controllers: `mpc`, `press`, `slice:XI`, `force:N`, one or a
+    /// list; or `best-constant` alone: the constant ratios of `compare`'s
+    /// coarse search on each variant (`points` of them, from pressing to
+    /// the largest ratio the variant's blade budget allows over its depth;
+    /// [`crate::tune::constant_grid`]), the best of which per variant is
+    /// paired with the MPC (`best-constant.csv`).
     pub kind: OneOrMany<String>,
+    /// Points of the `best-constant` grid, 2–21 (default 6, as `compare`);
+    /// for `best-constant` only.
+    pub points: Option<usize>,
     /// Keys below `[controller]` (dotted or as sub-tables, e.g.
     /// `"mpc.deformation_weight" = [0.0, 100.0]`), each a value or a list:
     /// the settings are the cross product (keys in sorted order, the last
@@ -251,12 +261,9 @@ impl Sweep {
                     format!("variant[{i}]")
                 };
                 let applied = v.apply(s).map_err(|e| invalid(e.prefixed(&key)))?;
-                ControllerSetting {
-                    choice: s.controller.kind,
-                    overrides: Vec::new(),
-                }
-                .apply(&applied)
-                .map_err(|e| invalid(e.prefixed(&format!("{key} on {}", s.name))))?;
+                ControllerSetting::fixed(s.controller.kind)
+                    .apply(&applied)
+                    .map_err(|e| invalid(e.prefixed(&format!("{key} on {}", s.name))))?;
             }
             for (i, entry) in file.controllers.iter().enumerate() {
                 for (key, value) in grid_axes(&entry.grid)
@@ -265,8 +272,8 @@ impl Sweep {
                     .chain(entry.sets.iter().flat_map(flat_keys))
                 {
                     let single = ControllerSetting {
-                        choice: ControllerChoice::Mpc,
                         overrides: vec![(key, value)],
+                        ..ControllerSetting::fixed(ControllerChoice::Mpc)
                     };
                     single
                         .apply(s)
@@ -399,7 +406,27 @@ fn expand_settings(entries: &[ControllerSweep]) -> Result<Vec<ControllerSetting>
             return Err(InvalidSetting::new(
                 at("kind"),
                 "missing",
-                "one of mpc, press, slice:XI, force:N, or a list of them",
+                "one of mpc, press, slice:XI, force:N, or a list of them; or best-constant",
+            ));
+        }
+        if kinds.iter().any(|k| k == BEST_CONSTANT_KIND) {
+            for setting in best_constant_grid(entry, i)? {
+                if out.contains(&setting) {
+                    return Err(InvalidSetting::new(
+                        at("kind"),
+                        BEST_CONSTANT_KIND,
+                        "the same setting twice: list best-constant once",
+                    ));
+                }
+                out.push(setting);
+            }
+            continue;
+        }
+        if let Some(n) = entry.points {
+            return Err(InvalidSetting::new(
+                at("points"),
+                n,
+                "only for kind = \"best-constant\"",
             ));
         }
         if !entry.grid.is_empty() && !entry.sets.is_empty() {
@@ -428,8 +455,8 @@ fn expand_settings(entries: &[ControllerSweep]) -> Result<Vec<ControllerSetting>
             })?;
             for overrides in &points {
                 let setting = ControllerSetting {
-                    choice,
                     overrides: overrides.clone(),
+                    ..ControllerSetting::fixed(choice)
                 };
                 if out.contains(&setting) {
                     return Err(InvalidSetting::new(
@@ -443,6 +470,36 @@ fn expand_settings(entries: &[ControllerSweep]) -> Result<Vec<ControllerSetting>
         }
     }
     Ok(out)
+}
+
+/// The settings of a `best-constant` entry (index `i` in the sweep): one
+/// per grid point. It stands alone: no other kind, no grid or sets.
+fn best_constant_grid(
+    entry: &ControllerSweep,
+    i: usize,
+) -> Result<Vec<ControllerSetting>, InvalidSetting> {
+    let at = |key: &str| format!("controllers[{i}].{key}");
+    if entry.kind.to_vec().len() > 1 || !entry.grid.is_empty() || !entry.sets.is_empty() {
+        return Err(InvalidSetting::new(
+            at("kind"),
+            BEST_CONSTANT_KIND,
+            "stands alone in its [[controllers]] table: no other kind, no grid or sets (only `points`)",
+        ));
+    }
+    let points = entry.points.unwrap_or(SEARCH_POINTS);
+    if !(2..=MAX_POINTS).contains(&points) {
+        return Err(InvalidSetting::new(
+            at("points"),
+            points,
+            format!("must be in 2..={MAX_POINTS}"),
+        ));
+    }
+    Ok((0..points)
+        .map(|index| ControllerSetting {
+            grid_point: Some(ConstantGridPoint { index, points }),
+            ..ControllerSetting::fixed(ControllerChoice::Press)
+        })
+        .collect())
 }
 
 /// The grid's axes: every leaf key (dotted below the grid table) with its
@@ -607,6 +664,45 @@ mod tests {
             e.starts_with("s.toml: `variants.z0` = 0.15: must be in [0.0150, 0.1100] m"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn a_best_constant_grid_is_one_setting_per_point_and_stands_alone() {
+        let base = r#"
+            scenarios = ["loop-potato-whole"]
+            [[controllers]]
+            kind = "mpc"
+            [[controllers]]
+            kind = "best-constant"
+            points = 4
+        "#;
+        let s = parse(base).unwrap();
+        let labels: Vec<String> = s.settings.iter().map(ControllerSetting::label).collect();
+        assert_eq!(
+            labels,
+            [
+                "mpc",
+                "best-constant:0/3",
+                "best-constant:1/3",
+                "best-constant:2/3",
+                "best-constant:3/3"
+            ]
+        );
+        let e = error(&base.replace("points = 4", "points = 1"));
+        assert_eq!(e, "s.toml: `controllers[1].points` = 1: must be in 2..=21");
+        let e = error(&base.replace("kind = \"mpc\"", "kind = \"mpc\"\npoints = 3"));
+        assert!(
+            e.starts_with("s.toml: `controllers[0].points` = 3: only for kind"),
+            "{e}"
+        );
+        let e = error(&base.replace("points = 4", "grid = { speed = [0.01, 0.02] }"));
+        assert!(e.contains("stands alone"), "{e}");
+        let e =
+            error(&(base.to_string() + "[[controllers]]\nkind = \"best-constant\"\npoints = 4\n"));
+        assert!(e.contains("list best-constant once"), "{e}");
+        // Without `points`: compare's six.
+        let s = parse(&base.replace("points = 4", "")).unwrap();
+        assert_eq!(s.settings.len(), 1 + 6);
     }
 
     fn error(text: &str) -> String {
