@@ -428,3 +428,37 @@ fn shipped_sweeps_all_load() {
     }
     assert!(n >= 3, "{n} sweeps in {}", dir.display());
 }
+
+#[test]
+fn the_heldout_set_is_whole_objects_none_of_them_in_the_tuning_set() {
+    use shearcut::commands::check::resolved_toml;
+    use shearcut::tune::sweep_file::Sweep;
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("config/sweeps");
+    let variants = |file: &str| -> Vec<String> {
+        let sweep = Sweep::load(&dir.join(file)).unwrap_or_else(|e| panic!("{e}"));
+        let mut out = Vec::new();
+        for s in &sweep.scenarios {
+            for v in &sweep.variants {
+                let applied = v.apply(s).unwrap();
+                let whole = matches!(
+                    applied.object,
+                    shearcut_sim::ObjectShape::HalfPotato { .. }
+                        | shearcut_sim::ObjectShape::Eggplant { .. }
+                );
+                assert!(whole, "{file}: {}", s.name);
+                out.push(resolved_toml(&applied));
+            }
+        }
+        out
+    };
+    let held_out = variants("mpc-heldout.toml");
+    let tuning = variants("mpc-tuning-set.toml");
+    assert!(held_out.len() >= 12, "{} held-out variants", held_out.len());
+    for (i, v) in held_out.iter().enumerate() {
+        assert!(
+            !tuning.contains(v),
+            "held-out variant {i} is in the tuning set"
+        );
+        assert!(!held_out[..i].contains(v), "held-out variant {i} twice");
+    }
+}
