@@ -429,26 +429,7 @@ fn expand_settings(entries: &[ControllerSweep]) -> Result<Vec<ControllerSetting>
                 "only for kind = \"best-constant\"",
             ));
         }
-        if !entry.grid.is_empty() && !entry.sets.is_empty() {
-            return Err(InvalidSetting::new(
-                at("sets"),
-                format!("{} listed", entry.sets.len()),
-                "give either a grid or sets, not both",
-            ));
-        }
-        let points: Vec<Vec<(String, toml::Value)>> = if entry.sets.is_empty() {
-            let axes = grid_axes(&entry.grid);
-            if let Some((k, _)) = axes.iter().find(|(_, vs)| vs.is_empty()) {
-                return Err(InvalidSetting::new(
-                    at(&format!("grid.{k}")),
-                    "[]",
-                    "needs at least one value",
-                ));
-            }
-            cross_product(&axes)
-        } else {
-            entry.sets.iter().map(flat_keys).collect()
-        };
+        let points = override_points(entry, i)?;
         for text in &kinds {
             let choice: ControllerChoice = text.parse().map_err(|e: InvalidSetting| {
                 InvalidSetting::new(at("kind"), &e.value, e.allowed)
@@ -473,17 +454,27 @@ fn expand_settings(entries: &[ControllerSweep]) -> Result<Vec<ControllerSetting>
 }
 
 /// The settings of a `best-constant` entry (index `i` in the sweep): one
-/// per grid point. It stands alone: no other kind, no grid or sets.
+/// per grid point and set of other keys (its `grid` or `sets`, e.g. the
+/// `overtravel` every controller of the sweep gets; the point slowest). It
+/// stands alone: no other kind, and the ratio is the grid's (no `kind` key).
 fn best_constant_grid(
     entry: &ControllerSweep,
     i: usize,
 ) -> Result<Vec<ControllerSetting>, InvalidSetting> {
     let at = |key: &str| format!("controllers[{i}].{key}");
-    if entry.kind.to_vec().len() > 1 || !entry.grid.is_empty() || !entry.sets.is_empty() {
+    if entry.kind.to_vec().len() > 1 {
         return Err(InvalidSetting::new(
             at("kind"),
             BEST_CONSTANT_KIND,
-            "stands alone in its [[controllers]] table: no other kind, no grid or sets (only `points`)",
+            "stands alone in its [[controllers]] table: no other kind",
+        ));
+    }
+    let others = override_points(entry, i)?;
+    if let Some((key, _)) = others.iter().flatten().find(|(k, _)| k == "kind") {
+        return Err(InvalidSetting::new(
+            at(key),
+            BEST_CONSTANT_KIND,
+            "the grid sets the ratio: no `kind` key",
         ));
     }
     let points = entry.points.unwrap_or(SEARCH_POINTS);
@@ -495,11 +486,42 @@ fn best_constant_grid(
         ));
     }
     Ok((0..points)
-        .map(|index| ControllerSetting {
-            grid_point: Some(ConstantGridPoint { index, points }),
-            ..ControllerSetting::fixed(ControllerChoice::Press)
+        .flat_map(|index| {
+            others.iter().map(move |overrides| ControllerSetting {
+                overrides: overrides.clone(),
+                grid_point: Some(ConstantGridPoint { index, points }),
+                ..ControllerSetting::fixed(ControllerChoice::Press)
+            })
         })
         .collect())
+}
+
+/// The sets of keys an entry (index `i`) lists: its grid's cross product,
+/// or its sets (not both); one empty set for neither.
+fn override_points(
+    entry: &ControllerSweep,
+    i: usize,
+) -> Result<Vec<Vec<(String, toml::Value)>>, InvalidSetting> {
+    let at = |key: &str| format!("controllers[{i}].{key}");
+    if !entry.grid.is_empty() && !entry.sets.is_empty() {
+        return Err(InvalidSetting::new(
+            at("sets"),
+            format!("{} listed", entry.sets.len()),
+            "give either a grid or sets, not both",
+        ));
+    }
+    if !entry.sets.is_empty() {
+        return Ok(entry.sets.iter().map(flat_keys).collect());
+    }
+    let axes = grid_axes(&entry.grid);
+    if let Some((k, _)) = axes.iter().find(|(_, vs)| vs.is_empty()) {
+        return Err(InvalidSetting::new(
+            at(&format!("grid.{k}")),
+            "[]",
+            "needs at least one value",
+        ));
+    }
+    Ok(cross_product(&axes))
 }
 
 /// The grid's axes: every leaf key (dotted below the grid table) with its
@@ -695,8 +717,33 @@ mod tests {
             e.starts_with("s.toml: `controllers[0].points` = 3: only for kind"),
             "{e}"
         );
-        let e = error(&base.replace("points = 4", "grid = { speed = [0.01, 0.02] }"));
+        let e = error(&base.replace(
+            "kind = \"best-constant\"",
+            "kind = [\"best-constant\", \"press\"]",
+        ));
         assert!(e.contains("stands alone"), "{e}");
+        let e = error(&base.replace("points = 4", "grid = { kind = \"press\" }"));
+        assert!(e.contains("no `kind` key"), "{e}");
+        // Other keys cross the points, the point slowest.
+        let s = parse(&base.replace(
+            "points = 4",
+            "points = 2\ngrid = { overtravel = [0.004, 0.01] }",
+        ))
+        .unwrap();
+        let grid: Vec<(String, String)> = s.settings[1..]
+            .iter()
+            .map(|c| (c.label(), c.overrides[0].1.to_string()))
+            .collect();
+        let pair = |a: &str, b: &str| (a.to_string(), b.to_string());
+        assert_eq!(
+            grid,
+            [
+                pair("best-constant:0/1", "0.004"),
+                pair("best-constant:0/1", "0.01"),
+                pair("best-constant:1/1", "0.004"),
+                pair("best-constant:1/1", "0.01"),
+            ]
+        );
         let e =
             error(&(base.to_string() + "[[controllers]]\nkind = \"best-constant\"\npoints = 4\n"));
         assert!(e.contains("list best-constant once"), "{e}");
