@@ -5,6 +5,7 @@
 pub mod cli;
 pub mod closed_loop;
 pub mod commands;
+pub mod constant_ratio;
 pub mod controller_choice;
 pub mod controller_settings;
 pub mod cut_record;

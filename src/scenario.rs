@@ -216,7 +216,7 @@ pub struct Scenario {
 
 /// Scenarios shipped with shearcut (`config/scenarios/*.toml`), available by
 /// name as well as by path; `shearcut scenarios` lists them.
-pub const BUILT_IN_SCENARIOS: [(&str, &str); 11] = [
+pub const BUILT_IN_SCENARIOS: [(&str, &str); 12] = [
     (
         "fig7-potato",
         include_str!("../config/scenarios/fig7-potato.toml"),
@@ -260,6 +260,10 @@ pub const BUILT_IN_SCENARIOS: [(&str, &str); 11] = [
     (
         "loop-eggplant-whole",
         include_str!("../config/scenarios/loop-eggplant-whole.toml"),
+    ),
+    (
+        "loop-eggplant-whole-coarse",
+        include_str!("../config/scenarios/loop-eggplant-whole-coarse.toml"),
     ),
 ];
 
@@ -777,6 +781,22 @@ mod tests {
         fast.section = reference.section;
         fast.plant.update_distance = reference.plant.update_distance;
         assert_eq!(fast, reference);
+    }
+
+    /// The held-out evaluation's whole eggplant is the reference eggplant
+    /// on the real-time potato's discretisation, nothing else.
+    #[test]
+    fn the_coarse_whole_eggplant_differs_from_the_reference_only_in_discretisation() {
+        let reference = Scenario::load("loop-eggplant-whole").unwrap();
+        let potato = Scenario::load("loop-potato-whole-realtime").unwrap();
+        let mut coarse = Scenario::load("loop-eggplant-whole-coarse").unwrap();
+        assert_eq!(coarse.section, potato.section);
+        assert_eq!(coarse.plant.update_distance, potato.plant.update_distance);
+        coarse.name.clone_from(&reference.name);
+        coarse.description.clone_from(&reference.description);
+        coarse.section = reference.section;
+        coarse.plant.update_distance = reference.plant.update_distance;
+        assert_eq!(coarse, reference);
     }
 
     #[test]

@@ -245,6 +245,109 @@ fn shards_merge_to_the_local_table_bit_for_bit() {
     );
 }
 
+/// The MPC and a three-point best-constant grid on two replicas of two
+/// blade budgets: eight runs per budget.
+const PAIRED: &str = r#"
+scenarios = ["small-potato.toml"]
+replicas = 2
+
+[variants]
+blade_budget = [0.006, 0.012]
+
+[[controllers]]
+kind = "mpc"
+
+[[controllers]]
+kind = "best-constant"
+points = 3
+"#;
+
+#[test]
+fn the_mpc_is_paired_with_each_variants_best_constant() {
+    let t = TempDir::new("paired");
+    let sweep = write_sweep(&t.0, PAIRED);
+    let a = t.0.join("a");
+    let out = ok(&tune(&[s(&sweep), "--jobs", "2", "--out", s(&a)], &[]));
+    assert!(
+        out.contains("16 runs (1 scenarios × 4 settings × 2 variants × 2 replicas)"),
+        "{out}"
+    );
+    let results = read(&a.join("results.csv"));
+    let lines: Vec<&str> = results.lines().collect();
+    let col = |name: &str| lines[0].split(',').position(|c| c == name).unwrap();
+    let rows: Vec<Vec<&str>> = lines[1..].iter().map(|l| l.split(',').collect()).collect();
+    // The grid's last point is each variant's cap: 6 or 12 mm of blade
+    // over the 6 mm deep cut, ratio 1 or 2.
+    let kinds: Vec<(&str, &str, &str)> = rows
+        .iter()
+        .filter(|r| r[col("controller")] == "best-constant:2/2")
+        .map(|r| {
+            (
+                r[col("variant")],
+                r[col("replica")],
+                r[col("controller.kind")],
+            )
+        })
+        .collect();
+    assert_eq!(
+        kinds,
+        [
+            ("0", "0", "slice:1"),
+            ("0", "1", "slice:1"),
+            ("1", "0", "slice:2"),
+            ("1", "1", "slice:2")
+        ]
+    );
+    // Recompute each variant's pairing from results.csv: the grid point of
+    // least mean work over completed replicas, and the MPC's mean paired
+    // difference per cent of that point's mean.
+    let paired = read(&a.join("best-constant.csv"));
+    let plines: Vec<&str> = paired.lines().collect();
+    assert_eq!(plines.len(), 3, "{paired}");
+    let pcol = |name: &str| plines[0].split(',').position(|c| c == name).unwrap();
+    for (variant, line) in plines[1..].iter().enumerate() {
+        let p: Vec<&str> = line.split(',').collect();
+        let of = |setting: usize| -> Vec<(f64, bool)> {
+            rows.iter()
+                .filter(|r| {
+                    r[col("variant")] == variant.to_string()
+                        && r[col("setting")] == setting.to_string()
+                })
+                .map(|r| {
+                    (
+                        r[col("work_j")].parse().unwrap(),
+                        r[col("completed")] == "true",
+                    )
+                })
+                .collect()
+        };
+        let mean = |runs: &[(f64, bool)]| runs.iter().map(|r| r.0).sum::<f64>() / runs.len() as f64;
+        let best = (1..=3)
+            .filter(|&k| of(k).iter().all(|r| r.1))
+            .min_by(|&a, &b| mean(&of(a)).total_cmp(&mean(&of(b))))
+            .unwrap();
+        let (mpc, constant) = (of(0), of(best));
+        let diff = mpc
+            .iter()
+            .zip(&constant)
+            .map(|(m, c)| m.0 - c.0)
+            .sum::<f64>()
+            / 2.0;
+        let percent: f64 = p[pcol("work_diff_percent")].parse().unwrap();
+        assert!(
+            (percent - 100.0 * diff / mean(&constant)).abs() < 1e-9,
+            "variant {variant}: {line}"
+        );
+        assert_eq!(p[pcol("replicas")], "2");
+    }
+    let summary = read(&a.join("summary.md"));
+    assert!(
+        summary.contains("## The MPC against the best constant ratio, per variant")
+            && summary.contains("| small-potato | blade 6 mm | 0 (as given) |"),
+        "{summary}"
+    );
+}
+
 /// The sweep file with `from` replaced by `to` gives exit code 2 and one
 /// line on stderr containing `expected`.
 fn refused(t: &TempDir, from: &str, to: &str, expected: &str) {
@@ -324,4 +427,38 @@ fn shipped_sweeps_all_load() {
         }
     }
     assert!(n >= 3, "{n} sweeps in {}", dir.display());
+}
+
+#[test]
+fn the_heldout_set_is_whole_objects_none_of_them_in_the_tuning_set() {
+    use shearcut::commands::check::resolved_toml;
+    use shearcut::tune::sweep_file::Sweep;
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("config/sweeps");
+    let variants = |file: &str| -> Vec<String> {
+        let sweep = Sweep::load(&dir.join(file)).unwrap_or_else(|e| panic!("{e}"));
+        let mut out = Vec::new();
+        for s in &sweep.scenarios {
+            for v in &sweep.variants {
+                let applied = v.apply(s).unwrap();
+                let whole = matches!(
+                    applied.object,
+                    shearcut_sim::ObjectShape::HalfPotato { .. }
+                        | shearcut_sim::ObjectShape::Eggplant { .. }
+                );
+                assert!(whole, "{file}: {}", s.name);
+                out.push(resolved_toml(&applied));
+            }
+        }
+        out
+    };
+    let held_out = variants("mpc-heldout.toml");
+    let tuning = variants("mpc-tuning-set.toml");
+    assert!(held_out.len() >= 12, "{} held-out variants", held_out.len());
+    for (i, v) in held_out.iter().enumerate() {
+        assert!(
+            !tuning.contains(v),
+            "held-out variant {i} is in the tuning set"
+        );
+        assert!(!held_out[..i].contains(v), "held-out variant {i} twice");
+    }
 }

@@ -23,6 +23,9 @@ use std::path::Path;
 use serde::Serialize;
 
 use crate::commands::run::{LoopSetup, RunOutput, run_closed_loop_on};
+use crate::constant_ratio::{
+    coarse_grid, completed_mean_work, constant_choice, least_mean_work, ratio_cap, round3,
+};
 use crate::controller_choice::ControllerChoice;
 use crate::cut_record::write_json;
 use crate::error::RunError;
@@ -32,8 +35,8 @@ use crate::run_dir;
 use crate::run_replica::RunReplica;
 use crate::scenario::Scenario;
 
-/// Points of the coarse search over constant ratios.
-const SEARCH_POINTS: usize = 6;
+/// Points of the coarse search over constant ratios (0 to the cap).
+pub const SEARCH_POINTS: usize = 6;
 /// Golden-section refinements after the coarse search.
 const REFINEMENTS: usize = 3;
 /// Constant ratios of the search (cheapest on the nominal replica first)
@@ -43,12 +46,6 @@ pub const RESAMPLED_CANDIDATES: usize = 3;
 pub const DEFAULT_REPLICAS: u64 = 8;
 /// Most replicas accepted.
 pub const MAX_REPLICAS: u64 = 21;
-
-/// `x` rounded to 3 decimals (ratios named in tables stay readable; the
-/// search's resolution is far coarser).
-fn round3(x: f64) -> f64 {
-    (x * 1e3).round() / 1e3
-}
 
 /// One controller's result in the comparison table.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -120,8 +117,9 @@ impl ComparisonRow {
     }
 }
 
-/// The MPC's work against a baseline's on the same replicas, replica by
-/// replica: how far the table's means can be trusted to tell them apart.
+/// The MPC's work (or another outcome) against a baseline's on the same
+/// replicas, replica by replica: how far the table's means can be trusted
+/// to tell them apart.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct PairedDifference {
     /// The baseline (e.g. `slice:0.526`).
@@ -129,12 +127,15 @@ pub struct PairedDifference {
     /// Replicas paired.
     pub replicas: usize,
     /// Mean of (MPC − baseline) over the replicas, per cent of the
-    /// baseline's mean work (negative: the MPC needs less).
+    /// baseline's mean (negative: the MPC's is smaller).
     pub mean_percent: f64,
     /// Standard error of that mean, per cent (the differences' sample
     /// standard deviation over √replicas; `None` for one replica).
     pub standard_error_percent: Option<f64>,
-    /// Replicas on which the MPC needed less work than the baseline.
+    /// The smallest and the largest single difference, per cent of the
+    /// baseline's mean.
+    pub range_percent: [f64; 2],
+    /// Replicas on which the MPC's value was below the baseline's.
     pub mpc_lower: usize,
 }
 
@@ -155,16 +156,16 @@ impl PairedDifference {
         }
         let works =
             |runs: &[&RunOutput]| -> Vec<f64> { runs.iter().map(|r| r.summary.work_j).collect() };
-        Some(Self::from_works(
-            &baseline[0].controller,
-            &works(mpc),
-            &works(baseline),
-        ))
+        Self::from_values(&baseline[0].controller, &works(mpc), &works(baseline))
     }
 
-    /// The paired difference of works (J) on the same replicas, in the
-    /// same order (both non-empty, of equal length: checked by `new`).
-    fn from_works(against: &str, mpc: &[f64], baseline: &[f64]) -> Self {
+    /// The paired difference of values (works in J, deformations in m, …)
+    /// on the same replicas, in the same order; `None` unless both are
+    /// non-empty and of equal length.
+    pub fn from_values(against: &str, mpc: &[f64], baseline: &[f64]) -> Option<Self> {
+        if mpc.is_empty() || mpc.len() != baseline.len() {
+            return None;
+        }
         let n = mpc.len();
         let d: Vec<f64> = mpc.iter().zip(baseline).map(|(a, b)| a - b).collect();
         let scale = 100.0 * n as f64 / baseline.iter().sum::<f64>();
@@ -173,13 +174,19 @@ impl PairedDifference {
             let var = d.iter().map(|x| (x - mean).powi(2)).sum::<f64>() / (n - 1) as f64;
             (var / n as f64).sqrt() * scale
         });
-        Self {
+        let (least, most) = d
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), &x| {
+                (a.min(x), b.max(x))
+            });
+        Some(Self {
             against: against.to_string(),
             replicas: n,
             mean_percent: mean * scale,
             standard_error_percent: standard_error,
+            range_percent: [least * scale, most * scale],
             mpc_lower: d.iter().filter(|&&x| x < 0.0).count(),
-        }
+        })
     }
 
     /// One line for the table's footer.
@@ -258,7 +265,7 @@ pub fn compare(s: &Scenario, replicas: u64) -> Result<Comparison, RunError> {
     let task = LoopSetup::new(s, ControllerChoice::Press)?.task;
     let target = task.target_depth;
     // The largest constant ratio the blade allows over the whole cut.
-    let xi_cap = (task.blade_budget / target).min(s.controller.mpc.max_slice_push_ratio);
+    let xi_cap = ratio_cap(&task, s.controller.mpc.max_slice_push_ratio);
     println!(
         "{}: blade budget {:.1} mm for {:.1} mm of depth: constant ratios up to {xi_cap:.3}",
         s.name,
@@ -266,10 +273,8 @@ pub fn compare(s: &Scenario, replicas: u64) -> Result<Comparison, RunError> {
         target * 1e3
     );
     // Coarse search over constant ratios (ξ = 0 is pressing).
-    let grid: Vec<f64> = (0..SEARCH_POINTS)
-        .map(|i| round3(xi_cap * i as f64 / (SEARCH_POINTS - 1) as f64))
-        .collect();
-    let choices: Vec<ControllerChoice> = grid.iter().map(|&xi| choice_at(xi)).collect();
+    let grid = coarse_grid(xi_cap, SEARCH_POINTS);
+    let choices: Vec<ControllerChoice> = grid.iter().map(|&xi| constant_choice(xi)).collect();
     println!("searching the best constant ratio:");
     let mut tried: Vec<(f64, RunOutput)> = Vec::new();
     for (xi, r) in grid.iter().zip(run_nominal(s, &choices)) {
@@ -344,7 +349,7 @@ pub fn compare(s: &Scenario, replicas: u64) -> Result<Comparison, RunError> {
         jobs.push((mpc, replica));
         owners.push(None);
         for &i in &order {
-            jobs.push((choice_at(tried[i].0), replica));
+            jobs.push((constant_choice(tried[i].0), replica));
             owners.push(Some(i));
         }
     }
@@ -369,17 +374,13 @@ pub fn compare(s: &Scenario, replicas: u64) -> Result<Comparison, RunError> {
             .collect()
     };
     let mean_work = |i: usize| {
-        let runs = replicated(i);
-        if runs.iter().all(|r| r.summary.completed) {
-            runs.iter().map(|r| r.summary.work_j).sum::<f64>() / runs.len() as f64
-        } else {
-            f64::INFINITY
-        }
+        completed_mean_work(
+            replicated(i)
+                .iter()
+                .map(|r| (r.summary.work_j, r.summary.completed)),
+        )
     };
-    let best = order
-        .iter()
-        .copied()
-        .min_by(|&a, &b| mean_work(a).total_cmp(&mean_work(b)))
+    let best = least_mean_work(order.iter().map(|&i| (i, mean_work(i))))
         .unwrap_or_else(|| best_index(&tried));
     let mut rows = Vec::new();
     let mut mpc_vs_best_constant = None;
@@ -407,15 +408,6 @@ pub fn compare(s: &Scenario, replicas: u64) -> Result<Comparison, RunError> {
         rows,
         mpc_vs_best_constant,
     })
-}
-
-/// The constant-ratio controller for ratio `xi` (0: pressing).
-fn choice_at(xi: f64) -> ControllerChoice {
-    if xi == 0.0 {
-        ControllerChoice::Press
-    } else {
-        ControllerChoice::Slice(xi)
-    }
 }
 
 /// Markdown table of the main rows.
@@ -494,14 +486,18 @@ mod tests {
         // Differences −0.1 and +0.1 J against a mean of 1.5 J: mean 0, the
         // differences' standard deviation √0.02 J, its standard error 0.1 J,
         // 6.67 % of 1.5 J.
-        let p = PairedDifference::from_works("slice:0.5", &[1.0, 2.0], &[1.1, 1.9]);
+        let p = PairedDifference::from_values("slice:0.5", &[1.0, 2.0], &[1.1, 1.9]).unwrap();
         assert_eq!((p.replicas, p.mpc_lower), (2, 1));
         assert!(p.mean_percent.abs() < 1e-12, "{}", p.mean_percent);
         let se = p.standard_error_percent.unwrap();
         assert!((se - 100.0 / 15.0).abs() < 1e-9, "{se}");
-        let one = PairedDifference::from_works("press", &[0.9], &[1.0]);
+        // Single differences of ∓0.1 J: ∓6.67 % of 1.5 J.
+        let [least, most] = p.range_percent;
+        assert!((least + 20.0 / 3.0).abs() < 1e-9 && (most - 20.0 / 3.0).abs() < 1e-9);
+        let one = PairedDifference::from_values("press", &[0.9], &[1.0]).unwrap();
         assert!((one.mean_percent + 10.0).abs() < 1e-9);
         assert_eq!(one.standard_error_percent, None);
         assert!(one.describe().contains("-10.00 %"), "{}", one.describe());
+        assert_eq!(PairedDifference::from_values("press", &[1.0], &[]), None);
     }
 }

@@ -2,13 +2,15 @@
 //! and the Pareto front (`front.csv`, `front-<scenario>.svg/.png`), each
 //! setting's effect (`effects.csv`, `effects-<scenario>.svg/.png`), the
 //! recommended setting under each weighting
-//! (`recommended/<scenario>-<weighting>.toml`) and a summary
-//! (`summary.md`, also printed).
+//! (`recommended/<scenario>-<weighting>.toml`), with a best-constant grid
+//! the MPC against the best constant per variant (`best-constant.csv`,
+//! [`best_constant_pairing`]), and a summary (`summary.md`, also printed).
 
 use std::path::Path;
 
 use crate::error::RunError;
 use crate::render_plot;
+use crate::tune::best_constant_pairing;
 use crate::tune::effect_plot::draw_effects;
 use crate::tune::front_plot::draw_front;
 use crate::tune::job_list::JobCatalog;
@@ -189,6 +191,8 @@ pub fn analyse(dir: &Path, catalog: &JobCatalog, rows: &[JobRow]) -> Result<Stri
             );
         }
     }
+    let pairs = best_constant_pairing::pairs(catalog, &finished);
+    summary += &best_constant_pairing::write_pairs(dir, catalog, &pairs)?;
     front_rows
         .flush()
         .map_err(|e| RunError::write(dir.join("front.csv"), e))?;

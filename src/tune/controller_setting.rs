@@ -7,17 +7,23 @@ use shearcut_sim::InvalidSetting;
 
 use crate::controller_choice::ControllerChoice;
 use crate::scenario::{Scenario, ScenarioFile};
+use crate::tune::constant_grid::ConstantGridPoint;
 use crate::tune::perturbation::float_cell;
 
 /// A controller with settings: what a row of the results is "a setting" of.
 #[derive(Debug, Clone, PartialEq, Serialize)]
 pub struct ControllerSetting {
-    /// The controller.
+    /// The controller (with `grid_point`, ignored: the ratio is resolved
+    /// on each scenario).
     #[serde(serialize_with = "as_string")]
     pub choice: ControllerChoice,
     /// Keys below `[controller]` (dotted, e.g. `mpc.deformation_weight`)
     /// and their values, in the sweep's key order.
     pub overrides: Vec<(String, toml::Value)>,
+    /// A point of the sweep's best-constant grid: the controller is the
+    /// constant ratio this point is on the scenario it is applied to
+    /// ([`ConstantGridPoint::choice_on`]), not `choice`.
+    pub grid_point: Option<ConstantGridPoint>,
 }
 
 fn as_string<S: serde::Serializer>(c: &ControllerChoice, s: S) -> Result<S::Ok, S::Error> {
@@ -25,11 +31,32 @@ fn as_string<S: serde::Serializer>(c: &ControllerChoice, s: S) -> Result<S::Ok, 
 }
 
 impl ControllerSetting {
+    /// A controller with no settings changed.
+    pub fn fixed(choice: ControllerChoice) -> Self {
+        Self {
+            choice,
+            overrides: Vec::new(),
+            grid_point: None,
+        }
+    }
+
+    /// The setting's controller in tables: the choice, or the grid point's
+    /// name (`best-constant:i/n`).
+    pub fn label(&self) -> String {
+        self.grid_point
+            .map_or_else(|| self.choice.to_string(), |g| g.label())
+    }
+
     /// The scenario `s` run under this setting: `[controller] kind` is the
-    /// choice and every override is set, then the scenario is read and
-    /// validated as a file would be. Errors name the key below
-    /// `controller.` (a single override's when one alone is wrong).
+    /// choice (a grid point's ratio on `s`) and every override is set, then
+    /// the scenario is read and validated as a file would be. Errors name
+    /// the key below `controller.` (a single override's when one alone is
+    /// wrong).
     pub fn apply(&self, s: &Scenario) -> Result<Scenario, InvalidSetting> {
+        let choice = match &self.grid_point {
+            Some(g) => g.choice_on(s)?,
+            None => self.choice,
+        };
         let mut root = toml::Value::try_from(s).map_err(|e| {
             InvalidSetting::new("scenario", &s.name, format!("does not serialise: {e}"))
         })?;
@@ -38,10 +65,7 @@ impl ControllerSetting {
             .and_then(|t| t.get_mut("controller"))
             .and_then(toml::Value::as_table_mut)
             .ok_or_else(|| InvalidSetting::new("controller", "missing", "a table"))?;
-        controller.insert(
-            "kind".to_string(),
-            toml::Value::String(self.choice.to_string()),
-        );
+        controller.insert("kind".to_string(), toml::Value::String(choice.to_string()));
         for (key, value) in &self.overrides {
             set_dotted(controller, key, value.clone())?;
         }
@@ -150,6 +174,7 @@ mod tests {
                 .iter()
                 .map(|(k, v)| (k.to_string(), v.clone()))
                 .collect(),
+            grid_point: None,
         }
     }
 

@@ -22,7 +22,7 @@ use crate::error::ConfigError;
 use crate::run_replica::RunReplica;
 use crate::scenario::Scenario;
 use crate::tune::controller_setting::{ControllerSetting, controller_cells, value_cell};
-use crate::tune::perturbation::VARIANT_COLUMNS;
+use crate::tune::perturbation::{Perturbation, VARIANT_COLUMNS};
 use crate::tune::sweep_file::Sweep;
 
 /// Columns naming a job, first in every results table.
@@ -53,7 +53,9 @@ pub struct JobRecord {
     pub variant: usize,
     /// The replica.
     pub replica: u32,
-    /// The controller (`mpc`, `slice:0.5`, …).
+    /// The controller (`mpc`, `slice:0.5`, …; a best-constant grid point
+    /// by its name, `best-constant:i/n`: its ratio on the job's variant is
+    /// the `controller.kind` cell).
     pub controller: String,
     /// The settings' cells, aligned with [`JobCatalog::setting_columns`].
     pub cells: Vec<String>,
@@ -63,8 +65,12 @@ pub struct JobRecord {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SettingRecord {
-    /// The controller.
+    /// The controller (a best-constant grid point by its name).
     pub controller: String,
+    /// Whether the setting is a point of the best-constant grid
+    /// ([`crate::tune::constant_grid`]).
+    #[serde(default)]
+    pub best_constant: bool,
     /// The keys the sweep set, `key = value` each (dotted below
     /// `[controller]`).
     pub overrides: Vec<String>,
@@ -83,6 +89,9 @@ pub struct JobCatalog {
     pub sweep: String,
     /// The scenarios' names.
     pub scenarios: Vec<String>,
+    /// The variants' names ([`Perturbation::label`]), in the sweep's order.
+    #[serde(default)]
+    pub variants: Vec<String>,
     /// Per scenario, per setting.
     pub settings: Vec<Vec<SettingRecord>>,
     /// The settings' columns: the variant's, then every `controller.*` key.
@@ -160,11 +169,11 @@ impl JobList {
                                 setting: ki,
                                 variant: vi,
                                 replica: r,
-                                controller: setting.choice.to_string(),
+                                controller: setting.label(),
                                 cells: Vec::new(),
                             },
                             scenario: scenario.clone(),
-                            choice: setting.choice,
+                            choice: scenario.controller.kind,
                             replica: RunReplica { index: r },
                         });
                         job_cells.push(cells.clone());
@@ -196,6 +205,7 @@ impl JobList {
         let catalog = JobCatalog {
             sweep: sweep.name.clone(),
             scenarios: sweep.scenarios.iter().map(|s| s.name.clone()).collect(),
+            variants: sweep.variants.iter().map(Perturbation::label).collect(),
             settings,
             setting_columns: columns,
             jobs: jobs.iter().map(|j| j.record.clone()).collect(),
@@ -213,7 +223,8 @@ fn setting_record(setting: &ControllerSetting, applied: &Scenario) -> SettingRec
         controller: &'a crate::controller_settings::ControllerSettings,
     }
     SettingRecord {
-        controller: setting.choice.to_string(),
+        controller: setting.label(),
+        best_constant: setting.grid_point.is_some(),
         overrides: setting
             .overrides
             .iter()
@@ -250,6 +261,53 @@ mod tests {
         [[controllers]]
         kind = "press"
     "#;
+
+    #[test]
+    fn a_grid_point_runs_its_share_of_each_variants_cap() {
+        // The half potato (25 mm deep): 15 and 5 mm of blade, caps 0.6 and
+        // 0.2; point 1 of 0..=2 is half of each.
+        let sweep = Sweep::parse(
+            r#"
+            scenarios = ["loop-potato-whole-realtime"]
+            [variants]
+            blade_budget = [0.015, 0.005]
+            [[controllers]]
+            kind = "best-constant"
+            points = 3
+            "#,
+            "s.toml",
+            "s",
+            None,
+        )
+        .unwrap();
+        let list = JobList::new(&sweep, "s.toml").unwrap();
+        let ratios: Vec<(String, String)> = list
+            .jobs
+            .iter()
+            .map(|j| (j.record.controller.clone(), j.choice.to_string()))
+            .collect();
+        let pair = |a: &str, b: &str| (a.to_string(), b.to_string());
+        assert_eq!(
+            ratios,
+            [
+                pair("best-constant:0/2", "press"),
+                pair("best-constant:0/2", "press"),
+                pair("best-constant:1/2", "slice:0.3"),
+                pair("best-constant:1/2", "slice:0.1"),
+                pair("best-constant:2/2", "slice:0.6"),
+                pair("best-constant:2/2", "slice:0.2"),
+            ]
+        );
+        assert_eq!(list.catalog.variants, ["blade 15 mm", "blade 5 mm"]);
+        assert!(list.catalog.settings[0].iter().all(|s| s.best_constant));
+        let kind = list
+            .catalog
+            .setting_columns
+            .iter()
+            .position(|c| c == "controller.kind")
+            .unwrap();
+        assert_eq!(list.jobs[3].record.cells[kind], "slice:0.1");
+    }
 
     #[test]
     fn the_list_is_ordered_and_its_ids_are_stable_and_distinct() {

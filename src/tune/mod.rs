@@ -5,6 +5,8 @@
 //! recommended settings block. See docs/tuning.md.
 
 pub mod analysis;
+pub mod best_constant_pairing;
+pub mod constant_grid;
 pub mod controller_setting;
 pub mod effect_plot;
 pub mod executor;

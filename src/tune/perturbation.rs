@@ -1,6 +1,7 @@
 //! A perturbed variant of a scenario: the food and the sensor a setting will
 //! meet rather than the preset — the material's E, R_c and μ scaled, the
-//! object scaled, another knife, the F/T sensor's noise and bias, another
+//! object scaled, another knife, the object at another place along the
+//! edge, another blade budget, the F/T sensor's noise and bias, another
 //! noise seed.
 //!
 //! A variant changes the plant only. The controller keeps the model it
@@ -9,8 +10,9 @@
 //! names none), for the variant's knife (a lab knows its knife).
 
 use serde::{Deserialize, Serialize};
-use shearcut_sim::{InvalidSetting, KnifePreset, MaterialPreset, ObjectShape};
+use shearcut_sim::{InvalidSetting, Knife, KnifePreset, MaterialPreset, ObjectShape};
 
+use crate::commands::run::cut_task;
 use crate::scenario::Scenario;
 use crate::surrogates::BUILT_IN_SURROGATES;
 
@@ -18,6 +20,10 @@ use crate::surrogates::BUILT_IN_SURROGATES;
 pub const MATERIAL_SCALE_RANGE: [f64; 2] = [0.1, 10.0];
 /// Smallest and largest object size factor accepted.
 pub const SIZE_SCALE_RANGE: [f64; 2] = [0.5, 2.0];
+/// Smallest and largest blade budget accepted, m: from a cramped stroke to
+/// more than a constant ratio near the material's optimum (ξ ≈ 0.6) needs
+/// over the loop scenarios' 20–40 mm of depth.
+pub const BLADE_BUDGET_RANGE: [f64; 2] = [0.005, 0.030];
 
 /// One variant: every field left at its default leaves the scenario as it is.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -47,6 +53,18 @@ pub struct Perturbation {
     /// Seed of the scenario's random processes, the sensor noise (default:
     /// the scenario's `seed`).
     pub seed: Option<u64>,
+    /// Distance along the edge from the heel to the object's near face at
+    /// the start of the cut, m (`[motion] z0`; default: the scenario's).
+    /// Within the usable edge: the knife slides towards its tip, so the
+    /// object moves towards the heel by up to the blade budget B, and
+    /// z0 ∈ [B, edge length − the object's length along the edge] keeps
+    /// it on the edge over the whole stroke (checked by
+    /// [`Perturbation::apply`] against the knife, the object and B).
+    pub z0: Option<f64>,
+    /// The blade budget: the net travel along the edge the controllers may
+    /// use, m (`[controller] blade_budget`; default: the scenario's; in
+    /// [0.005, 0.030]).
+    pub blade_budget: Option<f64>,
 }
 
 impl Default for Perturbation {
@@ -60,12 +78,14 @@ impl Default for Perturbation {
             force_noise: None,
             force_bias: None,
             seed: None,
+            z0: None,
+            blade_budget: None,
         }
     }
 }
 
 /// Names of the result columns a variant fills ([`Perturbation::cells`]).
-pub const VARIANT_COLUMNS: [&str; 10] = [
+pub const VARIANT_COLUMNS: [&str; 12] = [
     "variant.youngs_modulus_scale",
     "variant.fracture_toughness_scale",
     "variant.friction_scale",
@@ -76,6 +96,8 @@ pub const VARIANT_COLUMNS: [&str; 10] = [
     "variant.force_bias_y_n",
     "variant.force_bias_z_n",
     "variant.seed",
+    "variant.z0_m",
+    "variant.blade_budget_m",
 ];
 
 impl Perturbation {
@@ -129,6 +151,25 @@ impl Perturbation {
         {
             return Err(InvalidSetting::new("force_bias", x, "must be finite (N)"));
         }
+        if let Some(z0) = self.z0
+            && !(z0.is_finite() && (0.0..=1.0).contains(&z0))
+        {
+            return Err(InvalidSetting::new(
+                "z0",
+                z0,
+                "must be in [0, 1] m (and on the knife's edge: see apply)",
+            ));
+        }
+        let [lo, hi] = BLADE_BUDGET_RANGE;
+        if let Some(b) = self.blade_budget
+            && !(b.is_finite() && (lo..=hi).contains(&b))
+        {
+            return Err(InvalidSetting::new(
+                "blade_budget",
+                b,
+                format!("must be in [{lo}, {hi}] m"),
+            ));
+        }
         Ok(())
     }
 
@@ -163,7 +204,64 @@ impl Perturbation {
         if let Some(seed) = self.seed {
             s.seed = seed;
         }
+        if let Some(z0) = self.z0 {
+            s.motion.z0 = vec![z0];
+        }
+        if let Some(b) = self.blade_budget {
+            s.controller.blade_budget = Some(b);
+        }
+        if self.z0.is_some() || self.blade_budget.is_some() {
+            let key = if self.z0.is_some() {
+                "z0"
+            } else {
+                "blade_budget"
+            };
+            check_on_edge(&s).map_err(|e| InvalidSetting {
+                key: key.into(),
+                ..e
+            })?;
+        }
         Ok(s)
+    }
+
+    /// The variant's name in tables: its changes from the scenario, e.g.
+    /// `size ×1.25, z0 95 mm` (`as given` for none).
+    pub fn label(&self) -> String {
+        let mm = |x: f64| format!("{} mm", (x * 1e4).round() / 10.0);
+        let mut parts = Vec::new();
+        for (name, k) in [
+            ("E", self.youngs_modulus_scale),
+            ("R_c", self.fracture_toughness_scale),
+            ("μ", self.friction_scale),
+            ("size", self.size_scale),
+        ] {
+            if k != 1.0 {
+                parts.push(format!("{name} ×{k}"));
+            }
+        }
+        if let Some(k) = &self.knife {
+            parts.push(format!("knife {k}"));
+        }
+        if let Some(n) = self.force_noise {
+            parts.push(format!("noise {n} N"));
+        }
+        if let Some([x, y, z]) = self.force_bias {
+            parts.push(format!("bias [{x}, {y}, {z}] N"));
+        }
+        if let Some(seed) = self.seed {
+            parts.push(format!("seed {seed}"));
+        }
+        if let Some(z0) = self.z0 {
+            parts.push(format!("z0 {}", mm(z0)));
+        }
+        if let Some(b) = self.blade_budget {
+            parts.push(format!("blade {}", mm(b)));
+        }
+        if parts.is_empty() {
+            "as given".to_string()
+        } else {
+            parts.join(", ")
+        }
     }
 
     /// The variant's result cells for scenario `s` after [`apply`](Self::apply),
@@ -186,8 +284,52 @@ impl Perturbation {
             float_cell(bias[1]),
             float_cell(bias[2]),
             s.seed.to_string(),
+            s.motion
+                .z0
+                .first()
+                .copied()
+                .map_or(String::new(), float_cell),
+            s.controller.blade_budget.map_or(String::new(), float_cell),
         ]
     }
+}
+
+/// Checks that the object of `s` stays on its knife's edge over the cut:
+/// the knife slides towards its tip (`BladeBudget`: the budget is travel
+/// towards the tip), so the object, its near face `z0` from the heel and
+/// L long along the edge, moves towards the heel by up to the blade budget
+/// B; z0 ∈ [B, edge length − L] keeps it between heel and tip throughout.
+/// The error's key is `z0` (the caller renames it), its value z0, m.
+fn check_on_edge(s: &Scenario) -> Result<(), InvalidSetting> {
+    let z0 = s.motion.z0.first().copied().unwrap_or(0.0);
+    let knife = Knife::new(&s.knife).map_err(|e| e.prefixed("knife"))?;
+    let mesh = s
+        .object
+        .mesh()
+        .map_err(|e| InvalidSetting::new("object", "mesh", e.to_string()))?;
+    let (lo, hi) = mesh.bounds();
+    let length = hi.z - lo.z;
+    let edge = knife.edge().vertices();
+    let (z_min, z_max) = edge
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+            (a.min(p.x), b.max(p.x))
+        });
+    let budget = cut_task(s, &knife, &mesh).blade_budget;
+    let (first, last) = (budget, (z_max - z_min) - length);
+    if !(first..=last).contains(&z0) {
+        return Err(InvalidSetting::new(
+            "z0",
+            z0,
+            format!(
+                "must be in [{first:.4}, {last:.4}] m: the object ({:.1} mm along the edge) stays on the {:.0} mm edge over a {:.1} mm stroke towards the heel",
+                1e3 * length,
+                1e3 * (z_max - z_min),
+                1e3 * budget
+            ),
+        ));
+    }
+    Ok(())
 }
 
 /// A number as a result cell: the shortest text that reads back to the same
@@ -275,6 +417,8 @@ mod tests {
             force_noise: Some(0.1),
             force_bias: Some([0.0, 0.5, 0.0]),
             seed: Some(7),
+            z0: None,
+            blade_budget: None,
         };
         let v = p.apply(&s).unwrap();
         assert_eq!(v.material.youngs_modulus, 1.5 * s.material.youngs_modulus);
@@ -313,6 +457,65 @@ mod tests {
             ..Perturbation::default()
         };
         assert_eq!(p.validate().unwrap_err().key, "knife");
+    }
+
+    #[test]
+    fn z0_and_blade_budget_reach_the_scenario_within_the_usable_edge() {
+        // The half potato is 90 mm long along the chef's 200 mm edge and
+        // the scenario gives 15 mm of blade: z0 ∈ [0.015, 0.11] m.
+        let s = Scenario::load("loop-potato-whole").unwrap();
+        let at = |z0: Option<f64>, blade_budget: Option<f64>| {
+            let p = Perturbation {
+                z0,
+                blade_budget,
+                ..Perturbation::default()
+            };
+            p.validate()?;
+            p.apply(&s)
+        };
+        let v = at(Some(0.095), None).unwrap();
+        assert_eq!(v.motion.z0, vec![0.095]);
+        assert_eq!(v.controller.blade_budget, Some(0.015));
+        let v = at(Some(0.04), Some(0.03)).unwrap();
+        assert_eq!(
+            (v.motion.z0[0], v.controller.blade_budget),
+            (0.04, Some(0.03))
+        );
+        let p = Perturbation {
+            z0: Some(0.04),
+            blade_budget: Some(0.03),
+            ..Perturbation::default()
+        };
+        assert_eq!(&p.cells(&v)[10..], ["0.04", "0.03"]);
+        assert_eq!(p.label(), "z0 40 mm, blade 30 mm");
+        assert_eq!(Perturbation::default().label(), "as given");
+        // Past the tip, past the heel over the stroke, a stroke longer
+        // than the room behind the object, a budget out of range.
+        let e = at(Some(0.12), None).unwrap_err();
+        assert_eq!(e.key, "z0");
+        assert!(
+            e.to_string()
+                .starts_with("`z0` = 0.12: must be in [0.0150, 0.1100] m"),
+            "{e}"
+        );
+        assert_eq!(at(Some(0.01), None).unwrap_err().key, "z0");
+        let e = at(None, Some(0.03)).unwrap_err();
+        assert_eq!(e.key, "blade_budget");
+        assert!(e.to_string().contains("30.0 mm stroke"), "{e}");
+        let e = at(None, Some(0.04)).unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "`blade_budget` = 0.04: must be in [0.005, 0.03] m"
+        );
+        assert_eq!(at(Some(f64::NAN), None).unwrap_err().key, "z0");
+        // A scaled object is checked at its new length: 112.5 mm from
+        // z0 = 0.095 runs past the tip.
+        let p = Perturbation {
+            size_scale: 1.25,
+            z0: Some(0.095),
+            ..Perturbation::default()
+        };
+        assert_eq!(p.apply(&s).unwrap_err().key, "z0");
     }
 
     #[test]

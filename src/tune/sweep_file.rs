@@ -29,9 +29,11 @@ use std::path::Path;
 use serde::Deserialize;
 use shearcut_sim::InvalidSetting;
 
+use crate::commands::compare::SEARCH_POINTS;
 use crate::controller_choice::ControllerChoice;
 use crate::error::ConfigError;
 use crate::scenario::Scenario;
+use crate::tune::constant_grid::{BEST_CONSTANT_KIND, ConstantGridPoint, MAX_POINTS};
 use crate::tune::controller_setting::ControllerSetting;
 use crate::tune::perturbation::Perturbation;
 use crate::tune::weighting::{Weighting, default_weightings};
@@ -88,6 +90,12 @@ pub struct VariantGrid {
     pub force_bias: Vec<[f64; 3]>,
     /// Noise seeds (default: the scenario's).
     pub seed: OneOrMany<u64>,
+    /// Places of the object along the edge (`[motion] z0`), m (default:
+    /// the scenario's).
+    pub z0: OneOrMany<f64>,
+    /// Blade budgets (`[controller] blade_budget`), m (default: the
+    /// scenario's).
+    pub blade_budget: OneOrMany<f64>,
 }
 
 /// `[[controllers]]`: one or more controllers, with a grid or a list of
@@ -95,8 +103,16 @@ pub struct VariantGrid {
 #[derive(Debug, Clone, Default, Deserialize)]
 #[serde(default, deny_unknown_fields)]
 pub struct ControllerSweep {
-    /// The controllers: `mpc`, `press`, `slice:XI`, `force:N`, one or a list.
+    /// The controllers: `mpc`, `press`, `slice:XI`, `force:N`, one or a
+    /// list; or `best-constant` alone: the constant ratios of `compare`'s
+    /// coarse search on each variant (`points` of them, from pressing to
+    /// the largest ratio the variant's blade budget allows over its depth;
+    /// [`crate::tune::constant_grid`]), the best of which per variant is
+    /// paired with the MPC (`best-constant.csv`).
     pub kind: OneOrMany<String>,
+    /// Points of the `best-constant` grid, 2–21 (default 6, as `compare`);
+    /// for `best-constant` only.
+    pub points: Option<usize>,
     /// Keys below `[controller]` (dotted or as sub-tables, e.g.
     /// `"mpc.deformation_weight" = [0.0, 100.0]`), each a value or a list:
     /// the settings are the cross product (keys in sorted order, the last
@@ -245,12 +261,9 @@ impl Sweep {
                     format!("variant[{i}]")
                 };
                 let applied = v.apply(s).map_err(|e| invalid(e.prefixed(&key)))?;
-                ControllerSetting {
-                    choice: s.controller.kind,
-                    overrides: Vec::new(),
-                }
-                .apply(&applied)
-                .map_err(|e| invalid(e.prefixed(&format!("{key} on {}", s.name))))?;
+                ControllerSetting::fixed(s.controller.kind)
+                    .apply(&applied)
+                    .map_err(|e| invalid(e.prefixed(&format!("{key} on {}", s.name))))?;
             }
             for (i, entry) in file.controllers.iter().enumerate() {
                 for (key, value) in grid_axes(&entry.grid)
@@ -259,8 +272,8 @@ impl Sweep {
                     .chain(entry.sets.iter().flat_map(flat_keys))
                 {
                     let single = ControllerSetting {
-                        choice: ControllerChoice::Mpc,
                         overrides: vec![(key, value)],
+                        ..ControllerSetting::fixed(ControllerChoice::Mpc)
                     };
                     single
                         .apply(s)
@@ -315,34 +328,41 @@ fn expand_variants(file: &SweepFile) -> Result<Vec<Perturbation>, InvalidSetting
         (None, true) => file.variant.clone(),
         (None, false) => vec![Perturbation::default()],
         (Some(g), false) => {
-            let or_one = |v: Vec<f64>| if v.is_empty() { vec![1.0] } else { v };
-            let mut out = Vec::new();
-            for &e in &or_one(g.youngs_modulus_scale.to_vec()) {
-                for &r in &or_one(g.fracture_toughness_scale.to_vec()) {
-                    for &mu in &or_one(g.friction_scale.to_vec()) {
-                        for &size in &or_one(g.size_scale.to_vec()) {
-                            for knife in &opt(g.knife.to_vec()) {
-                                for &noise in &opt(g.force_noise.to_vec()) {
-                                    for &bias in &opt(g.force_bias.clone()) {
-                                        for &seed in &opt(g.seed.to_vec()) {
-                                            out.push(Perturbation {
-                                                youngs_modulus_scale: e,
-                                                fracture_toughness_scale: r,
-                                                friction_scale: mu,
-                                                size_scale: size,
-                                                knife: knife.clone(),
-                                                force_noise: noise,
-                                                force_bias: bias,
-                                                seed,
-                                            });
-                                        }
-                                    }
-                                }
-                            }
-                        }
-                    }
+            // The cross product, the first key slowest: each axis in turn
+            // splits every variant built so far.
+            let mut out = vec![Perturbation::default()];
+            fn axis<T: Clone>(
+                out: Vec<Perturbation>,
+                values: Vec<T>,
+                set: impl Fn(&mut Perturbation, T),
+            ) -> Vec<Perturbation> {
+                if values.is_empty() {
+                    return out;
                 }
+                out.into_iter()
+                    .flat_map(|p| values.iter().map(move |v| (p.clone(), v.clone())))
+                    .map(|(mut p, v)| {
+                        set(&mut p, v);
+                        p
+                    })
+                    .collect()
             }
+            out = axis(out, g.youngs_modulus_scale.to_vec(), |p, v| {
+                p.youngs_modulus_scale = v;
+            });
+            out = axis(out, g.fracture_toughness_scale.to_vec(), |p, v| {
+                p.fracture_toughness_scale = v;
+            });
+            out = axis(out, g.friction_scale.to_vec(), |p, v| p.friction_scale = v);
+            out = axis(out, g.size_scale.to_vec(), |p, v| p.size_scale = v);
+            out = axis(out, g.knife.to_vec(), |p, v| p.knife = Some(v));
+            out = axis(out, g.force_noise.to_vec(), |p, v| p.force_noise = Some(v));
+            out = axis(out, g.force_bias.clone(), |p, v| p.force_bias = Some(v));
+            out = axis(out, g.seed.to_vec(), |p, v| p.seed = Some(v));
+            out = axis(out, g.z0.to_vec(), |p, v| p.z0 = Some(v));
+            out = axis(out, g.blade_budget.to_vec(), |p, v| {
+                p.blade_budget = Some(v)
+            });
             out
         }
     };
@@ -368,16 +388,6 @@ fn expand_variants(file: &SweepFile) -> Result<Vec<Perturbation>, InvalidSetting
     Ok(variants)
 }
 
-/// The values of an optional axis: `None` alone (the scenario's) when the
-/// list is empty.
-fn opt<T>(v: Vec<T>) -> Vec<Option<T>> {
-    if v.is_empty() {
-        vec![None]
-    } else {
-        v.into_iter().map(Some).collect()
-    }
-}
-
 /// The controller settings of every `[[controllers]]` entry, in order:
 /// per entry, per kind, the grid's cross product (or the listed sets).
 fn expand_settings(entries: &[ControllerSweep]) -> Result<Vec<ControllerSetting>, InvalidSetting> {
@@ -396,37 +406,38 @@ fn expand_settings(entries: &[ControllerSweep]) -> Result<Vec<ControllerSetting>
             return Err(InvalidSetting::new(
                 at("kind"),
                 "missing",
-                "one of mpc, press, slice:XI, force:N, or a list of them",
+                "one of mpc, press, slice:XI, force:N, or a list of them; or best-constant",
             ));
         }
-        if !entry.grid.is_empty() && !entry.sets.is_empty() {
-            return Err(InvalidSetting::new(
-                at("sets"),
-                format!("{} listed", entry.sets.len()),
-                "give either a grid or sets, not both",
-            ));
-        }
-        let points: Vec<Vec<(String, toml::Value)>> = if entry.sets.is_empty() {
-            let axes = grid_axes(&entry.grid);
-            if let Some((k, _)) = axes.iter().find(|(_, vs)| vs.is_empty()) {
-                return Err(InvalidSetting::new(
-                    at(&format!("grid.{k}")),
-                    "[]",
-                    "needs at least one value",
-                ));
+        if kinds.iter().any(|k| k == BEST_CONSTANT_KIND) {
+            for setting in best_constant_grid(entry, i)? {
+                if out.contains(&setting) {
+                    return Err(InvalidSetting::new(
+                        at("kind"),
+                        BEST_CONSTANT_KIND,
+                        "the same setting twice: list best-constant once",
+                    ));
+                }
+                out.push(setting);
             }
-            cross_product(&axes)
-        } else {
-            entry.sets.iter().map(flat_keys).collect()
-        };
+            continue;
+        }
+        if let Some(n) = entry.points {
+            return Err(InvalidSetting::new(
+                at("points"),
+                n,
+                "only for kind = \"best-constant\"",
+            ));
+        }
+        let points = override_points(entry, i)?;
         for text in &kinds {
             let choice: ControllerChoice = text.parse().map_err(|e: InvalidSetting| {
                 InvalidSetting::new(at("kind"), &e.value, e.allowed)
             })?;
             for overrides in &points {
                 let setting = ControllerSetting {
-                    choice,
                     overrides: overrides.clone(),
+                    ..ControllerSetting::fixed(choice)
                 };
                 if out.contains(&setting) {
                     return Err(InvalidSetting::new(
@@ -440,6 +451,77 @@ fn expand_settings(entries: &[ControllerSweep]) -> Result<Vec<ControllerSetting>
         }
     }
     Ok(out)
+}
+
+/// The settings of a `best-constant` entry (index `i` in the sweep): one
+/// per grid point and set of other keys (its `grid` or `sets`, e.g. the
+/// `overtravel` every controller of the sweep gets; the point slowest). It
+/// stands alone: no other kind, and the ratio is the grid's (no `kind` key).
+fn best_constant_grid(
+    entry: &ControllerSweep,
+    i: usize,
+) -> Result<Vec<ControllerSetting>, InvalidSetting> {
+    let at = |key: &str| format!("controllers[{i}].{key}");
+    if entry.kind.to_vec().len() > 1 {
+        return Err(InvalidSetting::new(
+            at("kind"),
+            BEST_CONSTANT_KIND,
+            "stands alone in its [[controllers]] table: no other kind",
+        ));
+    }
+    let others = override_points(entry, i)?;
+    if let Some((key, _)) = others.iter().flatten().find(|(k, _)| k == "kind") {
+        return Err(InvalidSetting::new(
+            at(key),
+            BEST_CONSTANT_KIND,
+            "the grid sets the ratio: no `kind` key",
+        ));
+    }
+    let points = entry.points.unwrap_or(SEARCH_POINTS);
+    if !(2..=MAX_POINTS).contains(&points) {
+        return Err(InvalidSetting::new(
+            at("points"),
+            points,
+            format!("must be in 2..={MAX_POINTS}"),
+        ));
+    }
+    Ok((0..points)
+        .flat_map(|index| {
+            others.iter().map(move |overrides| ControllerSetting {
+                overrides: overrides.clone(),
+                grid_point: Some(ConstantGridPoint { index, points }),
+                ..ControllerSetting::fixed(ControllerChoice::Press)
+            })
+        })
+        .collect())
+}
+
+/// The sets of keys an entry (index `i`) lists: its grid's cross product,
+/// or its sets (not both); one empty set for neither.
+fn override_points(
+    entry: &ControllerSweep,
+    i: usize,
+) -> Result<Vec<Vec<(String, toml::Value)>>, InvalidSetting> {
+    let at = |key: &str| format!("controllers[{i}].{key}");
+    if !entry.grid.is_empty() && !entry.sets.is_empty() {
+        return Err(InvalidSetting::new(
+            at("sets"),
+            format!("{} listed", entry.sets.len()),
+            "give either a grid or sets, not both",
+        ));
+    }
+    if !entry.sets.is_empty() {
+        return Ok(entry.sets.iter().map(flat_keys).collect());
+    }
+    let axes = grid_axes(&entry.grid);
+    if let Some((k, _)) = axes.iter().find(|(_, vs)| vs.is_empty()) {
+        return Err(InvalidSetting::new(
+            at(&format!("grid.{k}")),
+            "[]",
+            "needs at least one value",
+        ));
+    }
+    Ok(cross_product(&axes))
 }
 
 /// The grid's axes: every leaf key (dotted below the grid table) with its
@@ -561,6 +643,113 @@ mod tests {
             ]
         );
         assert_eq!(s.weightings.len(), 5);
+    }
+
+    #[test]
+    fn variant_grids_cross_the_place_and_the_blade_first_key_slowest() {
+        let s = parse(
+            r#"
+            scenarios = ["loop-potato-whole"]
+            [variants]
+            size_scale = [0.8, 1.0]
+            z0 = [0.03, 0.06]
+            blade_budget = 0.01
+            [[controllers]]
+            kind = "mpc"
+        "#,
+        )
+        .unwrap();
+        let v: Vec<(f64, Option<f64>, Option<f64>)> = s
+            .variants
+            .iter()
+            .map(|p| (p.size_scale, p.z0, p.blade_budget))
+            .collect();
+        assert_eq!(
+            v,
+            [
+                (0.8, Some(0.03), Some(0.01)),
+                (0.8, Some(0.06), Some(0.01)),
+                (1.0, Some(0.03), Some(0.01)),
+                (1.0, Some(0.06), Some(0.01)),
+            ]
+        );
+        let e = error(
+            r#"
+            scenarios = ["loop-potato-whole"]
+            [variants]
+            z0 = 0.15
+            [[controllers]]
+            kind = "mpc"
+        "#,
+        );
+        assert!(
+            e.starts_with("s.toml: `variants.z0` = 0.15: must be in [0.0150, 0.1100] m"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn a_best_constant_grid_is_one_setting_per_point_and_stands_alone() {
+        let base = r#"
+            scenarios = ["loop-potato-whole"]
+            [[controllers]]
+            kind = "mpc"
+            [[controllers]]
+            kind = "best-constant"
+            points = 4
+        "#;
+        let s = parse(base).unwrap();
+        let labels: Vec<String> = s.settings.iter().map(ControllerSetting::label).collect();
+        assert_eq!(
+            labels,
+            [
+                "mpc",
+                "best-constant:0/3",
+                "best-constant:1/3",
+                "best-constant:2/3",
+                "best-constant:3/3"
+            ]
+        );
+        let e = error(&base.replace("points = 4", "points = 1"));
+        assert_eq!(e, "s.toml: `controllers[1].points` = 1: must be in 2..=21");
+        let e = error(&base.replace("kind = \"mpc\"", "kind = \"mpc\"\npoints = 3"));
+        assert!(
+            e.starts_with("s.toml: `controllers[0].points` = 3: only for kind"),
+            "{e}"
+        );
+        let e = error(&base.replace(
+            "kind = \"best-constant\"",
+            "kind = [\"best-constant\", \"press\"]",
+        ));
+        assert!(e.contains("stands alone"), "{e}");
+        let e = error(&base.replace("points = 4", "grid = { kind = \"press\" }"));
+        assert!(e.contains("no `kind` key"), "{e}");
+        // Other keys cross the points, the point slowest.
+        let s = parse(&base.replace(
+            "points = 4",
+            "points = 2\ngrid = { overtravel = [0.004, 0.01] }",
+        ))
+        .unwrap();
+        let grid: Vec<(String, String)> = s.settings[1..]
+            .iter()
+            .map(|c| (c.label(), c.overrides[0].1.to_string()))
+            .collect();
+        let pair = |a: &str, b: &str| (a.to_string(), b.to_string());
+        assert_eq!(
+            grid,
+            [
+                pair("best-constant:0/1", "0.004"),
+                pair("best-constant:0/1", "0.01"),
+                pair("best-constant:1/1", "0.004"),
+                pair("best-constant:1/1", "0.01"),
+            ]
+        );
+        let e =
+            error(&(base.to_string() + "[[controllers]]\nkind = \"best-constant\"\npoints = 4\n"));
+        assert!(e.contains("list best-constant once"), "{e}");
+        // Without `points`: compare's six.
+        let s = parse(&base.replace("points = 4", "")).unwrap();
+        assert_eq!(s.settings.len(), 1 + 6);
     }
 
     fn error(text: &str) -> String {
