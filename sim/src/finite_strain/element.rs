@@ -53,8 +53,6 @@ pub(crate) type NodalDisplacements = [[f64; 3]; 4];
 pub(crate) struct QuadGeometry {
     /// ∂N_a/∂X_J at each point, m⁻¹.
     pub grads: [[[f64; 2]; 4]; 5],
-    /// Shape-function values at each point.
-    pub shapes: [[f64; 4]; 5],
     /// Integration weight (Jacobian × rule weight) at each point, m²; the
     /// centre's is the element area (one-point rule).
     pub weights: [f64; 5],
@@ -65,7 +63,6 @@ impl QuadGeometry {
     /// if the element is inverted or degenerate at any point.
     pub fn new(p: &[[f64; 2]; 4]) -> Option<Self> {
         let mut grads = [[[0.0; 2]; 4]; 5];
-        let mut shapes = [[0.0; 4]; 5];
         let mut weights = [0.0; 5];
         for (q, &(xi, eta)) in POINTS.iter().enumerate() {
             let dn = [
@@ -73,12 +70,6 @@ impl QuadGeometry {
                 [(1.0 - eta) / 4.0, -(1.0 + xi) / 4.0],
                 [(1.0 + eta) / 4.0, (1.0 + xi) / 4.0],
                 [-(1.0 + eta) / 4.0, (1.0 - xi) / 4.0],
-            ];
-            shapes[q] = [
-                (1.0 - xi) * (1.0 - eta) / 4.0,
-                (1.0 + xi) * (1.0 - eta) / 4.0,
-                (1.0 + xi) * (1.0 + eta) / 4.0,
-                (1.0 - xi) * (1.0 + eta) / 4.0,
             ];
             // jac[k][l] = ∂X_l/∂ξ_k
             let mut jac = [[0.0; 2]; 2];
@@ -102,11 +93,7 @@ impl QuadGeometry {
             }
             weights[q] = if q == CENTRE { 4.0 * det } else { det };
         }
-        Some(Self {
-            grads,
-            shapes,
-            weights,
-        })
+        Some(Self { grads, weights })
     }
 
     /// Deformation gradient at point `q` for nodal displacements `u`.

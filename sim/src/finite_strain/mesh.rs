@@ -4,7 +4,15 @@
 //! Node columns run from the symmetry plane X = 0 to the side X = L/2, node
 //! rows from the clamped base Y = 0 to the free top Y = B. Near the wire
 //! (X and B − Y within the fine zone) the spacing is uniform, R divided by the
-//! elements per radius; beyond, it grows geometrically up to a largest size.
+//! elements per radius for the rows and by `column_refinement` times as many
+//! for the columns; beyond, it grows geometrically up to a largest size.
+//!
+//! **Tall, narrow elements near the wire.** Under deep pressing the surface
+//! under the wire stretches about threefold along itself and thins about
+//! threefold, so reference elements three times taller than wide come out
+//! about square where the surface stress is read. The stress under the wire,
+//! and with it the nucleation depth under pressing, depends on the column
+//! spacing and hardly on the row spacing (docs/seed001.md, "Mesh").
 
 /// A mesh of bilinear quadrilaterals (Q4).
 #[derive(Debug, Clone)]
@@ -71,7 +79,8 @@ impl SlabMesh {
     }
 
     /// The half slab of width `half_width` and depth `depth` (m), graded
-    /// from spacing `fine` (m) within `fine_extent` (m) of the wire's line
+    /// from row spacing `fine` (m) and column spacing `fine /
+    /// column_refinement` within `fine_extent` (m) of the wire's line
     /// (X = 0, Y = depth) by `ratio` up to `largest` (m).
     pub fn half_slab(
         half_width: f64,
@@ -80,8 +89,10 @@ impl SlabMesh {
         fine_extent: f64,
         ratio: f64,
         largest: f64,
+        column_refinement: usize,
     ) -> Self {
-        let xs = graded_coordinates(half_width, fine, fine_extent, ratio, largest);
+        let column = fine / column_refinement as f64;
+        let xs = graded_coordinates(half_width, column, fine_extent, ratio, largest);
         let down = graded_coordinates(depth, fine, fine_extent, ratio, largest);
         let ys: Vec<f64> = down.iter().rev().map(|s| depth - s).collect();
         Self::structured(xs, ys)
@@ -114,14 +125,18 @@ mod tests {
     #[test]
     fn graded_mesh_is_fine_near_the_wire_and_covers_the_half_slab() {
         let r = 150e-6;
-        let m = SlabMesh::half_slab(20e-3, 40e-3, r / 6.0, 4.0 * r, 1.25, 2e-3);
+        let m = SlabMesh::half_slab(20e-3, 40e-3, r / 6.0, 4.0 * r, 1.25, 2e-3, 3);
         let xs: Vec<f64> = m.top.iter().map(|&n| m.nodes[n][0]).collect();
         assert_eq!(xs[0], 0.0);
         assert_eq!(*xs.last().unwrap(), 20e-3);
         assert_eq!(*m.ys.last().unwrap(), 40e-3);
         assert_eq!(m.ys[0], 0.0);
-        // Uniform spacing R/6 within the fine zone.
-        for w in xs.windows(2).take(24) {
+        // Uniform columns R/18 and rows R/6 within the fine zone.
+        for w in xs.windows(2).take(72) {
+            assert!((w[1] - w[0] - r / 18.0).abs() < 1e-15);
+        }
+        let rows: Vec<f64> = m.ys.iter().rev().map(|y| 40e-3 - y).collect();
+        for w in rows.windows(2).take(24) {
             assert!((w[1] - w[0] - r / 6.0).abs() < 1e-15);
         }
         assert!(xs.windows(2).all(|w| w[1] - w[0] <= 2e-3 * 1.3 + 1e-12));

@@ -8,7 +8,9 @@
 //! (graded half-slab mesh), `system` (assembly and sparse Cholesky, faer),
 //! `newton` (Newton's method with an energy line search), `wire_contact`
 //! (penalty normal contact, regularised Coulomb friction along the wire),
-//! `surface_stress` (σ₁ along the surface and over the slab),
+//! `surface_stress` (σ₁ over the surface cells and over the slab),
+//! `nucleation_envelope` (the nucleation loads scaled by μR, as the cutting
+//! model's sections use them),
 //! `seed_comparison` (the seed's observations side by side), `slab`
 //! ([`WireSlab`]: load stepping, forces, nucleation), `sweep` (the kinematic
 //! angles), `settings`, `error`.
@@ -18,6 +20,7 @@ mod error;
 mod mesh;
 mod neo_hookean;
 mod newton;
+mod nucleation_envelope;
 mod seed_comparison;
 mod settings;
 mod slab;
@@ -29,6 +32,7 @@ mod wire_contact;
 pub use error::FiniteStrainError;
 pub use neo_hookean::{NeoHookean, largest_principal};
 pub use newton::NewtonReport;
+pub use nucleation_envelope::{ENVELOPE_POINTS, NucleationEnvelope};
 pub use seed_comparison::SeedComparison;
 pub use settings::{Indenter, SideSupport, WireSlabSettings};
 pub use slab::{IndentationRun, Nucleation, SlabState, WireSlab, WireSlabError};

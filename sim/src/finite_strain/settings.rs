@@ -52,14 +52,19 @@ pub struct WireSlabSettings {
     pub sides: SideSupport,
     /// What presses on the surface (default `wire`).
     pub indenter: Indenter,
-    /// Elements per wire radius in the fine zone (default 6).
+    /// Element rows per wire radius in the fine zone (default 6).
     pub elements_per_radius: usize,
+    /// Element columns of the fine zone per element row: its elements are
+    /// this many times taller than wide, so that the surface under the wire,
+    /// stretched about threefold along itself at nucleation, is resolved
+    /// along the wire's circumference (default 3; 1 = square elements).
+    pub column_refinement: usize,
     /// Extent of the uniformly fine zone from the wire's line, in wire radii
-    /// (default 4), both across and down.
+    /// (default 2), both across and down.
     pub fine_zone_radii: f64,
-    /// Growth ratio of element sizes beyond the fine zone (default 1.3).
+    /// Growth ratio of element sizes beyond the fine zone (default 1.5).
     pub grading_ratio: f64,
-    /// Largest element size, m (default 2e-3).
+    /// Largest element size, m (default 4e-3).
     pub max_element_size: f64,
     /// Contact penalty κ: contact pressure κμ per penetration R
     /// (dimensionless, default 1e3).
@@ -74,6 +79,10 @@ pub struct WireSlabSettings {
     pub max_depth: f64,
     /// Nucleation stress σ* as a multiple of μ (default 2, seed 001).
     pub nucleation_stress_ratio: f64,
+    /// Side ℓ of the square surface cell over which σ₁ is averaged for the
+    /// nucleation criterion, in wire radii (default 0.25: the node spacing
+    /// 100R/400 of seed 001's 3D slab, whose cells' σ₁ it compares with σ*).
+    pub nucleation_cell_radii: f64,
     /// Newton tolerance on the out-of-balance force, relative to μR
     /// (dimensionless, default 1e-9).
     pub newton_tolerance: f64,
@@ -96,14 +105,16 @@ impl Default for WireSlabSettings {
             sides: SideSupport::Roller,
             indenter: Indenter::Wire,
             elements_per_radius: 6,
-            fine_zone_radii: 4.0,
-            grading_ratio: 1.3,
-            max_element_size: 2e-3,
+            column_refinement: 3,
+            fine_zone_radii: 2.0,
+            grading_ratio: 1.5,
+            max_element_size: 4e-3,
             contact_penalty: 1e3,
             friction_coefficient: 1.0,
             depth_step: 20e-6,
             max_depth: 8e-3,
             nucleation_stress_ratio: 2.0,
+            nucleation_cell_radii: 0.25,
             newton_tolerance: 1e-9,
             max_newton_iterations: 40,
             contact_passes: 8,
@@ -146,12 +157,13 @@ impl WireSlabSettings {
         within("slab_width", self.slab_width, 20.0 * r, 1e4 * r)?;
         within("slab_depth", self.slab_depth, 20.0 * r, 1e4 * r)?;
         count_within("elements_per_radius", self.elements_per_radius, 2, 64)?;
+        count_within("column_refinement", self.column_refinement, 1, 8)?;
         within("fine_zone_radii", self.fine_zone_radii, 1.0, 9.0)?;
         within("grading_ratio", self.grading_ratio, 1.0, 2.0)?;
         within(
             "max_element_size",
             self.max_element_size,
-            r / self.elements_per_radius as f64,
+            r / (self.elements_per_radius * self.column_refinement) as f64,
             self.slab_depth.max(self.slab_width),
         )?;
         within("contact_penalty", self.contact_penalty, 10.0, 1e7)?;
@@ -175,10 +187,21 @@ impl WireSlabSettings {
             1e-3,
             1e3,
         )?;
+        within(
+            "nucleation_cell_radii",
+            self.nucleation_cell_radii,
+            0.05,
+            2.0,
+        )?;
         within("newton_tolerance", self.newton_tolerance, 1e-14, 1e-3)?;
         count_within("max_newton_iterations", self.max_newton_iterations, 1, 1000)?;
         count_within("contact_passes", self.contact_passes, 1, 100)?;
         Ok(())
+    }
+
+    /// Side ℓ of the nucleation criterion's surface cell, m.
+    pub fn nucleation_cell(&self) -> f64 {
+        self.nucleation_cell_radii * self.wire_radius
     }
 
     /// Nucleation stress σ* = ratio · μ, Pa.

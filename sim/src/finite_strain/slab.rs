@@ -43,9 +43,12 @@ pub struct SlabState {
     pub force_normal: f64,
     /// Tangential force F_t on the wire (resisting its travel), N.
     pub force_tangential: f64,
-    /// Largest principal Cauchy stress on the top surface, Pa.
+    /// Largest principal Cauchy stress at the top surface, averaged over the
+    /// nucleation criterion's surface cell, at the cell where it is largest,
+    /// Pa.
     pub surface_stress: f64,
-    /// Where it sits: reference distance from the wire's plane, m.
+    /// Where that cell sits: reference distance of its centre from the
+    /// wire's plane, m.
     pub surface_stress_position: f64,
     /// Reference distance from the wire's plane of the outermost node in
     /// contact, m (0 without contact).
@@ -149,6 +152,7 @@ impl WireSlab {
             s.fine_zone_radii * r,
             s.grading_ratio,
             s.max_element_size,
+            s.column_refinement,
         );
         let half_width = 0.5 * s.slab_width;
         let mut prescribed = vec![false; 3 * mesh.nodes.len()];
@@ -361,7 +365,7 @@ impl WireSlab {
                 extent = s.wire_radius;
             }
         }
-        let sigma = surface_maximum(&surface_profile(&self.system, &self.u));
+        let sigma = surface_maximum(&self.surface_profile());
         SlabState {
             depth: self.depth,
             travel: self.depth * self.angle.tan(),
@@ -379,9 +383,10 @@ impl WireSlab {
         }
     }
 
-    /// σ₁ along the top surface now.
+    /// σ₁ averaged over the nucleation criterion's surface cells now (see
+    /// [`SurfaceStress`]).
     pub fn surface_profile(&self) -> Vec<SurfaceStress> {
-        surface_profile(&self.system, &self.u)
+        surface_profile(&self.system, &self.u, self.settings.nucleation_cell())
     }
 
     /// The deformed half slab with σ₁ per element now.

@@ -18,7 +18,7 @@
 use faer::sparse::linalg::solvers::{Llt, SymbolicLlt};
 use faer::sparse::{Argsort, Pair, SparseColMat, SymbolicSparseColMat};
 
-use super::element::{NodalDisplacements, QuadGeometry};
+use super::element::{CENTRE, NodalDisplacements, QuadGeometry};
 use super::error::FiniteStrainError;
 use super::mesh::SlabMesh;
 use super::neo_hookean::NeoHookean;
@@ -234,6 +234,15 @@ impl System {
             }
         }
         Some(Evaluation { energy })
+    }
+
+    /// Size of the summands of the total energy, J/m: 3μ/2 (the isochoric
+    /// energy density's terms μ/2·I₁J^(−2/3) at small strain) times the
+    /// half slab's reference area. The energy's round-off is a small multiple
+    /// of 10⁻¹⁶ of it, whatever the energy itself.
+    pub fn energy_scale(&self) -> f64 {
+        let area: f64 = self.geometry.iter().map(|g| g.weights[CENTRE]).sum();
+        1.5 * self.material.shear_modulus * area
     }
 
     /// Largest diagonal entry of the assembled Hessian, N/m².
