@@ -207,7 +207,7 @@ pub struct Scenario {
 
 /// Scenarios shipped with shearcut (`config/scenarios/*.toml`), available by
 /// name as well as by path; `shearcut scenarios` lists them.
-pub const BUILT_IN_SCENARIOS: [(&str, &str); 11] = [
+pub const BUILT_IN_SCENARIOS: [(&str, &str); 13] = [
     (
         "fig7-potato",
         include_str!("../config/scenarios/fig7-potato.toml"),
@@ -251,6 +251,14 @@ pub const BUILT_IN_SCENARIOS: [(&str, &str); 11] = [
     (
         "loop-eggplant-whole",
         include_str!("../config/scenarios/loop-eggplant-whole.toml"),
+    ),
+    (
+        "seed001-agar-section",
+        include_str!("../config/scenarios/seed001-agar-section.toml"),
+    ),
+    (
+        "seed001-agar-section-surface-stress",
+        include_str!("../config/scenarios/seed001-agar-section-surface-stress.toml"),
     ),
 ];
 
@@ -433,7 +441,9 @@ impl ScenarioFile {
             .map_err(|e| e.prefixed("material"))?;
         let knife = self.knife.resolve().map_err(|e| e.prefixed("knife"))?;
         self.object.validate().map_err(|e| e.prefixed("object"))?;
-        self.section.validate().map_err(|e| e.prefixed("section"))?;
+        self.section
+            .validate_for(&material)
+            .map_err(|e| e.prefixed("section"))?;
         self.motion
             .validate(self.object.nominal_height(), self.section.row_spacing)
             .map_err(|e| e.prefixed("motion"))?;
