@@ -216,7 +216,7 @@ pub struct Scenario {
 
 /// Scenarios shipped with shearcut (`config/scenarios/*.toml`), available by
 /// name as well as by path; `shearcut scenarios` lists them.
-pub const BUILT_IN_SCENARIOS: [(&str, &str); 12] = [
+pub const BUILT_IN_SCENARIOS: [(&str, &str); 14] = [
     (
         "fig7-potato",
         include_str!("../config/scenarios/fig7-potato.toml"),
@@ -264,6 +264,14 @@ pub const BUILT_IN_SCENARIOS: [(&str, &str); 12] = [
     (
         "loop-eggplant-whole-coarse",
         include_str!("../config/scenarios/loop-eggplant-whole-coarse.toml"),
+    ),
+    (
+        "seed001-agar-section",
+        include_str!("../config/scenarios/seed001-agar-section.toml"),
+    ),
+    (
+        "seed001-agar-section-surface-stress",
+        include_str!("../config/scenarios/seed001-agar-section-surface-stress.toml"),
     ),
 ];
 
@@ -446,7 +454,9 @@ impl ScenarioFile {
             .map_err(|e| e.prefixed("material"))?;
         let knife = self.knife.resolve().map_err(|e| e.prefixed("knife"))?;
         self.object.validate().map_err(|e| e.prefixed("object"))?;
-        self.section.validate().map_err(|e| e.prefixed("section"))?;
+        self.section
+            .validate_for(&material)
+            .map_err(|e| e.prefixed("section"))?;
         self.motion
             .validate(self.object.nominal_height(), self.section.row_spacing)
             .map_err(|e| e.prefixed("motion"))?;

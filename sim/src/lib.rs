@@ -30,6 +30,6 @@ pub use material::{Material, MaterialPreset};
 pub use mechanics::{SlicePushRatio, toughness_ratio};
 pub use object::{Cuboid, ObjectShape};
 pub use section::{
-    CrossSection, SectionError, SectionGeometry, SectionSettings, SectionStep, StepStatus,
-    WorkSplit,
+    CrossSection, FirstFracture, SectionError, SectionGeometry, SectionSettings, SectionStep,
+    StepStatus, WorkSplit,
 };

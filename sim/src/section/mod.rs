@@ -28,5 +28,5 @@ mod verification;
 
 pub use error::SectionError;
 pub use geometry::SectionGeometry;
-pub use settings::SectionSettings;
+pub use settings::{FirstFracture, SURFACE_STRESS_MIN_POISSON_RATIO, SectionSettings};
 pub use simulation::{CrossSection, SectionStep, StepStatus, WorkSplit};

@@ -3,10 +3,35 @@
 use serde::{Deserialize, Serialize};
 
 use crate::invalid_setting::InvalidSetting;
+use crate::material::Material;
 use crate::physical_range::{
     BRACKET_DOUBLINGS, ELEMENT_WIDTH, GRADING_RATIO, INITIAL_CRACK_EXTENSION, ROOT_ITERATIONS,
     ROOT_TOLERANCE, ROW_SPACING, check_count,
 };
+
+/// What sets off a section's first fracture.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum FirstFracture {
+    /// Seed 000's energy balance with the initial toughness: the crack first
+    /// grows when R(δ₀) ≥ r(ξ,ν)·R'_c (eqs. 1 and 6). The default.
+    #[default]
+    Toughness,
+    /// Seed 001's surface stress: the crack first grows when the edge's load
+    /// per unit length (F_n, F_t) reaches the loads at which the
+    /// finite-strain slab's surface σ₁ reaches σ* = 2μ
+    /// ([`NucleationEnvelope::SEED_GEL`](crate::finite_strain::NucleationEnvelope::SEED_GEL),
+    /// scaled by μR with R the edge flat's width: a wire knife's flat is R
+    /// wide); from then on it grows by the energy balance with R_c (R'_c
+    /// plays no part, except as a skin layer's toughness). For nearly
+    /// incompressible soft solids (Poisson ratio at least 0.45), like the
+    /// seed's gel (K = 30μ) whose envelope it is.
+    SurfaceStress,
+}
+
+/// Smallest Poisson ratio for [`FirstFracture::SurfaceStress`]: the
+/// envelope is that of a gel with K = 30μ (ν = 0.4835); ν = 0.45 is K ≈ 9.7μ.
+pub const SURFACE_STRESS_MIN_POISSON_RATIO: f64 = 0.45;
 
 /// Settings of one cross section (DESIGN §3.2; seed 000 §III.C).
 ///
@@ -45,6 +70,10 @@ pub struct SectionSettings {
     /// Most root-search iterations on the bracket per step (default 200; in
     /// [60, 10000]).
     pub max_bisection_iterations: u32,
+    /// What sets off the first fracture: `"toughness"` (R'_c, seed 000; the
+    /// default) or `"surface_stress"` (σ* = 2μ, seed 001; soft gels only,
+    /// Poisson ratio ≥ 0.45).
+    pub first_fracture: FirstFracture,
 }
 
 impl Default for SectionSettings {
@@ -58,6 +87,7 @@ impl Default for SectionSettings {
             bisection_tolerance: 1.0e-7,
             max_bracket_doublings: 60,
             max_bisection_iterations: 200,
+            first_fracture: FirstFracture::Toughness,
         }
     }
 }
@@ -90,6 +120,27 @@ impl SectionSettings {
             lo,
             hi,
         )
+    }
+
+    /// [`Self::validate`], and that the first-fracture criterion suits
+    /// `material`: the surface-stress criterion needs a Poisson ratio of at
+    /// least [`SURFACE_STRESS_MIN_POISSON_RATIO`].
+    pub fn validate_for(&self, material: &Material) -> Result<(), InvalidSetting> {
+        self.validate()?;
+        if self.first_fracture == FirstFracture::SurfaceStress
+            && (material.poisson_ratio.is_nan()
+                || material.poisson_ratio < SURFACE_STRESS_MIN_POISSON_RATIO)
+        {
+            return Err(InvalidSetting::new(
+                "first_fracture",
+                "surface_stress",
+                format!(
+                    "needs a nearly incompressible soft solid (Poisson ratio >= {SURFACE_STRESS_MIN_POISSON_RATIO}); the material's is {}",
+                    material.poisson_ratio
+                ),
+            ));
+        }
+        Ok(())
     }
 }
 

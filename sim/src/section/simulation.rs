@@ -10,7 +10,8 @@ use super::error::SectionError;
 use super::fracture::{Extension, solve_extension, toughness_ratio};
 use super::geometry::SectionGeometry;
 use super::mesh::SectionMesh;
-use super::settings::SectionSettings;
+use super::settings::{FirstFracture, SectionSettings};
+use crate::finite_strain::NucleationEnvelope;
 
 /// What a knife step did.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -119,6 +120,9 @@ struct Model {
     height: f64,
     /// Nodes and elements (kept for callers that inspect the mesh).
     elements: usize,
+    /// μ·R with R the edge flat's width, N/m: the scale of the loads of
+    /// seed 001's nucleation envelope ([`FirstFracture::SurfaceStress`]).
+    nucleation_scale: f64,
 }
 
 /// Result of evaluating a configuration (full section, both halves).
@@ -217,6 +221,15 @@ struct State {
 /// and a safeguarded regula falsi on the bracket. In steady cutting of a deep section ΔU → 0, so
 /// F_n + ξ·F_t → r·R_c: the knife work per unit cut area is r·R_c.
 ///
+/// With [`FirstFracture::SurfaceStress`] (seed 001) the first fracture is
+/// not R'_c's: before it the crack grows only in a step whose end load per
+/// unit length (F_n, F_t), without growth, is on or beyond the
+/// finite-strain slab's nucleation envelope scaled by μb (b the edge flat's
+/// width, a wire's radius R); from that step on it grows by the balance with
+/// r·R_c. The criterion reads the present load only: the envelope was
+/// measured along straight paths at fixed θ, and a path that turns is judged
+/// by where its load stands, not by how it got there.
+///
 /// With a skin layer of thickness t ([`Material::skin_thickness`]) the
 /// toughness is R'_c for crack depths below t and R_c deeper, whatever the
 /// first-fracture flag says: an extension s from depth a₀ balances
@@ -258,7 +271,9 @@ impl CrossSection {
             .validate_domain()
             .map_err(|e| e.prefixed("material"))?;
         blade.validate().map_err(|e| e.prefixed("blade"))?;
-        settings.validate().map_err(|e| e.prefixed("section"))?;
+        settings
+            .validate_for(material)
+            .map_err(|e| e.prefixed("section"))?;
         let mesh = SectionMesh::new(geometry, blade.edge_width, settings)?;
         let line = CondensedLine::new(&mesh, material.youngs_modulus, material.poisson_ratio)?;
         let n = mesh.rows;
@@ -271,6 +286,7 @@ impl CrossSection {
             n,
             height: geometry.height_at_cut(),
             elements: mesh.elements.len(),
+            nucleation_scale: material.shear_modulus() * blade.edge_width,
         };
         let h = model.height;
         let step = SectionStep {
@@ -536,6 +552,20 @@ impl CrossSection {
                 st.drag + xi.min(f64::MAX) * t
             }
         };
+        // Seed 001's surface stress instead of R'_c: before the first
+        // fracture the crack may grow only once the edge's load at the end of
+        // the step, without growth, is on or beyond the nucleation envelope;
+        // then, as after it, by the balance with R_c.
+        let surface_stress =
+            model.settings.first_fracture == FirstFracture::SurfaceStress && !st.fractured;
+        let nucleated = surface_stress && {
+            let e = evaluate(model, ws, st.y_tip, y_edge1, drag_at(0.0), dn, dt_abs);
+            NucleationEnvelope::SEED_GEL.reached(
+                e.f_elastic_n() + e.f_fric_n,
+                e.f_t + e.f_fric_t,
+                model.nucleation_scale,
+            )
+        };
         let mut release = |s: f64| -> f64 {
             let e = evaluate(model, ws, st.y_tip - s, y_edge1, drag_at(s), dn, dt_abs);
             let w =
@@ -548,7 +578,7 @@ impl CrossSection {
         } else {
             f64::INFINITY
         };
-        let (trigger, target) = if st.fractured {
+        let (trigger, target) = if st.fractured || surface_stress {
             (r * mat.fracture_toughness, r * mat.fracture_toughness)
         } else {
             (
@@ -587,7 +617,9 @@ impl CrossSection {
         };
         let s_max = st.y_tip - model.h;
         let set = &model.settings;
-        let ext = if dn > 0.0 && trigger.is_finite() && s_max > 0.0 {
+        let ext = if surface_stress && !nucleated {
+            Extension::None
+        } else if dn > 0.0 && trigger.is_finite() && s_max > 0.0 {
             solve_extension(
                 &mut balance,
                 set.initial_crack_extension,
