@@ -73,6 +73,8 @@ struct Trace {
     work: Vec<f64>,
     /// Length of edge in contact, m.
     contact: Vec<f64>,
+    /// The plant's depth: the crack front's below the object's top, m.
+    crack: Vec<f64>,
     /// Edge depth at the plant's first fracture, m.
     fracture_depth: Option<f64>,
 }
@@ -86,6 +88,7 @@ impl Trace {
             t.force.push(s.force_vertical_n);
             t.work.push(s.work_j);
             t.contact.push(s.contact_length_m);
+            t.crack.push(s.crack_depth_m);
             if s.fractured && t.fracture_depth.is_none() {
                 t.fracture_depth = Some(s.displacement_m);
             }
@@ -177,6 +180,11 @@ struct Bias {
     onset_plant: f64,
     /// The model's onset depth d*(ξ) at the ratio executed then, m.
     onset_model: f64,
+    /// The edge's depth when the plant's crack front reached the target,
+    /// m (NaN if it did not): the MPC plans to the target as edge depth.
+    edge_at_completion: f64,
+    /// The plant's work then, J (NaN if it did not).
+    work_at_completion: f64,
 }
 
 impl Bias {
@@ -248,6 +256,9 @@ fn bias(
         mean_over(d, &predicted.contact, 0.0, target),
         mean_over(d, &trace.contact, 0.0, target),
     );
+    let done = trace.crack.iter().position(|c| *c >= target);
+    b.edge_at_completion = done.map_or(f64::NAN, |i| d[i]);
+    b.work_at_completion = done.map_or(f64::NAN, |i| trace.work[i]);
     if let Some(f) = trace.fracture_depth {
         b.onset_plant = profile.section_depth(f);
         let xi = at_depth(d, &predicted.xi, f);
@@ -453,13 +464,13 @@ fn main() {
         }
     }
     println!(
-        "\n## Per motion\n\n| object | variant | motion | work, plant (J) | model (J) | total | work Q1 | Q2 | Q3 | Q4 | Fv Q1 | Q2 | Q3 | Q4 | contact | onset plant / model (mm) |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+        "\n## Per motion\n\n| object | variant | motion | work, plant (J) | model (J) | total | work Q1 | Q2 | Q3 | Q4 | Fv Q1 | Q2 | Q3 | Q4 | contact | onset plant / model (mm) | plant at completion: edge depth (mm), work (J) |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
     );
     for r in &results {
         let (o, v) = name(r);
         let b = &r.bias;
         println!(
-            "| {o} | {v} | {} | {:.4} | {:.4} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.2} / {:.2} |",
+            "| {o} | {v} | {} | {:.4} | {:.4} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.2} / {:.2} | {:.1}, {:.4} |",
             r.motion,
             b.work_measured,
             b.work_predicted,
@@ -475,6 +486,8 @@ fn main() {
             cell(b.contact),
             1e3 * b.onset_plant,
             1e3 * b.onset_model,
+            1e3 * b.edge_at_completion,
+            b.work_at_completion,
         );
     }
     println!(
@@ -569,6 +582,7 @@ mod tests {
             trace.force.push(profile.contact_length(d) * f.force_normal);
             trace.work.push(work);
             trace.contact.push(profile.contact_length(d));
+            trace.crack.push(d);
         }
         let p = predict(&trace, &model, &profile);
         let b = bias(&trace, &p, &model, &profile, target);
@@ -577,6 +591,7 @@ mod tests {
             assert!(b.work[k].abs() < 1e-9 && b.force[k].abs() < 1e-9, "{b:?}");
         }
         assert!(b.contact.abs() < 1e-9);
+        assert!((b.edge_at_completion - target).abs() < 1.1 * target / n as f64);
         // The onset: the model's own d*(0.5) on the cuboid, a fraction of
         // a millimetre for potato (seed 000 §V.B).
         assert!(b.onset_model > 0.0 && b.onset_model < 1e-3, "{b:?}");
