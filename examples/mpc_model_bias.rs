@@ -544,7 +544,7 @@ fn main() {
         );
     }
     println!(
-        "\n## Work against the constant ratio: the plant's and the model's\n\nWork to the target depth (J, by the edge's depth) at constant ratios 0, ½ and 1 of the cap: the plant's, the model's along the plant's motion, and the planner's for that ratio from rest (its stages' work terms); the plant's work to the target by its crack front in brackets; the saving is from pressing to the least (by the edge's depth).\n\n| object | variant | ratios | plant (J) | model (J) | planner (J) | plant's best | model's best | planner's best | saving: plant / model / planner |\n|---|---|---|---|---|---|---|---|---|---|"
+        "\n## Work against the constant ratio: the plant's and the model's\n\nWork to the target depth (J, by the edge's depth) at constant ratios 0, ½ and 1 of the cap: the plant's, the model's along the plant's motion, and the planner's for that ratio from rest (its stages' work terms); the plant's work to the target by its crack front in brackets; the least of each and the saving from pressing to it: the plant's by the edge's depth and [by the crack front], the model's, the planner's.\n\n| object | variant | ratios | plant (J) | model (J) | planner (J) | best: plant [crack] / model / planner | saving: plant [crack] / model / planner |\n|---|---|---|---|---|---|---|---|"
     );
     for (object, _) in sweep.scenarios.iter().enumerate() {
         for (vi, _) in variants.iter().enumerate() {
@@ -573,7 +573,7 @@ fn main() {
                 100.0 * (1.0 - least / press)
             };
             println!(
-                "| {o} | {v} | {} | {} | {} | {} | {} | {} | {} | {:.1} / {:.1} / {:.1} % |",
+                "| {o} | {v} | {} | {} | {} | {} | {} [{}] / {} / {} | {:.1} [{:.1}] / {:.1} / {:.1} % |",
                 list(&|r| format!("{}", r.xi.unwrap_or(f64::NAN))),
                 list(&|r| format!(
                     "{:.4} [{:.4}]",
@@ -582,9 +582,11 @@ fn main() {
                 list(&|r| format!("{:.4}", r.bias.work_predicted)),
                 list(&|r| format!("{:.4}", r.bias.planner)),
                 best(&|b| b.work_measured),
+                best(&|b| b.work_at_completion),
                 best(&|b| b.work_predicted),
                 best(&|b| b.planner),
                 saving(&|b| b.work_measured),
+                saving(&|b| b.work_at_completion),
                 saving(&|b| b.work_predicted),
                 saving(&|b| b.planner),
             );
