@@ -34,7 +34,9 @@
 //!
 //! Prints the tables in markdown: the bias per object and variant (the
 //! mean over the motions), the bias per motion, and the work against the
-//! constant ratio as the plant and as the model have it.
+//! constant ratio as the plant, the model along the plant's motion and the
+//! MPC's planner (its stages' work terms for that ratio from rest,
+//! [`planner_work`]) have it.
 
 use std::path::PathBuf;
 use std::sync::Mutex;
@@ -50,7 +52,7 @@ use shearcut::surrogates::surrogate_for;
 use shearcut::tune::controller_setting::ControllerSetting;
 use shearcut::tune::perturbation::Perturbation;
 use shearcut::tune::sweep_file::Sweep;
-use shearcut_controllers::mpc::DepthProfile;
+use shearcut_controllers::mpc::{DepthProfile, SliceModel, StageState, SurrogateModel};
 use shearcut_sim::surrogate::{CutState, ScaleFactors, Surrogate};
 
 /// Fractions of the variant's ratio cap run at a constant ratio.
@@ -73,6 +75,8 @@ struct Trace {
     work: Vec<f64>,
     /// Length of edge in contact, m.
     contact: Vec<f64>,
+    /// The plant's depth: the crack front's below the object's top, m.
+    crack: Vec<f64>,
     /// Edge depth at the plant's first fracture, m.
     fracture_depth: Option<f64>,
 }
@@ -86,6 +90,7 @@ impl Trace {
             t.force.push(s.force_vertical_n);
             t.work.push(s.work_j);
             t.contact.push(s.contact_length_m);
+            t.crack.push(s.crack_depth_m);
             if s.fractured && t.fracture_depth.is_none() {
                 t.fracture_depth = Some(s.displacement_m);
             }
@@ -160,6 +165,44 @@ fn predict(trace: &Trace, model: &Surrogate, profile: &DepthProfile) -> Predicti
     p
 }
 
+/// The work the MPC's planner prices a cut at constant ratio `xi` from
+/// rest at (J): its stages as `MpcPlanJob::replan` builds them from edge
+/// depth 0 before the first fracture — `stages` equal stages of the
+/// target depth, each at the sections' mean depth, the first with the
+/// onset's cost (the work to the fracture and the catch-up after it,
+/// `SliceModel::stage`), the later ones at the rates after the catch-up
+/// span (`SliceModel::catch_up_span`) — summed as L_0·W_onset +
+/// Σ Δd·L_k·w_k, the work terms of its objective at ξ̄ = `xi`.
+fn planner_work(
+    model: &SurrogateModel,
+    profile: &DepthProfile,
+    target: f64,
+    stages: usize,
+    xi: f64,
+) -> f64 {
+    let dd = target / stages as f64;
+    let s0 = profile.section_depth(0.0);
+    let state = |depth: f64, fractured: bool, since: f64| StageState {
+        depth,
+        height: profile.height(),
+        half_width: profile.half_width(),
+        fractured,
+        travel_since_fracture: since,
+    };
+    let span = model.catch_up_span(xi, &state(profile.section_depth(0.5 * dd), false, 0.0));
+    (0..stages)
+        .map(|k| {
+            let edge = (k as f64 + 0.5) * dd;
+            let depth = profile.section_depth(edge);
+            let since = if k == 0 { span } else { (depth - s0).max(span) };
+            let c = model.stage(xi, &state(depth, k > 0, since));
+            let length = profile.contact_length(edge);
+            let onset = if k == 0 { length * c.onset_work } else { 0.0 };
+            onset + dd * length * c.work_per_depth
+        })
+        .sum()
+}
+
 /// The biases of one run, per cent (predicted / measured − 1).
 #[derive(Debug, Clone, Copy, Default)]
 struct Bias {
@@ -177,6 +220,14 @@ struct Bias {
     onset_plant: f64,
     /// The model's onset depth d*(ξ) at the ratio executed then, m.
     onset_model: f64,
+    /// The edge's depth when the plant's crack front reached the target,
+    /// m (NaN if it did not): the MPC plans to the target as edge depth.
+    edge_at_completion: f64,
+    /// The plant's work then, J (NaN if it did not).
+    work_at_completion: f64,
+    /// What the MPC's planner prices a cut at the run's constant ratio
+    /// from rest at, J ([`planner_work`]; NaN for the MPC's own cut).
+    planner: f64,
 }
 
 impl Bias {
@@ -248,6 +299,9 @@ fn bias(
         mean_over(d, &predicted.contact, 0.0, target),
         mean_over(d, &trace.contact, 0.0, target),
     );
+    let done = trace.crack.iter().position(|c| *c >= target);
+    b.edge_at_completion = done.map_or(f64::NAN, |i| d[i]);
+    b.work_at_completion = done.map_or(f64::NAN, |i| trace.work[i]);
     if let Some(f) = trace.fracture_depth {
         b.onset_plant = profile.section_depth(f);
         let xi = at_depth(d, &predicted.xi, f);
@@ -295,17 +349,27 @@ fn run(job: &Job) -> Result<Outcome, String> {
     }
     let predicted = predict(&trace, &model, &profile);
     let target = setup.task.target_depth;
+    let xi = match job.choice {
+        ControllerChoice::Mpc | ControllerChoice::Force(_) => None,
+        ControllerChoice::Press => Some(0.0),
+        ControllerChoice::Slice(x) => Some(x),
+    };
+    let mut bias = bias(&trace, &predicted, &model, &profile, target);
+    bias.planner = xi.map_or(f64::NAN, |x| {
+        planner_work(
+            &SurrogateModel::new(model.clone()),
+            &profile,
+            target,
+            s.controller.mpc.stages,
+            x,
+        )
+    });
     Ok(Outcome {
         object: job.object,
         variant: job.variant,
         motion: job.choice.to_string(),
-        xi: match job.choice {
-            ControllerChoice::Mpc => None,
-            ControllerChoice::Press => Some(0.0),
-            ControllerChoice::Slice(x) => Some(x),
-            ControllerChoice::Force(_) => None,
-        },
-        bias: bias(&trace, &predicted, &model, &profile, target),
+        xi,
+        bias,
     })
 }
 
@@ -453,13 +517,13 @@ fn main() {
         }
     }
     println!(
-        "\n## Per motion\n\n| object | variant | motion | work, plant (J) | model (J) | total | work Q1 | Q2 | Q3 | Q4 | Fv Q1 | Q2 | Q3 | Q4 | contact | onset plant / model (mm) |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
+        "\n## Per motion\n\n| object | variant | motion | work, plant (J) | model (J) | total | work Q1 | Q2 | Q3 | Q4 | Fv Q1 | Q2 | Q3 | Q4 | contact | onset plant / model (mm) | plant at completion: edge depth (mm), work (J) |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|"
     );
     for r in &results {
         let (o, v) = name(r);
         let b = &r.bias;
         println!(
-            "| {o} | {v} | {} | {:.4} | {:.4} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.2} / {:.2} |",
+            "| {o} | {v} | {} | {:.4} | {:.4} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {:.2} / {:.2} | {:.1}, {:.4} |",
             r.motion,
             b.work_measured,
             b.work_predicted,
@@ -475,10 +539,12 @@ fn main() {
             cell(b.contact),
             1e3 * b.onset_plant,
             1e3 * b.onset_model,
+            1e3 * b.edge_at_completion,
+            b.work_at_completion,
         );
     }
     println!(
-        "\n## Work against the constant ratio: the plant's and the model's\n\nWork to the target depth (J) at constant ratios 0, ½ and 1 of the cap; the least of each marked; the saving is from pressing to the least.\n\n| object | variant | ratios | plant (J) | model (J) | plant's best | model's best | saving, plant | saving, model |\n|---|---|---|---|---|---|---|---|---|"
+        "\n## Work against the constant ratio: the plant's and the model's\n\nWork to the target depth (J, by the edge's depth) at constant ratios 0, ½ and 1 of the cap: the plant's, the model's along the plant's motion, and the planner's for that ratio from rest (its stages' work terms); the plant's work to the target by its crack front in brackets; the least of each and the saving from pressing to it: the plant's by the edge's depth and [by the crack front], the model's, the planner's.\n\n| object | variant | ratios | plant (J) | model (J) | planner (J) | best: plant [crack] / model / planner | saving: plant [crack] / model / planner |\n|---|---|---|---|---|---|---|---|"
     );
     for (object, _) in sweep.scenarios.iter().enumerate() {
         for (vi, _) in variants.iter().enumerate() {
@@ -507,14 +573,22 @@ fn main() {
                 100.0 * (1.0 - least / press)
             };
             println!(
-                "| {o} | {v} | {} | {} | {} | {} | {} | {:.1} % | {:.1} % |",
+                "| {o} | {v} | {} | {} | {} | {} | {} [{}] / {} / {} | {:.1} [{:.1}] / {:.1} / {:.1} % |",
                 list(&|r| format!("{}", r.xi.unwrap_or(f64::NAN))),
-                list(&|r| format!("{:.4}", r.bias.work_measured)),
+                list(&|r| format!(
+                    "{:.4} [{:.4}]",
+                    r.bias.work_measured, r.bias.work_at_completion
+                )),
                 list(&|r| format!("{:.4}", r.bias.work_predicted)),
+                list(&|r| format!("{:.4}", r.bias.planner)),
                 best(&|b| b.work_measured),
+                best(&|b| b.work_at_completion),
                 best(&|b| b.work_predicted),
+                best(&|b| b.planner),
                 saving(&|b| b.work_measured),
+                saving(&|b| b.work_at_completion),
                 saving(&|b| b.work_predicted),
+                saving(&|b| b.planner),
             );
         }
     }
@@ -569,6 +643,7 @@ mod tests {
             trace.force.push(profile.contact_length(d) * f.force_normal);
             trace.work.push(work);
             trace.contact.push(profile.contact_length(d));
+            trace.crack.push(d);
         }
         let p = predict(&trace, &model, &profile);
         let b = bias(&trace, &p, &model, &profile, target);
@@ -577,9 +652,32 @@ mod tests {
             assert!(b.work[k].abs() < 1e-9 && b.force[k].abs() < 1e-9, "{b:?}");
         }
         assert!(b.contact.abs() < 1e-9);
+        assert!((b.edge_at_completion - target).abs() < 1.1 * target / n as f64);
         // The onset: the model's own d*(0.5) on the cuboid, a fraction of
         // a millimetre for potato (seed 000 §V.B).
         assert!(b.onset_model > 0.0 && b.onset_model < 1e-3, "{b:?}");
+    }
+
+    /// The planner prices constant cuts of the potato cuboid least near
+    /// the material's optimum (ξ ≈ 0.6, docs/results.md's best constant
+    /// 0.543), not at pressing or at the largest ratio.
+    #[test]
+    fn the_planner_prices_the_cuboid_least_near_its_optimum() {
+        let s = Scenario::load("loop-potato-cuboid").unwrap();
+        let setup = LoopSetup::new(&s, ControllerChoice::Mpc).unwrap();
+        let profile = setup.profile.unwrap();
+        let model = SurrogateModel::new(surrogate_for(&s).unwrap());
+        let target = setup.task.target_depth;
+        let grid: Vec<f64> = (0..=10).map(|i| 0.25 * f64::from(i)).collect();
+        let works: Vec<f64> = grid
+            .iter()
+            .map(|&xi| planner_work(&model, &profile, target, 10, xi))
+            .collect();
+        let best = (0..grid.len())
+            .min_by(|&a, &b| works[a].total_cmp(&works[b]))
+            .unwrap();
+        assert!((0.25..=1.0).contains(&grid[best]), "{works:?}");
+        assert!(works.iter().all(|w| w.is_finite() && *w > 0.0));
     }
 
     #[test]
