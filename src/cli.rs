@@ -17,6 +17,15 @@ pub fn print(text: &str) -> Result<(), RunError> {
         .map_err(RunError::Stdout)
 }
 
+/// `println!` through [`print`]: evaluates to `Result<(), RunError>`, so a
+/// closed or full stdout is an error to return, not a panic.
+#[macro_export]
+macro_rules! outln {
+    ($($arg:tt)*) => {
+        $crate::cli::print(&format!("{}\n", format_args!($($arg)*)))
+    };
+}
+
 /// shearcut: robotic slicing of fruits and vegetables — a fracture-mechanics
 /// cutting model (seed 000), its surrogates, an MPC and an arm-style loop.
 ///
@@ -51,9 +60,9 @@ pub enum Command {
     Simulate {
         /// Scenario TOML file, or the name of a built-in scenario.
         scenario: String,
-        /// Result directory (default: runs/<scenario>-<UTC time>).
-        #[arg(long, value_name = "DIR")]
-        out: Option<PathBuf>,
+        /// Where the results go.
+        #[command(flatten)]
+        out: crate::run_dir::Destination,
     },
     /// Close the loop: a controller drives the plant tick by tick (lockstep)
     /// until the target depth, and the run's time series, controller trace,
@@ -73,9 +82,9 @@ pub enum Command {
         #[arg(long, value_name = "K", default_value_t = 0,
               value_parser = clap::value_parser!(u32).range(0..=crate::commands::compare::MAX_REPLICAS as i64 - 1))]
         replica: u32,
-        /// Result directory (default: runs/<scenario>-<UTC time>).
-        #[arg(long, value_name = "DIR")]
-        out: Option<PathBuf>,
+        /// Where the results go.
+        #[command(flatten)]
+        out: crate::run_dir::Destination,
     },
     /// Compare the MPC with the baselines in closed loop on one scenario:
     /// pressing, the best constant slice-push ratio under the same blade
@@ -90,9 +99,9 @@ pub enum Command {
         #[arg(long, default_value_t = crate::commands::compare::DEFAULT_REPLICAS,
               value_parser = clap::value_parser!(u64).range(1..=crate::commands::compare::MAX_REPLICAS))]
         replicas: u64,
-        /// Result directory (default: runs/<scenario>-compare-<UTC time>).
-        #[arg(long, value_name = "DIR")]
-        out: Option<PathBuf>,
+        /// Where the results go.
+        #[command(flatten)]
+        out: crate::run_dir::Destination,
     },
     /// Tune controllers: run a sweep of controller settings over scenarios
     /// and perturbed variants (in parallel, resumably, or one shard of it),
@@ -168,9 +177,9 @@ pub enum Command {
         /// How to wait for measurements.
         #[arg(long, value_enum, default_value = "blocking")]
         wait: crate::transport::WaitMode,
-        /// Result directory (default: runs/<scenario>-<UTC time>).
-        #[arg(long, value_name = "DIR")]
-        out: Option<PathBuf>,
+        /// Where the results go.
+        #[command(flatten)]
+        out: crate::run_dir::Destination,
     },
     /// Validate a scenario and print its resolved values.
     Check {

@@ -4,14 +4,10 @@
 //! every cut of a run (a run sweeps several slice-push ratios; the `xi` column
 //! tells them apart). `summary.json` holds one [`CutSummary`] per cut.
 
-use std::path::Path;
-
 use nalgebra::Vector3;
 use serde::Serialize;
 use shearcut_plant::PlantTruth;
 use shearcut_sim::arm::ArmReading;
-
-use crate::error::RunError;
 
 /// The state of one cut after a model step. Forces are the object's resistance
 /// to the knife (positive against the motion, seed 000's convention).
@@ -242,19 +238,4 @@ fn reversals(samples: &[CutSample]) -> u32 {
         sign = d.signum();
     }
     count
-}
-
-/// Writes all samples to `path` as CSV with a header of the field names.
-pub fn write_timeseries(path: &Path, samples: &[CutSample]) -> Result<(), RunError> {
-    let mut w = csv::Writer::from_path(path).map_err(|e| RunError::write(path, e))?;
-    for s in samples {
-        w.serialize(s).map_err(|e| RunError::write(path, e))?;
-    }
-    w.flush().map_err(|e| RunError::write(path, e))
-}
-
-/// Writes any serialisable value as pretty JSON.
-pub fn write_json<T: Serialize>(path: &Path, value: &T) -> Result<(), RunError> {
-    let text = serde_json::to_string_pretty(value).map_err(|e| RunError::write(path, e))?;
-    std::fs::write(path, text + "\n").map_err(|e| RunError::write(path, e))
 }

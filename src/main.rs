@@ -16,9 +16,7 @@ fn main() -> ExitCode {
         Some(Command::Toughness { nu, xi, plot }) => {
             commands::toughness::run(nu, xi, plot.as_deref())
         }
-        Some(Command::Simulate { scenario, out }) => {
-            commands::simulate::run(&scenario, out.as_deref())
-        }
+        Some(Command::Simulate { scenario, out }) => commands::simulate::run(&scenario, &out),
         Some(Command::Run {
             scenario,
             controller,
@@ -30,13 +28,13 @@ fn main() -> ExitCode {
             controller.as_deref(),
             transport,
             RunReplica { index: replica },
-            out.as_deref(),
+            &out,
         ),
         Some(Command::Compare {
             scenario,
             replicas,
             out,
-        }) => commands::compare::run(&scenario, replicas, out.as_deref()),
+        }) => commands::compare::run(&scenario, replicas, &out),
         Some(Command::Tune(args)) => commands::tune::run(args),
         Some(Command::Trajectory { cases, out }) => {
             commands::trajectory::run(&cases, out.as_deref())
@@ -61,13 +59,7 @@ fn main() -> ExitCode {
             controller,
             wait,
             out,
-        }) => commands::controller::run(
-            &scenario,
-            &run_id,
-            controller.as_deref(),
-            wait,
-            out.as_deref(),
-        ),
+        }) => commands::controller::run(&scenario, &run_id, controller.as_deref(), wait, &out),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

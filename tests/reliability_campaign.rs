@@ -461,3 +461,96 @@ fn a_missing_cases_file_is_exit_2() {
         &["cannot read `/nonexistent/cases.jsonl`"],
     );
 }
+
+/// The small closed loop of `tests/closed_loop.rs`: a force controller
+/// 3 mm into the fig7 potato on a two-segment plant.
+fn quick_loop(d: &Dir) -> String {
+    d.file("loop.toml", &quick_loop_text())
+}
+
+/// The names in a result directory, sorted.
+fn listing(dir: &std::path::Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    names
+}
+
+#[test]
+fn issue_27_an_out_that_holds_files_is_refused_unless_overwrite() {
+    let d = Dir::new("out-refused");
+    let scenario = quick_simulation(&d);
+    let out = d.0.join("results");
+    let o = shearcut(&["simulate", &scenario, "--out", out.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    let first = std::fs::read(out.join("summary.json")).unwrap();
+    // Every file is whole: none is left under its temporary name.
+    assert!(
+        listing(&out).iter().all(|n| !n.starts_with(".partial-")),
+        "{:?}",
+        listing(&out)
+    );
+    // A second run into the same directory is refused before it starts,
+    // and the first run's results stay as they were.
+    let o = shearcut(&["simulate", &scenario, "--out", out.to_str().unwrap()]);
+    assert_refused(&o, &["`--out`", "--overwrite"]);
+    assert_eq!(std::fs::read(out.join("summary.json")).unwrap(), first);
+    // --overwrite replaces the directory's contents, strays included.
+    std::fs::write(out.join("stray.txt"), "x").unwrap();
+    let o = shearcut(&[
+        "simulate",
+        &scenario,
+        "--out",
+        out.to_str().unwrap(),
+        "--overwrite",
+    ]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(!out.join("stray.txt").exists());
+    assert!(out.join("summary.json").is_file());
+    // An empty directory (`mktemp -d`) is taken as it is.
+    let empty = d.0.join("empty");
+    std::fs::create_dir_all(&empty).unwrap();
+    let o = shearcut(&["simulate", &scenario, "--out", empty.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    // --overwrite alone names nothing to overwrite: a usage error.
+    let o = shearcut(&["simulate", &scenario, "--overwrite"]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+}
+
+#[test]
+fn issue_27_a_refused_run_leaves_no_directory() {
+    let d = Dir::new("refused-leaves-nothing");
+    let scenario = d.file(
+        "bad.toml",
+        &quick_loop_text().replace("kind = \"force:5\"", "kind = \"force:0\""),
+    );
+    let out = d.0.join("never");
+    let o = shearcut(&["run", &scenario, "--out", out.to_str().unwrap()]);
+    assert_refused(&o, &["force"]);
+    assert!(!out.exists(), "{:?}", listing(&out));
+}
+
+fn quick_loop_text() -> String {
+    FIG7.replace("depth = 0.02", "depth = 0.003")
+        + "\n[plant]\nsegments = 2\n\n[section]\nrow_spacing = 0.0005\n\n[controller]\nkind = \"force:5\"\n"
+}
+
+#[test]
+fn issue_27_run_to_a_closed_or_full_stdout_keeps_its_results() {
+    let d = Dir::new("run-stdout");
+    let scenario = quick_loop(&d);
+    for (stdout, code, tag) in [(closed_pipe(), 141, "pipe"), (dev_full(), 1, "full")] {
+        let out = d.0.join(tag);
+        let o = shearcut_with(&["run", &scenario, "--out", out.to_str().unwrap()], stdout);
+        assert_eq!(o.status.code(), Some(code), "{tag}: {}", stderr(&o));
+        if code == 141 {
+            assert!(o.stderr.is_empty(), "{}", stderr(&o));
+        }
+        let summary = std::fs::read_to_string(out.join("summary.json")).unwrap();
+        let v: serde_json::Value = serde_json::from_str(&summary).unwrap();
+        assert_eq!(v["end"], "completed", "{summary}");
+        assert!(v["cut"]["work_j"].as_f64().unwrap() > 0.0, "{summary}");
+    }
+}

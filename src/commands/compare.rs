@@ -18,8 +18,6 @@
 //! differences with its standard error, the resolution the table's means
 //! have.
 
-use std::path::Path;
-
 use serde::Serialize;
 
 use crate::commands::run::{LoopSetup, RunOutput, run_closed_loop_on};
@@ -27,11 +25,11 @@ use crate::constant_ratio::{
     coarse_grid, completed_mean_work, constant_choice, least_mean_work, ratio_cap, round3,
 };
 use crate::controller_choice::ControllerChoice;
-use crate::cut_record::write_json;
 use crate::error::RunError;
 use crate::plot::comparison::draw_comparison;
 use crate::render_plot;
-use crate::run_dir;
+use crate::result_file::{write_csv, write_json, write_text};
+use crate::run_dir::{self, Destination};
 use crate::run_replica::RunReplica;
 use crate::scenario::Scenario;
 
@@ -236,7 +234,9 @@ fn run_all(
                     0 => String::new(),
                     k => format!(" (replica {k})"),
                 };
-                println!(
+                // Progress: a closed stdout ends the command at its next
+                // checked print, after the runs under way.
+                let _ = crate::outln!(
                     "  {:<25} work {:.4} J, peak Fv {:.2} N, completed {}",
                     format!("{c}{on}"),
                     run.summary.work_j,
@@ -266,16 +266,16 @@ pub fn compare(s: &Scenario, replicas: u64) -> Result<Comparison, RunError> {
     let target = task.target_depth;
     // The largest constant ratio the blade allows over the whole cut.
     let xi_cap = ratio_cap(&task, s.controller.mpc.max_slice_push_ratio);
-    println!(
+    crate::outln!(
         "{}: blade budget {:.1} mm for {:.1} mm of depth: constant ratios up to {xi_cap:.3}",
         s.name,
         task.blade_budget * 1e3,
         target * 1e3
-    );
+    )?;
     // Coarse search over constant ratios (ξ = 0 is pressing).
     let grid = coarse_grid(xi_cap, SEARCH_POINTS);
     let choices: Vec<ControllerChoice> = grid.iter().map(|&xi| constant_choice(xi)).collect();
-    println!("searching the best constant ratio:");
+    crate::outln!("searching the best constant ratio:")?;
     let mut tried: Vec<(f64, RunOutput)> = Vec::new();
     for (xi, r) in grid.iter().zip(run_nominal(s, &choices)) {
         tried.push((*xi, r?));
@@ -354,9 +354,9 @@ pub fn compare(s: &Scenario, replicas: u64) -> Result<Comparison, RunError> {
         }
     }
     if replicas > 1 {
-        println!(
+        crate::outln!(
             "the contestants on {replicas} replicas of the run (the knife starting 0, 5, 10, … µm higher):"
-        );
+        )?;
     }
     // Runs per contestant, the nominal replica's first.
     let (mut of_mpc, mut of_force) = (Vec::new(), Vec::new());
@@ -390,7 +390,7 @@ pub fn compare(s: &Scenario, replicas: u64) -> Result<Comparison, RunError> {
             rows.push(ComparisonRow::new("mpc", &runs));
             mpc_vs_best_constant = PairedDifference::new(&runs, &replicated(best));
         }
-        Err(e) => println!("  mpc: not run ({e})"),
+        Err(e) => crate::outln!("  mpc: not run ({e})")?,
     }
     rows.push(ComparisonRow::new("press", &replicated(press_index)));
     rows.push(ComparisonRow::new("best constant", &replicated(best)));
@@ -440,24 +440,22 @@ pub fn markdown_table(rows: &[ComparisonRow]) -> String {
 
 /// Runs the subcommand: compare (the MPC and the constant candidates on
 /// `replicas` replicas of the run), print the table, write table, CSV, JSON and the bar plot.
-pub fn run(scenario: &str, replicas: u64, out: Option<&Path>) -> Result<(), RunError> {
+pub fn run(scenario: &str, replicas: u64, out: &Destination) -> Result<(), RunError> {
     let s = Scenario::load(scenario)?;
-    let comparison = compare(&s, replicas)?;
+    let dir = run_dir::claim(
+        &format!("{}-compare", s.name),
+        out,
+        &crate::commands::check::resolved_toml(&s),
+    )?;
+    let comparison = compare(&s, replicas).inspect_err(|_| run_dir::abandon(&dir))?;
     let rows = &comparison.rows;
-    let dir = run_dir::create(&format!("{}-compare", s.name), out)?;
     let mut table = markdown_table(rows);
     if let Some(p) = &comparison.mpc_vs_best_constant {
         table += &format!("\n{}\n", p.describe());
     }
-    println!("\n{table}");
-    std::fs::write(dir.join("comparison.md"), &table)
-        .map_err(|e| RunError::write(dir.join("comparison.md"), e))?;
-    let path = dir.join("comparison.csv");
-    let mut w = csv::Writer::from_path(&path).map_err(|e| RunError::write(&path, e))?;
-    for r in rows {
-        w.serialize(r).map_err(|e| RunError::write(&path, e))?;
-    }
-    w.flush().map_err(|e| RunError::write(&path, e))?;
+    crate::outln!("\n{table}")?;
+    write_text(&dir.join("comparison.md"), &table)?;
+    write_csv(&dir.join("comparison.csv"), rows)?;
     write_json(&dir.join("comparison.json"), &comparison)?;
     let main: Vec<ComparisonRow> = rows
         .iter()
@@ -470,10 +468,10 @@ pub fn run(scenario: &str, replicas: u64, out: Option<&Path>) -> Result<(), RunE
             root, &title, &main
         ))?;
     }
-    println!(
+    crate::outln!(
         "results: {}/ (comparison.md, comparison.csv, comparison.json, comparison.svg/.png)",
         dir.display()
-    );
+    )?;
     Ok(())
 }
 

@@ -10,9 +10,10 @@ use serde::Serialize;
 use crate::closed_loop::{LoopEnd, TickTimes, run_loop};
 use crate::commands::run::{LoopSetup, RunOutput, Transport, print_summary, write_results};
 use crate::controller_choice::ControllerChoice;
-use crate::cut_record::{CutSummary, write_json};
+use crate::cut_record::CutSummary;
 use crate::error::{ConfigError, RunError};
-use crate::run_dir;
+use crate::result_file::write_json;
+use crate::run_dir::{self, Destination};
 use crate::run_replica::RunReplica;
 use crate::scenario::{ClockMode, Scenario};
 use crate::transport::loop_services::prefix;
@@ -73,27 +74,39 @@ pub fn run(
     run_id: &str,
     controller: Option<&str>,
     wait: WaitMode,
-    out: Option<&Path>,
+    out: &Destination,
 ) -> Result<(), RunError> {
     let s = Scenario::load(scenario)?;
-    let choice = controller_choice(&s, controller)?;
-    let setup = LoopSetup::new(&s, choice)?;
+    let dir = run_dir::claim(&s.name, out, &crate::commands::check::resolved_toml(&s))?;
+    serve(&s, run_id, controller, wait, &dir).inspect_err(|_| run_dir::abandon(&dir))
+}
+
+/// The controller process once its result directory `dir` is claimed.
+fn serve(
+    s: &Scenario,
+    run_id: &str,
+    controller: Option<&str>,
+    wait: WaitMode,
+    dir: &Path,
+) -> Result<(), RunError> {
+    let choice = controller_choice(s, controller)?;
+    let setup = LoopSetup::new(s, choice)?;
     let task = setup.task;
-    let mut ctl = setup.controller(&s, choice)?;
+    let mut ctl = setup.controller(s, choice)?;
     // The MPC's planner thread has started (with the controller) at normal
     // priority; only this, the servo thread, is raised.
     raise_servo_thread(s.control_loop.servo_priority)
         .map_err(|e| RunError::Loop(format!("controller/{run_id}: {e}")))?;
     // The knife's start, as the plant process builds it (same scenario and
     // direction), labels the samples exactly as the in-process loop does.
-    let cut = setup.cut(&s);
+    let cut = setup.cut(s);
     let services = LoopServices::open(Role::Controller, run_id, &prefix())
         .map_err(|e| RunError::Loop(format!("controller/{run_id}: {e}")))?;
     let max_ticks = (cut.max_duration / task.period).ceil() as usize + 2;
     let mut link = Iceoryx2PlantLink::new(
         services,
         task.period,
-        link_timeouts(&s),
+        link_timeouts(s),
         wait,
         max_ticks.min(1 << 22),
     )
@@ -114,8 +127,7 @@ pub fn run(
         target_depth_m: task.target_depth,
         replica: RunReplica::NOMINAL,
     };
-    let dir = run_dir::create(&s.name, out)?;
-    write_results(&s, &run, Transport::Iceoryx2, &dir)?;
+    write_results(s, &run, Transport::Iceoryx2, dir)?;
     let round_trip = link.round_trips();
     write_json(
         &dir.join("loop_stats.json"),
@@ -133,19 +145,19 @@ pub fn run(
             end: &run.output.end,
         },
     )?;
-    print_summary(&s, &run);
-    println!(
+    print_summary(s, &run)?;
+    crate::outln!(
         "loop over iceoryx2 (run {run_id}, {:?} clock): round trip median {:.1} us, p99 {:.1} us, max {:.1} us; missed commands {}",
         s.control_loop.clock,
         round_trip.median_us,
         round_trip.p99_us,
         round_trip.max_us,
         link.missed_commands()
-    );
-    println!(
+    )?;
+    crate::outln!(
         "results: {}/ (timeseries.csv, controller.csv, summary.json, loop_stats.json, scenario.toml, forces_work.svg/.png, controller.svg/.png)",
         dir.display()
-    );
+    )?;
     if let LoopEnd::Failed(why) = &run.output.end {
         return Err(RunError::Loop(format!(
             "the run was aborted: {why} (partial results in {}/)",

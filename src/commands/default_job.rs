@@ -12,6 +12,7 @@
 
 use crate::commands::run;
 use crate::error::RunError;
+use crate::run_dir::Destination;
 use crate::run_replica::RunReplica;
 
 /// The default scenario of the main job.
@@ -19,14 +20,14 @@ pub const DEFAULT_JOB_SCENARIO: &str = "loop-potato-whole-realtime";
 
 /// Runs the main job on the default scenario.
 pub fn run() -> Result<(), RunError> {
-    println!(
+    crate::outln!(
         "shearcut: no command given, running `shearcut run {DEFAULT_JOB_SCENARIO} --controller mpc --transport iceoryx2` (see --help for all commands)"
-    );
+    )?;
     run::run(
         DEFAULT_JOB_SCENARIO,
         Some("mpc"),
         run::Transport::Iceoryx2,
         RunReplica::NOMINAL,
-        None,
+        &Destination::default(),
     )
 }

@@ -13,17 +13,16 @@ use shearcut_plant::{Plant, PlantSettings};
 use shearcut_sim::geometry::TriangleMesh;
 use shearcut_sim::{InvalidSetting, Knife};
 
-use crate::closed_loop::{
-    ControlSample, InProcessPlant, LoopCut, LoopEnd, LoopOutput, TickTimes, run_loop,
-};
+use crate::closed_loop::{InProcessPlant, LoopCut, LoopEnd, LoopOutput, TickTimes, run_loop};
 use crate::controller_choice::ControllerChoice;
-use crate::cut_record::{CutSample, CutSummary, write_json, write_timeseries};
+use crate::cut_record::{CutSample, CutSummary};
 use crate::error::{ConfigError, RunError};
 use crate::object_profile::surrogate_profile;
 use crate::plot::control_trace::draw_control_trace;
 use crate::plot::cut_curves::draw_cut_curves;
 use crate::render_plot;
-use crate::run_dir;
+use crate::result_file::{write_csv, write_json};
+use crate::run_dir::{self, Destination};
 use crate::run_replica::RunReplica;
 use crate::scenario::Scenario;
 use crate::surrogates::surrogate_for;
@@ -413,7 +412,7 @@ pub fn run(
     controller: Option<&str>,
     transport: Transport,
     replica: RunReplica,
-    out: Option<&Path>,
+    out: &Destination,
 ) -> Result<(), RunError> {
     if transport == Transport::Iceoryx2 {
         if replica != RunReplica::NOMINAL {
@@ -434,16 +433,19 @@ pub fn run(
             .map_err(|e| RunError::Config(ConfigError::Argument(e.prefixed("-"))))?,
         None => s.controller.kind,
     };
-    let run = run_closed_loop_on(&s, choice, replica)?;
-    let dir = run_dir::create(&s.name, out)?;
+    let dir = run_dir::claim(&s.name, out, &crate::commands::check::resolved_toml(&s))?;
+    let run = run_closed_loop_on(&s, choice, replica).inspect_err(|_| run_dir::abandon(&dir))?;
     write_results(&s, &run, transport, &dir)?;
-    print_summary(&s, &run);
-    println!(
+    print_summary(&s, &run)?;
+    crate::outln!(
         "results: {}/ (timeseries.csv, controller.csv, summary.json, scenario.toml, forces_work.svg/.png, controller.svg/.png)",
         dir.display()
-    );
+    )?;
     if let LoopEnd::Failed(why) = &run.output.end {
-        return Err(RunError::write(&dir, format!("the loop failed: {why}")));
+        return Err(RunError::Loop(format!(
+            "the loop failed: {why} (partial results in {}/)",
+            dir.display()
+        )));
     }
     Ok(())
 }
@@ -455,8 +457,8 @@ pub(crate) fn write_results(
     dir: &Path,
 ) -> Result<(), RunError> {
     let o = &run.output;
-    write_timeseries(&dir.join("timeseries.csv"), &o.samples)?;
-    write_control(&dir.join("controller.csv"), &o.control)?;
+    write_csv(&dir.join("timeseries.csv"), &o.samples)?;
+    write_csv(&dir.join("controller.csv"), &o.control)?;
     write_json(
         &dir.join("summary.json"),
         &SummaryFile {
@@ -478,9 +480,6 @@ pub(crate) fn write_results(
             real_time_factor: o.real_time_factor(),
         },
     )?;
-    let resolved = crate::commands::check::resolved_toml(s);
-    std::fs::write(dir.join("scenario.toml"), resolved)
-        .map_err(|e| RunError::write(dir.join("scenario.toml"), e))?;
     let cuts: [&[CutSample]; 1] = [&o.samples];
     let title = format!(
         "{} under {}: force and work on the knife",
@@ -503,23 +502,16 @@ pub(crate) fn write_results(
     Ok(())
 }
 
-/// Writes the controller's records as CSV.
-fn write_control(path: &Path, samples: &[ControlSample]) -> Result<(), RunError> {
-    let mut w = csv::Writer::from_path(path).map_err(|e| RunError::write(path, e))?;
-    for s in samples {
-        w.serialize(s).map_err(|e| RunError::write(path, e))?;
-    }
-    w.flush().map_err(|e| RunError::write(path, e))
-}
-
-pub(crate) fn print_summary(s: &Scenario, run: &RunOutput) {
+pub(crate) fn print_summary(s: &Scenario, run: &RunOutput) -> Result<(), RunError> {
     let c = &run.summary;
     let o = &run.output;
-    println!(
+    crate::outln!(
         "{}: {} [closed loop, {}]",
-        s.name, s.description, run.controller
-    );
-    println!(
+        s.name,
+        s.description,
+        run.controller
+    )?;
+    crate::outln!(
         "end: {:?} after {} ticks ({:.3} s simulated in {:.2} s of wall clock: real-time factor {:.2}); limit faults: {}",
         o.end,
         o.ticks,
@@ -527,8 +519,8 @@ pub(crate) fn print_summary(s: &Scenario, run: &RunOutput) {
         o.wall_s,
         o.real_time_factor(),
         o.limit_faults
-    );
-    println!(
+    )?;
+    crate::outln!(
         "work {:.4} J, peak Fv {:.3} N, peak Fh {:.3} N, max deformation {:.3} mm, depth {:.2} mm of {:.2} mm, blade used {:.1} mm (path {:.1} mm, {} reversals)",
         c.work_j,
         c.peak_force_vertical_n,
@@ -539,15 +531,21 @@ pub(crate) fn print_summary(s: &Scenario, run: &RunOutput) {
         c.blade_travel_m * 1e3,
         c.blade_path_m * 1e3,
         c.reversals
-    );
-    println!(
+    )?;
+    crate::outln!(
         "controller tick: median {:.2} us, p99 {:.2} us, max {:.2} us (wall clock)",
-        o.tick_times.median_us, o.tick_times.p99_us, o.tick_times.max_us
-    );
+        o.tick_times.median_us,
+        o.tick_times.p99_us,
+        o.tick_times.max_us
+    )?;
     if o.plan_times.max_us > 0.0 {
-        println!(
+        crate::outln!(
             "planning ticks: median {:.1} us, p99 {:.1} us, max {:.1} us; fallbacks {}",
-            o.plan_times.median_us, o.plan_times.p99_us, o.plan_times.max_us, o.fallbacks
-        );
+            o.plan_times.median_us,
+            o.plan_times.p99_us,
+            o.plan_times.max_us,
+            o.fallbacks
+        )?;
     }
+    Ok(())
 }

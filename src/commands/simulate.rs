@@ -10,8 +10,6 @@
 //!   multi-section plant at the loop rate (seed 000 §IV, §V.B–C), with a short
 //!   linear velocity ramp so that the arm's jerk limit is respected.
 
-use std::path::Path;
-
 use nalgebra::{Vector2, Vector3};
 use shearcut_plant::{Plant, SegmentLoad, wrench_at};
 use shearcut_sim::arm::{ArmStatus, KnifeCommand};
@@ -19,11 +17,12 @@ use shearcut_sim::section::{CrossSection, SectionGeometry, SectionStep};
 use shearcut_sim::{Cuboid, EdgeShape, InvalidSetting, Knife, ObjectShape};
 
 use crate::cli::print;
-use crate::cut_record::{CutSample, CutSummary, write_json, write_timeseries};
+use crate::cut_record::{CutSample, CutSummary};
 use crate::error::{ConfigError, RunError};
 use crate::plot::cut_curves::draw_cut_curves;
 use crate::render_plot;
-use crate::run_dir;
+use crate::result_file::{write_csv, write_json};
+use crate::run_dir::{self, Destination};
 use crate::scenario::{Scenario, WireSlabScenario};
 
 /// Everything a simulation produced.
@@ -284,7 +283,7 @@ fn simulate_plant(scenario: &Scenario, knife: &Knife) -> Result<SimulationOutput
 
 /// Runs the subcommand: simulate, write the results into `out` (or a fresh
 /// `runs/` directory) and print a summary.
-pub fn run(scenario: &str, out: Option<&Path>) -> Result<(), RunError> {
+pub fn run(scenario: &str, out: &Destination) -> Result<(), RunError> {
     if let Some(s) = WireSlabScenario::load(scenario)? {
         return run_wire_slab(&s, out);
     }
@@ -293,10 +292,10 @@ pub fn run(scenario: &str, out: Option<&Path>) -> Result<(), RunError> {
 }
 
 /// Simulates a loaded scenario and writes its results.
-pub fn run_scenario(s: &Scenario, out: Option<&Path>) -> Result<(), RunError> {
-    let output = simulate(s)?;
-    let dir = run_dir::create(&s.name, out)?;
-    write_timeseries(&dir.join("timeseries.csv"), &output.samples)?;
+pub fn run_scenario(s: &Scenario, out: &Destination) -> Result<(), RunError> {
+    let dir = run_dir::claim(&s.name, out, &crate::commands::check::resolved_toml(s))?;
+    let output = simulate(s).inspect_err(|_| run_dir::abandon(&dir))?;
+    write_csv(&dir.join("timeseries.csv"), &output.samples)?;
     write_json(
         &dir.join("summary.json"),
         &SummaryFile {
@@ -306,9 +305,6 @@ pub fn run_scenario(s: &Scenario, out: Option<&Path>) -> Result<(), RunError> {
             cuts: &output.summaries,
         },
     )?;
-    let resolved = crate::commands::check::resolved_toml(s);
-    std::fs::write(dir.join("scenario.toml"), resolved)
-        .map_err(|e| RunError::write(dir.join("scenario.toml"), e))?;
     let cuts: Vec<&[CutSample]> = output
         .samples
         .chunk_by(|a, b| a.xi.to_bits() == b.xi.to_bits() && a.z0_m.to_bits() == b.z0_m.to_bits())
@@ -402,22 +398,11 @@ struct SlabSummary<'a> {
     seed_comparison: shearcut_sim::finite_strain::SeedComparison,
 }
 
-fn write_csv<T: serde::Serialize>(
-    path: &Path,
-    rows: impl IntoIterator<Item = T>,
-) -> Result<(), RunError> {
-    let mut w = csv::Writer::from_path(path).map_err(|e| RunError::write(path, e))?;
-    for r in rows {
-        w.serialize(r).map_err(|e| RunError::write(path, e))?;
-    }
-    w.flush().map_err(|e| RunError::write(path, e))
-}
-
 /// Runs seed 001's finite-strain wire–slab sweep and writes its series
 /// (`series.csv`), surface σ₁ profiles at nucleation (`surface.csv`), a
 /// summary with the seed's numbers side by side (`summary.json`), the resolved
 /// scenario and the plots in the seed's form.
-pub fn run_wire_slab(s: &WireSlabScenario, out: Option<&Path>) -> Result<(), RunError> {
+pub fn run_wire_slab(s: &WireSlabScenario, out: &Destination) -> Result<(), RunError> {
     use shearcut_sim::finite_strain::{SeedComparison, WireSlab, WireSlabError, sweep_angles};
     let model_error = |e: WireSlabError| match e {
         WireSlabError::Setting(setting) => RunError::Config(ConfigError::Invalid {
@@ -427,9 +412,12 @@ pub fn run_wire_slab(s: &WireSlabScenario, out: Option<&Path>) -> Result<(), Run
         WireSlabError::Model(e) => RunError::Loop(format!("finite-strain model: {e}")),
     };
     let probe = WireSlab::new(&s.slab).map_err(model_error)?;
-    let sweep = sweep_angles(&s.slab, &s.sweep.angles_deg, s.sweep.threads).map_err(model_error)?;
+    let resolved = toml::to_string(s).map_err(|e| RunError::write("scenario.toml", e))?;
+    let dir = run_dir::claim(&s.name, out, &resolved)?;
+    let sweep = sweep_angles(&s.slab, &s.sweep.angles_deg, s.sweep.threads)
+        .map_err(model_error)
+        .inspect_err(|_| run_dir::abandon(&dir))?;
     let runs = &sweep.runs;
-    let dir = run_dir::create(&s.name, out)?;
     write_csv(
         &dir.join("series.csv"),
         runs.iter().flat_map(|run| {
@@ -480,9 +468,6 @@ pub fn run_wire_slab(s: &WireSlabScenario, out: Option<&Path>) -> Result<(), Run
             seed_comparison: comparison,
         },
     )?;
-    let resolved = toml::to_string(s).map_err(|e| RunError::write(dir.join("scenario.toml"), e))?;
-    std::fs::write(dir.join("scenario.toml"), resolved)
-        .map_err(|e| RunError::write(dir.join("scenario.toml"), e))?;
     let sl = &s.slab;
     for ext in ["svg", "png"] {
         render_plot!(
@@ -532,17 +517,17 @@ pub fn run_wire_slab(s: &WireSlabScenario, out: Option<&Path>) -> Result<(), Run
             }
         )?;
     }
-    println!("{}: {}", s.name, s.description);
-    println!(
+    crate::outln!("{}: {}", s.name, s.description)?;
+    crate::outln!(
         "  model: finite-strain periodic slab, {} elements, {} unknowns; sigma* = {:.0} Pa",
         probe.element_count(),
         probe.unknowns(),
         s.slab.nucleation_stress()
-    );
-    println!("  theta (deg)  d_nuc (mm)  F_n (N)   F_t (N)   sigma1 max at (um)  under wire");
+    )?;
+    crate::outln!("  theta (deg)  d_nuc (mm)  F_n (N)   F_t (N)   sigma1 max at (um)  under wire")?;
     for run in runs {
         match run.nucleation {
-            Some(n) => println!(
+            Some(n) => crate::outln!(
                 "  {:>11.0}  {:>10.3}  {:>7.4}  {:>7.4}  {:>18.1}  {}",
                 run.angle.to_degrees(),
                 n.depth * 1e3,
@@ -550,37 +535,40 @@ pub fn run_wire_slab(s: &WireSlabScenario, out: Option<&Path>) -> Result<(), Run
                 n.force_tangential,
                 n.position * 1e6,
                 n.under_wire
-            ),
-            None => println!(
+            )?,
+            None => crate::outln!(
                 "  {:>11.0}  no nucleation up to {:.3} mm",
                 run.angle.to_degrees(),
                 sl.max_depth * 1e3
-            ),
+            )?,
         }
     }
     let c = comparison;
-    println!("  seed 001 side by side (model | seed):");
-    println!(
+    crate::outln!("  seed 001 side by side (model | seed):")?;
+    crate::outln!(
         "    slope dF_n/dd (N/m)            {:>8.1} | {:>8.1}  (5 mu h / ln(B/R))",
-        c.normal_slope, c.seed_normal_slope
-    );
-    println!(
+        c.normal_slope,
+        c.seed_normal_slope
+    )?;
+    crate::outln!(
         "    max F_t at nucleation (N)      {:>8.4} | {:>8.4}  (2 mu R h)",
-        c.max_tangential_force, c.seed_max_tangential_force
-    );
-    println!(
+        c.max_tangential_force,
+        c.seed_max_tangential_force
+    )?;
+    crate::outln!(
         "    F_n ratio first/last angle     {:>8.2} | {:>8.2}",
-        c.normal_force_ratio, c.seed_normal_force_ratio
-    );
-    println!(
+        c.normal_force_ratio,
+        c.seed_normal_force_ratio
+    )?;
+    crate::outln!(
         "    f_n/(mu R) where max moves under the wire {} | {:.0}",
         c.under_wire_from
             .map_or("never".to_string(), |v| format!("{v:.1}")),
         c.seed_under_wire_from
-    );
-    println!(
+    )?;
+    crate::outln!(
         "results: {}/ (series.csv, surface.csv, summary.json, scenario.toml, forces_depth, nucleation_angle, stress_map .svg/.png)",
         dir.display()
-    );
+    )?;
     Ok(())
 }

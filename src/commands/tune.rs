@@ -105,7 +105,7 @@ pub fn run_sweep(
         .iter()
         .filter(|j| shard.holds(j.record.index))
         .collect();
-    println!(
+    crate::outln!(
         "{}: {} runs ({} scenarios × {} settings × {} variants × {} replicas){}, {} at a time",
         sweep.name,
         list.jobs.len(),
@@ -119,29 +119,29 @@ pub fn run_sweep(
             format!("; shard {shard}: {} of them", mine.len())
         },
         threads
-    );
+    )?;
     let tally = run_pending(&mine, &dir, threads, &list.catalog.scenarios)?;
     if tally.skipped > 0 {
-        println!(
+        crate::outln!(
             "{} runs already done in {} (skipped)",
             tally.skipped,
             dir.display()
-        );
+        )?;
     }
     let rows = read_rows(&dir, &list.catalog);
     let n = tabulate(&dir, &list.catalog, &rows)?;
-    println!(
+    crate::outln!(
         "results: {}/ (results.csv: {n} runs, timings.csv, jobs.json, rows/)",
         dir.display()
-    );
+    )?;
     let complete: Option<Vec<JobRow>> = rows.into_iter().collect();
     match complete {
         Some(rows) => report(&dir, &list.catalog, &rows),
         None => {
-            println!(
+            crate::outln!(
                 "{n} of {} runs of the sweep are here: merge the shards (`shearcut tune merge`) for the front and recommendations",
                 list.jobs.len()
-            );
+            )?;
             Ok(())
         }
     }
@@ -150,11 +150,11 @@ pub fn run_sweep(
 /// Analyses a complete sweep in `dir` and prints the summary.
 fn report(dir: &Path, catalog: &JobCatalog, rows: &[JobRow]) -> Result<(), RunError> {
     let summary = analyse(dir, catalog, rows)?;
-    println!("{summary}");
-    println!(
+    crate::outln!("{summary}")?;
+    crate::outln!(
         "analysis: {}/ (summary.md, front.csv, effects.csv, front-*.svg/.png, effects-*.svg/.png, recommended/)",
         dir.display()
-    );
+    )?;
     Ok(())
 }
 
@@ -170,10 +170,10 @@ pub fn run_merge(dirs: &[PathBuf], out: Option<&Path>) -> Result<(), RunError> {
     let merged = merge(dirs, &out)?;
     let rows: Vec<_> = merged.rows.iter().cloned().map(Some).collect();
     let n = tabulate(&out, &merged.catalog, &rows)?;
-    println!(
+    crate::outln!(
         "merged {} directories: {}/ (results.csv: {n} runs, timings.csv, jobs.json, rows/)",
         dirs.len(),
         out.display()
-    );
+    )?;
     report(&out, &merged.catalog, &merged.rows)
 }

@@ -42,28 +42,32 @@ impl ImageFormat {
 }
 
 /// Draws with `$draw(&root)` on an SVG or PNG backend for `$path`, then
-/// presents; evaluates to `Result<(), RunError>`.
+/// presents, under a temporary name renamed into place
+/// ([`publish`](crate::result_file::publish)); evaluates to
+/// `Result<(), RunError>`.
 #[macro_export]
 macro_rules! render_plot {
     ($path:expr, $size:expr, $draw:expr) => {{
         use plotters::prelude::*;
         let path: &std::path::Path = $path;
         let fmt = $crate::plot::ImageFormat::from_path(path)?;
-        let res: Result<(), String> = match fmt {
-            $crate::plot::ImageFormat::Svg => {
-                let root = SVGBackend::new(path, $size).into_drawing_area();
-                ($draw)(&root)
-                    .map_err(|e| e.to_string())
-                    .and_then(|_| root.present().map_err(|e| e.to_string()))
-            }
-            $crate::plot::ImageFormat::Png => {
-                let root = BitMapBackend::new(path, $size).into_drawing_area();
-                ($draw)(&root)
-                    .map_err(|e| e.to_string())
-                    .and_then(|_| root.present().map_err(|e| e.to_string()))
-            }
-        };
-        res.map_err(|e| $crate::error::RunError::write(path, e))
+        $crate::result_file::publish(path, |partial| {
+            let res: Result<(), String> = match fmt {
+                $crate::plot::ImageFormat::Svg => {
+                    let root = SVGBackend::new(partial, $size).into_drawing_area();
+                    ($draw)(&root)
+                        .map_err(|e| e.to_string())
+                        .and_then(|_| root.present().map_err(|e| e.to_string()))
+                }
+                $crate::plot::ImageFormat::Png => {
+                    let root = BitMapBackend::new(partial, $size).into_drawing_area();
+                    ($draw)(&root)
+                        .map_err(|e| e.to_string())
+                        .and_then(|_| root.present().map_err(|e| e.to_string()))
+                }
+            };
+            res.map_err(|e| $crate::error::RunError::write(path, e))
+        })
     }};
 }
 

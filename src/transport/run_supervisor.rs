@@ -9,6 +9,7 @@ use iceoryx2::prelude::*;
 
 use super::loop_services::{config, prefix};
 use crate::error::RunError;
+use crate::run_dir::Destination;
 
 /// How long the plant may outlive the controller (it brakes after its
 /// missed-command limit if the controller died without ending the run).
@@ -120,8 +121,9 @@ fn wait_or_kill(child: &mut Child, grace: Duration) -> Option<ExitStatus> {
 pub fn run_both(
     scenario: &str,
     controller: Option<&str>,
-    out: Option<&Path>,
+    out: &Destination,
 ) -> Result<(), RunError> {
+    crate::run_dir::check(out)?;
     let exe = std::env::current_exe()
         .map_err(|e| RunError::Loop(format!("cannot find the shearcut executable: {e}")))?;
     let run_id = new_run_id(scenario);
@@ -138,9 +140,12 @@ pub fn run_both(
             c.args(["--controller", name]);
         }
         if role == "controller"
-            && let Some(dir) = out
+            && let Some(dir) = &out.out
         {
             c.arg("--out").arg(dir);
+            if out.overwrite {
+                c.arg("--overwrite");
+            }
         }
         c.spawn()
             .map_err(|e| RunError::Loop(format!("cannot start the {role} process: {e}")))
