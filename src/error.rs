@@ -72,6 +72,15 @@ pub enum RunError {
     /// or a full or failing device (exit 1).
     #[error("cannot write to stdout: {0}")]
     Stdout(std::io::Error),
+    /// A signal stopped the run after its results were written: exit code
+    /// 130 (SIGINT) or 143 (SIGTERM).
+    #[error("stopped by {signal:?}: partial results in {dir}/")]
+    Stopped {
+        /// The signal.
+        signal: crate::transport::StopSignal,
+        /// Where the partial results are.
+        dir: String,
+    },
 }
 
 /// Exit code of a process whose stdout reader went away (128 + SIGPIPE).
@@ -84,6 +93,7 @@ impl RunError {
         match self {
             RunError::Config(_) => 2,
             RunError::Stdout(e) if e.kind() == std::io::ErrorKind::BrokenPipe => EXIT_CLOSED_PIPE,
+            RunError::Stopped { signal, .. } => signal.exit_code(),
             RunError::Write { .. } | RunError::Loop(_) | RunError::Stdout(_) => 1,
         }
     }

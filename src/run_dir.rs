@@ -66,13 +66,14 @@ pub fn claim(name: &str, to: &Destination, scenario: &str) -> Result<PathBuf, Ru
     Ok(dir)
 }
 
-/// Removes a claimed directory that holds nothing but its [`CLAIM`]: a run
-/// refused before it produced anything leaves no directory behind.
+/// Removes a claimed directory that holds nothing but its [`CLAIM`] and
+/// empty files (series streams not yet written to): a run refused before
+/// it produced anything leaves no directory behind.
 pub fn abandon(dir: &Path) {
     let only_claim = std::fs::read_dir(dir).is_ok_and(|entries| {
-        entries
-            .filter_map(Result::ok)
-            .all(|e| e.file_name() == CLAIM)
+        entries.filter_map(Result::ok).all(|e| {
+            e.file_name() == CLAIM || e.metadata().is_ok_and(|m| m.is_file() && m.len() == 0)
+        })
     });
     if only_claim {
         let _ = std::fs::remove_dir_all(dir);

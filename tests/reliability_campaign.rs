@@ -554,3 +554,89 @@ fn issue_27_run_to_a_closed_or_full_stdout_keeps_its_results() {
         assert!(v["cut"]["work_j"].as_f64().unwrap() > 0.0, "{summary}");
     }
 }
+
+/// Whole CSV rows: every line has the header's number of fields.
+fn whole_rows(path: &std::path::Path) -> usize {
+    let mut r = csv::Reader::from_path(path).unwrap();
+    let fields = r.headers().unwrap().len();
+    let mut rows = 0;
+    for record in r.records() {
+        let record = record.unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        assert_eq!(record.len(), fields, "{}: {record:?}", path.display());
+        rows += 1;
+    }
+    rows
+}
+
+/// `shearcut run` of the small loop cut 20 mm deep (long enough to be
+/// stopped mid-run) into `out`, returned once its first flush of the
+/// series (100 ms of simulated time) is on disk, still running.
+#[allow(clippy::disallowed_methods)] // A watchdog on a child process.
+fn long_run_after_first_flush(d: &Dir, out: &std::path::Path) -> std::process::Child {
+    let scenario = d.file(
+        "long.toml",
+        &quick_loop_text().replace("depth = 0.003", "depth = 0.02"),
+    );
+    let mut child = Command::new(env!("CARGO_BIN_EXE_shearcut"))
+        .args(["run", &scenario, "--out", out.to_str().unwrap()])
+        .env("RUST_LOG", "error")
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let controller = out.join("controller.csv");
+    let started = std::time::Instant::now();
+    while std::fs::metadata(&controller).map_or(0, |m| m.len()) == 0 {
+        assert!(
+            started.elapsed() < std::time::Duration::from_secs(120),
+            "no flush"
+        );
+        assert!(child.try_wait().unwrap().is_none(), "the run ended first");
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    }
+    child
+}
+
+#[test]
+fn issue_27_a_run_killed_mid_loop_leaves_whole_series() {
+    let d = Dir::new("sigkill");
+    let out = d.0.join("killed");
+    let mut child = long_run_after_first_flush(&d, &out);
+    child.kill().unwrap();
+    child.wait().unwrap();
+    // Every record up to the last flush, in whole rows: 100 ms at 1 kHz
+    // at least (the first flush), and no summary (the run never finished).
+    assert!(whole_rows(&out.join("controller.csv")) >= 100);
+    whole_rows(&out.join("timeseries.csv"));
+    assert!(!out.join("summary.json").exists());
+}
+
+#[test]
+fn issue_27_sigint_and_sigterm_stop_a_run_with_a_partial_summary() {
+    let d = Dir::new("signals");
+    for (signal, number, code, name) in [("INT", 2, 130, "sigint"), ("TERM", 15, 143, "sigterm")] {
+        let out = d.0.join(name);
+        let child = long_run_after_first_flush(&d, &out);
+        let sent = Command::new("kill")
+            .args([&format!("-{signal}"), &child.id().to_string()])
+            .status()
+            .unwrap();
+        assert!(sent.success());
+        let o = child.wait_with_output().unwrap();
+        assert_eq!(
+            o.status.code(),
+            Some(code),
+            "{name} ({number}): {}",
+            stderr(&o)
+        );
+        assert_eq!(stderr(&o).lines().count(), 1, "{}", stderr(&o));
+        // The summary says why it stopped; the series hold whole rows up
+        // to the stop; the plots are drawn.
+        let summary = std::fs::read_to_string(out.join("summary.json")).unwrap();
+        let v: serde_json::Value = serde_json::from_str(&summary).unwrap();
+        assert_eq!(v["end"]["stopped"], name, "{summary}");
+        let rows = whole_rows(&out.join("controller.csv"));
+        assert_eq!(v["ticks"].as_u64().unwrap() as usize, rows, "{summary}");
+        assert!(out.join("forces_work.png").is_file());
+    }
+}

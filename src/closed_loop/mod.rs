@@ -6,8 +6,10 @@ mod control_record;
 mod in_process;
 mod plant_link;
 mod runner;
+mod series_stream;
 
 pub use control_record::{ControlSample, TickTimes};
 pub use in_process::InProcessPlant;
 pub use plant_link::{LinkAnswer, LinkError, PlantLink};
-pub use runner::{LoopCut, LoopEnd, LoopOutput, run_loop};
+pub use runner::{LoopCut, LoopEnd, LoopOutput, run_loop, run_loop_recorded};
+pub use series_stream::{FLUSH_PERIOD, LoopRecorder, NoRecorder, SeriesStream};

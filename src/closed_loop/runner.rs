@@ -8,7 +8,9 @@ use shearcut_sim::arm::{ArmStatus, KnifeCommand};
 
 use super::control_record::{ControlSample, TickTimes};
 use super::plant_link::{LinkError, PlantLink};
+use super::series_stream::{LoopRecorder, NoRecorder};
 use crate::cut_record::CutSample;
+use crate::transport::StopSignal;
 
 /// Speed below which the knife is at rest, m/s: a nanometre per second, far
 /// below any arm's resolution, far above the residue a jerk-limited stop
@@ -29,6 +31,8 @@ pub enum LoopEnd {
     TimedOut,
     /// The plant link failed (the message says why).
     Failed(String),
+    /// A signal asked the run to stop (SIGINT or SIGTERM).
+    Stopped(StopSignal),
 }
 
 /// What a loop produced.
@@ -89,11 +93,24 @@ pub struct LoopCut {
 /// Runs `controller` against `link` in lockstep until the cut completes,
 /// the time runs out or the link fails. The first command is the arm at
 /// rest (its state before the controller has seen a measurement).
-#[allow(clippy::disallowed_methods)] // Tick durations are statistics, not model inputs.
 pub fn run_loop(
     link: &mut dyn PlantLink,
     controller: &mut dyn Controller,
     cut: &LoopCut,
+) -> LoopOutput {
+    run_loop_recorded(link, controller, cut, &mut NoRecorder)
+}
+
+/// [`run_loop`], handing each sample and control record to `recorder` as
+/// the loop goes (between the controller's tick and the next exchange,
+/// outside the tick's timing): a [`SeriesStream`](super::SeriesStream)
+/// streams them to disk.
+#[allow(clippy::disallowed_methods)] // Tick durations are statistics, not model inputs.
+pub fn run_loop_recorded(
+    link: &mut dyn PlantLink,
+    controller: &mut dyn Controller,
+    cut: &LoopCut,
+    recorder: &mut dyn LoopRecorder,
 ) -> LoopOutput {
     let max_ticks = (cut.max_duration / link.period()).ceil() as usize;
     let mut samples = Vec::new();
@@ -118,11 +135,9 @@ pub fn run_loop(
         if telemetry.planned {
             plan_durations.push(us);
         }
-        control.push(ControlSample::new(
-            answer.reading.time,
-            &telemetry,
-            &command,
-        ));
+        let record = ControlSample::new(answer.reading.time, &telemetry, &command);
+        recorder.control(&record);
+        control.push(record);
         answer = match link.exchange(&command) {
             Ok(m) => m,
             Err(e) => {
@@ -131,6 +146,11 @@ pub fn run_loop(
             }
         };
         let reading = &answer.reading;
+        recorder.tick_done(reading.time);
+        if let Some(signal) = recorder.stop_requested() {
+            end = LoopEnd::Stopped(signal);
+            break;
+        }
         if matches!(reading.status, ArmStatus::LimitViolation(_)) {
             limit_faults += 1;
         }
@@ -138,6 +158,7 @@ pub fn run_loop(
             if let Some(s) =
                 CutSample::from_plant(reading, truth, cut.xi_label, cut.z0, &cut.start, cut.gap)
             {
+                recorder.sample(&s);
                 samples.push(s);
             }
             if truth.crack_depth >= cut.target_depth {

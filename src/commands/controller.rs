@@ -7,7 +7,7 @@ use std::path::Path;
 
 use serde::Serialize;
 
-use crate::closed_loop::{LoopEnd, TickTimes, run_loop};
+use crate::closed_loop::{LoopEnd, SeriesStream, TickTimes, run_loop_recorded};
 use crate::commands::run::{LoopSetup, RunOutput, Transport, print_summary, write_results};
 use crate::controller_choice::ControllerChoice;
 use crate::cut_record::CutSummary;
@@ -113,7 +113,9 @@ fn serve(
     .map_err(|e| RunError::Loop(e.to_string()))?;
     link.wait_for_plant()
         .map_err(|e| RunError::Loop(e.to_string()))?;
-    let output = run_loop(&mut link, ctl.as_mut(), &cut);
+    let mut stream = SeriesStream::create(dir)?;
+    let output = run_loop_recorded(&mut link, ctl.as_mut(), &cut, &mut stream);
+    stream.finish()?;
     if !matches!(output.end, LoopEnd::Failed(_))
         && let Err(e) = link.finish()
     {

@@ -13,7 +13,10 @@ use shearcut_plant::{Plant, PlantSettings};
 use shearcut_sim::geometry::TriangleMesh;
 use shearcut_sim::{InvalidSetting, Knife};
 
-use crate::closed_loop::{InProcessPlant, LoopCut, LoopEnd, LoopOutput, TickTimes, run_loop};
+use crate::closed_loop::{
+    InProcessPlant, LoopCut, LoopEnd, LoopOutput, LoopRecorder, NoRecorder, SeriesStream,
+    TickTimes, run_loop_recorded,
+};
 use crate::controller_choice::ControllerChoice;
 use crate::cut_record::{CutSample, CutSummary};
 use crate::error::{ConfigError, RunError};
@@ -21,11 +24,12 @@ use crate::object_profile::surrogate_profile;
 use crate::plot::control_trace::draw_control_trace;
 use crate::plot::cut_curves::draw_cut_curves;
 use crate::render_plot;
-use crate::result_file::{write_csv, write_json};
+use crate::result_file::write_json;
 use crate::run_dir::{self, Destination};
 use crate::run_replica::RunReplica;
 use crate::scenario::Scenario;
 use crate::surrogates::surrogate_for;
+use crate::transport::TerminationWatch;
 
 /// How controller and plant talk.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum, Serialize)]
@@ -294,12 +298,23 @@ pub fn run_closed_loop_on(
     choice: ControllerChoice,
     replica: RunReplica,
 ) -> Result<RunOutput, RunError> {
+    run_closed_loop_recorded(s, choice, replica, &mut NoRecorder)
+}
+
+/// [`run_closed_loop_on`], handing the loop's records to `recorder` as it
+/// runs ([`SeriesStream`] streams them to a run directory).
+pub fn run_closed_loop_recorded(
+    s: &Scenario,
+    choice: ControllerChoice,
+    replica: RunReplica,
+    recorder: &mut dyn LoopRecorder,
+) -> Result<RunOutput, RunError> {
     let setup = LoopSetup::on_replica(s, choice, replica)?;
     let mut controller = setup.controller(s, choice)?;
     let plant = setup.plant(s)?;
     let cut = setup.cut(s);
     let mut link = InProcessPlant::new(plant, setup.task.period);
-    let output = run_loop(&mut link, controller.as_mut(), &cut);
+    let output = run_loop_recorded(&mut link, controller.as_mut(), &cut, recorder);
     let summary = CutSummary::from_samples(&output.samples, setup.task.target_depth);
     Ok(RunOutput {
         controller: controller.name().to_string(),
@@ -434,13 +449,22 @@ pub fn run(
         None => s.controller.kind,
     };
     let dir = run_dir::claim(&s.name, out, &crate::commands::check::resolved_toml(&s))?;
-    let run = run_closed_loop_on(&s, choice, replica).inspect_err(|_| run_dir::abandon(&dir))?;
+    let mut stream = SeriesStream::create(&dir)?.watching(TerminationWatch::new());
+    let run = run_closed_loop_recorded(&s, choice, replica, &mut stream)
+        .inspect_err(|_| run_dir::abandon(&dir))?;
+    stream.finish()?;
     write_results(&s, &run, transport, &dir)?;
     print_summary(&s, &run)?;
     crate::outln!(
         "results: {}/ (timeseries.csv, controller.csv, summary.json, scenario.toml, forces_work.svg/.png, controller.svg/.png)",
         dir.display()
     )?;
+    if let LoopEnd::Stopped(signal) = run.output.end {
+        return Err(RunError::Stopped {
+            signal,
+            dir: dir.display().to_string(),
+        });
+    }
     if let LoopEnd::Failed(why) = &run.output.end {
         return Err(RunError::Loop(format!(
             "the loop failed: {why} (partial results in {}/)",
@@ -450,6 +474,9 @@ pub fn run(
     Ok(())
 }
 
+/// Writes a run's results into `dir` after its loop: the summary and the
+/// plots (the time series were streamed there as the loop ran,
+/// [`SeriesStream`]).
 pub(crate) fn write_results(
     s: &Scenario,
     run: &RunOutput,
@@ -457,8 +484,6 @@ pub(crate) fn write_results(
     dir: &Path,
 ) -> Result<(), RunError> {
     let o = &run.output;
-    write_csv(&dir.join("timeseries.csv"), &o.samples)?;
-    write_csv(&dir.join("controller.csv"), &o.control)?;
     write_json(
         &dir.join("summary.json"),
         &SummaryFile {

@@ -7,10 +7,12 @@ pub mod loop_services;
 pub mod plant_server;
 pub mod run_supervisor;
 pub mod servo_priority;
+pub mod termination_watch;
 pub mod wait_mode;
 pub mod wire;
 
 pub use iceoryx2_link::{Iceoryx2PlantLink, LinkTimeouts};
 pub use loop_services::{LoopServices, PeerState, Role, ServiceError};
 pub use plant_server::{PlantEnd, PlantReport, PlantServerSettings, serve_plant};
+pub use termination_watch::{StopSignal, TerminationWatch};
 pub use wait_mode::WaitMode;

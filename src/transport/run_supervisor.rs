@@ -5,9 +5,7 @@ use std::path::Path;
 use std::process::{Child, Command, ExitStatus};
 use std::time::{Duration, Instant};
 
-use iceoryx2::prelude::*;
-
-use super::loop_services::{config, prefix};
+use super::termination_watch::TerminationWatch;
 use crate::error::RunError;
 use crate::run_dir::Destination;
 
@@ -127,12 +125,7 @@ pub fn run_both(
     let exe = std::env::current_exe()
         .map_err(|e| RunError::Loop(format!("cannot find the shearcut executable: {e}")))?;
     let run_id = new_run_id(scenario);
-    // This process's node: only to see SIGINT/SIGTERM (iceoryx2's handler).
-    let cfg = config(&prefix()).map_err(|e| RunError::Loop(e.to_string()))?;
-    let node = NodeBuilder::new()
-        .config(&cfg)
-        .create::<ipc::Service>()
-        .map_err(|e| RunError::Loop(format!("iceoryx2 node: {e:?}")))?;
+    let watch = TerminationWatch::new();
     let spawn = |role: &str| {
         let mut c = Command::new(&exe);
         c.args([role, "--scenario", scenario, "--run-id", &run_id]);
@@ -165,7 +158,7 @@ pub fn run_both(
         ctl.id()
     );
     let (plant_status, ctl_status) = loop {
-        if node.wait(Duration::from_millis(5)).is_err() {
+        if watch.requested_within(Duration::from_millis(5)).is_some() {
             eprintln!("run {run_id}: termination requested, stopping plant and controller");
             // The controller first, and the plant once it has gone: the
             // controller then stops on its own signal (and writes its partial

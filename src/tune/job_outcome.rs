@@ -124,6 +124,7 @@ impl JobOutcome {
                 LoopEnd::ControllerDone => "controller_done".to_string(),
                 LoopEnd::TimedOut => "timed_out".to_string(),
                 LoopEnd::Failed(why) => format!("failed: {why}"),
+                LoopEnd::Stopped(signal) => format!("stopped: {signal:?}"),
             },
             work_j: c.work_j,
             max_deformation_m: c.max_deformation_m,
