@@ -5,7 +5,7 @@
 # stable by tests/reliability_fuzz_regressions.rs) and the script fails.
 #
 # Usage: scripts/fuzz.sh [SECONDS_PER_TARGET] [TARGET...]
-#   default: 600 s each for scenario_toml mesh_file surrogate_file trajectory_cases
+#   default: 600 s each for scenario_toml mesh_file surrogate_file trajectory_cases wire_messages
 # Needs: rustup nightly and `cargo install cargo-fuzz`.
 set -euo pipefail
 
@@ -14,7 +14,7 @@ seconds="${1:-600}"
 shift || true
 targets=("$@")
 if [ ${#targets[@]} -eq 0 ]; then
-    targets=(scenario_toml mesh_file surrogate_file trajectory_cases)
+    targets=(scenario_toml mesh_file surrogate_file trajectory_cases wire_messages)
 fi
 
 cargo +nightly fuzz build -O

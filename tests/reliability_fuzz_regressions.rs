@@ -53,3 +53,8 @@ fn surrogate_file_corpus_and_regressions() {
 fn trajectory_cases_corpus_and_regressions() {
     assert!(replay("trajectory_cases", input_surface::trajectory_cases) >= 2);
 }
+
+#[test]
+fn wire_messages_corpus_and_regressions() {
+    assert!(replay("wire_messages", input_surface::wire_messages) >= 7);
+}

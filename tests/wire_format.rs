@@ -87,7 +87,9 @@ fn truth(x: [f64; 8]) -> PlantTruth {
 proptest! {
     #[test]
     fn measurements_cross_the_wire_bit_for_bit(
-        x in prop::array::uniform8(any::<f64>().prop_filter("not NaN", |v| !v.is_nan())),
+        // Every field within what an arm reports (WireMeasurement::BOUNDS:
+        // 10 is inside all of them); beyond, a reading is refused (below).
+        x in prop::array::uniform8(-10.0f64..=10.0),
         kind in 0u8..5,
     ) {
         let status = match kind {
@@ -129,4 +131,49 @@ fn a_braked_plant_is_not_a_measurement() {
     );
     assert_eq!(w.reading(), Err(WireError::Braked(20)));
     assert!(WireCommand::end_of_run(3, 1.0).is_end_of_run());
+}
+
+/// Sets one field of a measurement.
+type SetField = fn(&mut WireMeasurement, f64);
+
+/// A hostile or broken bridge: NaN, ±inf and values no arm reports in any
+/// field are refused with the field named, never turned into a reading.
+#[test]
+fn a_measurement_no_arm_could_report_is_refused() {
+    let good = WireMeasurement::new(
+        3,
+        &measurement(
+            [0.1, 0.02, -0.3, 0.004, 1.5, -2.0, 0.3, 0.01],
+            ArmStatus::Moving,
+        ),
+        0,
+    );
+    assert!(good.reading().is_ok());
+    let cases: [(&str, SetField); 6] = [
+        ("time", |m, v| m.time = v),
+        ("position", |m, v| m.position[1] = v),
+        ("velocity", |m, v| m.velocity[2] = v),
+        ("wrench.force", |m, v| m.wrench[0] = v),
+        ("wrench.torque", |m, v| m.wrench[5] = v),
+        ("fault_value", |m, v| m.fault_value = v),
+    ];
+    for (field, set) in cases {
+        for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY, 1e300] {
+            if field == "fault_value" && bad == 1e300 {
+                continue; // finite fault values are the plant's to report
+            }
+            let mut m = good;
+            set(&mut m, bad);
+            match m.reading() {
+                Err(WireError::OutOfRange { field: f, .. }) => assert_eq!(f, field, "{bad}"),
+                other => panic!("{field} = {bad}: {other:?}"),
+            }
+        }
+    }
+    // On the bound is accepted, just past it is not.
+    let mut m = good;
+    m.position[0] = 10.0;
+    assert!(m.reading().is_ok());
+    m.position[0] = 10.0f64.next_up();
+    assert!(m.reading().is_err());
 }

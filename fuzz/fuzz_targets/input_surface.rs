@@ -87,3 +87,63 @@ pub fn trajectory_cases(data: &[u8]) {
         }
     }
 }
+
+/// Little-endian `f64` number `i` of `bytes` (zero past the end).
+fn f64_at(bytes: &[u8], i: usize) -> f64 {
+    let mut b = [0u8; 8];
+    if let Some(chunk) = bytes.get(8 * i..8 * i + 8) {
+        b.copy_from_slice(chunk);
+    }
+    f64::from_le_bytes(b)
+}
+
+/// The wire messages from a hostile bridge: the bytes as a measurement
+/// (time, position, velocity, wrench, fault value, then status and fault
+/// codes) and as a command's velocity. A measurement the controller
+/// accepts is finite and within `WireMeasurement::BOUNDS`; a command the
+/// plant's arm accepts is finite and within its speed limit.
+pub fn wire_messages(data: &[u8]) {
+    use shearcut::transport::wire::{WireCommand, WireMeasurement};
+    use shearcut_sim::arm::{ArmLimitMonitor, ArmLimits};
+
+    let f = |i| f64_at(data, i);
+    let code = |i: usize| data.get(i).copied().map_or(0, |c| u32::from(c % 8));
+    let mut m = WireMeasurement::empty();
+    m.sequence = 0;
+    m.time = f(0);
+    m.position = [f(1), f(2), f(3)];
+    m.velocity = [f(4), f(5), f(6)];
+    m.wrench = [f(7), f(8), f(9), f(10), f(11), f(12)];
+    m.fault_value = f(13);
+    m.status = code(112);
+    m.fault = code(113);
+    if let Ok(r) = m.reading() {
+        let bounds = WireMeasurement::BOUNDS.map(|(_, b)| b);
+        assert!(r.time.is_finite() && r.time.abs() <= bounds[0]);
+        assert!(
+            r.position
+                .iter()
+                .all(|v| v.is_finite() && v.abs() <= bounds[1])
+        );
+        assert!(
+            r.velocity
+                .iter()
+                .all(|v| v.is_finite() && v.abs() <= bounds[2])
+        );
+        assert!(r.wrench.iter().all(|v| v.is_finite()));
+    }
+    let command = WireCommand {
+        sequence: 0,
+        time: f(14),
+        velocity: [f(0), f(1), f(2)],
+        flags: code(114),
+        reserved: 0,
+    };
+    let limits = ArmLimits::default();
+    let mut arm = ArmLimitMonitor::new(limits);
+    let v = command.knife_command().velocity;
+    if arm.check(v, 1e-3).is_ok() {
+        assert!(v.iter().all(|x| x.is_finite()));
+        assert!(v.norm() <= limits.velocity * (1.0 + 1e-9));
+    }
+}

@@ -223,6 +223,17 @@ pub enum WireError {
         /// The fault code.
         fault: u32,
     },
+    /// A field that no arm reports: not finite, or beyond
+    /// [`WireMeasurement::BOUNDS`].
+    #[error("`{field}` = {value} on the wire: no arm reports it (must be finite, within ±{bound})")]
+    OutOfRange {
+        /// The field (`position`, `wrench`...).
+        field: &'static str,
+        /// The value received.
+        value: f64,
+        /// Its bound in magnitude.
+        bound: f64,
+    },
 }
 
 impl WireMeasurement {
@@ -281,11 +292,56 @@ impl WireMeasurement {
         self
     }
 
+    /// Largest magnitude of each field a measurement may carry, in its SI
+    /// unit: a bridge that sends more (or NaN, ±inf) is faulty and its
+    /// message is refused, never acted on. Far beyond any cutting cell: time
+    /// 10⁶ s (11 days of one run), positions 10 m from the world origin,
+    /// speeds 100 m/s, forces 10⁵ N and torques 10⁴ N·m at the sensor.
+    pub const BOUNDS: [(&'static str, f64); 5] = [
+        ("time", 1e6),
+        ("position", 10.0),
+        ("velocity", 100.0),
+        ("wrench.force", 1e5),
+        ("wrench.torque", 1e4),
+    ];
+
+    /// The first field beyond [`Self::BOUNDS`] or not finite (the fault
+    /// value included), if any.
+    fn out_of_range(&self) -> Option<WireError> {
+        let [time, position, velocity, force, torque] = Self::BOUNDS.map(|(_, b)| b);
+        let fields: [(&'static str, &[f64], f64); 6] = [
+            ("time", std::slice::from_ref(&self.time), time),
+            ("position", &self.position, position),
+            ("velocity", &self.velocity, velocity),
+            ("wrench.force", &self.wrench[..3], force),
+            ("wrench.torque", &self.wrench[3..], torque),
+            (
+                "fault_value",
+                std::slice::from_ref(&self.fault_value),
+                f64::MAX,
+            ),
+        ];
+        fields.into_iter().find_map(|(field, values, bound)| {
+            values
+                .iter()
+                .find(|v| !(v.is_finite() && v.abs() <= bound))
+                .map(|&value| WireError::OutOfRange {
+                    field,
+                    value,
+                    bound,
+                })
+        })
+    }
+
     /// The plant's measurement.
     ///
     /// # Errors
-    /// The plant stopped (braked, failed or ended), or a code is unknown.
+    /// The plant stopped (braked, failed or ended), a code is unknown, or a
+    /// field is not finite or beyond [`Self::BOUNDS`].
     pub fn reading(&self) -> Result<ArmReading, WireError> {
+        if let Some(e) = self.out_of_range() {
+            return Err(e);
+        }
         let unknown = WireError::Unknown {
             status: self.status,
             fault: self.fault,
