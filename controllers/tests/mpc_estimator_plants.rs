@@ -19,9 +19,14 @@ use shearcut_controllers::controller::{Controller, CutTask, MotionLimits};
 use shearcut_controllers::mpc::{
     DepthProfile, Mpc, MpcSettings, SliceModel, StageState, SurrogateModel,
 };
+use shearcut_controllers::observer::{
+    CutObserver, CutObserverSettings, CutTarget, FractureDetector, FractureSettings, WrenchTare,
+    WrenchTareSettings,
+};
 use shearcut_plant::{Plant, PlantSettings, PlantStep};
 use shearcut_sim::arm::ArmLimits;
 use shearcut_sim::geometry::TriangleMesh;
+use shearcut_sim::knife_plane::knife_plane_silhouette;
 use shearcut_sim::section::SectionSettings;
 use shearcut_sim::surrogate::Surrogate;
 use shearcut_sim::{Cuboid, Knife, KnifePreset, MaterialPreset, ObjectShape};
@@ -170,6 +175,7 @@ fn end_of_cut(
     setup: &Setup,
     truth: [f64; 3],
     settings: &MpcSettings,
+    on_tick: &mut dyn FnMut(&Trace<'_>),
 ) -> ([f64; 3], ModelCheck, bool) {
     let mut material = setup.material.material();
     material.fracture_toughness *= truth[0];
@@ -229,6 +235,13 @@ fn end_of_cut(
     // 30 s of simulated time at most, as `shearcut run`.
     for _ in 0..30_000 {
         let command = mpc.tick(&m.reading);
+        on_tick(&Trace {
+            task: &task,
+            model: &model,
+            profile: &profile,
+            step: &m,
+            scale: mpc.scale(),
+        });
         m = plant.step(&command, task.period).expect("plant steps");
         check.add(&model, &profile, &m, truth);
         if m.truth.crack_depth >= task.target_depth {
@@ -236,6 +249,16 @@ fn end_of_cut(
         }
     }
     (mpc.scale(), check, false)
+}
+
+/// What one tick of [`end_of_cut`] shows a tracer: the reading the MPC
+/// just took with the plant's truth beside it, and its factors after it.
+struct Trace<'a> {
+    task: &'a CutTask,
+    model: &'a SurrogateModel,
+    profile: &'a DepthProfile,
+    step: &'a PlantStep,
+    scale: [f64; 3],
 }
 
 /// Relative errors of the estimated factors.
@@ -254,7 +277,7 @@ fn the_estimator_converges_on_plants_off_the_preset() {
     let mut failures = Vec::new();
     for setup in [CUBOID, WHOLE] {
         for (label, truth) in PLANTS {
-            let (estimated, check, completed) = end_of_cut(&setup, truth, &settings);
+            let (estimated, check, completed) = end_of_cut(&setup, truth, &settings, &mut |_| {});
             if !completed {
                 failures.push(format!("{} {label}: the cut did not complete", setup.name));
             }
@@ -298,4 +321,84 @@ fn the_estimator_converges_on_plants_off_the_preset() {
     println!("worst factor error {:.1} %", 100.0 * worst);
     // The whole table first, then every plant off its bound.
     assert!(failures.is_empty(), "{}", failures.join("; "));
+}
+
+/// Prints, tick by tick, what the estimator is fed on one plant against
+/// the plant's truth: `SHEARCUT_TRACE=whole:1` (object `cuboid` or `whole`,
+/// plant index into [`PLANTS`]).
+#[test]
+#[ignore = "a diagnostic trace of one plant: run in release with --ignored --nocapture"]
+fn trace_one_plant() {
+    let which = std::env::var("SHEARCUT_TRACE").unwrap_or_else(|_| "whole:0".into());
+    let (object, index) = which.split_once(':').expect("SHEARCUT_TRACE=object:index");
+    let setup = if object == "cuboid" { CUBOID } else { WHOLE };
+    let (label, truth) = PLANTS[index.parse::<usize>().expect("plant index")];
+    let settings = MpcSettings {
+        estimate: true,
+        ..MpcSettings::default()
+    };
+    let mut tare = WrenchTare::new(WrenchTareSettings::default()).unwrap();
+    let mut fracture = FractureDetector::new(FractureSettings::default()).unwrap();
+    let knife = Knife::new(&setup.knife.settings()).unwrap();
+    let mesh = (setup.object)().mesh().unwrap();
+    let mut observer = CutObserver::new(
+        &knife,
+        &knife_plane_silhouette(&mesh).unwrap(),
+        CutTarget::Depth(setup.depth),
+        &CutObserverSettings::default(),
+    )
+    .unwrap();
+    println!("# {} {label}", setup.name);
+    println!(
+        "t y depth crack l_truth l_profile fy fy_truth sections detected model_n model_t S T F l_outline touched obs_depth"
+    );
+    let (estimated, _, _) = end_of_cut(&setup, truth, &settings, &mut |tr| {
+        let m = &tr.step.reading;
+        let seen = observer.observe(m);
+        let depth = tr.task.edge_depth(m.position.y);
+        tare.observe(&m.wrench, m.position.y - tr.task.touch_height);
+        let fy = tare.tared(&m.wrench)[1];
+        if m.position.y <= tr.task.touch_height {
+            fracture.observe(m.time, &m.position, fy, tare.sigma()[1]);
+        }
+        let v_n = -m.velocity.y;
+        let xi = if v_n > 0.0 {
+            m.velocity.z.abs() / v_n
+        } else {
+            0.0
+        };
+        let state = StageState {
+            depth: tr.profile.section_depth(depth),
+            height: tr.profile.height(),
+            half_width: tr.profile.half_width(),
+            fractured: false,
+            travel_since_fracture: 0.0,
+        };
+        let [n, t] = tr.model.force_model(xi, &state, [1.0; 3]).unwrap();
+        let l = tr.profile.contact_length(depth);
+        if tr.step.truth.crack_depth > 0.0 || depth > 0.0 {
+            println!(
+                "{:.3} {:.6} {:.6} {:.6} {:.5} {:.5} {:.4} {:.4} {} {} {:.2} {:.2} {:.4} {:.4} {:.4} {:.5} {} {:.6}",
+                m.time,
+                m.position.y,
+                depth,
+                tr.step.truth.crack_depth,
+                tr.step.truth.contact_length,
+                l,
+                fy,
+                tr.step.truth.wrench.force.y,
+                tr.step.truth.fractured_sections,
+                u8::from(fracture.fracture().is_some()),
+                n.nominal * l,
+                t.nominal * l,
+                tr.scale[1],
+                tr.scale[0],
+                tr.scale[2],
+                seen.contact_length,
+                u8::from(seen.touch.is_some()),
+                seen.edge_depth,
+            );
+        }
+    });
+    println!("# end {estimated:?} truth {truth:?}");
 }
