@@ -76,9 +76,10 @@ struct PendingRow {
 /// Rows are weighted by the contact length squared: the sensor's noise on a
 /// force per unit length is inversely proportional to it (this is least
 /// squares on the total forces). On an indentation of n evenly spaced
-/// ticks the slope's standard deviation from the sensor's noise is
-/// √(12/(n(n² − 1))) of the noise over one tick's change of force (0.06
-/// at n = 14, the half potato's 70 µm at 5 mm/s). Allocation-free.
+/// ticks the slope's relative standard deviation from the sensor's noise
+/// is √(12/(n(n² − 1))) times the noise over one tick's change of force
+/// (0.066 times at n = 14, the half potato's 70 µm at 5 mm/s).
+/// Allocation-free.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct IndentationStiffness {
     sums: [CentredSums; 2],
