@@ -175,6 +175,7 @@ fn end_of_cut(
     setup: &Setup,
     truth: [f64; 3],
     settings: &MpcSettings,
+    contact: Option<&DepthProfile>,
     on_tick: &mut dyn FnMut(&Trace<'_>),
 ) -> ([f64; 3], ModelCheck, bool) {
     let mut material = setup.material.material();
@@ -204,7 +205,9 @@ fn end_of_cut(
         .join("../config/surrogates")
         .join(format!("{}.toml", setup.surrogate));
     let surrogate = Surrogate::from_path(&path).unwrap();
-    let profile = profile(&mesh, &surrogate, setup.depth);
+    let profile = contact
+        .cloned()
+        .unwrap_or_else(|| profile(&mesh, &surrogate, setup.depth));
     let model = SurrogateModel::new(surrogate);
     let mut check = ModelCheck {
         touch_height: task.touch_height,
@@ -277,7 +280,8 @@ fn the_estimator_converges_on_plants_off_the_preset() {
     let mut failures = Vec::new();
     for setup in [CUBOID, WHOLE] {
         for (label, truth) in PLANTS {
-            let (estimated, check, completed) = end_of_cut(&setup, truth, &settings, &mut |_| {});
+            let (estimated, check, completed) =
+                end_of_cut(&setup, truth, &settings, None, &mut |_| {});
             if !completed {
                 failures.push(format!("{} {label}: the cut did not complete", setup.name));
             }
@@ -352,7 +356,7 @@ fn trace_one_plant() {
     println!(
         "t y depth crack l_truth l_profile fy fy_truth sections detected model_n model_t S T F l_outline touched obs_depth"
     );
-    let (estimated, _, _) = end_of_cut(&setup, truth, &settings, &mut |tr| {
+    let (estimated, _, _) = end_of_cut(&setup, truth, &settings, None, &mut |tr| {
         let m = &tr.step.reading;
         let seen = observer.observe(m);
         let depth = tr.task.edge_depth(m.position.y);
@@ -401,4 +405,43 @@ fn trace_one_plant() {
         }
     });
     println!("# end {estimated:?} truth {truth:?}");
+}
+
+/// A diagnostic of the half potato's stiffness (docs/controllers.md): each
+/// plant cut twice, the second time with the MPC's profile holding the
+/// contact length the plant had at each edge depth in the first cut (not
+/// an arm's knowledge: what the estimator would reach if its contact
+/// length were the plant's).
+#[test]
+#[ignore = "a diagnostic with the plant's contact length in the profile: run in release with --ignored --nocapture"]
+fn the_half_potato_with_the_plants_contact_length() {
+    let settings = MpcSettings {
+        estimate: true,
+        ..MpcSettings::default()
+    };
+    for (label, truth) in PLANTS {
+        let (mut depths, mut lengths) = (Vec::new(), Vec::new());
+        let mut shape = None;
+        end_of_cut(&WHOLE, truth, &settings, None, &mut |tr| {
+            let depth = tr.task.edge_depth(tr.step.reading.position.y);
+            shape.get_or_insert((tr.profile.height(), tr.profile.half_width()));
+            if depths.last().is_none_or(|d| depth > d + 1e-7) {
+                depths.push(depth);
+                lengths.push(tr.step.truth.contact_length);
+            }
+        });
+        let (height, half_width) = shape.unwrap();
+        let contact = DepthProfile::new(depths, lengths, height, half_width).unwrap();
+        let (estimated, _, _) = end_of_cut(&WHOLE, truth, &settings, Some(&contact), &mut |_| {});
+        let e = errors(estimated, truth);
+        println!(
+            "half potato {label:18} T {:.3} ({:+5.1} %)  S {:.3} ({:+5.1} %)  F {:.3} ({:+5.1} %)",
+            estimated[0],
+            100.0 * e[0],
+            estimated[1],
+            100.0 * e[1],
+            estimated[2],
+            100.0 * e[2],
+        );
+    }
 }
