@@ -354,7 +354,7 @@ fn trace_one_plant() {
     .unwrap();
     println!("# {} {label}", setup.name);
     println!(
-        "t y depth crack l_truth l_profile fy fy_truth sections detected model_n model_t S T F l_outline touched obs_depth"
+        "t y depth crack l_truth l_profile fy fy_truth sections detected model_n model_t S T F l_outline touched obs_depth ft"
     );
     let (estimated, _, _) = end_of_cut(&setup, truth, &settings, None, &mut |tr| {
         let m = &tr.step.reading;
@@ -382,7 +382,7 @@ fn trace_one_plant() {
         let l = tr.profile.contact_length(depth);
         if tr.step.truth.crack_depth > 0.0 || depth > 0.0 {
             println!(
-                "{:.3} {:.6} {:.6} {:.6} {:.5} {:.5} {:.4} {:.4} {} {} {:.2} {:.2} {:.4} {:.4} {:.4} {:.5} {} {:.6}",
+                "{:.3} {:.6} {:.6} {:.6} {:.5} {:.5} {:.4} {:.4} {} {} {:.2} {:.2} {:.4} {:.4} {:.4} {:.5} {} {:.6} {:.4}",
                 m.time,
                 m.position.y,
                 depth,
@@ -401,6 +401,7 @@ fn trace_one_plant() {
                 seen.contact_length,
                 u8::from(seen.touch.is_some()),
                 seen.edge_depth,
+                -tare.tared(&m.wrench)[2] * m.velocity.z.signum(),
             );
         }
     });
