@@ -64,10 +64,11 @@ const MIN_PLANNED_TRAVEL: f64 = 1e-3;
 /// The servo tick ([`Controller::tick`]) reads the arm, updates the
 /// observers (the sensor's tare, the first fracture, the edge's depth and
 /// contact length from the task's touch height and the object's profile,
-/// and while estimating the touch) and the estimator, follows the plan in force through the jerk-limited
-/// shaper, and every `1/rate_hz` hands a [`PlanRequest`] to the planning
-/// half ([`MpcPlanJob`]) on a [`Planner`] thread (`[controller.mpc.planner]`:
-/// in lockstep the plan arrives a fixed number of ticks later, so runs are
+/// and while estimating the touch) and the estimator, follows the plan in
+/// force through the jerk-limited shaper, and every `1/rate_hz` hands a
+/// [`PlanRequest`] to the planning half ([`MpcPlanJob`]) on a [`Planner`]
+/// thread (`[controller.mpc.planner]`: in lockstep the plan arrives a fixed
+/// number of ticks later, so runs are
 /// bit-identical; in realtime when it is ready). The tick never solves,
 /// waits (but for a lockstep plan that is due) or allocates.
 ///
