@@ -43,7 +43,7 @@ fn estimator_ticks_allocate_nothing() {
         if fractured {
             e.observe_cut([Some(f[0]), Some(f[1])], seen);
         } else {
-            e.observe_indentation(0.03, f, seen);
+            e.observe_indentation(0.03, f, seen, 0.01);
         }
     }
     TRACK.with(|t| t.set(false));

@@ -72,7 +72,7 @@ fn estimate(model: &SurrogateModel, truth: [f64; 3], xi: impl Fn(f64) -> f64) ->
             .force_model(x, &state(travel, false, 0.0), e.factors())
             .unwrap();
         let measured = forces(model, x, &state(travel + lag, false, 0.0), truth);
-        e.observe_indentation(CONTACT, measured, seen);
+        e.observe_indentation(CONTACT, measured, seen, 0.0);
         travel += STEP;
     }
     e.freeze_stiffness();

@@ -13,7 +13,10 @@ use super::slice_model::{SliceModel, StageState};
 use crate::controller::{
     BladeBudget, Controller, ControllerTelemetry, CutTask, SawingStroke, VelocityShaper,
 };
-use crate::observer::{FractureDetector, FractureSettings, WrenchTare, WrenchTareSettings};
+use crate::observer::{
+    FractureDetector, FractureSettings, TouchDetector, TouchSettings, WrenchTare,
+    WrenchTareSettings,
+};
 use crate::planner::{PlanJob, Planner, SubmitStatus};
 
 /// Counters of the MPC's plans.
@@ -60,11 +63,12 @@ const MIN_PLANNED_TRAVEL: f64 = 1e-3;
 ///
 /// The servo tick ([`Controller::tick`]) reads the arm, updates the
 /// observers (the sensor's tare, the first fracture, the edge's depth and
-/// contact length from the task's touch height and the object's profile)
-/// and the estimator, follows the plan in force through the jerk-limited
-/// shaper, and every `1/rate_hz` hands a [`PlanRequest`] to the planning
-/// half ([`MpcPlanJob`]) on a [`Planner`] thread (`[controller.mpc.planner]`:
-/// in lockstep the plan arrives a fixed number of ticks later, so runs are
+/// contact length from the task's touch height and the object's profile,
+/// and while estimating the touch) and the estimator, follows the plan in
+/// force through the jerk-limited shaper, and every `1/rate_hz` hands a
+/// [`PlanRequest`] to the planning half ([`MpcPlanJob`]) on a [`Planner`]
+/// thread (`[controller.mpc.planner]`: in lockstep the plan arrives a fixed
+/// number of ticks later, so runs are
 /// bit-identical; in realtime when it is ready). The tick never solves,
 /// waits (but for a lockstep plan that is due) or allocates.
 ///
@@ -125,6 +129,11 @@ pub struct Mpc<M: SliceModel + Clone + Send + 'static> {
     tare: WrenchTare,
     /// The first fracture, from the tared normal force after the touch.
     fracture: FractureDetector,
+    /// The edge's touch, from the tared normal force rising out of the
+    /// noise: the estimator's indentation rows start there (the task's
+    /// touch height is a prior; before the edge meets the object the model
+    /// would take the free air for a soft material).
+    touch: TouchDetector,
     /// The edge's depth after the last reading, m (below the touch point;
     /// the model's state is the sections' mean depth there,
     /// [`DepthProfile::section_depth`]).
@@ -194,6 +203,7 @@ impl<M: SliceModel + Clone + Send + 'static> Mpc<M> {
             }),
             tare: WrenchTare::new(WrenchTareSettings::default())?,
             fracture: FractureDetector::new(FractureSettings::default())?,
+            touch: TouchDetector::new(TouchSettings::default())?,
             depth: 0.0,
             telemetry: ControllerTelemetry::default(),
         })
@@ -285,11 +295,22 @@ impl<M: SliceModel + Clone + Send + 'static> Mpc<M> {
     /// Feeds the measured forces per unit length of edge in contact to the
     /// estimator, with the model of them at the executed ξ, the current
     /// state and the estimator's factors: during the indentation (which
-    /// identifies the stiffness) and after the first fracture.
+    /// identifies the stiffness), from the observed touch on, and after the
+    /// first fracture.
     fn estimate(&mut self, m: &ArmReading, l: f64, fractured: bool) {
         let Some(estimator) = self.estimator.as_mut() else {
             return;
         };
+        let w = self.tare.tared(&m.wrench);
+        let noise = self.tare.sigma()[1];
+        let touched = self.tare.frozen()
+            && self
+                .touch
+                .observe(m.time, &m.position, w[1], noise)
+                .is_some();
+        if !touched {
+            return;
+        }
         let v_n = -m.velocity.y;
         if !(v_n > 0.0 && l > 0.0) {
             return;
@@ -314,7 +335,6 @@ impl<M: SliceModel + Clone + Send + 'static> Mpc<M> {
             return;
         };
         // Measured resistance: up, and against the tangential motion.
-        let w = self.tare.tared(&m.wrench);
         let force = [w[1], -w[2] * m.velocity.z.signum()];
         if fractured {
             let per_length = [
@@ -323,7 +343,7 @@ impl<M: SliceModel + Clone + Send + 'static> Mpc<M> {
             ];
             estimator.observe_cut(per_length, model);
         } else {
-            estimator.observe_indentation(l, force.map(|f| f / l), model);
+            estimator.observe_indentation(l, force.map(|f| f / l), model, noise);
         }
     }
 

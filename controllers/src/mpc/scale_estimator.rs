@@ -107,18 +107,31 @@ impl ScaleEstimator {
 
     /// One tick of the indentation before the first fracture: the measured
     /// normal and tangential forces per unit length `force` (N/m) with
-    /// `contact` metres of edge in contact, and the model of them.
+    /// `contact` metres of edge in contact, the model of them, and `noise`
+    /// the sensor's noise level on a force (N).
     ///
     /// Before the fracture the forces are linear in the stiffness alone, so
     /// the stiffness factor is set to the least-squares slope of the
-    /// measured forces on the model's nominal ones, with an offset per
-    /// force and per run of constant contact ([`IndentationStiffness`]: the
-    /// edge touches within a tick, so the knife's travel lags the
-    /// indentation by a near-constant amount, as a sensor bias offsets the
-    /// force).
-    pub fn observe_indentation(&mut self, contact: f64, force: [f64; 2], model: [ForceModel; 2]) {
+    /// measured forces on the model's nominal ones over the indentation's
+    /// linear rise, with an offset per force ([`IndentationStiffness`]:
+    /// the arm's depth is off the plant's by a near-constant amount, as a
+    /// sensor bias offsets the force; the rise ends where the force falls
+    /// below its line, which may be before the first fracture is detected).
+    pub fn observe_indentation(
+        &mut self,
+        contact: f64,
+        force: [f64; 2],
+        model: [ForceModel; 2],
+        noise: f64,
+    ) {
         self.indentation
-            .observe(contact, force, model.map(|m| m.nominal));
+            .observe(contact, force, model.map(|m| m.nominal), noise);
+        self.take_indentation();
+    }
+
+    /// Sets the stiffness factor to the indentation's slope, once there is
+    /// one.
+    fn take_indentation(&mut self) {
         if let Some(s) = self.indentation.stiffness() {
             self.theta[1] = s;
             self.clamp_factors();
@@ -171,13 +184,20 @@ impl ScaleEstimator {
         self.theta[2] = self.theta[2].clamp(lo * self.theta[1], hi * self.theta[1]);
     }
 
-    /// Holds the stiffness factor where it is from now on: its row and
+    /// Holds the stiffness factor from now on at the indentation's slope
+    /// (its pending rows on the line taken, [`IndentationStiffness::close`]),
+    /// or where it is if the indentation gave none: its row and
     /// column of the covariance are zeroed, so no later row moves it (a
     /// parameter fixed in recursive least squares). Used after the first
     /// fracture, when the toughness and stiffness parts of the forces are
     /// nearly collinear at a near-constant ξ and only the indentation before
     /// it has identified E.
     pub fn freeze_stiffness(&mut self) {
+        // The indentation's rows still pending on the line count.
+        if !self.indentation.ended() {
+            self.indentation.close();
+            self.take_indentation();
+        }
         for k in 0..3 {
             self.covariance[(1, k)] = 0.0;
             self.covariance[(k, 1)] = 0.0;
