@@ -13,12 +13,14 @@
 //! ```
 
 use std::path::Path;
+use std::sync::Arc;
 
 use nalgebra::Vector2;
 use shearcut_controllers::controller::{Controller, CutTask, MotionLimits};
 use shearcut_controllers::mpc::{
     DepthProfile, Mpc, MpcSettings, SliceModel, StageState, SurrogateModel,
 };
+use shearcut_controllers::observer::EdgeOutline;
 use shearcut_plant::{Plant, PlantSettings, PlantStep};
 use shearcut_sim::arm::ArmLimits;
 use shearcut_sim::geometry::TriangleMesh;
@@ -109,12 +111,11 @@ const SETTLE: f64 = 2e-3;
 /// estimator uses it: the normal and tangential work done after the first
 /// fracture (past [`SETTLE`]), measured over modelled. A factor can only be
 /// as close to the truth as these are to 1.
-#[derive(Debug, Default)]
+#[derive(Debug)]
 struct ModelCheck {
-    /// The knife's height when its edge meets the object's top, m: the
-    /// depth the model is evaluated at is the edge's below it, as the
-    /// controller takes it.
-    touch_height: f64,
+    /// The cut's task: the depth the model is evaluated at is the edge's
+    /// ([`CutTask::edge_depth`]), as the controller takes it.
+    task: CutTask,
     fracture: Option<f64>,
     measured: [f64; 2],
     modelled: [f64; 2],
@@ -129,7 +130,7 @@ impl ModelCheck {
         truth: [f64; 3],
     ) {
         let m = &step.reading;
-        let depth = profile.section_depth((self.touch_height - m.position.y).max(0.0));
+        let depth = profile.section_depth(self.task.edge_depth(&m.position));
         let v_n = -m.velocity.y;
         let l = step.truth.contact_length;
         if !(v_n > 0.0 && l > 0.0) {
@@ -181,7 +182,7 @@ fn end_of_cut(
     let arm = ArmLimits::default();
     let task = CutTask {
         target_depth: setup.depth,
-        touch_height: Plant::start_position(&knife, &mesh, setup.z0, 0.0).y,
+        outline: Arc::new(EdgeOutline::of_object(knife.edge(), &mesh).unwrap()),
         overtravel: 0.0,
         period: 1e-3,
         blade_budget: setup.blade_budget,
@@ -201,8 +202,10 @@ fn end_of_cut(
     let profile = profile(&mesh, &surrogate, setup.depth);
     let model = SurrogateModel::new(surrogate);
     let mut check = ModelCheck {
-        touch_height: task.touch_height,
-        ..ModelCheck::default()
+        task: task.clone(),
+        fracture: None,
+        measured: [0.0; 2],
+        modelled: [0.0; 2],
     };
     let mut mpc = Mpc::new(&task, settings, model.clone(), profile.clone(), xi).unwrap();
     let alpha = xi.atan();

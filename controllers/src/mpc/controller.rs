@@ -13,7 +13,9 @@ use super::slice_model::{SliceModel, StageState};
 use crate::controller::{
     BladeBudget, Controller, ControllerTelemetry, CutTask, SawingStroke, VelocityShaper,
 };
-use crate::observer::{FractureDetector, FractureSettings, WrenchTare, WrenchTareSettings};
+use crate::observer::{
+    EdgeOutline, FractureDetector, FractureSettings, WrenchTare, WrenchTareSettings,
+};
 use crate::planner::{PlanJob, Planner, SubmitStatus};
 
 /// Counters of the MPC's plans.
@@ -60,7 +62,8 @@ const MIN_PLANNED_TRAVEL: f64 = 1e-3;
 ///
 /// The servo tick ([`Controller::tick`]) reads the arm, updates the
 /// observers (the sensor's tare, the first fracture, the edge's depth and
-/// contact length from the task's touch height and the object's profile)
+/// contact length from the knife's edge against the object's outline at the
+/// reported pose, [`CutTask::edge_depth`])
 /// and the estimator, follows the plan in force through the jerk-limited
 /// shaper, and every `1/rate_hz` hands a [`PlanRequest`] to the planning
 /// half ([`MpcPlanJob`]) on a [`Planner`] thread (`[controller.mpc.planner]`:
@@ -121,11 +124,11 @@ pub struct Mpc<M: SliceModel + Clone + Send + 'static> {
     replanned: bool,
     estimator: Option<ScaleEstimator>,
     /// The sensor's bias and noise, from the free-air readings (the edge
-    /// above the task's touch height).
+    /// above the object's outline).
     tare: WrenchTare,
     /// The first fracture, from the tared normal force after the touch.
     fracture: FractureDetector,
-    /// The edge's depth after the last reading, m (below the touch point;
+    /// The edge's depth after the last reading, m ([`CutTask::edge_depth`];
     /// the model's state is the sections' mean depth there,
     /// [`DepthProfile::section_depth`]).
     depth: f64,
@@ -169,7 +172,7 @@ impl<M: SliceModel + Clone + Send + 'static> Mpc<M> {
             InvalidSetting::new("mpc.planner", "thread", format!("cannot start: {e}"))
         })?;
         Ok(Self {
-            task: *task,
+            task: task.clone(),
             settings: *settings,
             model,
             profile,
@@ -395,11 +398,11 @@ impl<M: SliceModel + Clone + Send + 'static> Controller for Mpc<M> {
             self.shaper.resync(&m.velocity);
         }
         self.budget.observe(m);
-        self.depth = self.task.edge_depth(m.position.y);
-        self.tare
-            .observe(&m.wrench, m.position.y - self.task.touch_height);
-        let contact = self.profile.contact_length(self.depth);
-        if m.position.y <= self.task.touch_height {
+        let clearance = self.task.clearance(&m.position);
+        self.depth = EdgeOutline::penetration(clearance);
+        self.tare.observe(&m.wrench, clearance);
+        let contact = self.task.contact_length(&m.position);
+        if clearance <= 0.0 {
             let force = self.tare.tared(&m.wrench)[1];
             self.fracture
                 .observe(m.time, &m.position, force, self.tare.sigma()[1]);
@@ -414,7 +417,7 @@ impl<M: SliceModel + Clone + Send + 'static> Controller for Mpc<M> {
             }
         }
         self.estimate(m, contact, fractured);
-        let done = self.task.reached(m.position.y);
+        let done = self.task.reached(self.depth);
         // The plan due now (lockstep) or the newest (realtime).
         let arrived = self.planner.poll().fresh;
         self.replanned = !done
