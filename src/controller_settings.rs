@@ -36,8 +36,10 @@ pub struct ControllerSettings {
     /// keeps the whole contact on the blade).
     pub blade_budget: Option<f64>,
     /// Edge travel past the target depth before a controller ends its cut,
-    /// m (default 0.005, at most 0.01): the crack front can lag the edge,
-    /// and a controller cannot see it (`CutTask::overtravel`).
+    /// m (default 0.004, at most 0.01): the crack front can lag the edge,
+    /// and a controller cannot see it (`CutTask::overtravel`; the default
+    /// covers the largest lag measured on the held-out variants, 2.9 mm,
+    /// docs/limitations.md).
     pub overtravel: f64,
     /// Longest simulated run, s (default 30): a cut that has not reached its
     /// target depth by then stops as timed out.
@@ -63,7 +65,7 @@ impl Default for ControllerSettings {
             max_tangential_speed: 0.1,
             force_setpoint: 20.0,
             blade_budget: None,
-            overtravel: 0.005,
+            overtravel: 0.004,
             max_duration: 30.0,
             force_gains: None,
             surrogate: None,

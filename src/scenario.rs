@@ -898,7 +898,7 @@ mod tests {
     #[test]
     fn overtravel_and_servo_priority_defaults_and_ranges() {
         let s = Scenario::parse(MINIMAL, "t", "minimal").unwrap();
-        assert_eq!(s.controller.overtravel, 0.005);
+        assert_eq!(s.controller.overtravel, 0.004);
         assert_eq!(s.control_loop.servo_priority, 0);
         let text = format!("{MINIMAL}\n[controller]\novertravel = 0.02\n");
         let e = Scenario::parse(&text, "x", "t").unwrap_err().to_string();

@@ -5,14 +5,20 @@
 //! max per solve, and the whole `Mpc::tick` on planning ticks.
 #![allow(clippy::disallowed_methods)] // A benchmark reads the wall clock.
 
+use std::sync::Arc;
 use std::time::Instant;
+
+use nalgebra::Vector2;
 
 use shearcut_controllers::controller::{Controller, CutTask, MotionLimits};
 use shearcut_controllers::mpc::{
     DepthProfile, DepthQp, Mpc, MpcSettings, QpLimits, SliceModel, StageCost, StageData, StageState,
 };
+use shearcut_controllers::observer::EdgeOutline;
 use shearcut_controllers::planner::{LatencyMode, PlannerSettings};
 use shearcut_sim::arm::{ArmReading, ArmStatus};
+use shearcut_sim::geometry::Polygon;
+use shearcut_sim::{Knife, KnifePreset};
 
 /// w(ξ) = 150 − 120ξ + 45ξ² N/m, f(ξ) = 140/(1+ξ) N/m: the shape of the
 /// potato surrogate (a minimum near ξ = 1.3).
@@ -110,9 +116,18 @@ fn main() {
             },
             ..settings
         };
+        // The straight 0.2 m edge (401 samples, as many as the chef's) over
+        // a block 1 m deep whose top is at y = 0.
+        let knife = Knife::new(&KnifePreset::Straight.settings()).unwrap();
+        let block = Polygon::new(vec![
+            Vector2::new(-1.0, -1.0),
+            Vector2::new(1.0, -1.0),
+            Vector2::new(1.0, 0.0),
+            Vector2::new(-1.0, 0.0),
+        ]);
         let task = CutTask {
             target_depth: 1.0,
-            touch_height: 0.0,
+            outline: Arc::new(EdgeOutline::new(knife.edge(), &block)),
             overtravel: 0.0,
             period: 1e-3,
             blade_budget: 1.0,

@@ -13,6 +13,7 @@
 //! ```
 
 use std::path::Path;
+use std::sync::Arc;
 
 use nalgebra::Vector2;
 use shearcut_controllers::controller::{Controller, CutTask, MotionLimits};
@@ -20,8 +21,8 @@ use shearcut_controllers::mpc::{
     DepthProfile, Mpc, MpcSettings, SliceModel, StageState, SurrogateModel,
 };
 use shearcut_controllers::observer::{
-    CutObserver, CutObserverSettings, CutTarget, FractureDetector, FractureSettings, WrenchTare,
-    WrenchTareSettings,
+    CutObserver, CutObserverSettings, CutTarget, EdgeOutline, FractureDetector, FractureSettings,
+    WrenchTare, WrenchTareSettings,
 };
 use shearcut_plant::{Plant, PlantSettings, PlantStep};
 use shearcut_sim::arm::ArmLimits;
@@ -114,12 +115,11 @@ const SETTLE: f64 = 2e-3;
 /// estimator uses it: the normal and tangential work done after the first
 /// fracture (past [`SETTLE`]), measured over modelled. A factor can only be
 /// as close to the truth as these are to 1.
-#[derive(Debug, Default)]
+#[derive(Debug)]
 struct ModelCheck {
-    /// The knife's height when its edge meets the object's top, m: the
-    /// depth the model is evaluated at is the edge's below it, as the
-    /// controller takes it.
-    touch_height: f64,
+    /// The cut's task: the depth the model is evaluated at is the edge's
+    /// ([`CutTask::edge_depth`]), as the controller takes it.
+    task: CutTask,
     fracture: Option<f64>,
     measured: [f64; 2],
     modelled: [f64; 2],
@@ -134,7 +134,7 @@ impl ModelCheck {
         truth: [f64; 3],
     ) {
         let m = &step.reading;
-        let depth = profile.section_depth((self.touch_height - m.position.y).max(0.0));
+        let depth = profile.section_depth(self.task.edge_depth(&m.position));
         let v_n = -m.velocity.y;
         let l = step.truth.contact_length;
         if !(v_n > 0.0 && l > 0.0) {
@@ -188,7 +188,7 @@ fn end_of_cut(
     let arm = ArmLimits::default();
     let task = CutTask {
         target_depth: setup.depth,
-        touch_height: Plant::start_position(&knife, &mesh, setup.z0, 0.0).y,
+        outline: Arc::new(EdgeOutline::of_object(knife.edge(), &mesh).unwrap()),
         overtravel: 0.0,
         period: 1e-3,
         blade_budget: setup.blade_budget,
@@ -210,8 +210,10 @@ fn end_of_cut(
         .unwrap_or_else(|| profile(&mesh, &surrogate, setup.depth));
     let model = SurrogateModel::new(surrogate);
     let mut check = ModelCheck {
-        touch_height: task.touch_height,
-        ..ModelCheck::default()
+        task: task.clone(),
+        fracture: None,
+        measured: [0.0; 2],
+        modelled: [0.0; 2],
     };
     let mut mpc = Mpc::new(&task, settings, model.clone(), profile.clone(), xi).unwrap();
     let alpha = xi.atan();
@@ -359,10 +361,11 @@ fn trace_one_plant() {
     let (estimated, _, _) = end_of_cut(&setup, truth, &settings, None, &mut |tr| {
         let m = &tr.step.reading;
         let seen = observer.observe(m);
-        let depth = tr.task.edge_depth(m.position.y);
-        tare.observe(&m.wrench, m.position.y - tr.task.touch_height);
+        let clearance = tr.task.clearance(&m.position);
+        let depth = EdgeOutline::penetration(clearance);
+        tare.observe(&m.wrench, clearance);
         let fy = tare.tared(&m.wrench)[1];
-        if m.position.y <= tr.task.touch_height {
+        if clearance <= 0.0 {
             fracture.observe(m.time, &m.position, fy, tare.sigma()[1]);
         }
         let v_n = -m.velocity.y;
@@ -424,7 +427,7 @@ fn the_half_potato_with_the_plants_contact_length() {
         let (mut depths, mut lengths) = (Vec::new(), Vec::new());
         let mut shape = None;
         end_of_cut(&WHOLE, truth, &settings, None, &mut |tr| {
-            let depth = tr.task.edge_depth(tr.step.reading.position.y);
+            let depth = tr.task.edge_depth(&tr.step.reading.position);
             shape.get_or_insert((tr.profile.height(), tr.profile.half_width()));
             if depths.last().is_none_or(|d| depth > d + 1e-7) {
                 depths.push(depth);

@@ -9,11 +9,13 @@
 //! nor is the plant's step.
 
 use std::path::Path;
+use std::sync::Arc;
 use std::sync::atomic::Ordering;
 
 use nalgebra::Vector2;
 use shearcut_controllers::controller::{Controller, CutTask, MotionLimits};
 use shearcut_controllers::mpc::{DepthProfile, Mpc, MpcSettings, SurrogateModel};
+use shearcut_controllers::observer::EdgeOutline;
 use shearcut_plant::{Plant, PlantSettings};
 use shearcut_sim::arm::ArmLimits;
 use shearcut_sim::section::SectionSettings;
@@ -42,7 +44,7 @@ fn mpc_ticks_on_the_plant_allocate_only_inside_clarabel() {
     let arm = ArmLimits::default();
     let task = CutTask {
         target_depth: 0.008,
-        touch_height: Plant::start_position(&knife, &mesh, 0.02, 0.0).y,
+        outline: Arc::new(EdgeOutline::of_object(knife.edge(), &mesh).unwrap()),
         overtravel: 0.0,
         period: 1e-3,
         blade_budget: 0.006,

@@ -37,17 +37,18 @@ pub struct ShearcutTask {
 impl From<&CutSetup> for ShearcutTask {
     fn from(setup: &CutSetup) -> Self {
         let task = setup.task();
+        let start = setup.cut().start;
         Self {
             period: task.period,
             target_depth: task.target_depth,
-            touch_height: task.touch_height,
+            touch_height: task.outline.touch_height(start.z).unwrap_or(f64::NAN),
             blade_budget: task.blade_budget,
             normal_speed_limit: task.limits.normal_speed,
             tangential_speed_limit: task.limits.tangential_speed,
             acceleration_limit: task.limits.acceleration,
             jerk_limit: task.limits.jerk,
             max_ticks: setup.max_ticks(),
-            start_position: setup.cut().start.into(),
+            start_position: start.into(),
         }
     }
 }

@@ -91,7 +91,7 @@ fn serve(
 ) -> Result<(), RunError> {
     let choice = controller_choice(s, controller)?;
     let setup = LoopSetup::new(s, choice)?;
-    let task = setup.task;
+    let task = setup.task.clone();
     let mut ctl = setup.controller(s, choice)?;
     // The MPC's planner thread has started (with the controller) at normal
     // priority; only this, the servo thread, is raised.

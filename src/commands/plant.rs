@@ -26,7 +26,7 @@ pub fn run(
     let s = Scenario::load(scenario)?;
     let choice = controller_choice(&s, controller)?;
     let setup = LoopSetup::new(&s, choice)?;
-    let task = setup.task;
+    let task = setup.task.clone();
     let plant = setup.plant(&s)?;
     let mut link = InProcessPlant::new(plant, task.period);
     let name = node_name(Role::Plant, run_id);

@@ -2,6 +2,7 @@
 //! tick, in lockstep, through a plant link.
 
 use std::path::Path;
+use std::sync::Arc;
 
 use nalgebra::Vector2;
 use serde::Serialize;
@@ -9,6 +10,7 @@ use shearcut_controllers::controller::{
     ConstantSlice, Controller, CutTask, ForceFeedback, ForceFeedbackGains, MotionLimits,
 };
 use shearcut_controllers::mpc::{DepthProfile, Mpc, SurrogateModel};
+use shearcut_controllers::observer::EdgeOutline;
 use shearcut_plant::{Plant, PlantSettings};
 use shearcut_sim::geometry::TriangleMesh;
 use shearcut_sim::{InvalidSetting, Knife};
@@ -97,10 +99,17 @@ fn invalid(scenario: &Scenario, setting: InvalidSetting) -> RunError {
 }
 
 /// The cut task of a scenario for its first z₀: target depth (motion.depth
-/// or 0.8 × the object's height), the knife's height when its edge meets
-/// the object's top (what a touch-off gives on a real cell), servo period,
-/// blade budget and limits.
-pub fn cut_task(s: &Scenario, knife: &Knife, mesh: &TriangleMesh) -> CutTask {
+/// or 0.8 × the object's height), the knife's edge against the object's
+/// outline in the knife plane (the object's silhouette there, as vision
+/// would give it on a real cell), servo period, blade budget and limits.
+///
+/// # Errors
+/// The object does not cross the knife plane x = 0.
+pub fn cut_task(
+    s: &Scenario,
+    knife: &Knife,
+    mesh: &TriangleMesh,
+) -> Result<CutTask, InvalidSetting> {
     let (lo, hi) = mesh.bounds();
     let z0 = s.motion.z0.first().copied().unwrap_or(0.0);
     let edge = knife.edge().vertices();
@@ -113,10 +122,11 @@ pub fn cut_task(s: &Scenario, knife: &Knife, mesh: &TriangleMesh) -> CutTask {
         .controller
         .blade_budget
         .unwrap_or(((z_max - z_min) - z0 - (hi.z - lo.z)).max(0.0));
+    let outline = EdgeOutline::of_object(knife.edge(), mesh)?;
     let arm = &s.control_loop.arm_limits;
-    CutTask {
+    Ok(CutTask {
         target_depth: s.motion.depth.unwrap_or(0.8 * (hi.y - lo.y)),
-        touch_height: Plant::start_position(knife, mesh, z0, 0.0).y,
+        outline: Arc::new(outline),
         overtravel: s.controller.overtravel,
         period: 1.0 / s.control_loop.rate_hz,
         blade_budget: budget,
@@ -127,7 +137,7 @@ pub fn cut_task(s: &Scenario, knife: &Knife, mesh: &TriangleMesh) -> CutTask {
             arm.jerk,
             ARM_MARGIN,
         ),
-    }
+    })
 }
 
 /// The ratio the MPC's first plan starts from: what spreads the blade
@@ -365,7 +375,7 @@ impl LoopSetup {
             .object
             .mesh()
             .map_err(|e| invalid(s, InvalidSetting::new("object", "mesh", e.to_string())))?;
-        let task = cut_task(s, &knife, &mesh);
+        let task = cut_task(s, &knife, &mesh).map_err(|e| invalid(s, e))?;
         let profile = match choice {
             ControllerChoice::Mpc => Some(mpc_profile(s, &task, &mesh)?),
             _ => None,

@@ -58,7 +58,7 @@ impl ConstantGridPoint {
             .mesh()
             .map_err(|e| InvalidSetting::new("object", "mesh", e.to_string()))?;
         let cap = ratio_cap(
-            &cut_task(s, &knife, &mesh),
+            &cut_task(s, &knife, &mesh)?,
             s.controller.mpc.max_slice_push_ratio,
         );
         let grid = coarse_grid(cap, self.points);

@@ -315,7 +315,7 @@ fn check_on_edge(s: &Scenario) -> Result<(), InvalidSetting> {
         .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
             (a.min(p.x), b.max(p.x))
         });
-    let budget = cut_task(s, &knife, &mesh).blade_budget;
+    let budget = cut_task(s, &knife, &mesh)?.blade_budget;
     let (first, last) = (budget, (z_max - z_min) - length);
     if !(first..=last).contains(&z0) {
         return Err(InvalidSetting::new(

@@ -57,7 +57,7 @@ impl ConstantSlice {
             } else {
                 format!("slice:{slice_push_ratio}")
             },
-            task: *task,
+            task: task.clone(),
             normal_speed,
             tangential_speed: slice_push_ratio * normal_speed,
             budget: BladeBudget::new(task.blade_budget),
@@ -86,7 +86,7 @@ impl Controller for ConstantSlice {
         }
         self.budget.observe(m);
         let l = &self.task.limits;
-        let done = self.task.reached(m.position.y);
+        let done = self.task.reached(self.task.edge_depth(&m.position));
         let (v_n, v_t) = if done {
             (0.0, 0.0)
         } else {

@@ -1,6 +1,11 @@
 //! What every controller is told about the cut it must make.
 
+use std::sync::Arc;
+
+use nalgebra::Vector3;
 use shearcut_sim::InvalidSetting;
+
+use crate::observer::EdgeOutline;
 
 /// Speed, acceleration and jerk limits a controller plans within, per axis
 /// of the knife plane (normal and tangential).
@@ -70,27 +75,34 @@ impl MotionLimits {
 ///
 /// A controller is told nothing else about the world than this and what
 /// the arm reports each tick ([`ArmReading`](shearcut_sim::arm::ArmReading)).
-/// On a real cell the touch height comes from a touch-off (jog the knife
-/// down until the F/T sensor reads a few newtons, then back off) or from a
-/// measured object top (vision, a height gauge) plus the knife's edge
-/// geometry; the object's outline in the knife's plane, which the MPC's
-/// [`DepthProfile`](crate::mpc::DepthProfile) holds, from vision or a
-/// measured template.
-#[derive(Debug, Clone, Copy, PartialEq)]
+///
+/// The cut's depth is geometric: the knife's edge against the object's
+/// outline in the knife plane ([`EdgeOutline`]), at the pose the arm
+/// reports. The edge's depth ([`edge_depth`](Self::edge_depth)) is its
+/// deepest penetration below the outline's top; pressing, it is the knife's
+/// travel since the edge touched, and when the knife slides along a curved
+/// edge it follows the part of the edge that comes over the object. On a
+/// real cell the edge comes from the knife's drawing or a scan, and the
+/// outline from vision (a silhouette in the knife's plane) or a measured
+/// template, placed in the arm's frame and its height set by a touch-off
+/// (jog the knife down until the F/T sensor reads a few newtons:
+/// [`EdgeOutline::touch_height`] there is the knife's height). The MPC's
+/// [`DepthProfile`](crate::mpc::DepthProfile) is read at this depth.
+#[derive(Debug, Clone, PartialEq)]
 pub struct CutTask {
-    /// Depth of the cut below the object's top at which it is complete, m.
-    /// A controller takes it as the edge's depth below the touch point (the
-    /// knife's normal travel since the edge met the object's top).
+    /// Depth of the cut below the object's top at which it is complete, m,
+    /// measured as the edge's depth ([`edge_depth`](Self::edge_depth): its
+    /// deepest penetration below the outline's top).
     pub target_depth: f64,
     /// Edge travel past the target depth before the cut is done, m. The
     /// crack front can lag the edge (the material compressed under it), and
     /// a controller, which cannot see the crack, lets the edge go this much
     /// deeper so that the crack reaches the target.
     pub overtravel: f64,
-    /// Height of the knife frame's origin (world y, m; the board is y = 0)
-    /// at which the edge meets the object's top: the edge's depth is
-    /// `touch_height − y`.
-    pub touch_height: f64,
+    /// The knife's edge against the object's outline in the knife plane
+    /// (world z, y; the board is y = 0), shared by the controllers made for
+    /// the task.
+    pub outline: Arc<EdgeOutline>,
     /// Servo period, s (1 ms for a 1 kHz arm).
     pub period: f64,
     /// Tangential blade travel available, m: how far the knife may move
@@ -101,27 +113,34 @@ pub struct CutTask {
 }
 
 impl CutTask {
-    /// The edge's depth below the touch point with the knife frame's origin
-    /// at height `y` (m): `touch_height − y`, 0 above it.
-    pub fn edge_depth(&self, y: f64) -> f64 {
-        (self.touch_height - y).max(0.0)
+    /// The edge's clearance above the object's outline with the knife frame
+    /// origin at `position` (world, m): negative once inside, +∞ when no
+    /// edge point is over the outline ([`EdgeOutline::clearance`]).
+    pub fn clearance(&self, position: &Vector3<f64>) -> f64 {
+        self.outline.clearance(position.z, position.y)
     }
 
-    /// Whether the edge has reached the target depth plus the overtravel
-    /// with the knife frame's origin at height `y` (m): the cut is done.
-    pub fn reached(&self, y: f64) -> bool {
-        self.edge_depth(y) >= self.target_depth + self.overtravel
+    /// The edge's depth in the object with the knife frame origin at
+    /// `position` (world, m): its deepest penetration below the outline's
+    /// top, 0 above it ([`EdgeOutline::depth`]).
+    pub fn edge_depth(&self, position: &Vector3<f64>) -> f64 {
+        self.outline.depth(position.z, position.y)
+    }
+
+    /// Length of edge inside the object with the knife frame origin at
+    /// `position` (world, m; [`EdgeOutline::contact_length`]).
+    pub fn contact_length(&self, position: &Vector3<f64>) -> f64 {
+        self.outline.contact_length(position.z, position.y)
+    }
+
+    /// Whether the edge, `edge_depth` deep (m, [`edge_depth`](Self::edge_depth)),
+    /// has reached the target depth plus the overtravel: the cut is done.
+    pub fn reached(&self, edge_depth: f64) -> bool {
+        edge_depth >= self.target_depth + self.overtravel
     }
 
     /// Checks the task, naming the offending key.
     pub fn validate(&self) -> Result<(), InvalidSetting> {
-        if !self.touch_height.is_finite() {
-            return Err(InvalidSetting::new(
-                "touch_height",
-                self.touch_height,
-                "a finite height in m",
-            ));
-        }
         if !(self.target_depth.is_finite() && self.target_depth > 0.0) {
             return Err(InvalidSetting::new(
                 "target_depth",
@@ -157,12 +176,23 @@ impl CutTask {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use nalgebra::Vector2;
+    use shearcut_sim::geometry::Polygon;
+    use shearcut_sim::{Knife, KnifePreset};
 
+    /// The straight edge over a block 50 mm high, z from −1 to 1 m.
     fn task(overtravel: f64) -> CutTask {
+        let knife = Knife::new(&KnifePreset::Straight.settings()).unwrap();
+        let block = Polygon::new(vec![
+            Vector2::new(-1.0, 0.0),
+            Vector2::new(1.0, 0.0),
+            Vector2::new(1.0, 0.05),
+            Vector2::new(-1.0, 0.05),
+        ]);
         CutTask {
             target_depth: 0.02,
             overtravel,
-            touch_height: 0.05,
+            outline: Arc::new(EdgeOutline::new(knife.edge(), &block)),
             period: 1e-3,
             blade_budget: 0.01,
             limits: MotionLimits::within_arm(0.05, 0.1, 5.0, 500.0, 0.9),
@@ -173,12 +203,13 @@ mod tests {
     #[test]
     fn done_after_the_overtravel() {
         let t = task(0.002);
-        assert_eq!(t.edge_depth(0.06), 0.0);
-        assert!((t.edge_depth(0.03) - 0.02).abs() < 1e-15);
-        assert!(!t.reached(0.0301));
-        assert!(!t.reached(0.0285));
-        assert!(t.reached(0.0279));
-        assert!(task(0.0).reached(0.0299));
+        let at = |y: f64| t.edge_depth(&Vector3::new(0.0, y, 0.0));
+        assert_eq!(at(0.06), 0.0);
+        assert!((at(0.03) - 0.02).abs() < 1e-15);
+        assert!(!t.reached(at(0.0301)));
+        assert!(!t.reached(at(0.0285)));
+        assert!(t.reached(at(0.0279)));
+        assert!(task(0.0).reached(at(0.0299)));
     }
 
     #[test]

@@ -113,7 +113,7 @@ impl ForceFeedback {
         let shaper = VelocityShaper::for_task(task)?;
         Ok(Self {
             name: format!("force:{setpoint}"),
-            task: *task,
+            task: task.clone(),
             setpoint,
             gains,
             slice_push_ratio,
@@ -137,7 +137,7 @@ impl Controller for ForceFeedback {
         }
         self.budget.observe(m);
         let l = &self.task.limits;
-        let done = self.task.reached(m.position.y);
+        let done = self.task.reached(self.task.edge_depth(&m.position));
         let (v_n, v_t) = if done {
             (0.0, 0.0)
         } else {

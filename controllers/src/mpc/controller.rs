@@ -14,7 +14,7 @@ use crate::controller::{
     BladeBudget, Controller, ControllerTelemetry, CutTask, SawingStroke, VelocityShaper,
 };
 use crate::observer::{
-    FractureDetector, FractureSettings, TouchDetector, TouchSettings, WrenchTare,
+    EdgeOutline, FractureDetector, FractureSettings, TouchDetector, TouchSettings, WrenchTare,
     WrenchTareSettings,
 };
 use crate::planner::{PlanJob, Planner, SubmitStatus};
@@ -63,12 +63,12 @@ const MIN_PLANNED_TRAVEL: f64 = 1e-3;
 ///
 /// The servo tick ([`Controller::tick`]) reads the arm, updates the
 /// observers (the sensor's tare, the first fracture, the edge's depth and
-/// contact length from the task's touch height and the object's profile,
-/// and while estimating the touch) and the estimator, follows the plan in
-/// force through the jerk-limited shaper, and every `1/rate_hz` hands a
-/// [`PlanRequest`] to the planning half ([`MpcPlanJob`]) on a [`Planner`]
-/// thread (`[controller.mpc.planner]`: in lockstep the plan arrives a fixed
-/// number of ticks later, so runs are
+/// contact length from the knife's edge against the object's outline at the
+/// reported pose, [`CutTask::edge_depth`]; while estimating, the touch) and
+/// the estimator, follows the plan in force through the jerk-limited
+/// shaper, and every `1/rate_hz` hands a [`PlanRequest`] to the planning
+/// half ([`MpcPlanJob`]) on a [`Planner`] thread (`[controller.mpc.planner]`:
+/// in lockstep the plan arrives a fixed number of ticks later, so runs are
 /// bit-identical; in realtime when it is ready). The tick never solves,
 /// waits (but for a lockstep plan that is due) or allocates.
 ///
@@ -125,16 +125,16 @@ pub struct Mpc<M: SliceModel + Clone + Send + 'static> {
     replanned: bool,
     estimator: Option<ScaleEstimator>,
     /// The sensor's bias and noise, from the free-air readings (the edge
-    /// above the task's touch height).
+    /// above the object's outline).
     tare: WrenchTare,
     /// The first fracture, from the tared normal force after the touch.
     fracture: FractureDetector,
     /// The edge's touch, from the tared normal force rising out of the
     /// noise: the estimator's indentation rows start there (the task's
-    /// touch height is a prior; before the edge meets the object the model
+    /// outline is a prior; before the edge meets the object the model
     /// would take the free air for a soft material).
     touch: TouchDetector,
-    /// The edge's depth after the last reading, m (below the touch point;
+    /// The edge's depth after the last reading, m ([`CutTask::edge_depth`];
     /// the model's state is the sections' mean depth there,
     /// [`DepthProfile::section_depth`]).
     depth: f64,
@@ -178,7 +178,7 @@ impl<M: SliceModel + Clone + Send + 'static> Mpc<M> {
             InvalidSetting::new("mpc.planner", "thread", format!("cannot start: {e}"))
         })?;
         Ok(Self {
-            task: *task,
+            task: task.clone(),
             settings: *settings,
             model,
             profile,
@@ -415,11 +415,11 @@ impl<M: SliceModel + Clone + Send + 'static> Controller for Mpc<M> {
             self.shaper.resync(&m.velocity);
         }
         self.budget.observe(m);
-        self.depth = self.task.edge_depth(m.position.y);
-        self.tare
-            .observe(&m.wrench, m.position.y - self.task.touch_height);
-        let contact = self.profile.contact_length(self.depth);
-        if m.position.y <= self.task.touch_height {
+        let clearance = self.task.clearance(&m.position);
+        self.depth = EdgeOutline::penetration(clearance);
+        self.tare.observe(&m.wrench, clearance);
+        let contact = self.task.contact_length(&m.position);
+        if clearance <= 0.0 {
             let force = self.tare.tared(&m.wrench)[1];
             self.fracture
                 .observe(m.time, &m.position, force, self.tare.sigma()[1]);
@@ -434,7 +434,7 @@ impl<M: SliceModel + Clone + Send + 'static> Controller for Mpc<M> {
             }
         }
         self.estimate(m, contact, fractured);
-        let done = self.task.reached(m.position.y);
+        let done = self.task.reached(self.depth);
         // The plan due now (lockstep) or the newest (realtime).
         let arrived = self.planner.poll().fresh;
         self.replanned = !done

@@ -11,7 +11,7 @@ use shearcut_sim::surrogate::{Surrogate, equivalent_half_width};
 const OBJECT_SAMPLES: usize = 41;
 
 /// The object as the MPC sees it along the cut: at each depth of the edge
-/// below the object's top (the knife's travel since it touched,
+/// below the object's top (its deepest penetration below the outline's top,
 /// [`CutTask::edge_depth`](crate::controller::CutTask::edge_depth)), the length of edge in contact, and the
 /// section's height and half width. Piecewise linear between samples;
 /// constant beyond the ends.

@@ -5,7 +5,7 @@ use super::depth_profile::DepthProfile;
 use super::depth_qp::{DepthQp, QpLimits, QpStatus, StageData};
 use super::settings::MpcSettings;
 use super::slice_model::{SliceModel, StageState};
-use crate::controller::{CutTask, stopping_distance, stopping_duration};
+use crate::controller::{CutTask, MotionLimits, stopping_distance, stopping_duration};
 use crate::planner::PlanJob;
 
 /// What the servo tick knows when it asks for a plan.
@@ -95,7 +95,8 @@ impl MpcPlan {
 /// Everything at construction (n stages); a plan allocates nothing in our
 /// code (clarabel 0.11.1 allocates one block per solve in its timers).
 pub struct MpcPlanJob<M: SliceModel> {
-    task: CutTask,
+    /// The task's motion limits.
+    motion: MotionLimits,
     settings: MpcSettings,
     model: M,
     profile: DepthProfile,
@@ -134,7 +135,7 @@ impl<M: SliceModel> MpcPlanJob<M> {
             force_penalty: settings.force_penalty,
         };
         Self {
-            task: *task,
+            motion: task.limits,
             settings: *settings,
             model,
             profile,
@@ -213,7 +214,7 @@ impl<M: SliceModel> MpcPlanJob<M> {
                 before_fracture: !fractured && k == 0,
             };
         }
-        let l = self.task.limits;
+        let l = self.motion;
         // Keep what stopping at the current tangential speed needs.
         let reserve = stopping_distance(r.tangential_speed, l.acceleration, l.jerk);
         let blade = (r.blade_left - reserve).max(0.0);
@@ -300,7 +301,7 @@ impl<M: SliceModel> MpcPlanJob<M> {
         if needed < 1.0 {
             return false;
         }
-        let l = &self.task.limits;
+        let l = &self.motion;
         let speed = r.normal_speed.hypot(r.tangential_speed).max(l.normal_speed);
         let reversal = self.limits.time_weight * stopping_duration(speed, l.acceleration, l.jerk);
         let within = DepthQp::objective(

@@ -1,8 +1,9 @@
 //! The knife edge against the object's outline in the knife plane: how far
 //! the edge is above the object, and how much of it lies inside.
 
-use shearcut_sim::KnifeEdge;
-use shearcut_sim::geometry::Polygon;
+use shearcut_sim::geometry::{Polygon, TriangleMesh};
+use shearcut_sim::knife_plane::knife_plane_silhouette;
+use shearcut_sim::{InvalidSetting, KnifeEdge};
 
 /// Points the edge is sampled at, heel to tip (the edge's own vertices are
 /// not needed: between samples the gap to the outline is interpolated
@@ -25,12 +26,21 @@ const OUTLINE_COLUMNS: usize = 2001;
 /// and the eggplant lying across the knife). An edge point is inside when
 /// it lies between them.
 ///
+/// The edge's depth in the object ([`depth`](Self::depth)) is its deepest
+/// penetration below the outline's top: the largest `top(z) − y` over the
+/// edge's points. Pressing straight down, it is the knife's travel since the
+/// edge touched, whatever the edge's shape; when the knife slides along a
+/// curved edge, a higher or lower part of the edge comes over the object and
+/// the depth follows it. Under a straight horizontal edge it is the edge's
+/// depth below the outline's highest point, the depth
+/// [`DepthProfile`](crate::mpc::DepthProfile) is indexed by.
+///
 /// # Cost
 /// Construction tabulates the edge at 401 points and the outline at 2001
 /// columns (allocates). Each query walks the
 /// edge samples once with a table look-up per sample: a fixed cost per tick,
 /// no allocation.
-#[derive(Debug, Clone, PartialEq)]
+#[derive(Clone, PartialEq)]
 pub struct EdgeOutline {
     /// Edge samples (z, y) in the knife frame, heel to tip, m.
     edge: Vec<[f64; 2]>,
@@ -42,6 +52,17 @@ pub struct EdgeOutline {
     top: Vec<f64>,
     /// Bottom of the outline at each column, m.
     bottom: Vec<f64>,
+}
+
+impl std::fmt::Debug for EdgeOutline {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let end = self.z_start + self.z_step * (self.top.len() - 1) as f64;
+        f.debug_struct("EdgeOutline")
+            .field("edge_samples", &self.edge.len())
+            .field("z", &[self.z_start, end])
+            .field("top", &self.top())
+            .finish_non_exhaustive()
+    }
 }
 
 impl EdgeOutline {
@@ -78,6 +99,19 @@ impl EdgeOutline {
         }
     }
 
+    /// The edge `edge` against the outline of `mesh` (world frame) in the
+    /// knife plane x = 0, its exact silhouette there (what a vision system
+    /// measures on a real cell).
+    ///
+    /// # Errors
+    /// The mesh does not cross the knife plane.
+    pub fn of_object(edge: &KnifeEdge, mesh: &TriangleMesh) -> Result<Self, InvalidSetting> {
+        let silhouette = knife_plane_silhouette(mesh).ok_or_else(|| {
+            InvalidSetting::new("object", "mesh", "does not cross the knife plane x = 0")
+        })?;
+        Ok(Self::new(edge, &silhouette))
+    }
+
     /// Height of the outline's top over world z = `z`, m, or None beside it.
     pub fn top_at(&self, z: f64) -> Option<f64> {
         self.column(z)
@@ -102,6 +136,32 @@ impl EdgeOutline {
             }
         }
         least
+    }
+
+    /// The edge's depth in the object with the knife frame origin at world
+    /// (`z`, `y`), m: its deepest penetration below the outline's top, the
+    /// largest `top(z_i) − y_i` over the edge points over the outline
+    /// ([`penetration`](Self::penetration) of the
+    /// [`clearance`](Self::clearance)); 0 while the edge is above the
+    /// outline or beside it.
+    pub fn depth(&self, z: f64, y: f64) -> f64 {
+        Self::penetration(self.clearance(z, y))
+    }
+
+    /// The depth of an edge whose [`clearance`](Self::clearance) is
+    /// `clearance` (m): `−clearance`, 0 above the outline or beside it.
+    pub fn penetration(clearance: f64) -> f64 {
+        (-clearance).max(0.0)
+    }
+
+    /// The knife frame origin's height at which the edge, with the origin at
+    /// world z = `z`, just meets the outline (its clearance is 0), m; None
+    /// when no edge point is over the outline. A touch-off at that z finds
+    /// it.
+    pub fn touch_height(&self, z: f64) -> Option<f64> {
+        // The clearance is y plus a function of z alone.
+        let c = self.clearance(z, 0.0);
+        c.is_finite().then_some(-c)
     }
 
     /// Length of edge inside the outline with the knife frame origin at
@@ -278,5 +338,69 @@ mod tests {
             assert!((l - expect).abs() < 4e-5, "h {h}: {l} vs {expect}");
         }
         assert!((o.clearance(0.0, 0.021) - 0.001).abs() < 2e-5);
+    }
+
+    /// A parabolic dome y = H − a(w − c)² (world z = w) standing on the
+    /// board, sampled every 0.1 mm.
+    fn dome(height: f64, half_length: f64, centre: f64) -> Polygon {
+        let a = height / (half_length * half_length);
+        let n = 900;
+        let mut points: Vec<Vector2<f64>> = (0..=n)
+            .map(|i| {
+                let w = centre - half_length + 2.0 * half_length * i as f64 / n as f64;
+                Vector2::new(w, (height - a * (w - centre).powi(2)).max(0.0))
+            })
+            .collect();
+        points.reverse();
+        Polygon::new(points)
+    }
+
+    /// The chef's curved edge, e(s) = k·(s − s_f)² past its flat s_f,
+    /// sliding over the dome H − a(w − c)²: with the knife origin at
+    /// (Z, y), the penetration at w is H − a(w − c)² − y − k(w − Z − s_f)²,
+    /// largest at w* = (a·c + k·(Z + s_f))/(a + k), where it is
+    /// H − y − a·k/(a + k)·(c − Z − s_f)² (when c − Z > s_f, so that w*
+    /// lies over the curve and the flat's deepest point, at its end, is
+    /// shallower). Sliding 20 mm at a constant height changes it by
+    /// millimetres; the geometric depth follows.
+    #[test]
+    fn a_curved_edge_sliding_over_a_dome_has_the_analytic_depth() {
+        let chef = Knife::new(&KnifePreset::Chef.settings()).unwrap();
+        let (h, half, c) = (0.035, 0.045, 0.15);
+        let o = EdgeOutline::new(chef.edge(), &dome(h, half, c));
+        let (k, s_f) = (0.035 / 0.14f64.powi(2), 0.06);
+        let a = h / (half * half);
+        let touch = |z: f64| h - a * k / (a + k) * (c - z - s_f).powi(2);
+        // Tolerance: the edge is sampled every 0.5 mm, so the deepest
+        // sample is within (a + k)·(0.25 mm)² = 1.2 µm of the deepest point;
+        // the edge's chords (0.7 mm) and the dome's (0.1 mm) and columns
+        // (0.045 mm) each sag under 0.1 µm.
+        let tol = 1.5e-6;
+        let y = 0.02;
+        let mut last = f64::NEG_INFINITY;
+        for z in [0.03, 0.04, 0.05, 0.06, 0.07, 0.08] {
+            let expect = touch(z) - y;
+            let d = o.depth(z, y);
+            assert!((d - expect).abs() < tol, "z {z}: {d} vs {expect}");
+            let t = o.touch_height(z).unwrap();
+            assert!((t - touch(z)).abs() < tol, "z {z}: touch {t}");
+            // The knife moving along +z brings the lower edge, nearer the
+            // heel, over the dome: deeper at the same height.
+            assert!(d > last, "z {z}: {d} after {last}");
+            last = d;
+        }
+        // 50 mm of slide moves the depth by 5.7 mm at a constant height.
+        let slid = o.depth(0.08, y) - o.depth(0.03, y);
+        assert!((slid - (touch(0.08) - touch(0.03))).abs() < 2.0 * tol);
+        assert!(slid > 5.5e-3, "{slid}");
+        // Pressing straight down, the depth is the travel since the touch.
+        for travel in [0.0, 1e-3, 0.01, 0.03] {
+            let d = o.depth(0.05, touch(0.05) - travel);
+            assert!((d - travel).abs() < tol, "travel {travel}: {d}");
+        }
+        // Above the dome and beside it: no depth.
+        assert_eq!(o.depth(0.05, touch(0.05) + 1e-4), 0.0);
+        assert_eq!(o.depth(1.0, 0.0), 0.0);
+        assert_eq!(o.touch_height(1.0), None);
     }
 }

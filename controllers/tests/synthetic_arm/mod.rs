@@ -5,19 +5,42 @@
 // Each test binary uses a different part of this shared module.
 #![allow(dead_code)]
 
-use nalgebra::Vector3;
+use std::sync::Arc;
+
+use nalgebra::{Vector2, Vector3};
 use shearcut_controllers::controller::{CutTask, MotionLimits};
+use shearcut_controllers::observer::EdgeOutline;
 use shearcut_sim::arm::{ArmLimitMonitor, ArmLimits, ArmReading, ArmStatus, KnifeCommand};
+use shearcut_sim::geometry::Polygon;
+use shearcut_sim::{EdgeShape, Knife, KnifePreset, KnifeSettings};
 
 /// Servo period, s.
 pub const PERIOD: f64 = 1e-3;
 
-/// A task at 1 kHz within FR3 limits (90 % margin).
+/// A straight edge 30 mm long over a flat-topped block whose top is at
+/// y = 0, from z = −2 m to 3 m: the whole edge is in contact at every depth
+/// and wherever the knife slides (the profiles of these tests have 30 mm).
+pub fn flat_outline() -> Arc<EdgeOutline> {
+    let knife = Knife::new(&KnifeSettings {
+        edge: EdgeShape::Straight { length: 0.03 },
+        ..KnifePreset::Straight.settings()
+    })
+    .unwrap();
+    let block = Polygon::new(vec![
+        Vector2::new(-2.0, -2.0),
+        Vector2::new(3.0, -2.0),
+        Vector2::new(3.0, 0.0),
+        Vector2::new(-2.0, 0.0),
+    ]);
+    Arc::new(EdgeOutline::new(knife.edge(), &block))
+}
+
+/// A task at 1 kHz within FR3 limits (90 % margin), over [`flat_outline`].
 pub fn task(target_depth: f64, blade_budget: f64) -> CutTask {
     let arm = ArmLimits::default();
     CutTask {
         target_depth,
-        touch_height: 0.0,
+        outline: flat_outline(),
         overtravel: 0.0,
         period: PERIOD,
         blade_budget,
