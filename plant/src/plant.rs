@@ -201,8 +201,8 @@ struct SegmentSection {
 /// planned direction said it would (seed 000 places the sections for the
 /// planned motion; a controller that slices at another ratio than planned,
 /// or saws, brings other parts of the edge to other places, and sections
-/// fixed for the plan cut material the knife never reaches: the answer
-/// moved by 7–25 % with the planned ratio before this). Each tick, a segment
+/// fixed for the plan cut material the knife never reaches; docs/model.md,
+/// "The plant", gives the size of that error). Each tick, a segment
 /// without a section whose midpoint's path (along the direction of motion)
 /// meets the object within two update distances orders its section from
 /// the worker thread, normal to it through q:
@@ -261,10 +261,10 @@ struct SegmentSection {
 ///   not move when a plane is re-chosen), with the elastic state evaluated
 ///   on the new shape; the predecessor's knife work is kept, so the plant's
 ///   cumulative work never drops. (Restarting the edge at the crack tip
-///   instead threw away the indentation at every re-choice: a flank section
+///   would throw away the indentation at every re-choice: a flank section
 ///   under the eggplant's tough skin, re-chosen every few millimetres of
-///   travel, then never built up the indentation its first fracture needs
-///   and never fractured while the knife went on through.)
+///   travel, would never build up the indentation its first fracture needs
+///   and never fracture while the knife went on through.)
 ///
 /// Without a started section there is nothing to fit and no re-choice.
 ///
