@@ -6,13 +6,15 @@
 
 use nalgebra::{Vector2, Vector3};
 use shearcut_plant::{ArmLimits, KnifeCommand, Plant, PlantSettings};
-use shearcut_sim::geometry::TriangleMesh;
-use shearcut_sim::{Knife, KnifePreset, MaterialPreset, SectionSettings};
+use shearcut_sim::{Knife, KnifePreset, MaterialPreset};
 
 #[path = "../../controllers/tests/support/counting_allocator.rs"]
 mod counting_allocator;
+#[path = "support/cutting_rig.rs"]
+mod cutting_rig;
 
 use counting_allocator::{Counting, thread_allocations};
+use cutting_rig::{LOOSE, coarse_section, cuboid, half_potato};
 
 #[global_allocator]
 static GLOBAL: Counting = Counting;
@@ -21,14 +23,8 @@ static GLOBAL: Counting = Counting;
 fn plant_step_allocates_nothing() {
     let material = MaterialPreset::PotatoCuboid.material();
     let knife = Knife::new(&KnifePreset::Straight.settings()).unwrap();
-    let object = TriangleMesh::cuboid(
-        Vector3::new(-0.015, 0.0, 0.0),
-        Vector3::new(0.015, 0.02, 0.03),
-    );
-    let section = SectionSettings {
-        row_spacing: 5e-4,
-        ..SectionSettings::default()
-    };
+    let object = cuboid(0.03, 0.02, 0.03);
+    let section = coarse_section();
     let limits = ArmLimits {
         jerk: 1e15,
         acceleration: 1e9,
@@ -73,22 +69,9 @@ fn plant_step_allocates_nothing() {
 fn plant_step_allocates_nothing_through_rechoices_and_rebuilds() {
     let material = MaterialPreset::PotatoWhole.material();
     let knife = Knife::new(&KnifePreset::Chef.settings()).unwrap();
-    let object = shearcut_sim::ObjectShape::HalfPotato {
-        length: 0.08,
-        width: 0.05,
-        height: 0.03,
-    }
-    .mesh()
-    .unwrap();
-    let section = SectionSettings {
-        row_spacing: 5e-4,
-        ..SectionSettings::default()
-    };
-    let limits = ArmLimits {
-        velocity: 1.0,
-        jerk: 1e15,
-        acceleration: 1e9,
-    };
+    let object = half_potato();
+    let section = coarse_section();
+    let limits = LOOSE;
     let settings = PlantSettings {
         segments: 4,
         ..PlantSettings::default()
