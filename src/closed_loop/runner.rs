@@ -7,6 +7,7 @@ use shearcut_controllers::controller::CutPhase;
 use shearcut_sim::arm::{ArmStatus, KnifeCommand};
 
 use super::control_record::{ControlSample, TickTimes};
+use super::cut_story::CutStory;
 use super::plant_link::{LinkError, PlantLink};
 use crate::cut_record::CutSample;
 
@@ -107,6 +108,8 @@ pub fn run_loop(
         Ok(m) => m,
         Err(e) => return failed(e, loop_started.elapsed().as_secs_f64()),
     };
+    let mut story = CutStory::new();
+    story.observe(&answer);
     let mut ticks = 0;
     while ticks < max_ticks {
         let started = std::time::Instant::now();
@@ -130,6 +133,7 @@ pub fn run_loop(
                 break;
             }
         };
+        story.observe(&answer);
         let reading = &answer.reading;
         if matches!(reading.status, ArmStatus::LimitViolation(_)) {
             limit_faults += 1;
@@ -150,6 +154,7 @@ pub fn run_loop(
             break;
         }
     }
+    story.end(&end, ticks, answer.reading.time, &answer);
     LoopOutput {
         samples,
         control,
