@@ -19,10 +19,9 @@ use shearcut_sim::{
 #[path = "support/cutting_rig.rs"]
 mod cutting_rig;
 
+// Coarse rows keep the test fast in debug builds; the comparison with the
+// standalone section below uses the same settings.
 use cutting_rig::{LOOSE, coarse_section};
-
-/// Coarse rows keep the test fast in debug builds; the comparison with the
-/// standalone section below uses the same settings.
 
 /// Knife travel below the top at which a standalone section of the object's
 /// full height and length, pressed at slice-push ratio `xi`, first fractures
