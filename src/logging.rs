@@ -2,16 +2,28 @@
 
 use tracing_subscriber::EnvFilter;
 
-/// Default filter: our own info messages; iceoryx2's per-process chatter
-/// ("No config file was loaded") only at error level.
-pub const DEFAULT_FILTER: &str = "info,iceoryx2_bb_loggers::tracing=error";
+/// Default filter: warnings and errors only (a run is quiet unless
+/// something is wrong); iceoryx2's per-process chatter ("No config file was
+/// loaded") only at error level. `RUST_LOG=info` tells the story of each
+/// closed-loop cut ([`crate::closed_loop::CutStory`]).
+pub const DEFAULT_FILTER: &str = "warn,iceoryx2_bb_loggers::tracing=error";
+
+/// iceoryx2's logger target, held at error level unless `RUST_LOG` names it.
+const ICEORYX2_QUIET: &str = "iceoryx2_bb_loggers::tracing=error";
 
 /// Installs a stderr subscriber honouring `RUST_LOG` (falls back to
 /// [`DEFAULT_FILTER`]; an unparsable `RUST_LOG` also falls back). Safe to call
 /// more than once: later calls do nothing.
 pub fn init() {
-    let filter =
-        EnvFilter::try_from_default_env().unwrap_or_else(|_| EnvFilter::new(DEFAULT_FILTER));
+    let from_env = std::env::var("RUST_LOG").ok().and_then(|v| {
+        let filter = EnvFilter::try_new(&v).ok()?;
+        Some(if v.contains("iceoryx2") {
+            filter
+        } else {
+            filter.add_directive(ICEORYX2_QUIET.parse().ok()?)
+        })
+    });
+    let filter = from_env.unwrap_or_else(|| EnvFilter::new(DEFAULT_FILTER));
     let _ = tracing_subscriber::fmt()
         .with_env_filter(filter)
         .with_writer(std::io::stderr)

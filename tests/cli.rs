@@ -1,22 +1,9 @@
 //! The `shearcut` command line as a user meets it: outputs, exit codes, errors.
 
-use std::process::{Command, Output};
+#[path = "support/binary_run.rs"]
+mod binary_run;
 
-fn shearcut(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_shearcut"))
-        .args(args)
-        .env("RUST_LOG", "error")
-        .output()
-        .expect("the shearcut binary runs")
-}
-
-fn stdout(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stdout).into_owned()
-}
-
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
+use binary_run::{shearcut, stderr, stdout};
 
 #[test]
 fn toughness_prints_the_issue_value() {

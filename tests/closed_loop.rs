@@ -1,8 +1,10 @@
 //! The in-process closed loop: determinism, limits, the seed's trend, and
 //! agreement with the open-loop model; `shearcut run` end to end.
 
-use std::process::Command;
+#[path = "support/binary_run.rs"]
+mod binary_run;
 
+use binary_run::{assert_files, assert_success, read_summary, scratch, shearcut};
 use nalgebra::Vector3;
 use shearcut::commands::run::{LoopSetup, run_closed_loop, run_closed_loop_on};
 use shearcut::commands::simulate::simulate;
@@ -120,18 +122,9 @@ fn closed_loop_slicing_agrees_with_the_open_loop_model_and_beats_pressing() {
     assert_eq!(press.summary.peak_force_horizontal_n, 0.0);
 }
 
-fn shearcut(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_shearcut"))
-        .args(args)
-        .env("RUST_LOG", "error")
-        .output()
-        .expect("the shearcut binary runs")
-}
-
 #[test]
 fn run_writes_the_results_and_bad_controllers_exit_2() {
-    let dir = std::env::temp_dir().join(format!("shearcut-run-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch("run");
     let path = dir.join("small.toml");
     let text = include_str!("../config/scenarios/fig7-potato.toml").to_string()
         + "\n[plant]\nsegments = 2\n\n[section]\nrow_spacing = 0.0005\n\n[controller]\nkind = \"force:5\"\n";
@@ -139,21 +132,21 @@ fn run_writes_the_results_and_bad_controllers_exit_2() {
     let out = dir.join("out");
     let p = path.to_str().unwrap();
     let o = shearcut(&["run", p, "--out", out.to_str().unwrap()]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    for f in [
-        "timeseries.csv",
-        "controller.csv",
-        "summary.json",
-        "scenario.toml",
-        "forces_work.svg",
-        "forces_work.png",
-        "controller.svg",
-        "controller.png",
-    ] {
-        assert!(out.join(f).is_file(), "{f} missing");
-    }
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_success(&o);
+    assert_files(
+        &out,
+        &[
+            "timeseries.csv",
+            "controller.csv",
+            "summary.json",
+            "scenario.toml",
+            "forces_work.svg",
+            "forces_work.png",
+            "controller.svg",
+            "controller.png",
+        ],
+    );
+    let summary = read_summary(&out);
     assert_eq!(summary["controller"], "force:5");
     assert_eq!(summary["end"], "completed");
     assert_eq!(summary["limit_faults"], 0);

@@ -2,19 +2,12 @@
 //! the shipped surrogate file byte for byte (ignored by default: 1.5–3
 //! minutes on two cores; run with `cargo test --test fit -- --ignored`).
 
-use std::process::{Command, Output};
+use std::process::Output;
 
-fn shearcut(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_shearcut"))
-        .args(args)
-        .env("RUST_LOG", "error")
-        .output()
-        .expect("the shearcut binary runs")
-}
+#[path = "support/binary_run.rs"]
+mod binary_run;
 
-fn stderr(o: &Output) -> String {
-    String::from_utf8_lossy(&o.stderr).into_owned()
-}
+use binary_run::{shearcut, stderr};
 
 #[test]
 fn unknown_material_is_exit_2_in_one_line() {

@@ -1,18 +1,19 @@
 //! A round trip over iceoryx2 (the controller's `exchange` and the plant
 //! server's answer) allocates nothing after construction, on either side,
-//! with busy polling and with blocking waits: a counting global allocator
-//! (its own test binary) counts every thread's allocations while measuring;
-//! the plant is served from a second thread of this process.
-#![allow(unsafe_code)] // GlobalAlloc is an unsafe trait; the impl only forwards to System.
+//! with busy polling and with blocking waits: the workspace's counting
+//! allocator (its own test binary) counts every thread's allocations while
+//! measuring, and the controller's thread's on their own; the plant is
+//! served from a second thread of this process.
 
+#[path = "../controllers/tests/support/counting_allocator.rs"]
+mod counting_allocator;
 #[path = "support/echo_plant.rs"]
 mod echo_plant;
 
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::atomic::Ordering;
 use std::time::Duration;
 
+use counting_allocator::{ALLOCATIONS, Counting, TRACK_ALL, thread_allocations};
 use echo_plant::{EchoPlant, remove_shm_files};
 use nalgebra::Vector3;
 use shearcut::closed_loop::PlantLink;
@@ -21,45 +22,6 @@ use shearcut::transport::{
     Iceoryx2PlantLink, LinkTimeouts, LoopServices, PlantServerSettings, Role, WaitMode, serve_plant,
 };
 use shearcut_sim::arm::KnifeCommand;
-
-struct Counting;
-
-static TRACK: AtomicBool = AtomicBool::new(false);
-static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
-static CONTROLLER_ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
-
-thread_local! {
-    static CONTROLLER: Cell<bool> = const { Cell::new(false) };
-}
-
-fn count() {
-    if TRACK.load(Ordering::SeqCst) {
-        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
-        if CONTROLLER.try_with(Cell::get).unwrap_or(false) {
-            CONTROLLER_ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
-        }
-    }
-}
-
-// SAFETY: every call is forwarded unchanged to the system allocator.
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        count();
-        // SAFETY: same contract as the caller's.
-        unsafe { System.alloc(layout) }
-    }
-
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        // SAFETY: same contract as the caller's.
-        unsafe { System.dealloc(ptr, layout) }
-    }
-
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        count();
-        // SAFETY: same contract as the caller's.
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-}
 
 #[global_allocator]
 static GLOBAL: Counting = Counting;
@@ -100,18 +62,17 @@ fn measure(wait: WaitMode, tag: &str) -> (usize, usize) {
         link.exchange(&command).unwrap();
     }
     ALLOCATIONS.store(0, Ordering::SeqCst);
-    CONTROLLER_ALLOCATIONS.store(0, Ordering::SeqCst);
-    CONTROLLER.with(|c| c.set(true));
-    TRACK.store(true, Ordering::SeqCst);
+    TRACK_ALL.store(true, Ordering::SeqCst);
+    let controller_before = thread_allocations();
     let mut last_time = 0.0;
     for _ in 0..MEASURED {
         last_time = link.exchange(&command).unwrap().reading.time;
     }
-    TRACK.store(false, Ordering::SeqCst);
-    CONTROLLER.with(|c| c.set(false));
+    let controller_after = thread_allocations();
+    TRACK_ALL.store(false, Ordering::SeqCst);
     let counts = (
         ALLOCATIONS.load(Ordering::SeqCst),
-        CONTROLLER_ALLOCATIONS.load(Ordering::SeqCst),
+        controller_after - controller_before,
     );
     link.finish().unwrap();
     let report = server.join().unwrap();

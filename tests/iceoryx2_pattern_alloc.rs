@@ -1,8 +1,9 @@
-//! Which iceoryx2 0.10 operations allocate after construction, counted with
-//! a counting global allocator (its own test binary, one test so nothing
-//! else runs while counting). The loop's transport is built on the ones
-//! asserted here to allocate nothing: blackboard entries (write and read),
-//! event notification and listening, the node's signal check. The others
+//! Which iceoryx2 0.10 operations allocate after construction, counted by
+//! the workspace's counting allocator over every thread (its own test
+//! binary, one test so nothing else runs while counting). The loop's
+//! transport is built on the ones asserted here to allocate nothing:
+//! blackboard entries (write and read), event notification and listening,
+//! the node's signal check. The others
 //! are printed for the record (`-- --nocapture`); measured with iceoryx2
 //! 0.10.0:
 //! - publish-subscribe: one allocation per `loan_uninit` (and so per
@@ -15,47 +16,20 @@
 //!   two allocations (one per side), whatever the buffer, history or port
 //!   counts.
 //! - request-response: the same per-request state (one allocation on the
-//!   client per request, two on the server, measured before the link moved
-//!   to blackboards).
+//!   client per request, two on the server).
 //! - `WaitSet::wait_and_process_once_with_timeout`: two per wait.
 //! - `Node::list` (dead-node detection): about 1200 per call.
-#![allow(unsafe_code)] // GlobalAlloc is an unsafe trait; the impl only forwards to System.
 
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+use std::sync::atomic::Ordering;
 use std::time::Duration;
 
 use iceoryx2::prelude::*;
 use shearcut::transport::wire::{WireCommand, WireMeasurement};
 
-struct Counting;
+#[path = "../controllers/tests/support/counting_allocator.rs"]
+mod counting_allocator;
 
-static TRACK: AtomicBool = AtomicBool::new(false);
-static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
-
-// SAFETY: every call is forwarded unchanged to the system allocator.
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        if TRACK.load(Ordering::SeqCst) {
-            ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
-        }
-        // SAFETY: same contract as the caller's.
-        unsafe { System.alloc(layout) }
-    }
-
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        // SAFETY: same contract as the caller's.
-        unsafe { System.dealloc(ptr, layout) }
-    }
-
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        if TRACK.load(Ordering::SeqCst) {
-            ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
-        }
-        // SAFETY: same contract as the caller's.
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-}
+use counting_allocator::{ALLOCATIONS, Counting, TRACK_ALL};
 
 #[global_allocator]
 static GLOBAL: Counting = Counting;
@@ -68,11 +42,11 @@ fn per_call(what: &str, mut f: impl FnMut()) -> f64 {
         f();
     }
     ALLOCATIONS.store(0, Ordering::SeqCst);
-    TRACK.store(true, Ordering::SeqCst);
+    TRACK_ALL.store(true, Ordering::SeqCst);
     for _ in 0..CALLS {
         f();
     }
-    TRACK.store(false, Ordering::SeqCst);
+    TRACK_ALL.store(false, Ordering::SeqCst);
     let n = ALLOCATIONS.load(Ordering::SeqCst) as f64 / CALLS as f64;
     println!("{what:<55} {n:>8.1} allocations per call");
     n

@@ -1,15 +1,10 @@
 //! Every shipped scenario by name: `shearcut scenarios`, `shearcut --help`
 //! and `shearcut check NAME` know each file of `config/scenarios/`.
 
-use std::process::{Command, Output};
+#[path = "support/binary_run.rs"]
+mod binary_run;
 
-fn shearcut(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_shearcut"))
-        .args(args)
-        .env("RUST_LOG", "error")
-        .output()
-        .expect("the shearcut binary runs")
-}
+use binary_run::shearcut;
 
 /// The stems of `config/scenarios/*.toml`, sorted.
 fn shipped_names() -> Vec<String> {

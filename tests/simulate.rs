@@ -1,31 +1,26 @@
 //! `shearcut simulate` end to end: files, columns, summary, physics trends.
 
-use std::process::Command;
+#[path = "support/binary_run.rs"]
+mod binary_run;
 
-fn shearcut(args: &[&str]) -> std::process::Output {
-    Command::new(env!("CARGO_BIN_EXE_shearcut"))
-        .args(args)
-        .env("RUST_LOG", "error")
-        .output()
-        .expect("the shearcut binary runs")
-}
+use binary_run::{assert_files, assert_success, read_summary, scratch, shearcut};
 
 #[test]
 fn fig7_potato_writes_results_with_the_seed_trends() {
-    let dir = std::env::temp_dir().join(format!("shearcut-sim-{}", std::process::id()));
+    let dir = scratch("sim");
     let o = shearcut(&["simulate", "fig7-potato", "--out", dir.to_str().unwrap()]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    for f in [
-        "timeseries.csv",
-        "summary.json",
-        "scenario.toml",
-        "forces_work.svg",
-        "forces_work.png",
-    ] {
-        assert!(dir.join(f).is_file(), "{f} missing");
-    }
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    assert_success(&o);
+    assert_files(
+        &dir,
+        &[
+            "timeseries.csv",
+            "summary.json",
+            "scenario.toml",
+            "forces_work.svg",
+            "forces_work.png",
+        ],
+    );
+    let summary = read_summary(&dir);
     let cuts = summary["cuts"].as_array().unwrap();
     assert_eq!(cuts.len(), 4);
     let work: Vec<f64> = cuts.iter().map(|c| c["work_j"].as_f64().unwrap()).collect();
@@ -79,8 +74,7 @@ fn fig7_potato_writes_results_with_the_seed_trends() {
 
 #[test]
 fn curved_knife_runs_the_plant_and_reports_torques() {
-    let dir = std::env::temp_dir().join(format!("shearcut-sim-chef-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch("sim-chef");
     let path = dir.join("chef.toml");
     // Fig. 8 shortened: two pieces, 4 mm deep, a coarser section mesh.
     let text = include_str!("../config/scenarios/fig8-potato.toml")
@@ -98,9 +92,8 @@ fn curved_knife_runs_the_plant_and_reports_torques() {
         "--out",
         out.to_str().unwrap(),
     ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_success(&o);
+    let summary = read_summary(&out);
     assert_eq!(summary["model"], "multi-section plant");
     let cuts = summary["cuts"].as_array().unwrap();
     assert_eq!(cuts.len(), 2);
@@ -118,8 +111,7 @@ fn curved_knife_runs_the_plant_and_reports_torques() {
 
 #[test]
 fn blade_too_short_for_the_travel_is_refused() {
-    let dir = std::env::temp_dir().join(format!("shearcut-sim-short-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = scratch("sim-short");
     let path = dir.join("short.toml");
     let text = include_str!("../config/scenarios/fig7-potato.toml").replace(
         "slice_push_ratios = [0.0, 0.33, 0.75, 1.8]",

@@ -1,19 +1,9 @@
 //! `shearcut simulate` on seed 001's finite-strain wire–slab scenarios.
 
-use std::process::{Command, Output};
+#[path = "support/binary_run.rs"]
+mod binary_run;
 
-fn shearcut(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_shearcut"))
-        .args(args)
-        .output()
-        .expect("run shearcut")
-}
-
-fn scratch(name: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("shearcut-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
+use binary_run::{assert_files, assert_success, read_summary, scratch, shearcut};
 
 /// A coarse, two-angle version of the shipped scenario runs to nucleation
 /// and writes the series, the profiles, the summary with the seed's numbers
@@ -36,20 +26,20 @@ fn simulate_writes_the_seed_figures() {
         "--out",
         out.to_str().unwrap(),
     ]);
-    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
-    for f in [
-        "series.csv",
-        "surface.csv",
-        "summary.json",
-        "scenario.toml",
-        "forces_depth.svg",
-        "nucleation_angle.png",
-        "stress_map.svg",
-    ] {
-        assert!(out.join(f).exists(), "{f} missing");
-    }
-    let summary: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_success(&o);
+    assert_files(
+        &out,
+        &[
+            "series.csv",
+            "surface.csv",
+            "summary.json",
+            "scenario.toml",
+            "forces_depth.svg",
+            "nucleation_angle.png",
+            "stress_map.svg",
+        ],
+    );
+    let summary = read_summary(&out);
     let nuc = summary["nucleation"].as_array().unwrap();
     assert_eq!(nuc.len(), 2);
     assert!(nuc.iter().all(|n| n["nucleated"].as_bool() == Some(true)));

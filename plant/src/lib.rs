@@ -1,7 +1,8 @@
 //! The plant: a whole knife cutting a whole object (seed 000 §IV–V), driven
 //! tick by tick like a robot arm, reporting what an F/T sensor would read.
 //!
-//! Files: `crack_front` (the quadratic crack front fitted over the sections'
+//! Files: `plant` (the plant and its tick), `plant_settings`, `plant_error`,
+//! `plant_step` (what a tick returns), `crack_front` (the quadratic crack front fitted over the sections'
 //! crack tips), `wrench` (section forces summed into force and torque at the
 //! sensor), `ft_sensor`
 //! (noise, bias and sample rate of the F/T signal), `successor` (successor
@@ -11,13 +12,17 @@ pub mod crack_front;
 pub mod ft_sensor;
 #[allow(clippy::module_inception)]
 pub mod plant;
+mod plant_error;
+mod plant_settings;
 mod plant_step;
 mod successor;
 pub mod wrench;
 
 pub use crack_front::CrackFront;
 pub use ft_sensor::{FtSensor, FtSensorSettings};
-pub use plant::{Plant, PlantError, PlantSettings};
+pub use plant::Plant;
+pub use plant_error::PlantError;
+pub use plant_settings::{MAX_SEGMENTS, PlantSettings};
 pub use plant_step::{PlantStep, PlantTruth};
 pub use shearcut_sim::arm::{ArmLimitMonitor, ArmLimits, KnifeCommand, LimitViolation};
 pub use shearcut_sim::arm::{ArmReading, ArmStatus};

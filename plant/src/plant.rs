@@ -3,7 +3,6 @@
 use std::sync::Arc;
 
 use nalgebra::{Vector2, Vector3};
-use serde::{Deserialize, Serialize};
 
 use shearcut_sim::geometry::{Polygon, SectionPlane, TriangleMesh};
 use shearcut_sim::invalid_setting::InvalidSetting;
@@ -12,7 +11,7 @@ use shearcut_sim::material::Material;
 use shearcut_sim::section::{CrossSection, SectionError, SectionGeometry, SectionSettings};
 
 use super::crack_front::CrackFront;
-use super::ft_sensor::{FtSensor, FtSensorSettings};
+use super::ft_sensor::FtSensor;
 use super::successor::{Preparation, SectionFactory, SuccessorJob, SuccessorWorker};
 use super::wrench::{SegmentLoad, wrench_at};
 use shearcut_sim::arm::{ArmLimitMonitor, ArmLimits, ArmReading, ArmStatus, KnifeCommand};
@@ -22,127 +21,8 @@ use shearcut_sim::knife_plane::contact_arc::{
 
 use crate::plant_step::{PlantStep, PlantTruth};
 
-/// Settings of the plant.
-#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
-#[serde(default, deny_unknown_fields)]
-pub struct PlantSettings {
-    /// Number m of edge segments over the object's span: the edge over
-    /// the object's extent along z is split into m segments of equal arc
-    /// length, and segments of the same length continue the grid over the
-    /// rest of the edge the knife can bring down onto the object (see
-    /// `reach`), at most [`MAX_SEGMENTS`] in all. Each segment gets its
-    /// cross section when it first reaches the material (default 20; 10
-    /// under-resolves the curved knife: README, Known limitations).
-    pub segments: usize,
-    /// How far the knife may travel along z (its edge direction) either way
-    /// from its start, m: the edge over the object's span widened by this
-    /// on both sides gets segments (default 0; the closed loops raise it to
-    /// the controller's blade budget). Edge beyond it that the knife's
-    /// planned direction brings onto the object is covered too.
-    pub reach: f64,
-    /// Gap between the edge and the object when the plant starts, m (default 0.001).
-    pub start_gap: f64,
-    /// Rim height below which a dome-shaped section is clipped, as a fraction
-    /// of the section's height (default 0.05).
-    pub rim_fraction: f64,
-    /// How far a segment's midpoint may slide off its cross section's plane
-    /// before the section is re-chosen through the crack front, m (default
-    /// 0.001: seed 000 §IV updates the sections in 1 mm steps).
-    pub update_distance: f64,
-    /// The F/T sensor.
-    pub sensor: FtSensorSettings,
-    /// Threads that build sections ahead of the ticks that take them
-    /// (default 2). The results do not depend on it, only how often a tick
-    /// waits for a section: give them cores of their own in real time.
-    pub workers: usize,
-}
-
-/// Largest number of edge segments (and cross sections) of a plant.
-pub const MAX_SEGMENTS: usize = 256;
-
-impl Default for PlantSettings {
-    fn default() -> Self {
-        Self {
-            segments: 20,
-            reach: 0.0,
-            start_gap: 1e-3,
-            rim_fraction: 0.05,
-            update_distance: 1e-3,
-            sensor: FtSensorSettings::default(),
-            workers: 2,
-        }
-    }
-}
-
-impl PlantSettings {
-    /// Checks every field.
-    pub fn validate(&self) -> Result<(), InvalidSetting> {
-        if !(1..=64).contains(&self.segments) {
-            return Err(InvalidSetting::new(
-                "segments",
-                self.segments,
-                "must be in [1, 64]",
-            ));
-        }
-        if !(self.start_gap.is_finite() && self.start_gap >= 0.0) {
-            return Err(InvalidSetting::new(
-                "start_gap",
-                self.start_gap,
-                "must be a finite number >= 0 m",
-            ));
-        }
-        if !(self.rim_fraction > 0.0 && self.rim_fraction < 0.5) {
-            return Err(InvalidSetting::new(
-                "rim_fraction",
-                self.rim_fraction,
-                "must be in (0, 0.5)",
-            ));
-        }
-        if !(self.update_distance.is_finite() && self.update_distance > 0.0) {
-            return Err(InvalidSetting::new(
-                "update_distance",
-                self.update_distance,
-                "must be a finite number > 0 m",
-            ));
-        }
-        if !(1..=16).contains(&self.workers) {
-            return Err(InvalidSetting::new(
-                "workers",
-                self.workers,
-                "must be in [1, 16]",
-            ));
-        }
-        if !(self.reach.is_finite() && self.reach >= 0.0) {
-            return Err(InvalidSetting::new(
-                "reach",
-                self.reach,
-                "must be a finite number >= 0 m",
-            ));
-        }
-        self.sensor.validate().map_err(|e| e.prefixed("sensor"))
-    }
-}
-
-/// Why a plant cannot be built.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum PlantError {
-    /// A setting is out of range.
-    #[error(transparent)]
-    Setting(#[from] InvalidSetting),
-    /// The knife's planned path never meets the object.
-    #[error(
-        "the knife moving along the planned direction never touches the object (check z0 and the knife's length)"
-    )]
-    NoContact,
-    /// A cross section could not be built.
-    #[error("cross section {index}: {source}")]
-    Section {
-        /// Index of the segment.
-        index: usize,
-        /// Why.
-        source: SectionError,
-    },
-}
+pub use crate::plant_error::PlantError;
+pub use crate::plant_settings::{MAX_SEGMENTS, PlantSettings};
 
 /// One segment's section and its bookkeeping.
 #[derive(Debug, Clone)]
@@ -201,8 +81,8 @@ struct SegmentSection {
 /// planned direction said it would (seed 000 places the sections for the
 /// planned motion; a controller that slices at another ratio than planned,
 /// or saws, brings other parts of the edge to other places, and sections
-/// fixed for the plan cut material the knife never reaches: the answer
-/// moved by 7–25 % with the planned ratio before this). Each tick, a segment
+/// fixed for the plan cut material the knife never reaches; docs/model.md,
+/// "The plant", gives the size of that error). Each tick, a segment
 /// without a section whose midpoint's path (along the direction of motion)
 /// meets the object within two update distances orders its section from
 /// the worker thread, normal to it through q:
@@ -261,10 +141,10 @@ struct SegmentSection {
 ///   not move when a plane is re-chosen), with the elastic state evaluated
 ///   on the new shape; the predecessor's knife work is kept, so the plant's
 ///   cumulative work never drops. (Restarting the edge at the crack tip
-///   instead threw away the indentation at every re-choice: a flank section
+///   would throw away the indentation at every re-choice: a flank section
 ///   under the eggplant's tough skin, re-chosen every few millimetres of
-///   travel, then never built up the indentation its first fracture needs
-///   and never fractured while the knife went on through.)
+///   travel, would never build up the indentation its first fracture needs
+///   and never fracture while the knife went on through.)
 ///
 /// Without a started section there is nothing to fit and no re-choice.
 ///

@@ -44,7 +44,7 @@ pub(crate) struct SectionFactory {
 
 impl SectionFactory {
     /// The successor for `plane`: no material, the current shape again, or a
-    /// new section. This is the work a re-choice used to do inside the tick.
+    /// new section: the work a re-choice would otherwise do inside the tick.
     pub fn prepare(&self, plane: &SectionPlane, current: Option<&SectionGeometry>) -> Preparation {
         let Some(polygon) = plane.section(&self.object) else {
             return Preparation::NoMaterial;

@@ -4,38 +4,12 @@
 use nalgebra::{Vector2, Vector3};
 use shearcut_plant::{ArmLimits, ArmStatus, KnifeCommand, LimitViolation, Plant, PlantSettings};
 use shearcut_sim::geometry::TriangleMesh;
-use shearcut_sim::{
-    CrossSection, Knife, KnifePreset, MaterialPreset, SectionGeometry, SectionSettings,
-};
+use shearcut_sim::{CrossSection, Knife, KnifePreset, MaterialPreset, SectionGeometry};
 
-/// Noise-free sensor for exact comparisons.
-fn settings(segments: usize) -> PlantSettings {
-    PlantSettings {
-        segments,
-        sensor: shearcut_plant::FtSensorSettings {
-            force_noise: 0.0,
-            torque_noise: 0.0,
-            ..Default::default()
-        },
-        ..PlantSettings::default()
-    }
-}
+#[path = "support/cutting_rig.rs"]
+mod cutting_rig;
 
-/// A coarser section mesh than the default keeps these tests fast; the
-/// comparisons are between models built with the same settings.
-fn coarse_section() -> SectionSettings {
-    SectionSettings {
-        row_spacing: 5e-4,
-        ..SectionSettings::default()
-    }
-}
-
-/// Tests command step velocities; the limit test uses the real limits.
-const LOOSE: ArmLimits = ArmLimits {
-    velocity: 1.0,
-    acceleration: 1e9,
-    jerk: 1e15,
-};
+use cutting_rig::{LOOSE, coarse_section, cuboid, half_potato, noise_free};
 
 #[allow(clippy::too_many_arguments)]
 fn plant(
@@ -62,24 +36,6 @@ fn plant(
     .unwrap()
 }
 
-fn cuboid(width: f64, height: f64, length: f64) -> TriangleMesh {
-    TriangleMesh::cuboid(
-        Vector3::new(-0.5 * width, 0.0, 0.0),
-        Vector3::new(0.5 * width, height, length),
-    )
-}
-
-/// The half potato (80 × 50 × 30 mm) the chef's-knife tests cut.
-fn half_potato() -> TriangleMesh {
-    shearcut_sim::ObjectShape::HalfPotato {
-        length: 0.08,
-        width: 0.05,
-        height: 0.03,
-    }
-    .mesh()
-    .unwrap()
-}
-
 const DT: f64 = 1e-3;
 const SPEED: f64 = 0.00625;
 
@@ -88,7 +44,7 @@ fn straight_edge_plant_is_one_section_times_the_length() {
     let material = MaterialPreset::PotatoCuboid.material();
     let knife = Knife::new(&KnifePreset::Straight.settings()).unwrap();
     let (w, h, l) = (0.03, 0.02, 0.03);
-    let s = settings(3);
+    let s = noise_free(3);
     let mut plant = plant(
         &material,
         &knife,
@@ -142,7 +98,7 @@ fn straight_edge_plant_is_one_section_times_the_length() {
 fn torque_is_the_moment_of_the_section_forces() {
     let material = MaterialPreset::PotatoCuboid.material();
     let knife = Knife::new(&KnifePreset::Chef.settings()).unwrap();
-    let s = settings(6);
+    let s = noise_free(6);
     let mut plant = plant(
         &material,
         &knife,
@@ -200,7 +156,7 @@ fn curved_pressing(z0: f64) -> (f64, f64) {
     let knife = Knife::new(&KnifePreset::Chef.settings()).unwrap();
     let s = PlantSettings {
         start_gap: 0.0,
-        ..settings(10)
+        ..noise_free(10)
     };
     let mut plant = plant(
         &material,
@@ -252,7 +208,7 @@ fn curved_edge_pressing_later_contact_lower_initial_slope() {
 fn arm_limits_refuse_a_velocity_step() {
     let material = MaterialPreset::PotatoCuboid.material();
     let knife = Knife::new(&KnifePreset::Straight.settings()).unwrap();
-    let s = settings(1);
+    let s = noise_free(1);
     let mut plant = plant(
         &material,
         &knife,
@@ -298,7 +254,7 @@ fn arm_limits_refuse_a_velocity_step() {
 fn same_seed_gives_bit_identical_measurements() {
     let material = MaterialPreset::PotatoWhole.material();
     let knife = Knife::new(&KnifePreset::Chef.settings()).unwrap();
-    let mut s = settings(4);
+    let mut s = noise_free(4);
     s.sensor = Default::default();
     let object = half_potato();
     let dir = Vector2::new(-0.5, -1.0);
@@ -342,7 +298,7 @@ fn slicing_straight_edge_moves_sections_along_the_cuboid() {
     let material = MaterialPreset::PotatoCuboid.material();
     let knife = Knife::new(&KnifePreset::Straight.settings()).unwrap();
     let (w, h, l) = (0.03, 0.01, 0.04);
-    let s = settings(8);
+    let s = noise_free(8);
     let mut plant = plant(
         &material,
         &knife,
@@ -446,7 +402,7 @@ fn the_depth_on_a_dome_is_below_its_top_and_does_not_fall_as_sections_enter() {
     // does not, and it follows the knife.
     let material = MaterialPreset::PotatoWhole.material();
     let knife = Knife::new(&KnifePreset::Chef.settings()).unwrap();
-    let s = settings(10);
+    let s = noise_free(10);
     let mut plant = plant(
         &material,
         &knife,
@@ -494,7 +450,7 @@ fn the_depth_on_a_dome_is_below_its_top_and_does_not_fall_as_sections_enter() {
 fn half_potato_sections_are_rebuilt_work_never_drops_deterministic() {
     let material = MaterialPreset::PotatoWhole.material();
     let knife = Knife::new(&KnifePreset::Chef.settings()).unwrap();
-    let s = settings(4);
+    let s = noise_free(4);
     let object = half_potato();
     let dir = Vector2::new(-0.5, -1.0);
     let run = || {
@@ -592,7 +548,7 @@ fn steep_slice_gives_near_face_segments_their_sections() {
         &cuboid(w, h, l),
         0.02,
         d,
-        &settings(10),
+        &noise_free(10),
         &LOOSE,
         0,
     );
@@ -673,7 +629,7 @@ fn slice_angle_changing_mid_cut_moves_sections_along_the_executed_path() {
         &object,
         0.05,
         Vector2::new(0.0, -1.0),
-        &settings(4),
+        &noise_free(4),
         &LOOSE,
         3,
     );
@@ -736,7 +692,7 @@ fn a_clone_with_pending_successors_runs_on_bit_identically() {
         &object,
         0.05,
         Vector2::new(-0.5, -1.0),
-        &settings(4),
+        &noise_free(4),
         &LOOSE,
         5,
     );
@@ -773,7 +729,7 @@ fn start_position_is_where_the_plant_puts_the_knife() {
         let object = cuboid(0.03, 0.025, 0.03);
         let s = PlantSettings {
             start_gap: gap,
-            ..settings(4)
+            ..noise_free(4)
         };
         let p = plant(
             &material,
@@ -809,7 +765,7 @@ fn sections_go_where_the_edge_arrives_whatever_the_planned_direction() {
     // A reach that covers every plan's arc: the three grids are the same.
     let s = PlantSettings {
         reach: 0.05,
-        ..settings(8)
+        ..noise_free(8)
     };
     let run = |planned: Vector2<f64>| {
         let mut plant = plant(&material, &knife, &object, 0.05, planned, &s, &LOOSE, 3);
@@ -857,7 +813,7 @@ fn the_number_of_worker_threads_changes_nothing_but_the_waits() {
     let run = |workers: usize| {
         let s = PlantSettings {
             workers,
-            ..settings(6)
+            ..noise_free(6)
         };
         let mut plant = plant(
             &material,
@@ -902,7 +858,7 @@ fn sawing_back_over_a_side_face_re_enters_behind_the_current_front() {
     let (w, h, l) = (0.03, 0.025, 0.03);
     let s = PlantSettings {
         reach: 0.006,
-        ..settings(10)
+        ..noise_free(10)
     };
     let xi = 0.5;
     let mut plant = plant(

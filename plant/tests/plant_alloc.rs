@@ -1,52 +1,20 @@
 //! `Plant::step` allocates nothing after construction on the caller's
-//! thread (counting allocator, per thread): a straight edge pressing a cuboid
-//! (no re-choice), and a chef's knife slicing a half potato, whose sections
-//! are re-chosen and rebuilt (the successors are built on the plant's worker
-//! thread, whose allocations are not the tick's).
-
-use std::alloc::{GlobalAlloc, Layout, System};
-use std::cell::Cell;
+//! thread (the workspace's counting allocator, per thread): a straight
+//! edge pressing a cuboid (no re-choice), and a chef's knife slicing a half
+//! potato, whose sections are re-chosen and rebuilt (the successors are built
+//! on the plant's worker thread, whose allocations are not the tick's).
 
 use nalgebra::{Vector2, Vector3};
 use shearcut_plant::{ArmLimits, KnifeCommand, Plant, PlantSettings};
-use shearcut_sim::geometry::TriangleMesh;
-use shearcut_sim::{Knife, KnifePreset, MaterialPreset, SectionSettings};
+use shearcut_sim::{Knife, KnifePreset, MaterialPreset};
 
-struct Counting;
+#[path = "../../controllers/tests/support/counting_allocator.rs"]
+mod counting_allocator;
+#[path = "support/cutting_rig.rs"]
+mod cutting_rig;
 
-thread_local! {
-    /// Allocations made by this thread.
-    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
-}
-
-fn count() {
-    // A const-initialised thread local without destructor: safe to touch in
-    // the allocator (`try_with` covers thread teardown).
-    let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
-}
-
-fn allocations() -> usize {
-    ALLOCATIONS.with(Cell::get)
-}
-
-// Forwards to the system allocator and counts allocations per thread.
-#[allow(unsafe_code)]
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        count();
-        // SAFETY: same contract as the caller's.
-        unsafe { System.alloc(layout) }
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        // SAFETY: same contract as the caller's.
-        unsafe { System.dealloc(ptr, layout) }
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        count();
-        // SAFETY: same contract as the caller's.
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-}
+use counting_allocator::{Counting, thread_allocations};
+use cutting_rig::{LOOSE, coarse_section, cuboid, half_potato};
 
 #[global_allocator]
 static GLOBAL: Counting = Counting;
@@ -55,14 +23,8 @@ static GLOBAL: Counting = Counting;
 fn plant_step_allocates_nothing() {
     let material = MaterialPreset::PotatoCuboid.material();
     let knife = Knife::new(&KnifePreset::Straight.settings()).unwrap();
-    let object = TriangleMesh::cuboid(
-        Vector3::new(-0.015, 0.0, 0.0),
-        Vector3::new(0.015, 0.02, 0.03),
-    );
-    let section = SectionSettings {
-        row_spacing: 5e-4,
-        ..SectionSettings::default()
-    };
+    let object = cuboid(0.03, 0.02, 0.03);
+    let section = coarse_section();
     let limits = ArmLimits {
         jerk: 1e15,
         acceleration: 1e9,
@@ -88,12 +50,12 @@ fn plant_step_allocates_nothing() {
         velocity: Vector3::new(0.0, -0.00625, 0.0),
     };
     // Through contact, first fracture and steady cutting.
-    let before = allocations();
+    let before = thread_allocations();
     let mut fractured = 0;
     for _ in 0..1500 {
         fractured = plant.step(&cmd, 1e-3).unwrap().truth.fractured_sections;
     }
-    let after = allocations();
+    let after = thread_allocations();
     assert!(fractured > 0, "the run reached cutting");
     assert_eq!(after - before, 0, "Plant::step allocated");
     assert_eq!(
@@ -107,22 +69,9 @@ fn plant_step_allocates_nothing() {
 fn plant_step_allocates_nothing_through_rechoices_and_rebuilds() {
     let material = MaterialPreset::PotatoWhole.material();
     let knife = Knife::new(&KnifePreset::Chef.settings()).unwrap();
-    let object = shearcut_sim::ObjectShape::HalfPotato {
-        length: 0.08,
-        width: 0.05,
-        height: 0.03,
-    }
-    .mesh()
-    .unwrap();
-    let section = SectionSettings {
-        row_spacing: 5e-4,
-        ..SectionSettings::default()
-    };
-    let limits = ArmLimits {
-        velocity: 1.0,
-        jerk: 1e15,
-        acceleration: 1e9,
-    };
+    let object = half_potato();
+    let section = coarse_section();
+    let limits = LOOSE;
     let settings = PlantSettings {
         segments: 4,
         ..PlantSettings::default()
@@ -142,11 +91,11 @@ fn plant_step_allocates_nothing_through_rechoices_and_rebuilds() {
     let cmd = KnifeCommand {
         velocity: Vector3::new(0.0, -0.00625, -0.003125),
     };
-    let before = allocations();
+    let before = thread_allocations();
     for _ in 0..1500 {
         plant.step(&cmd, 1e-3).unwrap();
     }
-    let after = allocations();
+    let after = thread_allocations();
     assert!(plant.rebuilds() > 0, "the run rebuilt sections");
     assert_eq!(after - before, 0, "Plant::step allocated");
 }

@@ -2,10 +2,14 @@
 //! ([`FirstFracture::SurfaceStress`]): a wire pressed into an agar block.
 
 use nalgebra::{Vector2, Vector3};
-use shearcut_plant::{ArmLimits, FtSensorSettings, KnifeCommand, Plant, PlantSettings};
+use shearcut_plant::{FtSensorSettings, KnifeCommand, Plant, PlantSettings};
 use shearcut_sim::finite_strain::NucleationEnvelope;
-use shearcut_sim::geometry::TriangleMesh;
 use shearcut_sim::{FirstFracture, Knife, KnifePreset, MaterialPreset, SectionSettings};
+
+#[path = "support/cutting_rig.rs"]
+mod cutting_rig;
+
+use cutting_rig::{LOOSE, cuboid};
 
 const DT: f64 = 1e-3;
 /// Pressing speed, m/s: 5 µm per tick.
@@ -18,10 +22,7 @@ const LENGTH: f64 = 0.005;
 fn force_before_first_fracture(first_fracture: FirstFracture) -> f64 {
     let material = MaterialPreset::Agar.material();
     let knife = Knife::new(&KnifePreset::Wire.settings()).unwrap();
-    let block = TriangleMesh::cuboid(
-        Vector3::new(-0.01, 0.0, 0.0),
-        Vector3::new(0.01, 0.02, LENGTH),
-    );
+    let block = cuboid(0.02, 0.02, LENGTH);
     let settings = PlantSettings {
         segments: 2,
         start_gap: 0.0,
@@ -37,11 +38,7 @@ fn force_before_first_fracture(first_fracture: FirstFracture) -> f64 {
         first_fracture,
         ..SectionSettings::default()
     };
-    let limits = ArmLimits {
-        velocity: 1.0,
-        acceleration: 1e9,
-        jerk: 1e15,
-    };
+    let limits = LOOSE;
     let mut plant = Plant::new(
         &material,
         &knife,

@@ -11,20 +11,17 @@
 //! them, and the mean crack depth lagged the knife by tens of millimetres.
 
 use nalgebra::{Vector2, Vector3};
-use shearcut_plant::{ArmLimits, KnifeCommand, Plant, PlantSettings};
+use shearcut_plant::{KnifeCommand, Plant, PlantSettings};
 use shearcut_sim::{
     BladeSection, CrossSection, Knife, KnifePreset, MaterialPreset, ObjectShape, SectionGeometry,
-    SectionSettings,
 };
 
-/// Coarse rows keep the test fast in debug builds; the comparison with the
-/// standalone section below uses the same settings.
-fn coarse() -> SectionSettings {
-    SectionSettings {
-        row_spacing: 5e-4,
-        ..SectionSettings::default()
-    }
-}
+#[path = "support/cutting_rig.rs"]
+mod cutting_rig;
+
+// Coarse rows keep the test fast in debug builds; the comparison with the
+// standalone section below uses the same settings.
+use cutting_rig::{LOOSE, coarse_section};
 
 /// Knife travel below the top at which a standalone section of the object's
 /// full height and length, pressed at slice-push ratio `xi`, first fractures
@@ -32,8 +29,13 @@ fn coarse() -> SectionSettings {
 fn first_fracture_indentation(height: f64, length: f64, xi: f64) -> f64 {
     let material = MaterialPreset::EggplantWhole.material();
     let geometry = SectionGeometry::rectangle(length, height).unwrap();
-    let mut s =
-        CrossSection::new(&geometry, &material, &BladeSection::default(), &coarse()).unwrap();
+    let mut s = CrossSection::new(
+        &geometry,
+        &material,
+        &BladeSection::default(),
+        &coarse_section(),
+    )
+    .unwrap();
     let step = 2e-5;
     for _ in 0..2000 {
         let st = s.advance(step, xi * step).unwrap();
@@ -63,11 +65,7 @@ fn sections_under_a_tough_skin_fracture_across_rechoices() {
     let xi: f64 = 0.5;
     let alpha = xi.atan();
     let d = Vector2::new(alpha.sin(), -alpha.cos());
-    let limits = ArmLimits {
-        velocity: 1.0,
-        acceleration: 1e9,
-        jerk: 1e15,
-    };
+    let limits = LOOSE;
     let settings = PlantSettings {
         segments: 4,
         ..PlantSettings::default()
@@ -79,7 +77,7 @@ fn sections_under_a_tough_skin_fracture_across_rechoices() {
         0.03,
         d,
         &settings,
-        &coarse(),
+        &coarse_section(),
         &limits,
         0,
     )

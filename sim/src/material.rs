@@ -42,7 +42,7 @@ pub struct Material {
     ///
     /// Not given (the presets; Table I gives R'_c but no thickness), R'_c
     /// holds until the section's first fracture, however deep that is: seed
-    /// 000 §V's initial toughness, the behaviour before this key existed.
+    /// 000 §V's initial toughness.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub skin_thickness: Option<f64>,
 }

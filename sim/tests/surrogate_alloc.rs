@@ -1,34 +1,16 @@
 //! `Surrogate::evaluate` and `Surrogate::work_quadratic` allocate nothing
-//! (counting allocator), before and after fracture.
+//! on any thread (the workspace's counting allocator, every thread counted),
+//! before and after fracture.
 
-use std::alloc::{GlobalAlloc, Layout, System};
 use std::path::PathBuf;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::Ordering;
 
 use shearcut_sim::surrogate::{CutState, ScaleFactors, Surrogate};
 
-struct Counting;
+#[path = "../../controllers/tests/support/counting_allocator.rs"]
+mod counting_allocator;
 
-static ALLOCATIONS: AtomicUsize = AtomicUsize::new(0);
-
-// Forwards to the system allocator and counts allocations.
-#[allow(unsafe_code)]
-unsafe impl GlobalAlloc for Counting {
-    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
-        // SAFETY: same contract as the caller's.
-        unsafe { System.alloc(layout) }
-    }
-    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
-        // SAFETY: same contract as the caller's.
-        unsafe { System.dealloc(ptr, layout) }
-    }
-    unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
-        ALLOCATIONS.fetch_add(1, Ordering::SeqCst);
-        // SAFETY: same contract as the caller's.
-        unsafe { System.realloc(ptr, layout, new_size) }
-    }
-}
+use counting_allocator::{ALLOCATIONS, Counting, TRACK_ALL};
 
 #[global_allocator]
 static GLOBAL: Counting = Counting;
@@ -48,7 +30,8 @@ fn evaluate_allocates_nothing() {
         friction: 1.2,
     };
     let mut sum = 0.0;
-    let before = ALLOCATIONS.load(Ordering::SeqCst);
+    ALLOCATIONS.store(0, Ordering::SeqCst);
+    TRACK_ALL.store(true, Ordering::SeqCst);
     for (i, s) in (0..4000).zip(surrogates.iter().cycle()) {
         let xi = 0.0015 * (i / 2) as f64;
         let state = CutState {
@@ -62,12 +45,8 @@ fn evaluate_allocates_nothing() {
         let q = s.work_quadratic(xi, &state, &scale);
         sum += o.force_normal + o.force_tangential_slope + q.curvature;
     }
-    let after = ALLOCATIONS.load(Ordering::SeqCst);
+    TRACK_ALL.store(false, Ordering::SeqCst);
+    let allocated = ALLOCATIONS.load(Ordering::SeqCst);
     assert!(sum.is_finite());
-    assert_eq!(
-        after - before,
-        0,
-        "evaluate allocated {} times",
-        after - before
-    );
+    assert_eq!(allocated, 0, "evaluate allocated {allocated} times");
 }

@@ -1,14 +1,16 @@
 //! The closed loop: a controller driving a plant tick by tick, through a
-//! [`PlantLink`] that hides where the plant runs (in this process now; in
-//! another process over iceoryx2 shared memory next).
+//! [`PlantLink`] that hides where the plant runs (in this process, or in
+//! another process over iceoryx2 shared memory).
 
 mod control_record;
+mod cut_story;
 mod in_process;
 mod plant_link;
 mod runner;
 mod series_stream;
 
 pub use control_record::{ControlSample, TickTimes};
+pub use cut_story::CutStory;
 pub use in_process::InProcessPlant;
 pub use plant_link::{LinkAnswer, LinkError, PlantLink};
 pub use runner::{LoopCut, LoopEnd, LoopOutput, run_loop, run_loop_recorded};

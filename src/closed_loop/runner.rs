@@ -7,6 +7,7 @@ use shearcut_controllers::controller::CutPhase;
 use shearcut_sim::arm::{ArmStatus, KnifeCommand};
 
 use super::control_record::{ControlSample, TickTimes};
+use super::cut_story::CutStory;
 use super::plant_link::{LinkError, PlantLink};
 use super::series_stream::{LoopRecorder, NoRecorder};
 use crate::cut_record::CutSample;
@@ -124,6 +125,8 @@ pub fn run_loop_recorded(
         Ok(m) => m,
         Err(e) => return failed(e, loop_started.elapsed().as_secs_f64()),
     };
+    let mut story = CutStory::new();
+    story.observe(&answer);
     let mut ticks = 0;
     while ticks < max_ticks {
         let started = std::time::Instant::now();
@@ -145,6 +148,7 @@ pub fn run_loop_recorded(
                 break;
             }
         };
+        story.observe(&answer);
         let reading = &answer.reading;
         recorder.tick_done(reading.time);
         if let Some(signal) = recorder.stop_requested() {
@@ -171,6 +175,7 @@ pub fn run_loop_recorded(
             break;
         }
     }
+    story.end(&end, ticks, answer.reading.time, &answer);
     LoopOutput {
         samples,
         control,

@@ -5,6 +5,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::CURVE_COLORS;
+use super::legend::{draw_legend, legend_line};
 use crate::cut_record::CutSample;
 
 /// One panel's quantity.
@@ -98,16 +99,9 @@ pub fn draw_cut_curves<DB: DrawingBackend>(
                     "ξ = {}, z0 = {z0} m",
                     (xi * 1000.0).round() / 1000.0
                 ))
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-                });
+                .legend(legend_line(color, 20));
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperLeft)
-            .background_style(WHITE.mix(0.8))
-            .border_style(BLACK)
-            .draw()?;
+        draw_legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
     }
     Ok(())
 }

@@ -3,6 +3,7 @@
 pub mod comparison;
 pub mod control_trace;
 pub mod cut_curves;
+pub mod legend;
 pub mod surrogate_fit;
 pub mod toughness_ratio;
 pub mod wire_slab;

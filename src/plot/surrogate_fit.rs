@@ -8,6 +8,7 @@ use plotters::prelude::*;
 use shearcut_sim::surrogate::{ComparisonPoint, RunComparison};
 
 use super::CURVE_COLORS;
+use super::legend::legend_line;
 
 /// One panel: title, unit, full-model value, surrogate value, raw value.
 struct Panel {
@@ -106,9 +107,7 @@ pub fn draw_surrogate_fit<DB: DrawingBackend>(
                     c.height * 1e3,
                     c.half_width * 1e3
                 ))
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-                });
+                .legend(legend_line(color, 20));
             chart
                 .draw_series(DashedLineSeries::new(
                     thinned(&run.points).map(|p| (p.depth * 1e3, (panel.surrogate)(p))),
@@ -117,9 +116,7 @@ pub fn draw_surrogate_fit<DB: DrawingBackend>(
                     color.stroke_width(2),
                 ))?
                 .label("surrogate (dashed)")
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 8, y)], color.stroke_width(2))
-                });
+                .legend(legend_line(color, 8));
         }
         if i + 1 == PANELS.len() {
             chart

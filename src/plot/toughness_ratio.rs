@@ -5,6 +5,7 @@ use plotters::prelude::*;
 use shearcut_sim::mechanics::toughness_ratio;
 
 use super::CURVE_COLORS;
+use super::legend::{draw_legend, legend_line};
 
 /// Slice-push ratios drawn in Fig. 3 (the seed's Fig. 7 values plus larger ones
 /// that show the saturation).
@@ -64,16 +65,9 @@ pub fn draw_fig3<DB: DrawingBackend>(
                 color.stroke_width(2),
             ))?
             .label(format!("ξ = {xi}"))
-            .legend(move |(x, y)| {
-                PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-            });
+            .legend(legend_line(color, 20));
     }
-    chart
-        .configure_series_labels()
-        .position(SeriesLabelPosition::LowerLeft)
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .draw()?;
+    draw_legend(&mut chart, SeriesLabelPosition::LowerLeft)?;
     Ok(())
 }
 

@@ -8,6 +8,7 @@ use plotters::prelude::*;
 use shearcut_sim::finite_strain::{IndentationRun, SlabState};
 
 use super::CURVE_COLORS;
+use super::legend::{draw_legend, legend_line};
 
 /// A quantity of a state, as plotted.
 type StateValue = fn(&SlabState) -> f64;
@@ -58,16 +59,9 @@ pub fn draw_slab_forces<DB: DrawingBackend>(
                     color.stroke_width(2),
                 ))?
                 .label(format!("θ = {:.0}°", run.angle.to_degrees()))
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], color.stroke_width(2))
-                });
+                .legend(legend_line(color, 20));
         }
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperLeft)
-            .background_style(WHITE.mix(0.8))
-            .border_style(BLACK)
-            .draw()?;
+        draw_legend(&mut chart, SeriesLabelPosition::UpperLeft)?;
     }
     Ok(())
 }
@@ -128,15 +122,8 @@ pub fn draw_nucleation_angles<DB: DrawingBackend>(
                     CURVE_COLORS[1].stroke_width(2),
                 ))?
                 .label("seed 001: F_t ≈ 2μRh")
-                .legend(|(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], CURVE_COLORS[1].stroke_width(2))
-                });
-            chart
-                .configure_series_labels()
-                .position(SeriesLabelPosition::LowerRight)
-                .background_style(WHITE.mix(0.8))
-                .border_style(BLACK)
-                .draw()?;
+                .legend(legend_line(CURVE_COLORS[1], 20));
+            draw_legend(&mut chart, SeriesLabelPosition::LowerRight)?;
         }
     }
     Ok(())
