@@ -5,7 +5,7 @@ use numpy::IntoPyArray;
 use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
-use shearcut::closed_loop::{ControlSample, LoopEnd};
+use shearcut::closed_loop::ControlSample;
 use shearcut::commands::run::run_closed_loop;
 use shearcut::controller_choice::ControllerChoice;
 use shearcut::cut_record::CutSample;
@@ -108,13 +108,7 @@ pub(crate) fn run<'py>(
 
     let c = &out.summary;
     let summary = PyDict::new(py);
-    let end = match &o.end {
-        LoopEnd::Completed => "completed".to_string(),
-        LoopEnd::ControllerDone => "controller_done".to_string(),
-        LoopEnd::TimedOut => "timed_out".to_string(),
-        LoopEnd::Failed(why) => format!("failed: {why}"),
-    };
-    summary.set_item("end", end)?;
+    summary.set_item("end", o.end.label())?;
     summary.set_item("ticks", o.ticks)?;
     summary.set_item("limit_faults", o.limit_faults)?;
     summary.set_item("controller", &out.controller)?;

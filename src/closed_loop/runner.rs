@@ -36,6 +36,22 @@ pub enum LoopEnd {
     Stopped(StopSignal),
 }
 
+impl LoopEnd {
+    /// The end as one word, or a word and the reason: `completed`,
+    /// `controller_done`, `timed_out`, `failed: <why>`, `stopped: sigint`
+    /// (what `tune`'s tables and the Python summary carry).
+    pub fn label(&self) -> String {
+        match self {
+            LoopEnd::Completed => "completed".to_string(),
+            LoopEnd::ControllerDone => "controller_done".to_string(),
+            LoopEnd::TimedOut => "timed_out".to_string(),
+            LoopEnd::Failed(why) => format!("failed: {why}"),
+            LoopEnd::Stopped(StopSignal::Sigint) => "stopped: sigint".to_string(),
+            LoopEnd::Stopped(StopSignal::Sigterm) => "stopped: sigterm".to_string(),
+        }
+    }
+}
+
 /// What a loop produced.
 #[derive(Debug, Clone)]
 pub struct LoopOutput {

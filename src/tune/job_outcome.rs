@@ -14,7 +14,6 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use crate::closed_loop::LoopEnd;
 use crate::commands::run::RunOutput;
 use crate::error::RunError;
 
@@ -119,13 +118,7 @@ impl JobOutcome {
         let o = &run.output;
         Self {
             completed: c.completed,
-            end: match &o.end {
-                LoopEnd::Completed => "completed".to_string(),
-                LoopEnd::ControllerDone => "controller_done".to_string(),
-                LoopEnd::TimedOut => "timed_out".to_string(),
-                LoopEnd::Failed(why) => format!("failed: {why}"),
-                LoopEnd::Stopped(signal) => format!("stopped: {signal:?}"),
-            },
+            end: o.end.label(),
             work_j: c.work_j,
             max_deformation_m: c.max_deformation_m,
             peak_force_vertical_n: c.peak_force_vertical_n,
