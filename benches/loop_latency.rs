@@ -21,9 +21,9 @@ use std::time::{Duration, Instant};
 use echo_plant::{EchoPlant, remove_shm_files};
 
 use nalgebra::Vector3;
+use shearcut::closed_loop::LoopSetup;
 use shearcut::closed_loop::{InProcessPlant, LoopEnd, PlantLink, TickTimes, run_loop};
 use shearcut::commands::default_job::DEFAULT_JOB_SCENARIO;
-use shearcut::commands::run::LoopSetup;
 use shearcut::controller_choice::ControllerChoice;
 use shearcut::scenario::{ClockMode, Scenario};
 use shearcut::transport::{

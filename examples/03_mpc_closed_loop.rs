@@ -20,7 +20,7 @@
 //! cargo run --release --example 03_mpc_closed_loop
 //! ```
 
-use shearcut::commands::run::LoopSetup;
+use shearcut::closed_loop::LoopSetup;
 use shearcut::controller_choice::ControllerChoice;
 use shearcut::scenario::Scenario;
 use shearcut_sim::arm::KnifeCommand;
@@ -75,7 +75,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
 
 #[cfg(test)]
 mod tests {
-    use shearcut::commands::run::run_closed_loop;
+    use shearcut::closed_loop::run_closed_loop;
 
     use super::*;
 

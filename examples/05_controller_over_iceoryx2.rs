@@ -29,9 +29,9 @@
 
 use std::process::ExitCode;
 
+use shearcut::closed_loop::LoopSetup;
 use shearcut::closed_loop::{PlantLink, TickTimes};
 use shearcut::commands::controller::link_timeouts;
-use shearcut::commands::run::LoopSetup;
 use shearcut::controller_choice::ControllerChoice;
 use shearcut::scenario::Scenario;
 use shearcut::transport::loop_services::prefix;
@@ -169,7 +169,7 @@ mod tests {
     use std::time::Duration;
 
     use shearcut::closed_loop::InProcessPlant;
-    use shearcut::commands::run::run_closed_loop;
+    use shearcut::closed_loop::run_closed_loop;
     use shearcut::transport::{PlantEnd, PlantServerSettings, serve_plant};
 
     use super::*;

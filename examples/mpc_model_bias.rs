@@ -8,7 +8,7 @@
 //! scenario's nominal surrogate ([`SurrogateModel`], as
 //! `src/commands/run.rs` builds it: the nominal material, the variant's
 //! knife) on the object's [`DepthProfile`] with the crest section's
-//! equivalent rectangle (`commands::run::mpc_profile`).
+//! equivalent rectangle (`closed_loop::mpc_profile`).
 //!
 //! Along a motion, at the knife's edge depth d below the touch point (the
 //! MPC's depth), the model predicts the vertical force L(d)·F_n(ξ, state)
@@ -42,7 +42,7 @@ use std::path::PathBuf;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use shearcut::commands::run::{LoopSetup, run_closed_loop_on};
+use shearcut::closed_loop::{LoopSetup, run_closed_loop_on};
 use shearcut::constant_ratio::{constant_choice, ratio_cap, round3};
 use shearcut::controller_choice::ControllerChoice;
 use shearcut::cut_record::CutSample;

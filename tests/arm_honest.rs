@@ -9,8 +9,8 @@
 //! second drives every controller through a plant link whose truth is
 //! scrambled and checks the commands are the same, bit for bit.
 
+use shearcut::closed_loop::LoopSetup;
 use shearcut::closed_loop::{InProcessPlant, LinkAnswer, LinkError, PlantLink};
-use shearcut::commands::run::LoopSetup;
 use shearcut::controller_choice::ControllerChoice;
 use shearcut::scenario::Scenario;
 use shearcut_plant::PlantTruth;

@@ -6,7 +6,7 @@ mod binary_run;
 
 use binary_run::{assert_files, assert_success, read_summary, scratch, shearcut};
 use nalgebra::Vector3;
-use shearcut::commands::run::{LoopSetup, run_closed_loop, run_closed_loop_on};
+use shearcut::closed_loop::{LoopSetup, run_closed_loop, run_closed_loop_on};
 use shearcut::commands::simulate::simulate;
 use shearcut::controller_choice::ControllerChoice;
 use shearcut::cut_record::CutSample;

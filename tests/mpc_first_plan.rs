@@ -2,7 +2,7 @@
 //! the catch-up after the first fracture priced into the onset's cost, and
 //! the direction the plant's first sections are built for.
 
-use shearcut::commands::run::{LoopSetup, mpc_cutting_ratio, mpc_start};
+use shearcut::closed_loop::{LoopSetup, mpc_cutting_ratio, mpc_start};
 use shearcut::controller_choice::ControllerChoice;
 use shearcut::scenario::Scenario;
 use shearcut::surrogates::surrogate_for;

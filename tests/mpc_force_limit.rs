@@ -15,7 +15,7 @@
 //! same to 0.001 N), and at 7 N the plant's peak is 11.5 N (measured with
 //! `shearcut run`, not asserted here).
 
-use shearcut::commands::run::{LoopSetup, RunOutput, run_closed_loop};
+use shearcut::closed_loop::{LoopSetup, RunOutput, run_closed_loop};
 use shearcut::controller_choice::ControllerChoice;
 use shearcut::cut_record::CutSample;
 use shearcut::scenario::Scenario;

@@ -10,7 +10,7 @@
 //! the Rust loop's numbers bit for bit.
 
 use shearcut::closed_loop::LoopCut;
-use shearcut::commands::run::LoopSetup;
+use shearcut::closed_loop::LoopSetup;
 use shearcut::controller_choice::ControllerChoice;
 use shearcut::error::RunError;
 use shearcut::scenario::Scenario;

@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::sync::OnceLock;
 
-use shearcut::commands::run::{RunOutput, run_closed_loop};
+use shearcut::closed_loop::{RunOutput, run_closed_loop};
 use shearcut::cut_record::{CutSample, CutSummary};
 use shearcut::scenario::Scenario;
 use shearcut_ffi::{CutSetup, ShearcutReading, ShearcutTruth};

@@ -6,7 +6,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 use shearcut::closed_loop::ControlSample;
-use shearcut::commands::run::run_closed_loop;
+use shearcut::closed_loop::run_closed_loop;
 use shearcut::controller_choice::ControllerChoice;
 use shearcut::cut_record::CutSample;
 use shearcut::scenario::Scenario as ScenarioFile;

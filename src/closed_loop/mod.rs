@@ -2,16 +2,24 @@
 //! [`PlantLink`] that hides where the plant runs (in this process, or in
 //! another process over iceoryx2 shared memory).
 
+mod closed_loop_run;
 mod control_record;
 mod cut_story;
 mod in_process;
+mod loop_setup;
 mod plant_link;
 mod runner;
 mod series_stream;
 
+pub use closed_loop_run::{
+    RunOutput, run_closed_loop, run_closed_loop_on, run_closed_loop_recorded,
+};
 pub use control_record::{ControlSample, TickTimes};
 pub use cut_story::CutStory;
 pub use in_process::InProcessPlant;
+pub use loop_setup::{
+    LoopSetup, cut_task, make_controller, make_plant, mpc_cutting_ratio, mpc_profile, mpc_start,
+};
 pub use plant_link::{LinkAnswer, LinkError, PlantLink};
 pub use runner::{LoopCut, LoopEnd, LoopOutput, run_loop, run_loop_recorded};
 pub use series_stream::{FLUSH_PERIOD, LoopRecorder, NoRecorder, SeriesStream};

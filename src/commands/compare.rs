@@ -20,7 +20,7 @@
 
 use serde::Serialize;
 
-use crate::commands::run::{LoopSetup, RunOutput, run_closed_loop_on};
+use crate::closed_loop::{LoopSetup, RunOutput, run_closed_loop_on};
 use crate::constant_ratio::{
     coarse_grid, completed_mean_work, constant_choice, least_mean_work, ratio_cap, round3,
 };

@@ -8,7 +8,8 @@ use std::path::Path;
 use serde::Serialize;
 
 use crate::closed_loop::{LoopEnd, SeriesStream, TickTimes, run_loop_recorded};
-use crate::commands::run::{LoopSetup, RunOutput, Transport, print_summary, write_results};
+use crate::closed_loop::{LoopSetup, RunOutput};
+use crate::commands::run::{Transport, print_summary, write_results};
 use crate::controller_choice::ControllerChoice;
 use crate::cut_record::CutSummary;
 use crate::error::{ConfigError, RunError};

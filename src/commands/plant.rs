@@ -4,8 +4,8 @@
 //! many missed commands, or SIGINT/SIGTERM.
 
 use crate::closed_loop::InProcessPlant;
+use crate::closed_loop::LoopSetup;
 use crate::commands::controller::controller_choice;
-use crate::commands::run::LoopSetup;
 use crate::error::RunError;
 use crate::scenario::Scenario;
 use crate::transport::loop_services::{node_name, prefix};

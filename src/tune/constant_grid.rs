@@ -13,7 +13,7 @@
 use serde::Serialize;
 use shearcut_sim::{InvalidSetting, Knife};
 
-use crate::commands::run::cut_task;
+use crate::closed_loop::cut_task;
 use crate::constant_ratio::{coarse_grid, constant_choice, ratio_cap};
 use crate::controller_choice::ControllerChoice;
 use crate::scenario::Scenario;

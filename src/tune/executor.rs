@@ -13,7 +13,7 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 
 use indicatif::{ProgressBar, ProgressStyle};
 
-use crate::commands::run::run_closed_loop_on;
+use crate::closed_loop::run_closed_loop_on;
 use crate::error::RunError;
 use crate::tune::job_list::Job;
 use crate::tune::job_outcome::{JobOutcome, JobRow, JobTiming};

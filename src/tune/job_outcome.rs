@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
-use crate::commands::run::RunOutput;
+use crate::closed_loop::RunOutput;
 use crate::error::RunError;
 
 /// The deterministic result of one run (SI units).

@@ -12,7 +12,7 @@
 use serde::{Deserialize, Serialize};
 use shearcut_sim::{InvalidSetting, Knife, KnifePreset, MaterialPreset, ObjectShape};
 
-use crate::commands::run::cut_task;
+use crate::closed_loop::cut_task;
 use crate::scenario::Scenario;
 use crate::surrogates::BUILT_IN_SURROGATES;
 
