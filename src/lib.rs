@@ -13,6 +13,7 @@ pub mod error;
 pub mod logging;
 pub mod object_profile;
 pub mod plot;
+pub mod progress;
 pub mod result_file;
 pub mod run_dir;
 pub mod run_replica;

@@ -27,6 +27,7 @@ use crate::constant_ratio::{
 use crate::controller_choice::ControllerChoice;
 use crate::error::RunError;
 use crate::plot::comparison::draw_comparison;
+use crate::progress::run_bar;
 use crate::render_plot;
 use crate::result_file::{write_csv, write_json, write_text};
 use crate::run_dir::{self, Destination};
@@ -218,6 +219,7 @@ fn run_all(
     jobs: &[(ControllerChoice, RunReplica)],
 ) -> Vec<Result<RunOutput, RunError>> {
     let mut results: Vec<Option<Result<RunOutput, RunError>>> = jobs.iter().map(|_| None).collect();
+    let bar = run_bar(jobs.len(), &format!("compare {}", s.name));
     for (chunk, slots) in jobs.chunks(2).zip(results.chunks_mut(2)) {
         std::thread::scope(|scope| {
             let handles: Vec<_> = chunk
@@ -228,6 +230,7 @@ fn run_all(
                 *slot = Some(h.join().expect("a closed-loop run does not panic"));
             }
         });
+        bar.inc(chunk.len() as u64);
         for ((c, replica), r) in chunk.iter().zip(slots.iter()) {
             if let Some(Ok(run)) = r {
                 let on = match replica.index {
@@ -246,6 +249,7 @@ fn run_all(
             }
         }
     }
+    bar.finish_and_clear();
     results
         .into_iter()
         .map(|r| r.expect("every slot filled"))

@@ -10,7 +10,7 @@
 
 use std::path::{Path, PathBuf};
 
-use indicatif::{ProgressBar, ProgressStyle};
+use crate::progress::run_bar;
 use shearcut_sim::surrogate::{
     AccuracyReport, RunComparison, Surrogate, SweepSettings, fit_campaign, fit_run_count,
 };
@@ -152,12 +152,7 @@ pub fn run(
         .into());
     }
     let path = out.map_or_else(|| default_path(m.name(), k.name()), Path::to_path_buf);
-    let bar = ProgressBar::new(run_count() as u64);
-    bar.set_style(
-        ProgressStyle::with_template("{msg} [{bar:40}] {pos}/{len} runs ({elapsed})")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
-    bar.set_message(format!("full-model sweeps of {}", m.name()));
+    let bar = run_bar(run_count(), &format!("full-model sweeps of {}", m.name()));
     let result = fit(m, k, window_weight, &|| bar.inc(1));
     bar.finish_and_clear();
     let output = result?;

@@ -20,6 +20,7 @@ use crate::cli::print;
 use crate::cut_record::{CutSample, CutSummary};
 use crate::error::{ConfigError, RunError};
 use crate::plot::cut_curves::draw_cut_curves;
+use crate::progress::run_bar;
 use crate::render_plot;
 use crate::result_file::{write_csv, write_json};
 use crate::run_dir::{self, Destination};
@@ -119,7 +120,9 @@ fn simulate_section(
     let step = scenario.motion.step;
     let mut samples = Vec::new();
     let mut summaries = Vec::new();
+    let bar = run_bar(cuts.len(), &format!("simulate {}", scenario.name));
     for &(xi, z0) in &cuts {
+        bar.inc(1);
         section.reset();
         let v_n = scenario.motion.speed / (1.0 + xi * xi).sqrt();
         let first = samples.len();
@@ -137,6 +140,7 @@ fn simulate_section(
         }
         summaries.push(CutSummary::from_samples(&samples[first..], depth));
     }
+    bar.finish_and_clear();
     Ok(SimulationOutput {
         samples,
         summaries,
@@ -212,7 +216,10 @@ fn simulate_plant(scenario: &Scenario, knife: &Knife) -> Result<SimulationOutput
     let gap = scenario.plant.start_gap;
     let mut samples = Vec::new();
     let mut summaries = Vec::new();
-    for (i, (xi, z0)) in scenario.motion.cuts().into_iter().enumerate() {
+    let cuts = scenario.motion.cuts();
+    let bar = run_bar(cuts.len(), &format!("simulate {}", scenario.name));
+    for (i, (xi, z0)) in cuts.into_iter().enumerate() {
+        bar.inc(1);
         let alpha = xi.atan();
         let direction = Vector2::new(alpha.sin(), -alpha.cos());
         let mut plant = Plant::new(
@@ -273,6 +280,7 @@ fn simulate_plant(scenario: &Scenario, knife: &Knife) -> Result<SimulationOutput
         }
         summaries.push(CutSummary::from_samples(&samples[first..], depth));
     }
+    bar.finish_and_clear();
     Ok(SimulationOutput {
         samples,
         summaries,

@@ -11,10 +11,9 @@ use std::path::Path;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
 
-use indicatif::{ProgressBar, ProgressStyle};
-
 use crate::closed_loop::run_closed_loop_on;
 use crate::error::RunError;
+use crate::progress::run_bar;
 use crate::tune::job_list::Job;
 use crate::tune::job_outcome::{JobOutcome, JobRow, JobTiming};
 
@@ -55,14 +54,7 @@ pub fn run_pending(
     if pending.is_empty() {
         return Ok(tally);
     }
-    let bar = ProgressBar::new(pending.len() as u64);
-    bar.set_style(
-        ProgressStyle::with_template(
-            "{elapsed_precise} [{bar:30}] {pos}/{len} runs, ETA {eta} {msg}",
-        )
-        .unwrap_or_else(|_| ProgressStyle::default_bar())
-        .progress_chars("=> "),
-    );
+    let bar = run_bar(pending.len(), "");
     let next = AtomicUsize::new(0);
     let first_error: Mutex<Option<RunError>> = Mutex::new(None);
     let threads = threads.clamp(1, pending.len());
