@@ -112,11 +112,46 @@ impl Default for ControllerTelemetry {
 
 /// A knife controller in an arm's servo loop.
 ///
-/// Construction may allocate; [`Controller::tick`] allocates nothing in our
-/// code and never panics: a controller that cannot plan falls back to a
-/// safe command and says so in its telemetry. (The one exception is inside
-/// clarabel 0.11.1: each solve of an MPC plan allocates one small block in
-/// its timers; `controllers/tests/controller_alloc.rs` counts it exactly.)
+/// Construction may allocate; [`Controller::tick`] allocates nothing, takes
+/// no lock and never panics: a controller that cannot plan falls back to a
+/// safe command and says so in its telemetry (the MPC solves on its own
+/// planner thread; `controllers/tests/controller_alloc.rs` counts every
+/// allocation of the tick).
+///
+/// A controller of one's own, driven by a reading (in a real cell the
+/// arm's; [`ConstantSlice`] and [`crate::mpc::Mpc`] are this crate's):
+///
+/// ```
+/// use nalgebra::Vector3;
+/// use shearcut_controllers::controller::{Controller, ControllerTelemetry};
+/// use shearcut_sim::arm::{ArmReading, ArmStatus, KnifeCommand};
+///
+/// /// Presses the knife down at 5 mm/s until its origin is at 20 mm.
+/// struct PressTo20mm;
+///
+/// impl Controller for PressTo20mm {
+///     fn name(&self) -> &str {
+///         "press-to-20mm"
+///     }
+///     fn tick(&mut self, reading: &ArmReading) -> KnifeCommand {
+///         let down = if reading.position.y > 0.02 { -0.005 } else { 0.0 };
+///         KnifeCommand { velocity: Vector3::new(0.0, down, 0.0) }
+///     }
+///     fn telemetry(&self) -> ControllerTelemetry {
+///         ControllerTelemetry::default()
+///     }
+/// }
+///
+/// let reading = ArmReading {
+///     time: 0.0,
+///     position: Vector3::new(0.0, 0.05, 0.0),
+///     velocity: Vector3::zeros(),
+///     wrench: [0.0; 6],
+///     status: ArmStatus::Moving,
+/// };
+/// let mut c = PressTo20mm;
+/// assert_eq!(c.tick(&reading).velocity.y, -0.005);
+/// ```
 pub trait Controller {
     /// A short name for tables and logs (e.g. `slice:0.75`).
     fn name(&self) -> &str;

@@ -102,6 +102,67 @@ const MIN_PLANNED_TRAVEL: f64 = 1e-3;
 /// `time_weight`) is lower. The knife then reverses at the stroke's end at
 /// constant ξ ([`SawingStroke`]). ξ is planned as a magnitude: seed 000's
 /// r(ξ, ν) (eq. 6) and the surrogate depend on |ξ| only.
+///
+/// # Example
+///
+/// The MPC for a 20 mm cut into a potato cuboid 25 mm high under a straight
+/// 30 mm edge, planning from rest, then its first tick with the knife above
+/// the object (a real cell builds the task from its knife, the object's
+/// outline and its arm's limits, `docs/arm_interface.md`):
+///
+/// ```
+/// use std::sync::Arc;
+/// use nalgebra::{Vector2, Vector3};
+/// use shearcut_controllers::controller::{Controller, CutTask, MotionLimits};
+/// use shearcut_controllers::mpc::{DepthProfile, Mpc, MpcSettings, SurrogateModel};
+/// use shearcut_controllers::observer::EdgeOutline;
+/// use shearcut_sim::arm::{ArmLimits, ArmReading, ArmStatus};
+/// use shearcut_sim::geometry::Polygon;
+/// use shearcut_sim::surrogate::Surrogate;
+/// use shearcut_sim::{EdgeShape, Knife, KnifePreset, KnifeSettings};
+///
+/// let knife = Knife::new(&KnifeSettings {
+///     edge: EdgeShape::Straight { length: 0.03 },
+///     ..KnifePreset::Straight.settings()
+/// })?;
+/// // The object in the knife plane (world z, y): 30 mm along the edge, 25 mm high.
+/// let outline = Polygon::new(vec![
+///     Vector2::new(0.0, 0.0),
+///     Vector2::new(0.03, 0.0),
+///     Vector2::new(0.03, 0.025),
+///     Vector2::new(0.0, 0.025),
+/// ]);
+/// let arm = ArmLimits::default();
+/// let task = CutTask {
+///     target_depth: 0.02,
+///     overtravel: 0.002,
+///     outline: Arc::new(EdgeOutline::new(knife.edge(), &outline)),
+///     period: 1e-3,
+///     blade_budget: 0.012,
+///     limits: MotionLimits::within_arm(0.05, 0.1, arm.acceleration, arm.jerk, 0.9),
+/// };
+/// let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../config/surrogates/");
+/// let surrogate = Surrogate::from_path(format!("{dir}potato-cuboid-straight.toml").as_ref())?;
+/// // The whole 30 mm of edge in contact at every depth; a 25 × 30 mm section.
+/// let profile = DepthProfile::new(vec![0.0, 0.02], vec![0.03, 0.03], 0.025, 0.015)?;
+/// let settings = MpcSettings::default();
+/// let model = SurrogateModel::new(surrogate);
+/// let xi = Mpc::planned_ratio_from_rest(&task, &settings, model.clone(), profile.clone(), 0.6)?;
+/// assert!((0.0..=1.0).contains(&xi), "{xi}");
+///
+/// let mut mpc = Mpc::new(&task, &settings, model, profile, 0.6)?;
+/// let above = ArmReading {
+///     time: 0.0,
+///     position: Vector3::new(0.0, 0.03, 0.0), // the edge 5 mm above the top
+///     velocity: Vector3::zeros(),
+///     wrench: [0.0; 6],
+///     status: ArmStatus::Moving,
+/// };
+/// let command = mpc.tick(&above);
+/// // The first command starts a jerk-limited move down (or holds still).
+/// assert!(command.velocity.y <= 0.0 && command.velocity.iter().all(|v| v.is_finite()));
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub struct Mpc<M: SliceModel + Clone + Send + 'static> {
     task: CutTask,
     settings: MpcSettings,
