@@ -272,7 +272,7 @@ fn errors(estimated: [f64; 3], truth: [f64; 3]) -> [f64; 3] {
 }
 
 #[test]
-#[ignore = "the full plant takes minutes per cut in a debug build; from the arm's reading alone the half potato's factors miss their 5 % (docs/controllers.md): run in release with --ignored"]
+#[ignore = "the full plant takes minutes per cut in a debug build; from the arm's reading alone the half potato's factors miss their 5 % on the two plants off the preset's E/R_c (docs/controllers.md): run in release with --ignored"]
 fn the_estimator_converges_on_plants_off_the_preset() {
     let settings = MpcSettings {
         estimate: true,
