@@ -4,7 +4,7 @@
 //! The wedge faces push each crack face (a node of the cut line above the
 //! tip) out to at least the blade's half-thickness w(s) — unilateral
 //! contact: a face that would be pulled onto the blade is released and left
-//! free (active set in `simulation::evaluate`) — at its height s above the
+//! free (active set in `equilibrium::evaluate`) — at its height s above the
 //! blade's reference point, from [`BladeSection::half_thickness_at`]. The
 //! reference point is the crack tip while the edge presses on the material
 //! below it (that material, and the faces next to it, have been carried down

@@ -8,21 +8,32 @@
 //! (factorisation and Schur complement onto the cut line), `factor_cache`
 //! (stiffness pattern and symbolic factorisation per mesh shape, shared by
 //! every build), `contact` (wedge
-//! profile and friction), `fracture` (toughness ratio, bracketing and
-//! regula falsi), `simulation` ([`CrossSection`]), `settings`, `error`.
+//! profile and friction), `equilibrium` (the contacts' active set and the
+//! forces and energies at a fixed crack tip, edge and drag), `knife_step`
+//! (one step's kinematics: the edge's end and the drag along the cut),
+//! `crack_growth` (a step's energy release rate, first-fracture criterion
+//! and balanced extension), `step_toughness` (the toughness an extension
+//! pays, skin layer included), `knife_work` (the knife's work over a step),
+//! `fracture` (toughness ratio, bracketing and regula falsi), `simulation`
+//! ([`CrossSection`]), `settings`, `error`.
 
 mod antiplane;
 mod condensed;
 mod contact;
+mod crack_growth;
+mod equilibrium;
 mod error;
 mod factor_cache;
 mod fracture;
 mod geometry;
+mod knife_step;
+mod knife_work;
 mod mesh;
 mod nested_dissection;
 mod plane_strain;
 mod settings;
 mod simulation;
+mod step_toughness;
 #[cfg(test)]
 mod verification;
 

@@ -4,14 +4,16 @@
 use crate::blade::BladeSection;
 use crate::material::Material;
 
-use super::condensed::{CondensedLine, MAX_STRIP, ReleasedWorkspace, StripConstraint};
-use super::contact::{FaceSlip, WedgeProfile};
+use super::condensed::{CondensedLine, MAX_STRIP, ReleasedWorkspace};
+use super::contact::WedgeProfile;
+use super::crack_growth::CrackGrowth;
+use super::equilibrium::{Eval, evaluate, face_terms, strip_of};
 use super::error::SectionError;
-use super::fracture::{Extension, solve_extension, toughness_ratio};
 use super::geometry::SectionGeometry;
+use super::knife_step::KnifeStep;
+use super::knife_work::{PiecewiseWork, elastic_work, friction_work};
 use super::mesh::SectionMesh;
-use super::settings::{FirstFracture, SectionSettings};
-use crate::finite_strain::NucleationEnvelope;
+use super::settings::SectionSettings;
 
 /// What a knife step did.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -107,74 +109,50 @@ pub struct SectionStep {
 
 /// Immutable model of a section: mesh data and the condensed stiffness.
 #[derive(Debug, Clone)]
-struct Model {
-    line: CondensedLine,
-    profile: WedgeProfile,
-    material: Material,
-    settings: SectionSettings,
+pub(super) struct Model {
+    pub(super) line: CondensedLine,
+    pub(super) profile: WedgeProfile,
+    pub(super) material: Material,
+    pub(super) settings: SectionSettings,
     /// Row spacing on the cut line, m.
-    h: f64,
+    pub(super) h: f64,
     /// Rows R of the line.
-    n: usize,
+    pub(super) n: usize,
     /// Height of the section at the cut, m.
-    height: f64,
+    pub(super) height: f64,
     /// Nodes and elements (kept for callers that inspect the mesh).
-    elements: usize,
+    pub(super) elements: usize,
     /// μ·R with R the edge flat's width, N/m: the scale of the loads of
-    /// seed 001's nucleation envelope ([`FirstFracture::SurfaceStress`]).
-    nucleation_scale: f64,
-}
-
-/// Result of evaluating a configuration (full section, both halves).
-#[derive(Debug, Clone, Copy, Default)]
-struct Eval {
-    f_edge: f64,
-    f_wedge: f64,
-    f_t: f64,
-    f_fric_n: f64,
-    f_fric_t: f64,
-    energy: f64,
-    energy_anti: f64,
-    tensile: usize,
-    /// Fingerprint of the contact active sets (edge columns, released faces).
-    contacts: u64,
-}
-
-impl Eval {
-    fn f_elastic_n(&self) -> f64 {
-        self.f_edge + self.f_wedge
-    }
+    /// seed 001's nucleation envelope ([`FirstFracture::SurfaceStress`](super::FirstFracture::SurfaceStress)).
+    pub(super) nucleation_scale: f64,
 }
 
 /// Preallocated buffers of a section.
 #[derive(Debug, Clone)]
-struct Workspace {
-    g: Vec<f64>,
-    p: Vec<f64>,
-    lambda: [f64; MAX_STRIP],
+pub(super) struct Workspace {
+    pub(super) g: Vec<f64>,
+    pub(super) p: Vec<f64>,
+    pub(super) lambda: [f64; MAX_STRIP],
     /// Face rows released from the wedge (unilateral contact); kept between
     /// evaluations as the active set's warm start.
-    released: Vec<bool>,
+    pub(super) released: Vec<bool>,
     /// Strip columns in contact with the edge (warm start, as `released`).
-    strip_active: [bool; MAX_STRIP],
-    mixed: ReleasedWorkspace,
+    pub(super) strip_active: [bool; MAX_STRIP],
+    pub(super) mixed: ReleasedWorkspace,
     /// Linear solves of the condensed line so far (a cost counter).
-    solves: u64,
+    pub(super) solves: u64,
     /// The last step's end configuration (y_tip, y_edge, drag) and its
     /// evaluation, whose face reactions are still in `p`: the next step
     /// starts there, so its start evaluation needs only the friction for
     /// the new increments (`face_terms`), not another active-set solve.
-    end: Option<(f64, f64, f64, Eval)>,
+    pub(super) end: Option<(f64, f64, f64, Eval)>,
     /// The arguments (y_tip, y_edge, drag, dn, dt, as bits) and result of
     /// the last evaluation, if its active sets converged; its gaps,
     /// reactions and strip forces are still in `g`, `p` and `lambda`. An
     /// evaluation of the same configuration is then this result (the first
     /// active-set pass would solve the same system and change nothing).
-    last: Option<([u64; 5], Eval)>,
+    pub(super) last: Option<([u64; 5], Eval)>,
 }
-
-/// Most active-set iterations of the face contact per evaluation.
-const MAX_ACTIVE_SET_ITERATIONS: usize = 64;
 
 /// Mutable state between steps.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -221,7 +199,7 @@ struct State {
 /// and a safeguarded regula falsi on the bracket. In steady cutting of a deep section ΔU → 0, so
 /// F_n + ξ·F_t → r·R_c: the knife work per unit cut area is r·R_c.
 ///
-/// With [`FirstFracture::SurfaceStress`] (seed 001) the first fracture is
+/// With [`FirstFracture::SurfaceStress`](super::FirstFracture::SurfaceStress) (seed 001) the first fracture is
 /// not R'_c's: before it the crack grows only in a step whose end load per
 /// unit length (F_n, F_t), without growth, is on or beyond the
 /// finite-strain slab's nucleation envelope scaled by μb (b the edge flat's
@@ -243,7 +221,7 @@ struct State {
 /// In a step without crack growth the knife work is integrated piecewise
 /// between the positions where the force has a kink or a jump (a face node
 /// passing a kink of the blade profile, a contact set changing), so the
-/// balance closes to round-off there too (`segment_work`).
+/// balance closes to round-off there too (`knife_work`).
 ///
 /// # Memory allocation
 /// [`CrossSection::new`] allocates the mesh, the condensed matrices and a
@@ -498,27 +476,14 @@ impl CrossSection {
                 "the tangential increment must be finite",
             ));
         }
+        if self.state.completed {
+            return Ok(self.advance_cut_through(dn));
+        }
         let model = &self.model;
         let ws = &mut self.ws;
         let st = self.state;
-        let y_edge1 = st.y_edge - dn;
-        if st.completed {
-            let mut step = st.step;
-            step.knife_displacement += dn;
-            step.edge_height = y_edge1;
-            step.status = StepStatus::CutThrough;
-            step.crack_extension = 0.0;
-            step.force_vertical = 0.0;
-            step.force_tangential = 0.0;
-            step.force_vertical_wedge = 0.0;
-            step.force_vertical_friction = 0.0;
-            step.force_tangential_friction = 0.0;
-            self.state.y_edge = y_edge1;
-            self.state.step = step;
-            return Ok(step);
-        }
-        let dt_abs = dt.abs();
-        let xi = if dn > 0.0 { dt_abs / dn } else { f64::INFINITY };
+        let step = KnifeStep::new(st.y_tip, st.y_edge, st.drag, dn, dt);
+        let (y_edge1, dt_abs) = (step.y_edge1, step.dt_abs);
         // Start of the step: elastic part from the state, friction for this direction.
         let e0 = match ws.end.take() {
             Some((y_tip, y_edge, drag, mut e))
@@ -529,212 +494,41 @@ impl CrossSection {
             }
             _ => evaluate(model, ws, st.y_tip, st.y_edge, st.drag, dn, dt_abs),
         };
-        let u0 = e0.energy;
-        let d0 = st.y_tip - st.y_edge;
-        let drag_at = |s: f64| -> f64 {
-            let d1 = st.y_tip - s - y_edge1;
-            if d1 <= 0.0 {
-                0.0
-            } else if d0 <= 0.0 {
-                if dn > 0.0 { dt_abs * d1 / dn } else { 0.0 }
-            } else {
-                st.drag + dt_abs - xi.min(f64::MAX) * s
-            }
-        };
-        // Drag at a knife advance t ∈ [0, dn] of a step without crack growth.
-        let drag_mid = |t: f64| -> f64 {
-            let d = st.y_tip - (st.y_edge - t);
-            if d <= 0.0 {
-                0.0
-            } else if d0 <= 0.0 {
-                xi.min(f64::MAX) * d
-            } else {
-                st.drag + xi.min(f64::MAX) * t
-            }
-        };
-        // Seed 001's surface stress instead of R'_c: before the first
-        // fracture the crack may grow only once the edge's load at the end of
-        // the step, without growth, is on or beyond the nucleation envelope;
-        // then, as after it, by the balance with R_c.
-        let surface_stress =
-            model.settings.first_fracture == FirstFracture::SurfaceStress && !st.fractured;
-        let nucleated = surface_stress && {
-            let e = evaluate(model, ws, st.y_tip, y_edge1, drag_at(0.0), dn, dt_abs);
-            NucleationEnvelope::SEED_GEL.reached(
-                e.f_elastic_n() + e.f_fric_n,
-                e.f_t + e.f_fric_t,
-                model.nucleation_scale,
-            )
-        };
-        let mut release = |s: f64| -> f64 {
-            let e = evaluate(model, ws, st.y_tip - s, y_edge1, drag_at(s), dn, dt_abs);
-            let w =
-                0.5 * (e0.f_elastic_n() + e.f_elastic_n()) * dn + 0.5 * (e0.f_t + e.f_t) * dt_abs;
-            (w - (e.energy - u0)) / s
-        };
-        let mat = &model.material;
-        let r = if xi.is_finite() {
-            toughness_ratio(xi, mat.poisson_ratio)
-        } else {
-            f64::INFINITY
-        };
-        let (trigger, target) = if st.fractured || surface_stress {
-            (r * mat.fracture_toughness, r * mat.fracture_toughness)
-        } else {
-            (
-                r * mat.initial_fracture_toughness,
-                r * mat.initial_fracture_toughness.min(mat.fracture_toughness),
-            )
-        };
-        // With a skin layer (`Material::skin_thickness`) the toughness
-        // depends on the depth: an extension s from the tip's depth a₀ pays
-        // Γ(s) = R'_c·|[a₀, a₀+s] ∩ [0, t]| + R_c·(the rest), and balances
-        // R(s) = r·Γ(s)/s. The root search then runs on R(s)/(r·Γ(s)/s)
-        // against 1 (same relative tolerance).
-        let skin = mat.skin_thickness.map(|t| (t, model.height - st.y_tip));
-        let layered = |s: f64| -> f64 {
-            match skin {
-                Some((t, a0)) => {
-                    let in_skin = (t - a0).clamp(0.0, s);
-                    r * (mat.initial_fracture_toughness * in_skin
-                        + mat.fracture_toughness * (s - in_skin))
-                        / s
-                }
-                None => target,
-            }
-        };
-        let (trigger, target) = if skin.is_some() {
-            (1.0, 1.0)
-        } else {
-            (trigger, target)
-        };
-        let mut balance = |s: f64| -> f64 {
-            if skin.is_some() {
-                release(s) / layered(s)
-            } else {
-                release(s)
-            }
-        };
-        let s_max = st.y_tip - model.h;
-        let set = &model.settings;
-        let ext = if surface_stress && !nucleated {
-            Extension::None
-        } else if dn > 0.0 && trigger.is_finite() && s_max > 0.0 {
-            solve_extension(
-                &mut balance,
-                set.initial_crack_extension,
-                (st.y_tip - y_edge1).max(0.0) + model.h,
-                s_max,
-                trigger,
-                target,
-                set.bisection_tolerance,
-                set.max_bracket_doublings,
-                set.max_bisection_iterations,
-            )
-        } else {
-            Extension::None
-        };
-        // Back from the balance ratio to R(s) and the toughness paid.
-        let to_rate = |s: f64, b: f64| if skin.is_some() { b * layered(s) } else { b };
-        let (s, r_s, mut status) = match ext {
-            Extension::None => (0.0, 0.0, StepStatus::Indenting),
-            Extension::Balanced { s, r } => (s, to_rate(s, r), StepStatus::Cutting),
-            Extension::RunsThrough { s, r } => (s, to_rate(s, r), StepStatus::CutThrough),
-            Extension::Unbracketed { s, r } => (s, to_rate(s, r), StepStatus::Unbracketed),
-        };
-        let target_at = |s: f64| if skin.is_some() { layered(s) } else { target };
-        // Knife work of a step without crack growth: trapezoids between the
-        // positions where the force may jump, i.e. where a face node passes a
-        // kink of the wedge profile (s = 0, the corner, the end of the bevel)
-        // while the faces are measured from the edge, and where the edge
-        // passes the tip. Between them the force is linear in the knife
-        // position up to active-set changes (kinks of U, whose trapezoid
-        // error is second order), so the work matches ΔU + friction.
-        // (With crack growth the step's work is the same trapezoid as R(s)'s,
-        // which the fracture term balances.)
-        let (mut w_el, mut w_fric) = (0.0, 0.0);
-        let mut prev = e0;
-        let mut t_prev = 0.0;
-        let xi_f = xi.min(f64::MAX);
-        let eval_mid = |ws: &mut Workspace, t: f64| {
-            evaluate(model, ws, st.y_tip, st.y_edge - t, drag_mid(t), dn, dt_abs)
-        };
-        if s == 0.0 && dn > 0.0 {
-            let [corner, bevel] = model.profile.kinks();
-            let h = model.h;
-            loop {
-                let y = st.y_edge - t_prev;
-                // The next break below y: the grid y_i − c for c ∈ {0, corner,
-                // bevel} with y_i = (i+1)·h (rows above the tip), and the tip.
-                let mut next = y_edge1;
-                for c in [0.0, corner, bevel] {
-                    let k = ((y + c) / h - 1e-9).ceil() - 1.0;
-                    let yb = k * h - c;
-                    if yb > next && yb < y && yb > st.y_tip {
-                        next = yb;
-                    }
-                }
-                if st.y_tip < y && st.y_tip > next {
-                    next = st.y_tip;
-                }
-                if next <= y_edge1 + 1e-12 * h {
-                    break;
-                }
-                // The force jumps at the break: close the segment with its
-                // left limit and open the next with the right limit.
-                let t = st.y_edge - next;
-                let eps = 1e-9 * h;
-                let before = eval_mid(ws, t - eps);
-                let after = eval_mid(ws, t + eps);
-                let (we, wf) = segment_work(ws, &eval_mid, t_prev, &prev, t, &before, xi_f, 8);
-                w_el += we;
-                w_fric += wf;
-                prev = after;
-                t_prev = t;
-            }
-        }
+        let growth = CrackGrowth::solve(model, ws, &step, &e0, st.fractured);
+        let s = growth.extension;
+        let mut status = growth.status;
+        // Knife work of a step without crack growth: piecewise up to the
+        // last break, closed below once the end state is known. (With crack
+        // growth the step's work is the same trapezoid as R(s)'s, which the
+        // fracture term balances.)
+        let pieces =
+            (s == 0.0 && dn > 0.0).then(|| PiecewiseWork::up_to_last_break(model, ws, &step, e0));
         // Commit the end state.
         let y_tip1 = st.y_tip - s;
-        let drag1 = drag_at(s);
-        let e1 = evaluate(model, ws, y_tip1, y_edge1, drag1, dn, dt_abs);
+        let drag1 = step.drag_at(s);
+        let e1 = step.at_extension(model, ws, s);
         let d1 = y_tip1 - y_edge1;
         if d1 <= 0.0 && s == 0.0 {
             status = StepStatus::NoContact;
         }
-        if s == 0.0 && dn > 0.0 {
-            // segment_work evaluates inside the segment only if the contact
-            // sets differ at its ends; then restore the end state's buffers
-            // (the surface deflection below reads them).
-            let evaluated_inside = prev.contacts != e1.contacts;
-            let (we, wf) = segment_work(ws, &eval_mid, t_prev, &prev, dn, &e1, xi_f, 8);
-            w_el += we;
-            w_fric += wf;
-            if evaluated_inside {
-                let again = evaluate(model, ws, y_tip1, y_edge1, drag1, dn, dt_abs);
-                debug_assert_eq!(again.energy.to_bits(), e1.energy.to_bits());
-            }
-        } else {
-            w_el =
-                0.5 * (e0.f_elastic_n() + e1.f_elastic_n()) * dn + 0.5 * (e0.f_t + e1.f_t) * dt_abs;
-            w_fric =
-                0.5 * (e0.f_fric_n + e1.f_fric_n) * dn + 0.5 * (e0.f_fric_t + e1.f_fric_t) * dt_abs;
-        }
+        let (w_el, w_fric) = match pieces {
+            Some(pieces) => pieces.close(model, ws, &step, &e1),
+            None => (
+                elastic_work(&step, &e0, &e1),
+                friction_work(&step, &e0, &e1),
+            ),
+        };
         let mut work = st.step.work;
         work.knife += w_el + w_fric;
         work.friction += w_fric;
         work.strain_energy = e1.energy;
         work.strain_energy_antiplane = e1.energy_anti;
         if s > 0.0 {
-            // Fracture takes R(s)·s (= W − ΔU exactly); R = target within the
-            // tolerance when balanced. A crack that runs through releases
-            // more: the excess is reported as unstable release.
-            let fracture = if matches!(status, StepStatus::Cutting) {
-                r_s * s
-            } else {
-                target_at(s) * s
-            };
+            // A crack that runs through releases more than the fracture
+            // takes: the excess is reported as unstable release.
+            let fracture = growth.fracture_energy();
             work.fracture += fracture;
-            work.unstable += (w_el - (e1.energy - u0)) - fracture;
+            work.unstable += (w_el - (e1.energy - e0.energy)) - fracture;
         }
         let completed = matches!(status, StepStatus::CutThrough);
         let strip = strip_of(model, y_tip1, y_edge1);
@@ -769,6 +563,25 @@ impl CrossSection {
         Ok(step)
     }
 
+    /// A knife step on a section already cut through: the knife moves on
+    /// without force, the work is unchanged.
+    fn advance_cut_through(&mut self, dn: f64) -> SectionStep {
+        let y_edge1 = self.state.y_edge - dn;
+        let mut step = self.state.step;
+        step.knife_displacement += dn;
+        step.edge_height = y_edge1;
+        step.status = StepStatus::CutThrough;
+        step.crack_extension = 0.0;
+        step.force_vertical = 0.0;
+        step.force_tangential = 0.0;
+        step.force_vertical_wedge = 0.0;
+        step.force_vertical_friction = 0.0;
+        step.force_tangential_friction = 0.0;
+        self.state.y_edge = y_edge1;
+        self.state.step = step;
+        step
+    }
+
     /// Moves the knife edge down to `edge_depth` (m below the top surface at
     /// the cut) in steps of at most `max_step` (m), with `xi` tangential
     /// displacement per unit vertical; returns the last state. Convenience
@@ -790,305 +603,6 @@ impl CrossSection {
             last = self.advance(dn, xi * dn)?;
         }
         Ok(last)
-    }
-}
-
-/// Knife work (elastic, friction) over knife advances t_a → t_b of a step
-/// without crack growth (tangential advance ξ per unit vertical), from the
-/// end states `ea`, `eb`. The forces are linear in t while the contact active
-/// sets stay the same; where they change the force has a kink (continuous,
-/// the energy being C¹). A segment whose ends differ in active sets is split
-/// at the kink found from the two one-sided slopes (two extra evaluations);
-/// if the sets on either side of it still differ from the ends' (several
-/// changes), or the lines do not cross inside, the halves are split again,
-/// up to `depth` times, then integrated by the trapezoid.
-#[allow(clippy::too_many_arguments)]
-fn segment_work(
-    ws: &mut Workspace,
-    eval_at: &impl Fn(&mut Workspace, f64) -> Eval,
-    t_a: f64,
-    ea: &Eval,
-    t_b: f64,
-    eb: &Eval,
-    xi: f64,
-    depth: u32,
-) -> (f64, f64) {
-    let power = |e: &Eval| e.f_elastic_n() + xi * e.f_t;
-    let friction = |e: &Eval| e.f_fric_n + xi * e.f_fric_t;
-    let len = t_b - t_a;
-    let trapezoid = (
-        0.5 * (power(ea) + power(eb)) * len,
-        0.5 * (friction(ea) + friction(eb)) * len,
-    );
-    if ea.contacts == eb.contacts || len <= 0.0 || depth == 0 {
-        return trapezoid;
-    }
-    let eps = 1e-4 * len;
-    let (ea2, eb2) = (eval_at(ws, t_a + eps), eval_at(ws, t_b - eps));
-    let ka = (power(&ea2) - power(ea)) / eps;
-    let kb = (power(eb) - power(&eb2)) / eps;
-    // Intersection of the two lines: power(ea) + ka (t − t_a) = power(eb) + kb (t − t_b).
-    let ts = (power(eb) - power(ea) - kb * t_b + ka * t_a) / (ka - kb);
-    let single = ts > t_a + eps && ts < t_b - eps && {
-        let (l, r) = (eval_at(ws, ts - eps), eval_at(ws, ts + eps));
-        l.contacts == ea.contacts && r.contacts == eb.contacts
-    };
-    if single {
-        let part = |q: &dyn Fn(&Eval) -> f64| {
-            let left = q(ea) + (q(&ea2) - q(ea)) / eps * (ts - t_a);
-            let right = q(eb) + (q(eb) - q(&eb2)) / eps * (ts - t_b);
-            0.5 * (q(ea) + left) * (ts - t_a) + 0.5 * (right + q(eb)) * (t_b - ts)
-        };
-        return (part(&power), part(&friction));
-    }
-    let tm = if ts > t_a + eps && ts < t_b - eps {
-        ts
-    } else {
-        0.5 * (t_a + t_b)
-    };
-    let em = eval_at(ws, tm);
-    let (w1, f1) = segment_work(ws, eval_at, t_a, ea, tm, &em, xi, depth - 1);
-    let (w2, f2) = segment_work(ws, eval_at, tm, &em, t_b, eb, xi, depth - 1);
-    (w1 + w2, f1 + f2)
-}
-
-/// The strip constraint of the edge at (y_tip, y_edge): the material at the
-/// tip moved to the edge, u_y = y_edge − y_tip. It acts only where the edge
-/// presses on the material (decided by `evaluate`).
-fn strip_of(model: &Model, y_tip: f64, y_edge: f64) -> StripConstraint {
-    let d = y_tip - y_edge;
-    let (row, phi) = tip_row(model, y_tip);
-    StripConstraint {
-        row,
-        phi,
-        value: -d,
-        active: [true; MAX_STRIP],
-    }
-}
-
-/// Row j and weight φ of the tip: y_tip = (j + φ)·h, 1 ≤ j ≤ R.
-fn tip_row(model: &Model, y_tip: f64) -> (usize, f64) {
-    let t = y_tip / model.h;
-    let mut j = t.floor();
-    let mut phi = t - j;
-    if phi > 1.0 - 1e-9 {
-        j += 1.0;
-        phi = 0.0;
-    } else if phi < 1e-9 {
-        phi = 0.0;
-    }
-    let j = (j as usize).clamp(1, model.n);
-    if j == model.n {
-        phi = 0.0;
-    }
-    (j, phi)
-}
-
-/// Solves the configuration (tip, edge, drag) and returns forces and energies
-/// of the full section, with friction for knife increments (dn, dt ≥ 0).
-/// Leaves the gaps in `ws.g`, the reactions in `ws.p`. Allocation-free.
-fn evaluate(
-    model: &Model,
-    ws: &mut Workspace,
-    y_tip: f64,
-    y_edge: f64,
-    drag: f64,
-    dn: f64,
-    dt: f64,
-) -> Eval {
-    let key = [y_tip, y_edge, drag, dn, dt].map(f64::to_bits);
-    if let Some((last, e)) = ws.last
-        && last == key
-    {
-        return e;
-    }
-    ws.last = None;
-    let h = model.h;
-    let (j, _) = tip_row(model, y_tip);
-    // Gaps: rows above the tip open to the blade, measured from the tip while
-    // the edge presses below it, from the edge when the crack runs ahead.
-    let y_ref = y_tip.max(y_edge);
-    let first = j; // index of row j+1
-    ws.g[..first].fill(0.0);
-    for (i, g) in ws.g.iter_mut().enumerate().skip(first) {
-        let y = (i + 1) as f64 * h;
-        *g = if y <= y_tip {
-            0.0
-        } else {
-            model.profile.width(y - y_ref)
-        };
-    }
-    // Unilateral contacts, solved together by a primal-dual active set on the
-    // condensed line:
-    // - the wedge faces: a face row is released when its reaction would pull
-    //   the face onto the blade (p < 0), and put back in contact when,
-    //   released, it would penetrate the blade (g < ŵ);
-    // - the edge flat, column by column: a strip column presses while its
-    //   force on the material is compressive (λ_a ≤ 0) and is released when
-    //   it would pull; a released column comes back when the material there
-    //   would rise above the edge (u_a > value).
-    // This is a convex obstacle problem (a strictly convex energy under
-    // per-DOF inequality constraints), so the active sets are unique and the
-    // stored energy is C¹ in the knife position across their changes: the
-    // energy balance stays closed. (A strip switched on and off as a whole
-    // is not of this kind: its two tests disagree in a band of positions and
-    // the active set cycles there.) Warm-started from the last evaluation the
-    // loop typically settles in one or two passes.
-    let mut strip_c = strip_of(model, y_tip, y_edge);
-    let k = model.line.k;
-    strip_c.active = ws.strip_active;
-    let tol = 1e-9 * model.material.fracture_toughness;
-    let gap_tol = 1e-9 * h;
-    ws.released[..first].fill(false);
-    for (i, r) in ws.released.iter_mut().enumerate().skip(first) {
-        let y = (i + 1) as f64 * h;
-        if y > y_tip {
-            break;
-        }
-        *r = false;
-    }
-    let mut ip = Default::default();
-    let mut converged = false;
-    for _ in 0..MAX_ACTIVE_SET_ITERATIONS {
-        ws.solves += 1;
-        let any = strip_c.active[..k].iter().any(|&a| a);
-        ip = model.line.solve_released(
-            &mut ws.g,
-            first,
-            &ws.released,
-            None,
-            any.then_some(&strip_c),
-            &mut ws.p,
-            &mut ws.lambda,
-            &mut ws.mixed,
-        );
-        let mut changed = false;
-        for i in first..model.n {
-            let y = (i + 1) as f64 * h;
-            if y <= y_tip {
-                continue;
-            }
-            let w = model.profile.width(y - y_ref);
-            if !ws.released[i] && ws.p[i] < -tol {
-                ws.released[i] = true;
-                changed = true;
-            } else if ws.released[i] && ws.g[i] < w - gap_tol {
-                ws.released[i] = false;
-                ws.g[i] = w;
-                changed = true;
-            }
-        }
-        for a in 0..k {
-            if strip_c.active[a] && ws.lambda[a] > tol {
-                strip_c.active[a] = false;
-                changed = true;
-            } else if !strip_c.active[a]
-                && model.line.strip_uy(a, &ws.g, first, &strip_c, &ws.lambda)
-                    > strip_c.value + gap_tol
-            {
-                strip_c.active[a] = true;
-                changed = true;
-            }
-        }
-        if !changed {
-            converged = true;
-            break;
-        }
-    }
-    ws.strip_active = strip_c.active;
-    let mut contacts = strip_c.active[..k]
-        .iter()
-        .fold(0u64, |m, &a| (m << 1) | u64::from(a));
-    // (No face row below `first` is released.)
-    for (i, &r) in ws.released.iter().enumerate().skip(first) {
-        if r {
-            contacts = contacts.wrapping_mul(1_000_003) ^ (i as u64 + 1);
-        }
-    }
-    let strip = strip_c.active[..k].iter().any(|&a| a).then_some(strip_c);
-    // Antiplane drag: the whole flat holds the material along the edge while
-    // any of it presses (seed 000 §III.C: the nodes in contact are fixed on
-    // the edge). Switching columns one by one would drop their stored
-    // antiplane energy without work, while the whole flat lets go only when
-    // the indentation, and with it the drag τ = ξ·d, goes to 0.
-    let (u_anti, f_anti) = match &strip {
-        Some(s) if drag != 0.0 => model.line.solve_antiplane(&StripConstraint {
-            value: drag,
-            active: [true; MAX_STRIP],
-            ..*s
-        }),
-        _ => (0.0, 0.0),
-    };
-    let mut e = Eval {
-        f_edge: -2.0 * ip.strip_force,
-        f_t: 2.0 * f_anti,
-        energy: 2.0 * (ip.energy + u_anti),
-        energy_anti: 2.0 * u_anti,
-        contacts,
-        ..Default::default()
-    };
-    face_terms(model, ws, y_tip, y_edge, dn, dt, &mut e);
-    if converged {
-        ws.last = Some((key, e));
-    }
-    e
-}
-
-/// The terms of `e` read off the face reactions left in `ws.p` by the
-/// evaluation of (y_tip, y_edge): the wedge's vertical force, the tensile
-/// count, and the friction for knife increments (dn, dt ≥ 0). Allocation-free.
-fn face_terms(
-    model: &Model,
-    ws: &Workspace,
-    y_tip: f64,
-    y_edge: f64,
-    dn: f64,
-    dt: f64,
-    e: &mut Eval,
-) {
-    let h = model.h;
-    let (first, _) = tip_row(model, y_tip);
-    let y_ref = y_tip.max(y_edge);
-    let edge_contact = y_tip > y_edge;
-    let mu = model.material.friction_coefficient;
-    e.f_wedge = 0.0;
-    e.tensile = 0;
-    e.f_fric_n = 0.0;
-    e.f_fric_t = 0.0;
-    // The face slope takes a few values along the faces (corner, bevel,
-    // flank): the slip geometry and the normal's stretch factor are
-    // computed once per run of equal slopes (the same expressions, so the
-    // same values).
-    let mut run: Option<(u64, FaceSlip, f64)> = None;
-    for i in first..model.n {
-        let y = (i + 1) as f64 * h;
-        if y <= y_tip {
-            continue;
-        }
-        let slope = model.profile.slope(y - y_ref);
-        let (slip, stretch) = match run {
-            Some((bits, slip, stretch)) if bits == slope.to_bits() => (slip, stretch),
-            _ => {
-                let slip = FaceSlip::new(slope, dn, dt);
-                let stretch = (1.0 + slope * slope).sqrt();
-                run = Some((slope.to_bits(), slip, stretch));
-                (slip, stretch)
-            }
-        };
-        let p = ws.p[i];
-        // The knife's vertical force from the faces' pressure is the
-        // derivative of the energy with respect to the knife position at a
-        // fixed crack: nonzero only when the faces are measured from the edge.
-        if !edge_contact {
-            e.f_wedge += 2.0 * p * slope;
-        }
-        if p < -1e-9 * model.material.fracture_toughness {
-            e.tensile += 1;
-        }
-        let normal = p.max(0.0) * stretch;
-        let (fn_, ft) = slip.friction(mu, normal, dn, dt);
-        e.f_fric_n += 2.0 * fn_;
-        e.f_fric_t += 2.0 * ft;
     }
 }
 
