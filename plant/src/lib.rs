@@ -1,7 +1,11 @@
 //! The plant: a whole knife cutting a whole object (seed 000 §IV–V), driven
 //! tick by tick like a robot arm, reporting what an F/T sensor would read.
 //!
-//! Files: `plant` (the plant and its tick), `plant_settings`, `plant_error`,
+//! Files: `plant` (the plant and its tick), with `plant/segment_section` (a
+//! segment of the edge with its section and plane), `plant/placement` (the
+//! first sections placed where the edge arrives) and `plant/rechoice` (the
+//! moving sections re-chosen as their segments slide off their planes);
+//! `plant_settings`, `plant_error`,
 //! `plant_step` (what a tick returns), `crack_front` (the quadratic crack front fitted over the sections'
 //! crack tips), `wrench` (section forces summed into force and torque at the
 //! sensor), `ft_sensor`
