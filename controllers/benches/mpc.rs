@@ -86,6 +86,7 @@ fn main() {
                 xi_bar: xi_bar[k],
                 cost: Quadratic.stage(xi_bar[k], &state),
                 before_fracture: false,
+                entering: Default::default(),
             };
         }
         let budget = 0.03 * (1.0 - (i % 200) as f64 / 250.0);

@@ -137,6 +137,41 @@ fn a_short_blade_is_sawn_through_at_the_model_optimum_and_ratio() {
 }
 
 #[test]
+fn a_sawing_cut_never_presses_at_the_strokes_ends() {
+    // The same short blade: at each stroke's end the knife reverses at the
+    // ratio it cuts at, so no tick of the cut between the first and last
+    // millimetre moves down at a ratio far below the planned optimum (a
+    // stroke whose tangential speed the blade's end ramps down while the
+    // knife goes on pressing would reach ξ = 0).
+    let profile = DepthProfile::uniform(0.03, 0.03, 0.015).unwrap();
+    let mut mpc = Mpc::new(
+        &task(0.02, 0.008),
+        &MpcSettings::default(),
+        QuadraticModel,
+        profile,
+        0.4,
+    )
+    .unwrap();
+    let mut arm = SyntheticArm::new(0.0);
+    let mut m = arm.measure(ArmStatus::Moving);
+    let mut lowest = f64::INFINITY;
+    for _ in 0..40_000 {
+        let c = mpc.tick(&m);
+        let (v_n, v_t) = (-c.velocity.y, c.velocity.z.abs());
+        if (0.001..0.019).contains(&arm.depth()) && v_n > 1e-6 {
+            lowest = lowest.min(v_t / v_n);
+        }
+        m = arm.step(&c);
+        if mpc.telemetry().phase == CutPhase::Done {
+            break;
+        }
+    }
+    assert_eq!(mpc.telemetry().phase, CutPhase::Done);
+    assert!(mpc.stroke().reversals() >= 2);
+    assert!(lowest > 1.0, "lowest ratio while moving down: {lowest}");
+}
+
+#[test]
 fn while_estimating_the_mpc_touches_at_the_touch_speed_until_the_first_fracture() {
     // The stiffness is identified only by the indentation before the first
     // fracture, so with `estimate` on the knife goes down at the guarded

@@ -1,6 +1,6 @@
 //! The MPC's convex subproblem against brute force, and its constraints.
 
-use shearcut_controllers::mpc::{DepthQp, QpLimits, QpStatus, StageCost, StageData};
+use shearcut_controllers::mpc::{DepthQp, EnteringEdge, QpLimits, QpStatus, StageCost, StageData};
 
 /// A convex work model per unit depth and length, N/m: w(ξ) = a − bξ + cξ²,
 /// force per unit length f(ξ) = f₀/(1 + ξ) linearised at ξ̄.
@@ -22,6 +22,7 @@ fn stage(xi_bar: f64, contact_length: f64, depth_step: f64) -> StageData {
             ..StageCost::default()
         },
         before_fracture: false,
+        entering: Default::default(),
     }
 }
 
@@ -135,4 +136,39 @@ fn the_speed_limit_makes_high_ratios_slower() {
     // ξ above v_t/v_n = 1.2 needs τ > 1/v_n: the time weight then matters.
     let stages = [stage(1.8, 0.05, 0.005), stage(1.8, 0.05, 0.005)];
     check_against_brute_force(&stages, &limits(f64::INFINITY), 1.8, 1.0);
+}
+
+#[test]
+fn edge_entering_contact_draws_the_ratio_up_where_it_enters() {
+    // 20 mm of edge meets intact material in the second stage; its
+    // deflection at fracture falls by 0.1 mm per unit ξ. With the blade
+    // binding (ξ₀ + ξ₁ ≤ 0.8) and no deformation weight the two stages
+    // share it equally; weighted, the blade goes where the edge enters.
+    let mut stages = [stage(0.4, 0.04, 0.005), stage(0.4, 0.04, 0.005)];
+    stages[1].entering = EnteringEdge {
+        length: 0.02,
+        deflection: 2e-4,
+        deflection_slope: -1e-4,
+    };
+    let blade = 0.004;
+    let unweighted = limits(f64::INFINITY);
+    let weighted = QpLimits {
+        deformation_weight: 2000.0,
+        ..unweighted
+    };
+    check_against_brute_force(&stages, &weighted, 0.4, blade);
+    let mut qp = DepthQp::new(2, 50);
+    assert_eq!(qp.solve(&stages, &unweighted, 0.4, blade), QpStatus::Solved);
+    let even = qp.xi().to_vec();
+    assert!((even[0] - even[1]).abs() < 0.02, "{even:?}");
+    assert_eq!(qp.solve(&stages, &weighted, 0.4, blade), QpStatus::Solved);
+    let xi = qp.xi();
+    // Moving δ of ξ from the first stage to the second (the budget row
+    // binds) costs ½·Δd·L·h·δ² on each stage (Δd·L·h = 0.005·0.04·90 =
+    // 0.018 J per unit ξ²) plus smoothness w_S (δ² + (2δ)²) = 0.005 δ², and
+    // gains w_D·ΔL·δ' δ = −0.004 δ J: δ = 0.004 / (2 · 0.023) = 0.087.
+    assert!(
+        (xi[1] - xi[0] - 2.0 * 0.087).abs() < 0.01,
+        "{xi:?} against {even:?}"
+    );
 }

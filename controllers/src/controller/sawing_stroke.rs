@@ -17,7 +17,11 @@
 //! part of the reversal presses at a lower ratio than planned, and the depth
 //! made while stopping and restarting is still cut at ξ. The stop starts
 //! when the tangential stopping distance (plus one tick) reaches what is
-//! left of the stroke.
+//! left of the stroke. A knife that has already stopped tangentially at the
+//! stroke's end (it pressed on there until a plan chose to saw) has nothing
+//! to stop: it reverses at once, its tangential axis accelerating from rest
+//! into the new direction while the normal motion goes on, rather than
+//! stopping the normal motion too along the pressing line.
 
 use shearcut_sim::arm::KnifeCommand;
 
@@ -107,16 +111,27 @@ impl SawingStroke {
         saw: bool,
     ) -> KnifeCommand {
         let l = &task.limits;
+        let allowed =
+            budget.allowed_speed_towards(self.direction, tangential_speed, l.acceleration, l.jerk);
         if self.phase == StrokePhase::Stroking
             && saw
             && self.reversals < self.max_reversals
             && tangential_speed > 0.0
-            && self.at_end(shaper, budget, task)
+            && (allowed < tangential_speed || self.at_end(shaper, budget, task))
         {
             let v = shaper.current().velocity;
-            let v_n = -v.y;
-            let xi = if v_n > 0.0 { v.z.abs() / v_n } else { 0.0 };
-            self.phase = StrokePhase::Stopping { xi };
+            if v.z * self.direction <= 0.0 {
+                // Already stopped tangentially (a plan that chose to saw
+                // late): nothing to stop; the shaper takes the tangential
+                // axis from rest into the new direction while the normal
+                // motion goes on.
+                self.direction = -self.direction;
+                self.reversals += 1;
+            } else {
+                let v_n = -v.y;
+                let xi = if v_n > 0.0 { v.z.abs() / v_n } else { 0.0 };
+                self.phase = StrokePhase::Stopping { xi };
+            }
         }
         match self.phase {
             StrokePhase::Stroking => {

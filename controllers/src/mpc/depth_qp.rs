@@ -10,6 +10,7 @@
 //! minimise   Σ_k Δd_k L_k [g_k (ξ_k − ξ̄_k) + ½ h_k (ξ_k − ξ̄_k)²]      work
 //!          + L_0 [W'_0 (ξ_0 − ξ̄_0) + ½ W''⁺_0 (ξ_0 − ξ̄_0)²]    work to fracture
 //!          + w_D L_0 δ'_0 ξ_0   (both before the first fracture)     deformation
+//!          + w_D Σ_k ΔL_k δ*'_k ξ_k                                   deformation
 //!          + w_T Σ_k Δd_k τ_k                                         time
 //!          + w_S [(ξ_0 − ξ_prev)² + Σ_k (ξ_k − ξ_{k−1})²]             smoothness
 //!          + w_F Σ_k σ_k                                              force excess
@@ -18,8 +19,12 @@
 //!            Σ_k Δd_k ξ_k ≤ S                                         (blade left)
 //!            L_k (f_k + f'_k (ξ_k − ξ̄_k)) − σ_k ≤ F_max,  σ_k ≥ 0     (force, soft)
 //!
-//! with h_k = max(w''(ξ̄_k), h_min) so the program is convex, and L_k the
-//! length of edge in contact at the stage. The program is always feasible
+//! with h_k = max(w''(ξ̄_k), h_min) so the program is convex, L_k the
+//! length of edge in contact at the stage, ΔL_k the length of edge that
+//! comes into contact during it (intact material it indents until it
+//! fractures), and δ*'_k the slope in ξ of the surface deflection at which
+//! intact material fractures (the deflection terms are linearised like
+//! the force: δ(ξ) ≈ δ(ξ̄) + δ'(ξ̄)(ξ − ξ̄)). The program is always feasible
 //! (ξ = 0 at the slowest allowed τ satisfies every hard row). Its sparsity
 //! pattern never changes: each plan only updates the values of P, q, A and b
 //! (no re-allocation, no symbolic refactorisation).
@@ -44,6 +49,24 @@ pub struct StageData {
     pub cost: StageCost,
     /// Whether the stage is before the first fracture (deformation counts).
     pub before_fracture: bool,
+    /// Edge that comes into contact during the stage and is indented from
+    /// intact until it fractures, with the deflection it reaches then.
+    pub entering: EnteringEdge,
+}
+
+/// Intact edge that a stage brings into contact: a whole object's outline
+/// widens with depth, so sections keep meeting the edge after the first
+/// fracture, and each is pushed down until its own fracture (the largest
+/// surface deflection of a cut is reached at one of these onsets).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct EnteringEdge {
+    /// Length of edge that comes into contact, m (≥ 0).
+    pub length: f64,
+    /// Surface deflection at the onset of fracture of intact material at
+    /// the stage's ξ̄, m.
+    pub deflection: f64,
+    /// Its derivative with respect to ξ, m.
+    pub deflection_slope: f64,
 }
 
 /// The limits and weights of the subproblem.
@@ -65,7 +88,7 @@ pub struct QpLimits {
     pub time_weight: f64,
     /// Weight of ξ changes, J.
     pub smoothness_weight: f64,
-    /// Weight of deflection, J/m.
+    /// Weight of deflection × length of edge deflected, J/m².
     pub deformation_weight: f64,
     /// Cost per newton of force excess, J/N.
     pub force_penalty: f64,
@@ -279,6 +302,8 @@ impl DepthQp {
                     * l
                     * (s.cost.deformation + s.cost.deformation_slope * dx);
             }
+            let e = &s.entering;
+            j += limits.deformation_weight * e.length * (e.deflection + e.deflection_slope * dx);
             j += limits.time_weight * s.depth_step * tau[k];
             j += limits.smoothness_weight * (xi[k] - prev) * (xi[k] - prev);
             prev = xi[k];
@@ -326,6 +351,9 @@ impl DepthQp {
                 self.q[0] += l * (s.cost.onset_work_slope - h0 * s.xi_bar);
                 self.q[0] += limits.deformation_weight * l * s.cost.deformation_slope;
             }
+            // Deflection of the edge entering contact, linear in ξ.
+            self.q[k] +=
+                limits.deformation_weight * s.entering.length * s.entering.deflection_slope;
             // Smoothness (ξ_k − ξ_{k−1})², and (ξ_0 − ξ_prev)².
             self.p.nzval[self.p_diag[k]] += 2.0 * ws;
             if k == 0 {

@@ -23,7 +23,7 @@ mod surrogate_model;
 
 pub use controller::{Mpc, MpcStats};
 pub use depth_profile::DepthProfile;
-pub use depth_qp::{DepthQp, QpLimits, QpStatus, StageData};
+pub use depth_qp::{DepthQp, EnteringEdge, QpLimits, QpStatus, StageData};
 pub use indentation_stiffness::IndentationStiffness;
 pub use plan_job::{MpcPlan, MpcPlanJob, PlanRequest};
 pub use scale_estimator::ScaleEstimator;

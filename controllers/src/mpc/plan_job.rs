@@ -2,7 +2,7 @@
 //! the servo tick by a [`Planner`](crate::planner::Planner).
 
 use super::depth_profile::DepthProfile;
-use super::depth_qp::{DepthQp, QpLimits, QpStatus, StageData};
+use super::depth_qp::{DepthQp, EnteringEdge, QpLimits, QpStatus, StageData};
 use super::settings::MpcSettings;
 use super::slice_model::{SliceModel, StageState};
 use crate::controller::{CutTask, MotionLimits, stopping_distance, stopping_duration};
@@ -206,12 +206,33 @@ impl<M: SliceModel> MpcPlanJob<M> {
                 },
             };
             let xi_bar = self.last.xi[k];
+            let before_fracture = !fractured && k == 0;
+            // Edge entering contact over the stage; before the first
+            // fracture the first stage's onset term covers all its contact.
+            let entering_length = if before_fracture {
+                0.0
+            } else {
+                let start = d0 + k as f64 * dd;
+                (self.profile.contact_length(start + dd) - self.profile.contact_length(start))
+                    .max(0.0)
+            };
+            let entering = if entering_length > 0.0 && self.limits.deformation_weight > 0.0 {
+                let (deflection, deflection_slope) = self.model.onset_deflection(xi_bar, &state);
+                EnteringEdge {
+                    length: entering_length,
+                    deflection,
+                    deflection_slope,
+                }
+            } else {
+                EnteringEdge::default()
+            };
             self.stages[k] = StageData {
                 depth_step: dd,
                 contact_length: self.profile.contact_length(edge),
                 xi_bar,
                 cost: self.model.stage(xi_bar, &state),
-                before_fracture: !fractured && k == 0,
+                before_fracture,
+                entering,
             };
         }
         let l = self.motion;

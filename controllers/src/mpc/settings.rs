@@ -27,7 +27,11 @@ pub struct MpcSettings {
     pub time_weight: f64,
     /// Weight of stage-to-stage changes of ξ, J (default 1e-4 per unit ξ²).
     pub smoothness_weight: f64,
-    /// Weight of surface deflection before fracture, J/m (default 1).
+    /// Weight of surface deflection, J per m² of deflection × edge length
+    /// (default 1): the deflection the edge in contact at the first
+    /// fracture reaches before it, and that of each length of edge that
+    /// comes into contact later and is indented until it fractures
+    /// ([`super::DepthQp`]).
     pub deformation_weight: f64,
     /// Vertical force limit, N (default: none). Soft: a violation costs
     /// `force_penalty` per newton.

@@ -89,6 +89,15 @@ pub trait SliceModel {
         0.0
     }
 
+    /// The surface deflection, m, at which intact material in `state`
+    /// (read with `fractured` false and no depth cut) fractures when
+    /// indented at `xi`, and its derivative with respect to ξ: what the edge
+    /// that comes into contact after the first fracture is pushed down by
+    /// before it cuts. (0, 0) (the default) for a model without it.
+    fn onset_deflection(&self, _xi: f64, _state: &StageState) -> (f64, f64) {
+        (0.0, 0.0)
+    }
+
     /// The normal and tangential forces per unit length at `xi` in `state`
     /// for the scale factors `scale` (toughness, stiffness, friction),
     /// linearised in them (for the [`super::ScaleEstimator`]); `None` if the

@@ -168,6 +168,21 @@ impl SliceModel for SurrogateModel {
         }
     }
 
+    fn onset_deflection(&self, xi: f64, state: &StageState) -> (f64, f64) {
+        let intact = CutState {
+            depth: 0.0,
+            fractured: false,
+            travel_since_fracture: 0.0,
+            ..Self::cut_state(state)
+        };
+        let h = ONSET_STEP;
+        let (lo, hi) = ((xi - h).max(0.0), xi + h);
+        let (_, d0, _) = self.onset(xi, &intact, 0.0);
+        let (_, dl, _) = self.onset(lo, &intact, 0.0);
+        let (_, dh, _) = self.onset(hi, &intact, 0.0);
+        (d0, (dh - dl) / (hi - lo))
+    }
+
     fn catch_up_span(&self, xi: f64, state: &StageState) -> f64 {
         let intact = CutState {
             fractured: false,
