@@ -7,12 +7,11 @@
 //! is first met. Where those ticks fall along the knife's path decides how
 //! much strain energy each jump releases unused, so a single run's work
 //! depends on the phase of the servo ticks against the object: the knife
-//! moves 20 µm per tick at 20 mm/s and 1 kHz. Slicing the potato cuboid
-//! at ξ = 0.526 (`loop-potato-cuboid`, 20 mm/s) does 0.1559–0.1602 J
-//! (±1.4 %) with the knife starting 0, 4, 8, 12, 16, 20, 33 or 71 µm
-//! higher, with no trend in the offset. Comparing controllers by one run
-//! each, and picking the best constant ratio as the smallest of a dozen
-//! such runs, favours whichever run happened to fall on the cheap side.
+//! moves 20 µm per tick at 20 mm/s and 1 kHz (docs/results.md measures
+//! the spread this gives a constant ratio on the potato cuboid). Comparing
+//! controllers by one run each, and picking the best constant ratio as the
+//! smallest of a dozen such runs, favours whichever run happened to fall
+//! on the cheap side.
 //!
 //! Replica k starts the knife k·[`START_STEP`] (5 µm) further above the
 //! object than the scenario's `[plant] start_gap`: the object, the plant
@@ -23,11 +22,6 @@
 //! the run itself. The mean over them estimates the work a controller
 //! does on the object whatever the servo's phase, and their spread shows
 //! the plant's scatter.
-//!
-//! (An earlier design scaled the object's heights by 1 + k·10⁻⁷, 2.5 nm
-//! steps on 25 mm: too small to move most crack events to another tick, so
-//! its five replicas agreed within 0.5 % where the phase moves a constant
-//! ratio's work by ±1.4 %.)
 
 /// How much higher each replica step starts the knife, m.
 pub const START_STEP: f64 = 5e-6;

@@ -69,8 +69,8 @@ fn stress_case_1() -> TrajectoryInput<4> {
 /// Found at 10⁶ stress cases: DoF 0 needs 2.931 s, but DoF 2 cannot take between ≈2.387 s and
 /// 3.0729 s (a blocked interval: it either turns early or overshoots). The common duration is
 /// the end of that interval, DoF 2's extremal profile of 3.072 885 995 s. The dense re-search of
-/// the failing DoF used to *replace* its candidates and lost that profile (a `Synchronization`
-/// error).
+/// the failing DoF must add to its candidates, not replace them, or that profile is lost (a
+/// `Synchronization` error).
 #[test]
 fn blocked_interval_end_survives_the_dense_re_search() {
     let otg = TrajectoryGenerator::<4>::new(TrajectorySettings::default()).unwrap();

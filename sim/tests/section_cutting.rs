@@ -90,9 +90,9 @@ fn seed_000_fig7_trends_for_potato() {
     assert!(works[3] > works[2], "{works:?}");
 }
 
-/// Regression: the wedge-face contact used to be bilateral, holding 40+ crack
-/// face nodes onto the blade by tension late in a cut. It is unilateral now
-/// (active set on the condensed line): no face reaction is ever tensile, for
+/// The wedge-face contact is unilateral (active set on the condensed line;
+/// a bilateral one holds 40+ crack face nodes onto the blade by tension late
+/// in a cut): no face reaction is ever tensile, for
 /// a stiff (potato) and a soft, high-friction (eggplant) cuboid, pressing and
 /// slicing, while the energy balance stays closed.
 #[test]

@@ -42,11 +42,11 @@ pub struct MpcSettings {
     /// the deterministic time budget; a plan that is not solved within it
     /// falls back to the previous plan, shifted.
     pub max_iterations: u32,
-    /// Estimate the material's scale factors online (default false: on
-    /// potato plants ±30 % off the preset the stiffness comes out within
-    /// 5 %, the toughness within 10 % and the friction within 9 %, but
-    /// 24 % off on the cuboid at R_c ×0.7, E ×1.3, where the surrogate at
-    /// the true factors is not the plant; see docs/controllers.md).
+    /// Estimate the material's toughness, stiffness and friction scale
+    /// factors online from the arm's reading ([`super::ScaleEstimator`])
+    /// and plan with them (default false: how close the estimates come on
+    /// plants off the preset, and what estimating saves or costs in work,
+    /// are measured in docs/controllers.md).
     pub estimate: bool,
     /// Forgetting factor of the estimator per row (two rows per tick), in
     /// (0, 1] (default 1: none — the material of a cut is one, and

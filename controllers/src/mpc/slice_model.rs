@@ -66,9 +66,9 @@ pub struct ForceModel {
     /// derivatives with respect to them at a fixed ratio ℓ = ln(S/T). Where
     /// the wedge's terms depend on E/R_c, the parts are those at the ratio
     /// of the factors asked for; the estimator regresses on them and moves
-    /// the ratio only through its estimate, not through the full Jacobian, whose ℓ-terms let a few per cent of model
-    /// error in the tangential force drive the toughness (−20 % on the half
-    /// potato at R_c ×0.7, E ×1.3, against +1.5 % without them).
+    /// the ratio only through its estimate, not through the full Jacobian,
+    /// whose ℓ-terms let a few per cent of model error in the tangential
+    /// force drive the toughness (docs/controllers.md).
     pub gradient: [f64; 3],
 }
 

@@ -17,7 +17,7 @@
 //! would be overshot afterwards). If `v` comes back to `v_max` while the −J ramp is still above
 //! `a_b`, that is the earliest entry; otherwise the earliest entry is the time-optimal velocity
 //! change to `(v_max, a_b)` (bang-bang: −J below `a_b`, +J back; holding `a_b` instead arrives
-//! later, which made a slower braking than necessary in an earlier version). The main profile
+//! later). The main profile
 //! then starts from the safe state; the trajectory reports
 //! [`super::TrajectoryStatus::BrakingThenTarget`] while the pre-phase runs. Returning earliest is
 //! not always fastest overall, so the calculator also tries holding `a_b` ([`brake_with`]) and

@@ -45,9 +45,8 @@ pub(crate) enum PeakResidual {
         /// Prescribed duration (s).
         t: f64,
     },
-    /// Duration equation `T₁ + T₂ = t` (no longer needed by the fixed-duration search, which
-    /// solves the cruise equation on whole windows; its closed forms stay covered by the unit
-    /// test below).
+    /// Duration equation `T₁ + T₂ = t` (the fixed-duration search solves the cruise equation on
+    /// whole windows instead; its closed forms are covered by the unit test below).
     #[cfg_attr(not(test), allow(dead_code))]
     Duration {
         /// Prescribed duration (s).
