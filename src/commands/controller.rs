@@ -94,6 +94,9 @@ fn serve(
     let setup = LoopSetup::new(s, choice)?;
     let task = setup.task.clone();
     let mut ctl = setup.controller(s, choice)?;
+    // The series writer's thread starts here, before the servo thread's
+    // priority is raised (a thread inherits its creator's scheduling).
+    let mut stream = SeriesStream::create(dir)?;
     // The MPC's planner thread has started (with the controller) at normal
     // priority; only this, the servo thread, is raised.
     raise_servo_thread(s.control_loop.servo_priority)
@@ -114,9 +117,8 @@ fn serve(
     .map_err(|e| RunError::Loop(e.to_string()))?;
     link.wait_for_plant()
         .map_err(|e| RunError::Loop(e.to_string()))?;
-    let mut stream = SeriesStream::create(dir)?;
     let output = run_loop_recorded(&mut link, ctl.as_mut(), &cut, &mut stream);
-    stream.finish()?;
+    let dropped = stream.finish()?;
     if !matches!(output.end, LoopEnd::Failed(_))
         && let Err(e) = link.finish()
     {
@@ -130,7 +132,7 @@ fn serve(
         target_depth_m: task.target_depth,
         replica: RunReplica::NOMINAL,
     };
-    write_results(s, &run, Transport::Iceoryx2, dir)?;
+    write_results(s, &run, Transport::Iceoryx2, dropped, dir)?;
     let round_trip = link.round_trips();
     write_json(
         &dir.join("loop_stats.json"),
