@@ -677,6 +677,21 @@ fn wait_for_lines(path: &std::path::Path, lines: usize, child: &mut std::process
     }
 }
 
+/// Waits (watchdog: 120 s) until `path` exists.
+#[allow(clippy::disallowed_methods)] // A watchdog on a child process.
+fn wait_for_file(path: &std::path::Path, child: &mut std::process::Child) {
+    let started = std::time::Instant::now();
+    while !path.exists() {
+        assert!(
+            started.elapsed() < std::time::Duration::from_secs(120),
+            "no {}",
+            path.display()
+        );
+        sandbox::assert_running(child, "controller");
+        std::thread::sleep(std::time::Duration::from_millis(2));
+    }
+}
+
 /// Runs `child` to its end under the watchdog; its output and how long
 /// that took.
 #[allow(clippy::disallowed_methods)] // Elapsed time of a start-up fault, bounded loosely.
@@ -762,10 +777,11 @@ fn issue_27_a_plant_that_dies_before_serving_is_reported_at_once() {
     std::fs::write(&s, s_text).unwrap();
     let out = sb.dir.join("never");
     let (mut plant, mut controller) = sb.spawn_pair(&s, "dies", &out);
-    // Both nodes there: the controller knows the run's dead nodes from
-    // then on (a node created later cleans them away first, and a plant
-    // that died before its controller started is one that never came).
-    wait_for_node(sb.prefix(), "controller/dies", &mut controller);
+    // The controller past its start-up (its series files exist): its
+    // node's cleanup of dead nodes is over, so a plant that dies from now
+    // on stays listed dead (a plant that died before is, to the
+    // controller, one that never came).
+    wait_for_file(&out.join("controller.csv"), &mut controller);
     wait_for_node(sb.prefix(), "plant/dies", &mut plant);
     plant.kill().unwrap(); // SIGKILL while it builds.
     plant.wait().unwrap();
