@@ -662,34 +662,28 @@ fn issue_27_sigint_and_sigterm_stop_a_run_with_a_partial_summary() {
 /// machine's stalls do not brake the plant first.
 const REALTIME_SLOW: &str = "\n[loop]\nclock = \"realtime\"\nrate_hz = 1000\nmissed_command_limit = 1000\n\n[controller]\nspeed = 0.002\n";
 
-/// Waits (watchdog: 120 s) until `path` holds at least `lines` lines.
+/// Waits (watchdog: 120 s) until `done`, `what` naming it; fails if
+/// `child` ends first.
 #[allow(clippy::disallowed_methods)] // A watchdog on child processes.
-fn wait_for_lines(path: &std::path::Path, lines: usize, child: &mut std::process::Child) {
+fn wait_until(what: &str, child: &mut std::process::Child, done: impl Fn() -> bool) {
     let started = std::time::Instant::now();
-    while lines_in(path) < lines {
+    while !done() {
         assert!(
             started.elapsed() < std::time::Duration::from_secs(120),
-            "no {lines} lines in {}",
-            path.display()
+            "watchdog: {what}"
         );
-        sandbox::assert_running(child, "run");
-        std::thread::sleep(std::time::Duration::from_millis(5));
+        sandbox::assert_running(child, what);
+        std::thread::sleep(std::time::Duration::from_millis(2));
     }
 }
 
-/// Waits (watchdog: 120 s) until `path` exists.
-#[allow(clippy::disallowed_methods)] // A watchdog on a child process.
-fn wait_for_file(path: &std::path::Path, child: &mut std::process::Child) {
-    let started = std::time::Instant::now();
-    while !path.exists() {
-        assert!(
-            started.elapsed() < std::time::Duration::from_secs(120),
-            "no {}",
-            path.display()
-        );
-        sandbox::assert_running(child, "controller");
-        std::thread::sleep(std::time::Duration::from_millis(2));
-    }
+/// Waits until `path` holds at least `lines` lines.
+fn wait_for_lines(path: &std::path::Path, lines: usize, child: &mut std::process::Child) {
+    wait_until(
+        &format!("{lines} lines in {}", path.display()),
+        child,
+        || lines_in(path) >= lines,
+    );
 }
 
 /// Runs `child` to its end under the watchdog; its output and how long
@@ -746,22 +740,13 @@ fn issue_27_a_second_controller_or_plant_on_a_live_run_id_is_refused_at_once() {
     plant.wait().unwrap();
 }
 
-/// Waits (watchdog: 120 s) until iceoryx2 lists a live node `name` under
-/// `prefix`.
-#[allow(clippy::disallowed_methods)] // A watchdog on a child process.
+/// Waits until iceoryx2 lists a live node `name` under `prefix`.
 fn wait_for_node(prefix: &str, name: &str, child: &mut std::process::Child) {
     let config = shearcut::transport::loop_services::config(prefix).unwrap();
-    let started = std::time::Instant::now();
-    while shearcut::transport::run_node::node_state(&config, name, None)
-        != shearcut::transport::PeerState::Alive
-    {
-        assert!(
-            started.elapsed() < std::time::Duration::from_secs(120),
-            "no node {name}"
-        );
-        sandbox::assert_running(child, name);
-        std::thread::sleep(std::time::Duration::from_millis(2));
-    }
+    wait_until(&format!("node {name}"), child, || {
+        shearcut::transport::run_node::node_state(&config, name, None)
+            == shearcut::transport::PeerState::Alive
+    });
 }
 
 #[test]
@@ -781,7 +766,10 @@ fn issue_27_a_plant_that_dies_before_serving_is_reported_at_once() {
     // node's cleanup of dead nodes is over, so a plant that dies from now
     // on stays listed dead (a plant that died before is, to the
     // controller, one that never came).
-    wait_for_file(&out.join("controller.csv"), &mut controller);
+    let series = out.join("controller.csv");
+    wait_until("the controller's series files", &mut controller, || {
+        series.exists()
+    });
     wait_for_node(sb.prefix(), "plant/dies", &mut plant);
     plant.kill().unwrap(); // SIGKILL while it builds.
     plant.wait().unwrap();
