@@ -48,6 +48,17 @@ pub enum ConfigError {
     /// A command-line argument is out of its allowed range.
     #[error("{0}")]
     Argument(InvalidSetting),
+    /// `--run-id` names a run that a live process of the same role already
+    /// serves.
+    #[error(
+        "run id `{run_id}` is in use: a {role} of it is running (iceoryx2 node {role}/{run_id}); choose another --run-id"
+    )]
+    RunIdInUse {
+        /// The run id.
+        run_id: String,
+        /// `plant` or `controller`.
+        role: &'static str,
+    },
 }
 
 /// Failures while doing the work (writing results, drawing plots).
@@ -72,6 +83,16 @@ pub enum RunError {
     /// or a full or failing device (exit 1).
     #[error("cannot write to stdout: {0}")]
     Stdout(std::io::Error),
+    /// A signal stopped a process that had no results to write (a plant, or
+    /// a controller before its loop): exit code 130 (SIGINT) or 143
+    /// (SIGTERM); the message says what was stopped.
+    #[error("{message}")]
+    Signalled {
+        /// The signal.
+        signal: crate::transport::StopSignal,
+        /// What was stopped, on one line.
+        message: String,
+    },
     /// A signal stopped the run after its results were written: exit code
     /// 130 (SIGINT) or 143 (SIGTERM).
     #[error("stopped by {signal:?}: partial results in {dir}/")]
@@ -93,7 +114,9 @@ impl RunError {
         match self {
             RunError::Config(_) => 2,
             RunError::Stdout(e) if e.kind() == std::io::ErrorKind::BrokenPipe => EXIT_CLOSED_PIPE,
-            RunError::Stopped { signal, .. } => signal.exit_code(),
+            RunError::Stopped { signal, .. } | RunError::Signalled { signal, .. } => {
+                signal.exit_code()
+            }
             RunError::Write { .. } | RunError::Loop(_) | RunError::Stdout(_) => 1,
         }
     }
@@ -102,6 +125,21 @@ impl RunError {
     /// stdout: its reader wants no more, on either stream).
     pub fn is_quiet(&self) -> bool {
         self.exit_code() == EXIT_CLOSED_PIPE
+    }
+
+    /// The error of a process named `name` (`plant/<run-id>`) whose
+    /// iceoryx2 services failed: a run id in use is bad input (exit 2),
+    /// anything else a failed run (exit 1).
+    pub fn service(name: &str, e: crate::transport::ServiceError) -> Self {
+        match e {
+            crate::transport::ServiceError::RunIdInUse { run_id, role } => {
+                RunError::Config(ConfigError::RunIdInUse {
+                    run_id,
+                    role: role.as_str(),
+                })
+            }
+            e => RunError::Loop(format!("{name}: {e}")),
+        }
     }
 
     /// A write error for `path`.

@@ -145,7 +145,7 @@ fn a_second_plant_for_the_same_run_is_refused() {
     match second {
         Err(e) => assert!(
             e.to_string()
-                .contains("is another plant serving this run id"),
+                .contains("run id \"twice\" is in use: a plant of it is running"),
             "{e}"
         ),
         Ok(_) => panic!("two plants serve run 'twice'"),

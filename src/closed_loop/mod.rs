@@ -9,7 +9,9 @@ mod in_process;
 mod loop_setup;
 mod plant_link;
 mod runner;
+mod series_record;
 mod series_stream;
+mod series_writer;
 
 pub use closed_loop_run::{
     RunOutput, run_closed_loop, run_closed_loop_on, run_closed_loop_recorded,
@@ -22,4 +24,5 @@ pub use loop_setup::{
 };
 pub use plant_link::{LinkAnswer, LinkError, PlantLink};
 pub use runner::{LoopCut, LoopEnd, LoopOutput, run_loop, run_loop_recorded};
-pub use series_stream::{FLUSH_PERIOD, LoopRecorder, NoRecorder, SeriesStream};
+pub use series_stream::{DroppedRows, LoopRecorder, NoRecorder, QUEUE_RECORDS, SeriesStream};
+pub use series_writer::FLUSH_PERIOD;

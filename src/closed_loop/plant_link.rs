@@ -4,6 +4,8 @@
 use shearcut_plant::PlantTruth;
 use shearcut_sim::arm::{ArmReading, KnifeCommand};
 
+use crate::transport::StopSignal;
+
 /// Why a plant link stopped answering.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum LinkError {
@@ -13,6 +15,10 @@ pub enum LinkError {
     /// The plant is gone or silent.
     #[error("lost the plant: {0}")]
     Lost(String),
+    /// A signal (SIGINT/SIGTERM) asked this process to stop while it
+    /// waited for the plant.
+    #[error("stopped by {0:?} while waiting for the plant")]
+    Stopped(StopSignal),
 }
 
 /// One tick's answer of a plant link: the arm's reading, which the

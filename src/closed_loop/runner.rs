@@ -37,6 +37,15 @@ pub enum LoopEnd {
 }
 
 impl LoopEnd {
+    /// The end of a loop whose link failed with `e`: stopped by the signal
+    /// it reports, or failed.
+    fn after(e: LinkError) -> Self {
+        match e {
+            LinkError::Stopped(signal) => LoopEnd::Stopped(signal),
+            e => LoopEnd::Failed(e.to_string()),
+        }
+    }
+
     /// The end as one word, or a word and the reason: `completed`,
     /// `controller_done`, `timed_out`, `failed: <why>`, `stopped: sigint`
     /// (what `tune`'s tables and the Python summary carry).
@@ -160,7 +169,7 @@ pub fn run_loop_recorded(
         answer = match link.exchange(&command) {
             Ok(m) => m,
             Err(e) => {
-                end = LoopEnd::Failed(e.to_string());
+                end = LoopEnd::after(e);
                 break;
             }
         };
@@ -210,7 +219,7 @@ fn failed(e: LinkError, wall_s: f64) -> LoopOutput {
     LoopOutput {
         samples: Vec::new(),
         control: Vec::new(),
-        end: LoopEnd::Failed(e.to_string()),
+        end: LoopEnd::after(e),
         limit_faults: 0,
         ticks: 0,
         tick_times: TickTimes::from_durations(&mut []),

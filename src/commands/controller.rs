@@ -7,6 +7,7 @@ use std::path::Path;
 
 use serde::Serialize;
 
+use crate::closed_loop::LinkError;
 use crate::closed_loop::{LoopEnd, SeriesStream, TickTimes, run_loop_recorded};
 use crate::closed_loop::{LoopSetup, RunOutput};
 use crate::commands::run::{Transport, print_summary, write_results};
@@ -17,9 +18,9 @@ use crate::result_file::write_json;
 use crate::run_dir::{self, Destination};
 use crate::run_replica::RunReplica;
 use crate::scenario::{ClockMode, Scenario};
-use crate::transport::loop_services::prefix;
+use crate::transport::loop_services::{node_name, prefix};
 use crate::transport::servo_priority::raise_servo_thread;
-use crate::transport::{Iceoryx2PlantLink, LinkTimeouts, LoopServices, Role, WaitMode};
+use crate::transport::{Iceoryx2PlantLink, LinkTimeouts, LoopServices, Role, RunNode, WaitMode};
 
 /// `loop_stats.json`: how the link between the processes behaved.
 #[derive(Debug, Serialize)]
@@ -68,8 +69,9 @@ pub fn link_timeouts(s: &Scenario) -> LinkTimeouts {
 /// loop, write the results to `out` (default `runs/<scenario>-<time>/`).
 ///
 /// # Errors
-/// Bad input; the plant is lost, braked or failed (partial results are
-/// written first); writing failed.
+/// Bad input (a run id a live controller serves included); the plant is
+/// lost, braked or failed, or a signal stopped the run (partial results are
+/// written first; exit 130/143 for a signal); writing failed.
 pub fn run(
     scenario: &str,
     run_id: &str,
@@ -78,22 +80,31 @@ pub fn run(
     out: &Destination,
 ) -> Result<(), RunError> {
     let s = Scenario::load(scenario)?;
+    // The node before the directory: a run id a live controller serves is
+    // refused at once, and leaves no directory.
+    let node = RunNode::create(Role::Controller, run_id, &prefix())
+        .map_err(|e| RunError::service(&node_name(Role::Controller, run_id), e))?;
     let dir = run_dir::claim(&s.name, out, &crate::commands::check::resolved_toml(&s))?;
-    serve(&s, run_id, controller, wait, &dir).inspect_err(|_| run_dir::abandon(&dir))
+    serve(&s, node, controller, wait, &dir).inspect_err(|_| run_dir::abandon(&dir))
 }
 
 /// The controller process once its result directory `dir` is claimed.
 fn serve(
     s: &Scenario,
-    run_id: &str,
+    node: RunNode,
     controller: Option<&str>,
     wait: WaitMode,
     dir: &Path,
 ) -> Result<(), RunError> {
+    let run_id = node.run_id.clone();
+    let run_id = run_id.as_str();
     let choice = controller_choice(s, controller)?;
     let setup = LoopSetup::new(s, choice)?;
     let task = setup.task.clone();
     let mut ctl = setup.controller(s, choice)?;
+    // The series writer's thread starts here, before the servo thread's
+    // priority is raised (a thread inherits its creator's scheduling).
+    let mut stream = SeriesStream::create(dir)?;
     // The MPC's planner thread has started (with the controller) at normal
     // priority; only this, the servo thread, is raised.
     raise_servo_thread(s.control_loop.servo_priority)
@@ -101,8 +112,8 @@ fn serve(
     // The knife's start, as the plant process builds it (same scenario and
     // direction), labels the samples exactly as the in-process loop does.
     let cut = setup.cut(s);
-    let services = LoopServices::open(Role::Controller, run_id, &prefix())
-        .map_err(|e| RunError::Loop(format!("controller/{run_id}: {e}")))?;
+    let services = LoopServices::on(node)
+        .map_err(|e| RunError::service(&node_name(Role::Controller, run_id), e))?;
     let max_ticks = (cut.max_duration / task.period).ceil() as usize + 2;
     let mut link = Iceoryx2PlantLink::new(
         services,
@@ -112,11 +123,15 @@ fn serve(
         max_ticks.min(1 << 22),
     )
     .map_err(|e| RunError::Loop(e.to_string()))?;
-    link.wait_for_plant()
-        .map_err(|e| RunError::Loop(e.to_string()))?;
-    let mut stream = SeriesStream::create(dir)?;
+    link.wait_for_plant().map_err(|e| match e {
+        LinkError::Stopped(signal) => RunError::Signalled {
+            signal,
+            message: format!("controller/{run_id}: {e}"),
+        },
+        e => RunError::Loop(e.to_string()),
+    })?;
     let output = run_loop_recorded(&mut link, ctl.as_mut(), &cut, &mut stream);
-    stream.finish()?;
+    let dropped = stream.finish()?;
     if !matches!(output.end, LoopEnd::Failed(_))
         && let Err(e) = link.finish()
     {
@@ -130,7 +145,7 @@ fn serve(
         target_depth_m: task.target_depth,
         replica: RunReplica::NOMINAL,
     };
-    write_results(s, &run, Transport::Iceoryx2, dir)?;
+    write_results(s, &run, Transport::Iceoryx2, dropped, dir)?;
     let round_trip = link.round_trips();
     write_json(
         &dir.join("loop_stats.json"),
@@ -161,6 +176,12 @@ fn serve(
         "results: {}/ (timeseries.csv, controller.csv, summary.json, loop_stats.json, scenario.toml, forces_work.svg/.png, controller.svg/.png)",
         dir.display()
     )?;
+    if let LoopEnd::Stopped(signal) = run.output.end {
+        return Err(RunError::Stopped {
+            signal,
+            dir: dir.display().to_string(),
+        });
+    }
     if let LoopEnd::Failed(why) = &run.output.end {
         return Err(RunError::Loop(format!(
             "the run was aborted: {why} (partial results in {}/)",

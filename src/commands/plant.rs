@@ -9,14 +9,17 @@ use crate::commands::controller::controller_choice;
 use crate::error::RunError;
 use crate::scenario::Scenario;
 use crate::transport::loop_services::{node_name, prefix};
-use crate::transport::{LoopServices, PlantEnd, PlantServerSettings, Role, WaitMode, serve_plant};
+use crate::transport::{
+    LoopServices, PlantEnd, PlantServerSettings, Role, RunNode, WaitMode, serve_plant,
+};
 
 /// Runs the plant process for run `run_id`. `controller` names the
 /// controller whose nominal direction the plant's sections are planned for
 /// (assumption A2; default: the scenario's).
 ///
 /// # Errors
-/// Bad input; the plant braked, failed, saw no controller or was stopped.
+/// Bad input (a run id a live plant serves included); the plant braked,
+/// failed, saw no controller or was stopped (exit 130/143).
 pub fn run(
     scenario: &str,
     run_id: &str,
@@ -25,13 +28,17 @@ pub fn run(
 ) -> Result<(), RunError> {
     let s = Scenario::load(scenario)?;
     let choice = controller_choice(&s, controller)?;
+    let name = node_name(Role::Plant, run_id);
+    // The node first: a controller waiting for this plant sees it there
+    // while the plant builds, and sees it go if the build fails or the
+    // process dies.
+    let node =
+        RunNode::create(Role::Plant, run_id, &prefix()).map_err(|e| RunError::service(&name, e))?;
     let setup = LoopSetup::new(&s, choice)?;
     let task = setup.task.clone();
     let plant = setup.plant(&s)?;
     let mut link = InProcessPlant::new(plant, task.period);
-    let name = node_name(Role::Plant, run_id);
-    let services = LoopServices::open(Role::Plant, run_id, &prefix())
-        .map_err(|e| RunError::Loop(format!("{name}: {e}")))?;
+    let services = LoopServices::on(node).map_err(|e| RunError::service(&name, e))?;
     let mut settings =
         PlantServerSettings::new(s.control_loop.clock, s.control_loop.missed_command_limit);
     settings.wait = wait;
@@ -57,8 +64,9 @@ pub fn run(
             "{name}: no controller sent a command within {:?}",
             settings.connect_timeout
         ))),
-        PlantEnd::Terminated => Err(RunError::Loop(format!(
-            "{name}: stopped by SIGINT/SIGTERM; {counts}"
-        ))),
+        PlantEnd::Terminated(signal) => Err(RunError::Signalled {
+            signal,
+            message: format!("{name}: stopped by {signal:?}; {counts}"),
+        }),
     }
 }

@@ -7,7 +7,9 @@ use std::path::Path;
 use serde::Serialize;
 use shearcut_sim::InvalidSetting;
 
-use crate::closed_loop::{LoopEnd, RunOutput, SeriesStream, TickTimes, run_closed_loop_recorded};
+use crate::closed_loop::{
+    DroppedRows, LoopEnd, RunOutput, SeriesStream, TickTimes, run_closed_loop_recorded,
+};
 use crate::controller_choice::ControllerChoice;
 use crate::cut_record::{CutSample, CutSummary};
 use crate::error::{ConfigError, RunError};
@@ -57,6 +59,9 @@ struct SummaryFile<'a> {
     /// Simulated over wall-clock time: at least 1 when the loop keeps up
     /// with real time.
     real_time_factor: f64,
+    /// Rows missing from the streamed series because the writer fell
+    /// behind (0 and 0 when the files hold every tick).
+    dropped_rows: DroppedRows,
 }
 
 /// Runs the subcommand: load, run, write the results and print a summary.
@@ -87,11 +92,11 @@ pub fn run(
         None => s.controller.kind,
     };
     let dir = run_dir::claim(&s.name, out, &crate::commands::check::resolved_toml(&s))?;
-    let mut stream = SeriesStream::create(&dir)?.watching(TerminationWatch::new());
+    let mut stream = SeriesStream::create_watching(&dir, TerminationWatch::new())?;
     let run = run_closed_loop_recorded(&s, choice, replica, &mut stream)
         .inspect_err(|_| run_dir::abandon(&dir))?;
-    stream.finish()?;
-    write_results(&s, &run, transport, &dir)?;
+    let dropped = stream.finish()?;
+    write_results(&s, &run, transport, dropped, &dir)?;
     print_summary(&s, &run)?;
     crate::outln!(
         "results: {}/ (timeseries.csv, controller.csv, summary.json, scenario.toml, forces_work.svg/.png, controller.svg/.png)",
@@ -114,11 +119,12 @@ pub fn run(
 
 /// Writes a run's results into `dir` after its loop: the summary and the
 /// plots (the time series were streamed there as the loop ran,
-/// [`SeriesStream`]).
+/// [`SeriesStream`], which dropped `dropped` rows).
 pub(crate) fn write_results(
     s: &Scenario,
     run: &RunOutput,
     transport: Transport,
+    dropped: DroppedRows,
     dir: &Path,
 ) -> Result<(), RunError> {
     let o = &run.output;
@@ -141,6 +147,7 @@ pub(crate) fn write_results(
             wall_s: o.wall_s,
             simulated_s: o.simulated_s,
             real_time_factor: o.real_time_factor(),
+            dropped_rows: dropped,
         },
     )?;
     let cuts: [&[CutSample]; 1] = [&o.samples];

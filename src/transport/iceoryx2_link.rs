@@ -121,14 +121,18 @@ impl Iceoryx2PlantLink {
     }
 
     /// Waits until a plant serves the run (its measurement board exists)
-    /// and opens its board.
+    /// and opens its board. A plant that dies before it serves (its node
+    /// dead), or whose node was seen and is gone (it ended while starting),
+    /// is reported within [`PLANT_LOOK`].
     ///
     /// # Errors
-    /// No plant within the connect timeout, a termination request, or
-    /// iceoryx2 refused to open the plant's board.
+    /// No plant within the connect timeout, the plant ended before serving,
+    /// a termination request, or iceoryx2 refused to open the plant's board.
     #[allow(clippy::disallowed_methods)] // Timeouts, not model time.
     pub fn wait_for_plant(&mut self) -> Result<(), LinkError> {
         let started = Instant::now();
+        let mut next_look = started;
+        let mut seen = false;
         loop {
             let board = self
                 .services
@@ -144,8 +148,29 @@ impl Iceoryx2PlantLink {
                 }
                 return Ok(());
             }
-            if self.services.node.wait(Duration::from_millis(1)).is_err() {
-                return Err(self.stopped());
+            if let Some(signal) = self.services.termination_request(Duration::from_millis(1)) {
+                return Err(LinkError::Stopped(signal));
+            }
+            if Instant::now() >= next_look {
+                next_look = Instant::now() + PLANT_LOOK;
+                match self.services.peer_state(Role::Plant) {
+                    PeerState::Alive => seen = true,
+                    // Dead nodes were cleaned when this process's node
+                    // was created: a dead plant node died since.
+                    PeerState::Dead => {
+                        return Err(LinkError::Lost(format!(
+                            "the plant '{}' died before serving run '{}' (iceoryx2 dead-node detection)",
+                            self.plant, self.services.run_id
+                        )));
+                    }
+                    PeerState::Absent if seen => {
+                        return Err(LinkError::Lost(format!(
+                            "the plant '{}' ended before serving run '{}' (its process exited; its stderr says why)",
+                            self.plant, self.services.run_id
+                        )));
+                    }
+                    PeerState::Absent => {}
+                }
             }
             if started.elapsed() > self.timeouts.connect {
                 return Err(LinkError::Lost(format!(
@@ -191,17 +216,10 @@ impl Iceoryx2PlantLink {
         }
     }
 
-    fn stopped(&self) -> LinkError {
-        LinkError::Lost(format!(
-            "stopped by SIGINT/SIGTERM while waiting for the plant '{}'",
-            self.plant
-        ))
-    }
-
     /// Why the plant has not answered, if it is gone.
     fn check_plant(&self) -> Result<(), LinkError> {
-        if self.services.termination_requested() {
-            return Err(self.stopped());
+        if let Some(signal) = self.services.termination_request(Duration::ZERO) {
+            return Err(LinkError::Stopped(signal));
         }
         let state = self.services.peer_state(Role::Plant);
         // The run's supervisor stops the controller before the plant, but a
@@ -209,11 +227,9 @@ impl Iceoryx2PlantLink {
         // the plant may leave before the controller's handler has run: give
         // the signal a moment before calling the plant lost.
         if state != PeerState::Alive
-            && self
-                .services
-                .termination_requested_within(TERMINATION_GRACE)
+            && let Some(signal) = self.services.termination_request(TERMINATION_GRACE)
         {
-            return Err(self.stopped());
+            return Err(LinkError::Stopped(signal));
         }
         match state {
             PeerState::Alive => Ok(()),
@@ -234,8 +250,8 @@ impl Iceoryx2PlantLink {
         let started = Instant::now();
         // SIGINT/SIGTERM between fast round trips: look every `check_every`.
         if self.next_signal_check.is_none_or(|t| started >= t) {
-            if self.services.termination_requested() {
-                return Err(self.stopped());
+            if let Some(signal) = self.services.termination_request(Duration::ZERO) {
+                return Err(LinkError::Stopped(signal));
             }
             self.next_signal_check = Some(started + self.timeouts.check_every);
         }
@@ -301,6 +317,11 @@ impl Iceoryx2PlantLink {
         }
     }
 }
+
+/// How often a controller waiting for its plant to serve looks whether the
+/// plant's process is there (iceoryx2's node list: about 1.2k allocations,
+/// before the loop).
+const PLANT_LOOK: Duration = Duration::from_millis(20);
 
 /// How long a controller that finds the plant gone waits for a termination
 /// request before reporting the plant lost.

@@ -14,12 +14,13 @@
 
 use std::time::Duration;
 
-use iceoryx2::node::NodeView;
 use iceoryx2::prelude::*;
 use iceoryx2::service::builder::blackboard::{BlackboardCreateError, BlackboardOpenError};
 use iceoryx2::service::port_factory::event;
 
 use super::board::{Board, ENTRY_KEY};
+use super::run_node::{RunNode, node_state};
+use super::termination_watch::{StopSignal, TerminationWatch};
 use super::wire::{WireCommand, WireMeasurement, WireTruth};
 
 /// The iceoryx2 prefix of every shearcut run (files under `/dev/shm` and
@@ -43,6 +44,18 @@ pub enum ServiceError {
         "iceoryx2 prefix {0:?} (from {PREFIX_ENV} or the default) is not allowed: use 1 to 32 characters among letters, digits, '-', '_' and '.'"
     )]
     Prefix(String),
+    /// A live process of the same role already serves the run id.
+    #[error(
+        "run id {run_id:?} is in use: a {} of it is running (iceoryx2 node {}/{run_id})",
+        role.as_str(),
+        role.as_str()
+    )]
+    RunIdInUse {
+        /// The run id.
+        run_id: String,
+        /// The role of the process that serves it.
+        role: Role,
+    },
     /// iceoryx2 refused.
     #[error("iceoryx2: {0}")]
     Iceoryx(String),
@@ -52,7 +65,7 @@ fn iceoryx(context: &str, e: impl std::fmt::Debug) -> ServiceError {
     ServiceError::Iceoryx(format!("{context}: {e:?}"))
 }
 
-fn is_name(s: &str, max: usize) -> bool {
+pub(super) fn is_name(s: &str, max: usize) -> bool {
     !s.is_empty()
         && s.len() <= max
         && s.chars()
@@ -69,7 +82,8 @@ pub enum Role {
 }
 
 impl Role {
-    fn as_str(self) -> &'static str {
+    /// `plant` or `controller`.
+    pub fn as_str(self) -> &'static str {
         match self {
             Role::Plant => "plant",
             Role::Controller => "controller",
@@ -180,29 +194,36 @@ pub struct LoopServices {
     pub config: Config,
     /// This process's role.
     pub role: Role,
+    /// SIGINT/SIGTERM, watched from before the node's creation.
+    watch: TerminationWatch,
 }
 
 impl LoopServices {
     /// Creates `role`'s node for run `run_id` under `prefix` (cleaning the
     /// resources of dead nodes under that prefix) and opens or creates the
-    /// run's services.
+    /// run's services: [`RunNode::create`], then [`LoopServices::on`].
     ///
     /// # Errors
-    /// The run id or prefix is not allowed, or iceoryx2 refused.
+    /// The run id or prefix is not allowed, the run id is in use, or
+    /// iceoryx2 refused.
     pub fn open(role: Role, run_id: &str, prefix: &str) -> Result<Self, ServiceError> {
-        if !is_name(run_id, 64) {
-            return Err(ServiceError::RunId(run_id.to_string()));
-        }
-        let config = config(prefix)?;
-        let name = NodeName::new(&node_name(role, run_id)).map_err(|e| iceoryx("node name", e))?;
-        let node = NodeBuilder::new()
-            .name(&name)
-            .config(&config)
-            .create::<ipc::Service>()
-            .map_err(|e| iceoryx("node", e))?;
-        // Stale resources of killed processes under this prefix; the node
-        // creation already tried, this waits for a concurrent cleaner.
-        let _ = node.blocking_cleanup_dead_nodes(Duration::from_millis(100));
+        Self::on(RunNode::create(role, run_id, prefix)?)
+    }
+
+    /// Opens or creates the run's services on `node`, the process's node
+    /// created earlier.
+    ///
+    /// # Errors
+    /// iceoryx2 refused (or another process of this role serves the run:
+    /// its board exists).
+    pub fn on(node: RunNode) -> Result<Self, ServiceError> {
+        let RunNode {
+            node,
+            run_id,
+            config,
+            role,
+            watch,
+        } = node;
         let service_name = |what: &str| {
             ServiceName::new(&format!("shearcut/{run_id}/{what}"))
                 .map_err(|e| iceoryx("service name", e))
@@ -249,9 +270,10 @@ impl LoopServices {
             truth_board,
             command_ready,
             measurement_ready,
-            run_id: run_id.to_string(),
+            run_id,
             config,
             role,
+            watch,
         })
     }
 
@@ -300,45 +322,21 @@ impl LoopServices {
         }
     }
 
-    /// Whether a termination request (SIGINT/SIGTERM) has arrived.
-    pub fn termination_requested(&self) -> bool {
-        self.node.wait(Duration::ZERO).is_err()
-    }
-
-    /// Whether a termination request (SIGINT/SIGTERM) arrives within
-    /// `grace` (returns as soon as one has).
-    pub fn termination_requested_within(&self, grace: Duration) -> bool {
-        self.node.wait(grace).is_err()
+    /// The signal (SIGINT/SIGTERM) that asked this process to stop, if one
+    /// has arrived within `grace` (returns as soon as one has; `ZERO` only
+    /// looks).
+    pub fn termination_request(&self, grace: Duration) -> Option<StopSignal> {
+        if grace.is_zero() {
+            self.watch.requested()
+        } else {
+            self.watch.requested_within(grace)
+        }
     }
 
     /// The state of `role`'s node in this run: alive, dead (its process died
     /// without cleaning up) or absent.
     pub fn peer_state(&self, role: Role) -> PeerState {
-        let wanted = node_name(role, &self.run_id);
-        let mut state = PeerState::Absent;
-        let _ = Node::<ipc::Service>::list(&self.config, |n| {
-            let (details, alive) = match &n {
-                NodeState::Alive(v) => (v.details().clone(), true),
-                NodeState::Dead(v) => (v.details().clone(), false),
-                _ => return CallbackProgression::Continue,
-            };
-            match details {
-                Some(d) if d.name().as_str() == wanted => {
-                    state = if alive {
-                        PeerState::Alive
-                    } else {
-                        PeerState::Dead
-                    };
-                    if alive {
-                        CallbackProgression::Stop
-                    } else {
-                        CallbackProgression::Continue
-                    }
-                }
-                _ => CallbackProgression::Continue,
-            }
-        });
-        state
+        node_state(&self.config, &node_name(role, &self.run_id), None)
     }
 }
 

@@ -12,6 +12,7 @@ use shearcut_sim::arm::{ArmReading, KnifeCommand};
 
 use super::board::{BoardReader, BoardWriter};
 use super::loop_services::{LoopServices, ServiceError};
+use super::termination_watch::StopSignal;
 use super::wait_mode::WaitMode;
 use super::wire::{NO_SEQUENCE, WireCommand, WireFault, WireMeasurement, WireStatus, WireTruth};
 use crate::closed_loop::PlantLink;
@@ -62,7 +63,7 @@ pub enum PlantEnd {
     /// No controller sent a first command in time.
     NoController,
     /// SIGINT or SIGTERM.
-    Terminated,
+    Terminated(StopSignal),
 }
 
 /// What a plant's serving produced.
@@ -187,7 +188,7 @@ pub fn serve_plant(
         settings.lockstep_patience
     };
     let mut report = PlantReport {
-        end: PlantEnd::Terminated,
+        end: PlantEnd::NoController,
         commands: 0,
         steps: 0,
         missed_commands: 0,
@@ -203,10 +204,12 @@ pub fn serve_plant(
     let mut signals = SignalCheck::new();
     loop {
         if realtime && let Some(tick) = window_start {
-            // Sleep to the tick (node.wait also sees SIGINT/SIGTERM).
+            // Sleep to the tick, looking for SIGINT/SIGTERM meanwhile.
             let now = Instant::now();
-            if tick > now && services.node.wait(tick - now).is_err() {
-                report.end = PlantEnd::Terminated;
+            if tick > now
+                && let Some(signal) = services.termination_request(tick - now)
+            {
+                report.end = PlantEnd::Terminated(signal);
                 return Ok(report);
             }
         }
@@ -266,14 +269,14 @@ pub fn serve_plant(
                 report.end = PlantEnd::NoController;
                 return Ok(report);
             }
-            if listen(
+            if let Some(signal) = listen(
                 services,
                 &listener,
                 settings.wait,
                 Duration::from_millis(5),
                 &mut signals,
             ) {
-                report.end = PlantEnd::Terminated;
+                report.end = PlantEnd::Terminated(signal);
                 return Ok(report);
             }
             continue;
@@ -284,8 +287,10 @@ pub fn serve_plant(
         } else {
             let due = start + window;
             if now < due {
-                if listen(services, &listener, settings.wait, due - now, &mut signals) {
-                    report.end = PlantEnd::Terminated;
+                if let Some(signal) =
+                    listen(services, &listener, settings.wait, due - now, &mut signals)
+                {
+                    report.end = PlantEnd::Terminated(signal);
                     return Ok(report);
                 }
                 false
@@ -344,27 +349,27 @@ impl SignalCheck {
         }
     }
 
-    /// True when a termination request arrived (looked at if due).
+    /// The termination request that arrived, if any (looked at if due).
     #[allow(clippy::disallowed_methods)] // Pacing of a check, not model time.
-    fn terminated(&mut self, services: &LoopServices) -> bool {
+    fn terminated(&mut self, services: &LoopServices) -> Option<StopSignal> {
         let now = Instant::now();
         if now < self.next {
-            return false;
+            return None;
         }
         self.next = now + Duration::from_millis(5);
-        services.termination_requested()
+        services.termination_request(Duration::ZERO)
     }
 }
 
-/// Waits for a command notification up to `timeout` (or spins once);
-/// true when a termination request arrived.
+/// Waits for a command notification up to `timeout` (or spins once); the
+/// termination request that arrived, if any.
 fn listen(
     services: &LoopServices,
     listener: &iceoryx2::port::listener::Listener<ipc::Service>,
     wait: WaitMode,
     timeout: Duration,
     signals: &mut SignalCheck,
-) -> bool {
+) -> Option<StopSignal> {
     match wait {
         WaitMode::Blocking => {
             let _ = listener.timed_wait(|_| {}, timeout);

@@ -5,7 +5,7 @@ use std::path::Path;
 use std::process::{Child, Command, ExitStatus};
 use std::time::{Duration, Instant};
 
-use super::termination_watch::TerminationWatch;
+use super::termination_watch::{StopSignal, TerminationWatch};
 use crate::error::RunError;
 use crate::run_dir::Destination;
 
@@ -52,27 +52,37 @@ fn describe(role: &str, child: &Child, status: ExitStatus) -> String {
     }
 }
 
-/// Sends SIGTERM to `child` (through `kill(1)`: no unsafe code here).
-fn terminate(child: &Child) {
+/// Sends `signal` to `child` (through `kill(1)`: no unsafe code here).
+fn signal(child: &Child, signal: StopSignal) {
+    let name = match signal {
+        StopSignal::Sigint => "-INT",
+        StopSignal::Sigterm => "-TERM",
+    };
     let _ = Command::new("kill")
-        .args(["-TERM", &child.id().to_string()])
+        .args([name, &child.id().to_string()])
         .status();
 }
 
-/// How often [`stop`] repeats its SIGTERM.
+/// Sends SIGTERM to `child`.
+fn terminate(child: &Child) {
+    signal(child, StopSignal::Sigterm);
+}
+
+/// How often [`stop`] repeats its signal.
 const RESEND: Duration = Duration::from_millis(500);
 
-/// Sends SIGTERM to `child`, repeated every [`RESEND`] until it exits or
-/// `grace` has passed (then SIGKILL). iceoryx2 keeps one pending signal in a
-/// flag that its own calls can reset (`SignalHandler::call_and_fetch`
-/// clears it before a call, and every `termination_requested` consumes it):
-/// a controller under load once ran on for the whole 10 s grace after a
-/// single SIGTERM and was killed. A repeated signal gets through.
-fn stop(child: &mut Child, grace: Duration) -> Option<ExitStatus> {
+/// Sends `sent` (the signal the supervisor received) to `child`, repeated
+/// every [`RESEND`] until it exits or `grace` has passed (then SIGKILL).
+/// iceoryx2 keeps one pending signal in a flag that its own calls can reset
+/// (`SignalHandler::call_and_fetch` clears it before a call, and every
+/// termination check consumes it): a controller under load once ran on for
+/// the whole 10 s grace after a single SIGTERM and was killed. A repeated
+/// signal gets through.
+fn stop(child: &mut Child, sent: StopSignal, grace: Duration) -> Option<ExitStatus> {
     #[allow(clippy::disallowed_methods)] // Supervision deadline.
     let until = Instant::now() + grace;
     loop {
-        terminate(child);
+        signal(child, sent);
         #[allow(clippy::disallowed_methods)]
         let left = until.saturating_duration_since(Instant::now());
         if left <= RESEND {
@@ -109,13 +119,29 @@ fn wait_or_kill(child: &mut Child, grace: Duration) -> Option<ExitStatus> {
     })
 }
 
+/// Whether a child that ended with `status` stopped cleanly on the
+/// supervisor's request: success (it had finished, or the controller's end
+/// of the run ended the plant) or the exit code of a clean stop on a signal.
+fn stopped_cleanly(status: Option<ExitStatus>) -> bool {
+    status.is_some_and(|s| {
+        s.success()
+            || s.code().is_some_and(|c| {
+                [StopSignal::Sigint, StopSignal::Sigterm]
+                    .iter()
+                    .any(|sig| i32::from(sig.exit_code()) == c)
+            })
+    })
+}
+
 /// Runs `scenario` as two processes (plant and controller) over iceoryx2,
-/// supervising both: a child that dies is reported, SIGINT/SIGTERM stop
-/// both, and the controller writes the results.
+/// supervising both: a child that dies is reported; SIGINT/SIGTERM is
+/// forwarded to the controller (which writes its partial results) and then
+/// to the plant, and the supervisor exits 130/143 once both stopped.
 ///
 /// # Errors
 /// A child could not start, or either ended with a failure (its message is
-/// on stderr; the controller still wrote the partial results).
+/// on stderr; the controller still wrote the partial results); a signal
+/// stopped the run ([`RunError::Signalled`]: exit 130/143).
 pub fn run_both(
     scenario: &str,
     controller: Option<&str>,
@@ -157,14 +183,18 @@ pub fn run_both(
         plant.id(),
         ctl.id()
     );
+    let mut stopped_by = None;
     let (plant_status, ctl_status) = loop {
-        if watch.requested_within(Duration::from_millis(5)).is_some() {
-            eprintln!("run {run_id}: termination requested, stopping plant and controller");
+        if let Some(sig) = watch.requested_within(Duration::from_millis(5)) {
+            eprintln!(
+                "run {run_id}: termination requested ({sig:?}), stopping controller and plant"
+            );
+            stopped_by = Some(sig);
             // The controller first, and the plant once it has gone: the
             // controller then stops on its own signal (and writes its partial
             // results saying so) instead of finding the plant gone first.
-            let c = stop(&mut ctl, CONTROLLER_GRACE);
-            let p = stop(&mut plant, PLANT_GRACE);
+            let c = stop(&mut ctl, sig, CONTROLLER_GRACE);
+            let p = stop(&mut plant, sig, PLANT_GRACE);
             break (p, c);
         }
         if let Ok(Some(c)) = ctl.try_wait() {
@@ -179,6 +209,17 @@ pub fn run_both(
             break (Some(p), c);
         }
     };
+    if let Some(signal) = stopped_by
+        && stopped_cleanly(ctl_status)
+        && stopped_cleanly(plant_status)
+    {
+        return Err(RunError::Signalled {
+            signal,
+            message: format!(
+                "run {run_id}: stopped by {signal:?}; plant and controller stopped cleanly (the controller's partial results are where it said)"
+            ),
+        });
+    }
     let mut failures = Vec::new();
     match ctl_status {
         Some(s) if s.success() => {}

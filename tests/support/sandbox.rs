@@ -30,6 +30,12 @@ impl Sandbox {
         Self { dir, prefix }
     }
 
+    /// The iceoryx2 prefix of this sandbox's processes.
+    #[allow(dead_code)] // Not every test file that includes the sandbox asks.
+    pub fn prefix(&self) -> &str {
+        &self.prefix
+    }
+
     /// The small potato (tests/closed_loop.rs) cut `depth` deep, with
     /// `extra` TOML appended, written as `<name>.toml`; its path.
     pub fn scenario(&self, name: &str, depth: f64, extra: &str) -> String {
