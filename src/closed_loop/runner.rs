@@ -139,10 +139,13 @@ pub fn run_loop_recorded(
     recorder: &mut dyn LoopRecorder,
 ) -> LoopOutput {
     let max_ticks = (cut.max_duration / link.period()).ceil() as usize;
-    let mut samples = Vec::new();
-    let mut control = Vec::with_capacity(max_ticks.min(1 << 20));
-    let mut durations = Vec::with_capacity(max_ticks.min(1 << 20));
-    let mut plan_durations = Vec::new();
+    // Every per-tick record is preallocated: the loop thread never
+    // allocates while it runs (up to 2²⁰ ticks).
+    let capacity = max_ticks.min(1 << 20);
+    let mut samples = Vec::with_capacity(capacity);
+    let mut control = Vec::with_capacity(capacity);
+    let mut durations = Vec::with_capacity(capacity);
+    let mut plan_durations = Vec::with_capacity(capacity);
     let mut limit_faults = 0;
     let mut end = LoopEnd::TimedOut;
     let loop_started = std::time::Instant::now();
