@@ -20,6 +20,7 @@ mod plant_error;
 mod plant_settings;
 mod plant_step;
 mod successor;
+mod successor_policy;
 pub mod wrench;
 
 pub use crack_front::CrackFront;
@@ -31,4 +32,5 @@ pub use plant_step::{PlantStep, PlantTruth};
 pub use shearcut_sim::arm::{ArmLimitMonitor, ArmLimits, KnifeCommand, LimitViolation};
 pub use shearcut_sim::arm::{ArmReading, ArmStatus};
 pub use shearcut_sim::knife_plane::{EdgeSegment, contact_arc, knife_plane_silhouette, segments};
+pub use successor_policy::SuccessorPolicy;
 pub use wrench::{SegmentLoad, Wrench, wrench_at};

@@ -24,6 +24,7 @@ use shearcut_sim::knife_plane::contact_arc::{
 };
 
 use crate::plant_step::{PlantStep, PlantTruth};
+use crate::successor_policy::SuccessorPolicy;
 use placement::{DormantSegment, Lookahead};
 use segment_section::{SegmentSection, tip_of};
 
@@ -123,7 +124,9 @@ pub use crate::plant_settings::{MAX_SEGMENTS, PlantSettings};
 /// direction of motion), with the front fitted then, and a worker thread
 /// cuts and builds the successor for that plane: the worker has a whole
 /// update distance of travel to finish it. At the
-/// re-choice the plant takes it (waiting only if the worker is late); the
+/// re-choice the plant takes it (waiting only if the worker is late, or,
+/// under [`SuccessorPolicy::KeepCurrent`], on the first tick after the
+/// worker finished it: [`Plant::successor_deferrals`]); the
 /// adopted plane is the foreseen one, the carried crack depth is read off
 /// the front fitted at the re-choice. What the worker returns is a function
 /// of the job alone, and the job is fixed at a deterministic tick, so the
@@ -149,6 +152,11 @@ pub struct Plant {
     factory: Arc<SectionFactory>,
     /// Prepares successor sections ahead of their re-choices.
     worker: SuccessorWorker,
+    /// Whether a tick waits for a successor the worker has not finished.
+    policy: SuccessorPolicy,
+    /// Successors due but not finished, skipped by a tick (see
+    /// [`Plant::successor_deferrals`]).
+    deferrals: usize,
     update_distance: f64,
     /// Direction of motion in the knife plane (z, y), unit: the planned one
     /// until the knife moves, then that of the last nonzero executed velocity.
@@ -270,6 +278,8 @@ impl Plant {
                 .collect(),
             edge_segments: grid,
             worker,
+            policy: SuccessorPolicy::Wait,
+            deferrals: 0,
             factory,
             update_distance: settings.update_distance,
             motion: d,
@@ -419,6 +429,28 @@ impl Plant {
     /// not).
     pub fn successor_waits(&self) -> usize {
         self.worker.waits()
+    }
+
+    /// Sets what a tick does with a successor the worker has not finished
+    /// when it is due ([`SuccessorPolicy::Wait`] unless set).
+    pub fn set_successor_policy(&mut self, policy: SuccessorPolicy) {
+        self.policy = policy;
+    }
+
+    /// What a tick does with a successor the worker has not finished.
+    pub fn successor_policy(&self) -> SuccessorPolicy {
+        self.policy
+    }
+
+    /// Number of times a tick found a due successor not finished and, under
+    /// [`SuccessorPolicy::KeepCurrent`], went on without it: one per
+    /// segment per tick (a re-choice left to a later tick, its section
+    /// stepped on its plane; a first section not taken, that strip of the
+    /// edge cutting nothing). Always 0 under [`SuccessorPolicy::Wait`]. A
+    /// diagnostic of the machine's load like [`Plant::successor_waits`],
+    /// but here the plant's results depend on it.
+    pub fn successor_deferrals(&self) -> usize {
+        self.deferrals
     }
 
     /// Number of sections the worker built for orders that were renewed or

@@ -210,6 +210,29 @@ impl SuccessorWorker {
         self.pending[index].is_some()
     }
 
+    /// Whether [`Self::take`] of segment `index` would return without
+    /// waiting: its pending job is finished, or there is none (`take`
+    /// returns `None`), or there is no worker thread (`take` prepares it
+    /// itself). Never blocks: a worker holding the slots' lock at that
+    /// moment counts as not finished. Allocates nothing.
+    pub fn is_ready(&self, index: usize) -> bool {
+        let Some((generation, _)) = &self.pending[index] else {
+            return true;
+        };
+        if self.handles.is_empty() {
+            return true;
+        }
+        let slots = match self.shared.slots.try_lock() {
+            Ok(slots) => slots,
+            Err(std::sync::TryLockError::Poisoned(e)) => e.into_inner(),
+            Err(std::sync::TryLockError::WouldBlock) => return false,
+        };
+        slots.slots[index]
+            .result
+            .as_ref()
+            .is_some_and(|(g, _)| g == generation)
+    }
+
     /// Number of results that were not ready when taken.
     pub fn waits(&self) -> usize {
         self.waits

@@ -2,7 +2,9 @@
 //! arm limits and determinism.
 
 use nalgebra::{Vector2, Vector3};
-use shearcut_plant::{ArmLimits, ArmStatus, KnifeCommand, LimitViolation, Plant, PlantSettings};
+use shearcut_plant::{
+    ArmLimits, ArmStatus, KnifeCommand, LimitViolation, Plant, PlantSettings, SuccessorPolicy,
+};
 use shearcut_sim::geometry::TriangleMesh;
 use shearcut_sim::{CrossSection, Knife, KnifePreset, MaterialPreset, SectionGeometry};
 
@@ -802,29 +804,32 @@ fn sections_go_where_the_edge_arrives_whatever_the_planned_direction() {
     }
 }
 
+/// A chef's knife over the half potato, planned to slice along (z, y) =
+/// (−0.5, −1), 6 segments, a noise-free sensor, `workers` worker threads.
+fn half_potato_slice(workers: usize) -> Plant {
+    let s = PlantSettings {
+        workers,
+        ..noise_free(6)
+    };
+    plant(
+        &MaterialPreset::PotatoWhole.material(),
+        &Knife::new(&KnifePreset::Chef.settings()).unwrap(),
+        &half_potato(),
+        0.05,
+        Vector2::new(-0.5, -1.0),
+        &s,
+        &LOOSE,
+        1,
+    )
+}
+
 #[test]
 fn the_number_of_worker_threads_changes_nothing_but_the_waits() {
     // Sections are built by however many worker threads; each is a function
     // of its order alone, taken at a deterministic tick: one or three
     // workers step to the same bits. Zero workers are refused.
-    let material = MaterialPreset::PotatoWhole.material();
-    let knife = Knife::new(&KnifePreset::Chef.settings()).unwrap();
-    let object = half_potato();
     let run = |workers: usize| {
-        let s = PlantSettings {
-            workers,
-            ..noise_free(6)
-        };
-        let mut plant = plant(
-            &material,
-            &knife,
-            &object,
-            0.05,
-            Vector2::new(-0.5, -1.0),
-            &s,
-            &LOOSE,
-            1,
-        );
+        let mut plant = half_potato_slice(workers);
         let cmd = KnifeCommand {
             velocity: Vector3::new(0.0, -SPEED, -0.5 * SPEED),
         };
@@ -902,4 +907,54 @@ fn sawing_back_over_a_side_face_re_enters_behind_the_current_front() {
         "{}",
         m.truth.crack_depth
     );
+}
+
+#[test]
+fn keep_current_never_waits_for_a_successor_and_takes_it_later() {
+    // Ticks issued back to back at 16 times the cutting speed (an update
+    // distance every 10 ticks) step far faster than the single worker
+    // builds a section, so successors are due before they are built. Under
+    // `Wait` (the default) the tick waits and nothing is deferred; under
+    // `KeepCurrent` no tick waits, the due successors are deferred, and
+    // once the knife holds still every deferred successor is taken: the
+    // same segments have sections as in the waiting run.
+    let cmd = KnifeCommand {
+        velocity: Vector3::new(0.0, -16.0 * SPEED, -8.0 * SPEED),
+    };
+    let run = |policy: Option<SuccessorPolicy>| {
+        let mut plant = half_potato_slice(1);
+        if let Some(p) = policy {
+            plant.set_successor_policy(p);
+        }
+        let mut prev = 0.0;
+        for k in 0..250 {
+            let m = plant.step(&cmd, DT).unwrap();
+            assert!(m.truth.work >= prev, "tick {k}: work dropped");
+            prev = m.truth.work;
+        }
+        plant
+    };
+    let waiting = run(None);
+    assert_eq!(waiting.successor_policy(), SuccessorPolicy::Wait);
+    assert_eq!(waiting.successor_deferrals(), 0);
+    let mut keeping = run(Some(SuccessorPolicy::KeepCurrent));
+    assert_eq!(keeping.successor_waits(), 0);
+    assert!(keeping.successor_deferrals() > 0);
+    // Hold still until a tick defers nothing: every due successor is taken
+    // (the worker finishes them; the loop's bound only guards a hang).
+    let still = KnifeCommand::default();
+    let mut settled = false;
+    for _ in 0..10_000_000 {
+        let before = keeping.successor_deferrals();
+        keeping.step(&still, DT).unwrap();
+        if keeping.successor_deferrals() == before {
+            settled = true;
+            break;
+        }
+        std::thread::yield_now();
+    }
+    assert!(settled);
+    assert_eq!(keeping.successor_waits(), 0);
+    assert!(keeping.rebuilds() > 0);
+    assert_eq!(keeping.dormant_segments(), waiting.dormant_segments());
 }

@@ -17,6 +17,7 @@ use super::segment_section::{
 };
 use crate::crack_front::CrackFront;
 use crate::successor::{Preparation, SuccessorJob};
+use crate::successor_policy::SuccessorPolicy;
 
 impl Plant {
     /// Gives the dormant segments their first sections where their
@@ -27,7 +28,12 @@ impl Plant {
     /// plane moves by more than the tolerance of its kind, and takes it
     /// (waiting if the worker is late): an intact surface's section when the
     /// midpoint is within `TAKE_LEAD × update_distance` of it, one behind
-    /// the crack front when the midpoint is in the material. `lookahead`
+    /// the crack front when the midpoint is in the material. Under
+    /// [`SuccessorPolicy::KeepCurrent`] a section not built yet is taken on
+    /// the first tick after the worker finished it: until then that strip of
+    /// the edge cuts nothing (no force, no work), and an intact surface's
+    /// section taken after the midpoint passed the surface starts at its top
+    /// (the material there is met late, by the edge's further travel). `lookahead`
     /// [`Lookahead::Everywhere`] orders every intact entry whatever its
     /// distance (at construction). Allocates nothing; an error names the
     /// segment's slot.
@@ -138,6 +144,13 @@ impl Plant {
                 EntryKind::BehindFront => inside,
             };
             if !(due && self.worker.is_pending(slot)) {
+                k += 1;
+                continue;
+            }
+            if self.policy == SuccessorPolicy::KeepCurrent && !self.worker.is_ready(slot) {
+                // Not built yet: the segment stays without a section (that
+                // strip of the edge cuts nothing) until a later tick takes it.
+                self.deferrals += 1;
                 k += 1;
                 continue;
             }

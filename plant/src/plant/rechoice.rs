@@ -4,8 +4,9 @@
 //! more than the update distance off its plane is re-chosen through the
 //! crack front's crossing of the midpoint's path, its successor taken from
 //! the worker; and each tracked section without a pending successor orders
-//! one where the midpoint will be at the threshold. Allocates nothing on
-//! the tick's thread.
+//! one where the midpoint will be at the threshold. Under
+//! [`SuccessorPolicy::KeepCurrent`] a successor not built yet is left to a
+//! later tick. Allocates nothing on the tick's thread.
 
 use std::sync::Arc;
 
@@ -22,6 +23,7 @@ use super::segment_section::{
 };
 use crate::crack_front::CrackFront;
 use crate::successor::{Preparation, SuccessorJob};
+use crate::successor_policy::SuccessorPolicy;
 
 impl Plant {
     /// Re-chooses the sections whose segments slid more than
@@ -63,7 +65,6 @@ impl Plant {
             let m2 = Vector2::new(m.z, m.y);
             let slide = signed_offset(&s.plane, &m) - s.slide_reference;
             if slide.abs() > threshold {
-                self.rechoices += 1;
                 let sign = slide.signum();
                 if !(self.worker.is_pending(s.slot) && s.predicted_sign == sign) {
                     // Not foreseen (the motion reversed, or one tick crossed
@@ -72,7 +73,15 @@ impl Plant {
                     let plane = plane_on_path(&front, m2, u, tip_of(s), &s.segment, size);
                     self.worker.submit(s.slot, job(s, plane));
                     self.unforeseen += 1;
+                    s.predicted_sign = sign;
                 }
+                if self.policy == SuccessorPolicy::KeepCurrent && !self.worker.is_ready(s.slot) {
+                    // Not built yet: the section keeps cutting on its plane
+                    // and the re-choice takes the successor on a later tick.
+                    self.deferrals += 1;
+                    continue;
+                }
+                self.rechoices += 1;
                 s.predicted_sign = 0.0;
                 let Some((plane, prepared)) = self.worker.take(s.slot) else {
                     continue;
