@@ -7,11 +7,12 @@ use crate::closed_loop::InProcessPlant;
 use crate::closed_loop::LoopSetup;
 use crate::commands::controller::controller_choice;
 use crate::error::RunError;
-use crate::scenario::Scenario;
+use crate::scenario::{ClockMode, Scenario};
 use crate::transport::loop_services::{node_name, prefix};
 use crate::transport::{
     LoopServices, PlantEnd, PlantServerSettings, Role, RunNode, WaitMode, serve_plant,
 };
+use shearcut_plant::SuccessorPolicy;
 
 /// Runs the plant process for run `run_id`. `controller` names the
 /// controller whose nominal direction the plant's sections are planned for
@@ -36,7 +37,11 @@ pub fn run(
         RunNode::create(Role::Plant, run_id, &prefix()).map_err(|e| RunError::service(&name, e))?;
     let setup = LoopSetup::new(&s, choice)?;
     let task = setup.task.clone();
-    let plant = setup.plant(&s)?;
+    let mut plant = setup.plant(&s)?;
+    if s.control_loop.clock == ClockMode::Realtime {
+        // A tick that waited for a section build would miss its period.
+        plant.set_successor_policy(SuccessorPolicy::KeepCurrent);
+    }
     let mut link = InProcessPlant::new(plant, task.period);
     let services = LoopServices::on(node).map_err(|e| RunError::service(&name, e))?;
     let mut settings =
@@ -45,8 +50,13 @@ pub fn run(
     let report = serve_plant(&services, &mut link, &settings)
         .map_err(|e| RunError::Loop(format!("{name}: {e}")))?;
     let counts = format!(
-        "{} commands answered, {} steps, {} missed commands (longest run {})",
-        report.commands, report.steps, report.missed_commands, report.max_consecutive_missed
+        "{} commands answered, {} steps, {} missed commands (longest run {}), {} successor deferrals, {} successor waits",
+        report.commands,
+        report.steps,
+        report.missed_commands,
+        report.max_consecutive_missed,
+        link.plant().successor_deferrals(),
+        link.plant().successor_waits()
     );
     match report.end {
         PlantEnd::Ended => {
