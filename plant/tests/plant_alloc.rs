@@ -1,11 +1,12 @@
 //! `Plant::step` allocates nothing after construction on the caller's
 //! thread (the workspace's counting allocator, per thread): a straight
 //! edge pressing a cuboid (no re-choice), and a chef's knife slicing a half
-//! potato, whose sections are re-chosen and rebuilt (the successors are built
-//! on the plant's worker thread, whose allocations are not the tick's).
+//! potato, whose sections are re-chosen and rebuilt, under either
+//! successor policy (the successors are built on the plant's worker thread,
+//! whose allocations are not the tick's).
 
 use nalgebra::{Vector2, Vector3};
-use shearcut_plant::{ArmLimits, KnifeCommand, Plant, PlantSettings};
+use shearcut_plant::{ArmLimits, KnifeCommand, Plant, PlantSettings, SuccessorPolicy};
 use shearcut_sim::{Knife, KnifePreset, MaterialPreset};
 
 #[path = "../../controllers/tests/support/counting_allocator.rs"]
@@ -67,6 +68,14 @@ fn plant_step_allocates_nothing() {
 
 #[test]
 fn plant_step_allocates_nothing_through_rechoices_and_rebuilds() {
+    for policy in [SuccessorPolicy::Wait, SuccessorPolicy::KeepCurrent] {
+        slice_allocates_nothing(policy);
+    }
+}
+
+/// The half potato sliced for 1500 ticks under `policy`: the sections are
+/// rebuilt and no tick allocates.
+fn slice_allocates_nothing(policy: SuccessorPolicy) {
     let material = MaterialPreset::PotatoWhole.material();
     let knife = Knife::new(&KnifePreset::Chef.settings()).unwrap();
     let object = half_potato();
@@ -88,6 +97,7 @@ fn plant_step_allocates_nothing_through_rechoices_and_rebuilds() {
         7,
     )
     .unwrap();
+    plant.set_successor_policy(policy);
     let cmd = KnifeCommand {
         velocity: Vector3::new(0.0, -0.00625, -0.003125),
     };
@@ -96,6 +106,6 @@ fn plant_step_allocates_nothing_through_rechoices_and_rebuilds() {
         plant.step(&cmd, 1e-3).unwrap();
     }
     let after = thread_allocations();
-    assert!(plant.rebuilds() > 0, "the run rebuilt sections");
-    assert_eq!(after - before, 0, "Plant::step allocated");
+    assert!(plant.rebuilds() > 0, "{policy:?}: the run rebuilt sections");
+    assert_eq!(after - before, 0, "{policy:?}: Plant::step allocated");
 }
