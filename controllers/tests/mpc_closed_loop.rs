@@ -72,20 +72,29 @@ fn a_short_blade_is_respected_and_spent_where_the_contact_is_long() {
     );
 }
 
-#[test]
-fn a_short_blade_is_sawn_through_at_the_model_optimum_and_ratio() {
-    // 8 mm of blade for 20 mm of depth, but the model's optimum ξ = 4/3
-    // wants 27 mm: sawing pays (a reversal costs only time).
+/// Blade of the sawing tests, m: 8 mm for 20 mm of depth.
+const SHORT_BLADE: f64 = 0.008;
+
+/// The MPC on a 30 mm uniform object with [`SHORT_BLADE`] for 20 mm of
+/// depth, starting at ξ = 0.4.
+fn short_blade_mpc() -> Mpc<QuadraticModel> {
     let profile = DepthProfile::uniform(0.03, 0.03, 0.015).unwrap();
-    let budget = 0.008;
-    let mut mpc = Mpc::new(
-        &task(0.02, budget),
+    Mpc::new(
+        &task(0.02, SHORT_BLADE),
         &MpcSettings::default(),
         QuadraticModel,
         profile,
         0.4,
     )
-    .unwrap();
+    .unwrap()
+}
+
+#[test]
+fn a_short_blade_is_sawn_through_at_the_model_optimum_and_ratio() {
+    // 8 mm of blade for 20 mm of depth, but the model's optimum ξ = 4/3
+    // wants 27 mm: sawing pays (a reversal costs only time).
+    let budget = SHORT_BLADE;
+    let mut mpc = short_blade_mpc();
     let mut arm = SyntheticArm::new(0.0);
     let mut m = arm.measure(ArmStatus::Moving);
     let mut reversing_ticks = 0;
@@ -143,15 +152,7 @@ fn a_sawing_cut_never_presses_at_the_strokes_ends() {
     // millimetre moves down at a ratio far below the planned optimum (a
     // stroke whose tangential speed the blade's end ramps down while the
     // knife goes on pressing would reach ξ = 0).
-    let profile = DepthProfile::uniform(0.03, 0.03, 0.015).unwrap();
-    let mut mpc = Mpc::new(
-        &task(0.02, 0.008),
-        &MpcSettings::default(),
-        QuadraticModel,
-        profile,
-        0.4,
-    )
-    .unwrap();
+    let mut mpc = short_blade_mpc();
     let mut arm = SyntheticArm::new(0.0);
     let mut m = arm.measure(ArmStatus::Moving);
     let mut lowest = f64::INFINITY;

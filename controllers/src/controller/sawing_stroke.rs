@@ -111,8 +111,10 @@ impl SawingStroke {
         saw: bool,
     ) -> KnifeCommand {
         let l = &task.limits;
-        let allowed =
-            budget.allowed_speed_towards(self.direction, tangential_speed, l.acceleration, l.jerk);
+        let allowed_towards = |direction| {
+            budget.allowed_speed_towards(direction, tangential_speed, l.acceleration, l.jerk)
+        };
+        let mut allowed = allowed_towards(self.direction);
         if self.phase == StrokePhase::Stroking
             && saw
             && self.reversals < self.max_reversals
@@ -127,6 +129,7 @@ impl SawingStroke {
                 // motion goes on.
                 self.direction = -self.direction;
                 self.reversals += 1;
+                allowed = allowed_towards(self.direction);
             } else {
                 let v_n = -v.y;
                 let xi = if v_n > 0.0 { v.z.abs() / v_n } else { 0.0 };
@@ -134,15 +137,7 @@ impl SawingStroke {
             }
         }
         match self.phase {
-            StrokePhase::Stroking => {
-                let v_t = budget.allowed_speed_towards(
-                    self.direction,
-                    tangential_speed,
-                    l.acceleration,
-                    l.jerk,
-                );
-                shaper.command(normal_speed, self.direction * v_t)
-            }
+            StrokePhase::Stroking => shaper.command(normal_speed, self.direction * allowed),
             StrokePhase::Stopping { xi } => {
                 let command = shaper.command_in_line(xi, self.direction, 0.0);
                 if shaper.line_finished() {
