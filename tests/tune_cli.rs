@@ -182,6 +182,45 @@ fn a_sweep_is_deterministic_resumable_and_analysed() {
     );
 }
 
+/// A reader that stops reading mid-sweep (`shearcut tune … | head -n 3`):
+/// the sweep stops quietly (141, as any command on a closed pipe), no
+/// thread panics, and the rows written stay for a re-run to skip.
+#[test]
+fn a_stdout_closed_mid_sweep_stops_it_quietly_and_keeps_its_rows() {
+    use std::io::BufRead;
+    let t = TempDir::new("closed");
+    let sweep = write_sweep(&t.0, SWEEP);
+    let a = t.0.join("a");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_shearcut"))
+        .args(["tune", s(&sweep), "--jobs", "1", "--out", s(&a)])
+        .env("RUST_LOG", "error")
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("the shearcut binary runs");
+    let mut stdout = std::io::BufReader::new(child.stdout.take().unwrap());
+    let mut first = String::new();
+    while !first.contains("] job") {
+        first.clear();
+        assert!(stdout.read_line(&mut first).unwrap() > 0, "no job line");
+    }
+    drop(stdout);
+    let o = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(o.status.code(), Some(141), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+    let written = std::fs::read_dir(a.join("rows")).unwrap().count();
+    // The job that printed its line wrote its row first; the sweep stopped
+    // before running all six.
+    assert!((1..6).contains(&written), "{written} rows");
+    let out = ok(&tune(&[s(&sweep), "--out", s(&a)], &[]));
+    assert!(
+        out.contains(&format!("{written} runs already done")),
+        "{out}"
+    );
+    assert_eq!(read(&a.join("results.csv")).lines().count(), 7);
+}
+
 #[test]
 fn shards_merge_to_the_local_table_bit_for_bit() {
     let t = TempDir::new("shards");

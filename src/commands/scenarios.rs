@@ -8,8 +8,7 @@ use crate::scenario::{
 /// Prints every built-in scenario as `name  description`, in the order of
 /// [`BUILT_IN_SCENARIOS`] (seed 000's figures, then the closed loops).
 pub fn run() -> Result<(), RunError> {
-    print!("{}", listing()?);
-    Ok(())
+    crate::cli::print(&listing()?)
 }
 
 /// The listing `run` prints: one line per built-in scenario, names padded to

@@ -69,15 +69,22 @@ pub fn run_pending(
                         Ok(row) => describe(job, row, names),
                         Err(e) => format!("job {}: {e}", job.record.index),
                     };
-                    if bar.is_hidden() {
-                        println!("[{}/{}] {line}", i + 1, pending.len());
+                    // A closed or full stdout stops the sweep like a failed row
+                    // write (the rows written so far stay; a rerun skips them).
+                    let printed = if bar.is_hidden() {
+                        crate::outln!("[{}/{}] {line}", i + 1, pending.len())
                     } else {
                         bar.println(line);
-                    }
+                        Ok(())
+                    };
                     bar.inc(1);
-                    if let Err(e) = result {
+                    let failed = result.err().or(printed.err());
+                    if let Some(e) = failed {
                         let mut slot = first_error.lock().unwrap_or_else(|p| p.into_inner());
                         slot.get_or_insert(e);
+                        // No thread takes another job.
+                        next.store(pending.len(), Ordering::Relaxed);
+                        break;
                     }
                 }
             });
