@@ -109,4 +109,11 @@ mod tests {
         let balance = w.fracture + w.strain_energy + w.friction + w.unstable - w.knife;
         assert!(balance.abs() <= 1e-9 * w.knife, "{w:?}");
     }
+
+    /// The example runs as a user runs it (`cargo run --example`): `main`
+    /// prints its output and succeeds.
+    #[test]
+    fn the_example_runs() {
+        main().unwrap();
+    }
 }

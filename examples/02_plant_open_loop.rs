@@ -40,7 +40,12 @@ const RAMP_TICKS: u32 = 50;
 const DEPTH: f64 = 0.025;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let cut = cut()?;
+    print(&cut()?);
+    Ok(())
+}
+
+/// Prints the cut's samples and its totals.
+fn print(cut: &Cut) {
     println!("half potato 90 x 60 x 35 mm, chef's knife, xi = {XI}, {SPEED} m/s");
     println!(
         " t (s)  travel (mm)  crack (mm)  contact (mm)     Fx      Fy      Fz (N)     Tx      Ty      Tz (N m)"
@@ -68,7 +73,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         cut.last.truth.fractured_sections,
         cut.rechoices
     );
-    Ok(())
 }
 
 /// What the example's cut produced.
@@ -144,10 +148,11 @@ mod tests {
     use super::*;
 
     /// The example reaches its depth within the arm's limits, fractures on
-    /// the way, and the knife did positive work.
+    /// the way, and the knife did positive work; its report prints.
     #[test]
     fn the_example_cuts_to_depth() {
         let cut = cut().unwrap();
+        print(&cut);
         assert!(cut.last.truth.crack_depth >= DEPTH, "{:?}", cut.last);
         assert_eq!(
             cut.last.reading.status,

@@ -34,8 +34,8 @@ struct Cut {
 }
 
 /// Runs the MPC against the plant until the target depth (or 30 s of
-/// simulated time), printing every 50th tick when `print` is set.
-fn cut(print: bool) -> Result<Cut, Box<dyn std::error::Error>> {
+/// simulated time), printing every 50th tick.
+fn cut() -> Result<Cut, Box<dyn std::error::Error>> {
     let scenario = Scenario::load("loop-potato-whole-realtime")?;
     let setup = LoopSetup::new(&scenario, ControllerChoice::Mpc)?;
     let mut mpc = setup.controller(&scenario, ControllerChoice::Mpc)?;
@@ -48,7 +48,7 @@ fn cut(print: bool) -> Result<Cut, Box<dyn std::error::Error>> {
         let command = mpc.tick(&step.reading);
         step = plant.step(&command, dt)?;
         ticks += 1;
-        if print && ticks % 50 == 0 {
+        if ticks % 50 == 0 {
             let planned = mpc.telemetry();
             println!(
                 "{:6.3} {:10.2} {:8.2} {:12.1} {:9.2}",
@@ -68,7 +68,7 @@ fn cut(print: bool) -> Result<Cut, Box<dyn std::error::Error>> {
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!(" t (s)  crack (mm)       xi  v_n (mm/s)    Fy (N)");
-    let cut = cut(true)?;
+    let cut = cut()?;
     println!("{} ticks; work {:.4} J", cut.ticks, cut.work);
     Ok(())
 }
@@ -79,11 +79,12 @@ mod tests {
 
     use super::*;
 
-    /// The example's loop is `shearcut run`'s: the same ticks and the same
-    /// work to the bit (lockstep runs are deterministic).
+    /// The example's loop, printing as `main` does, is `shearcut run`'s:
+    /// the same ticks and the same work to the bit (lockstep runs are
+    /// deterministic).
     #[test]
     fn the_example_is_the_library_loop() {
-        let cut = cut(false).unwrap();
+        let cut = cut().unwrap();
         let scenario = Scenario::load("loop-potato-whole-realtime").unwrap();
         let run = run_closed_loop(&scenario, ControllerChoice::Mpc).unwrap();
         assert_eq!(cut.ticks, run.output.ticks);

@@ -98,4 +98,11 @@ mod tests {
             assert!(v[i].abs() < 1e-8, "{v:?}");
         }
     }
+
+    /// The example runs as a user runs it (`cargo run --example`): `main`
+    /// prints its output and succeeds.
+    #[test]
+    fn the_example_runs() {
+        main().unwrap();
+    }
 }

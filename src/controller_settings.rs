@@ -38,8 +38,9 @@ pub struct ControllerSettings {
     /// Edge travel past the target depth before a controller ends its cut,
     /// m (default 0.004, at most 0.01): the crack front can lag the edge,
     /// and a controller cannot see it (`CutTask::overtravel`; the default
-    /// covers the largest lag measured on the held-out variants, 2.9 mm,
-    /// docs/limitations.md).
+    /// covers the largest lag measured on the held-out variants, with a
+    /// millimetre to spare: docs/limitations.md, "The crack can lag the
+    /// edge").
     pub overtravel: f64,
     /// Longest simulated run, s (default 30): a cut that has not reached its
     /// target depth by then stops as timed out.

@@ -73,3 +73,17 @@ fn help_names_every_shipped_scenario() {
         );
     }
 }
+
+/// The scenario table of docs/scenarios.md names every shipped file, each
+/// in backticks as a user types it.
+#[test]
+fn the_scenarios_doc_names_every_shipped_scenario() {
+    let doc =
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/docs/scenarios.md")).unwrap();
+    for name in shipped_names() {
+        assert!(
+            doc.contains(&format!("`{name}`")),
+            "{name} missing from docs/scenarios.md"
+        );
+    }
+}

@@ -117,7 +117,8 @@ pub use crate::plant_settings::{MAX_SEGMENTS, PlantSettings};
 ///
 /// # Successors prepared ahead (no section built inside a tick)
 /// Building a section (cutting the mesh, meshing, factorising, condensing)
-/// takes 0.1–0.2 s, two hundred 1 kHz ticks. So the plant foresees each
+/// takes several 1 kHz servo ticks (docs/benchmarks.md, "Section
+/// construction"). So the plant foresees each
 /// successor: as soon as a section has started cutting or been re-chosen
 /// (the tick after), q is taken where the midpoint will be when its slide
 /// reaches the threshold on the side it is moving to (moving on along the

@@ -41,13 +41,15 @@ pub struct MpcStats {
 const ESTIMATOR_PRIOR_VARIANCE: f64 = 1.0;
 /// How far the sections' mean depth ([`DepthProfile::section_depth`]) has
 /// advanced past the first fracture before the estimator uses the forces
-/// again, m (on a dome about 1.5 times as much edge travel): the transition (sections fracturing one by one, the
-/// drag held at onset being released over a few bevel heights) is in
-/// neither the pre- nor the post-fracture model.
+/// again, m (on a dome about 1.5 times as much edge travel): the
+/// transition (sections fracturing one by one, the drag held at onset being
+/// released over a few bevel heights) is in neither the pre- nor the
+/// post-fracture model.
 const ESTIMATOR_SETTLE_DEPTH: f64 = 2e-3;
 /// The surrogate's force error as a fraction of the force: its held-out
-/// force RMS errors are 4–6 % (`config/surrogates/*.accuracy.toml`). Sets
-/// the rows' weights (relative, the same for both rows) against the prior.
+/// force RMS errors (`config/surrogates/*.accuracy.toml`; docs/controllers.md,
+/// "Online estimation"). Sets the rows' weights (relative, the same for both
+/// rows) against the prior.
 const ESTIMATOR_RELATIVE_ERROR: f64 = 0.05;
 
 /// Most plans [`Mpc::planned_ratio_from_rest`] makes.

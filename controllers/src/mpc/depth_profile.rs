@@ -145,7 +145,8 @@ impl DepthProfile {
     /// blade (what the controller knows, not the plant's material) and the
     /// `section` settings. The surrogates are fitted on rectangles; a
     /// cuboid's section is its own equivalent, a half ellipsoid's crest
-    /// section (35 × 60 mm) maps to about 0.9 of its width.
+    /// section maps to a narrower one (docs/controllers.md, "Which
+    /// section").
     ///
     /// # Errors
     /// As [`of_object`](Self::of_object), or the section model cannot cut

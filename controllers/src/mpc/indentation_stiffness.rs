@@ -59,9 +59,10 @@ struct PendingRow {
 /// # The linear rise
 /// The crack does not start where a detector sees it: under a flat top
 /// the force may keep rising, only slower, as a tough, soft material's
-/// crack grows steadily (the cuboid at R_c ×1.3, E ×0.7 rises 29 ticks
-/// past its first fracture before the force drops by the detector's 4 %),
-/// and on a dome one section fractures while others keep loading. Rows
+/// crack grows steadily (for tens of ticks past the first fracture before
+/// the force drops by the detector's fraction: docs/controllers.md,
+/// "Online estimation"), and on a dome one section fractures while others
+/// keep loading. Rows
 /// from past the fracture, fitted with the unfractured model, read as a
 /// softer material. So a row enters the fit only after [`Self::LAG`]
 /// later readings have confirmed the rise went on: each new normal force
@@ -78,7 +79,7 @@ struct PendingRow {
 /// squares on the total forces). On an indentation of n evenly spaced
 /// ticks the slope's relative standard deviation from the sensor's noise
 /// is √(12/(n(n² − 1))) times the noise over one tick's change of force
-/// (0.066 times at n = 14, the half potato's 70 µm at 5 mm/s).
+/// (0.066 times at n = 14).
 /// Allocation-free.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct IndentationStiffness {
@@ -116,8 +117,8 @@ impl IndentationStiffness {
     /// predicted force per unit length, added to the fall's threshold
     /// (0.02): the surrogate's indentation force follows the section model
     /// to a few per cent, and a fracture's deficit grows well past that
-    /// within [`Self::LAG`] ticks (the cuboid's force falls 6 % of itself
-    /// behind the line per tick at 5 mm/s; the half potato's, 2–5 %).
+    /// within [`Self::LAG`] ticks at the guarded touch's speed
+    /// (docs/controllers.md, "Online estimation").
     pub const RELATIVE_TOLERANCE: f64 = 0.02;
 
     /// Rows the fit needs before it can call a fall (3: a line and one
@@ -194,11 +195,8 @@ impl IndentationStiffness {
 
     /// The largest relative standard deviation of S from the sensor's
     /// noise that counts as an identification: 0.05, the accuracy asked of
-    /// the estimator. From the traced rows of the normal force alone at
-    /// σ = 10 mN: 0.8 % on the cuboid at R_c ×1.3, E ×0.7 (17 readings),
-    /// 5.5 % on the nominal half potato (14 readings on one 4.5 mm
-    /// segment, 70 µm at 5 mm/s); the tangential rows, fitted with the same
-    /// slope, narrow it (on the ten potato plants no fit was refused).
+    /// the estimator (what the shipped plants' indentations reach:
+    /// docs/controllers.md, "Online estimation").
     pub const MAX_RELATIVE_ERROR: f64 = 0.05;
 
     /// The least-squares slope once the model's forces have changed over

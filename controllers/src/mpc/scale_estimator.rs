@@ -19,9 +19,10 @@ use super::slice_model::ForceModel;
 /// row takes the parts at the ratio of the estimate when it arrives
 /// ([`ForceModel`]) and the update is recursive least squares on them; ℓ
 /// moves only through the estimate, and rows already taken are not
-/// re-linearised (on the surrogate's own forces the early rows, taken at
-/// ratios the estimate has since left, bias the end estimate by under 1 %;
-/// with parts independent of ℓ this is plain recursive least squares). Before the first
+/// re-linearised (the early rows, taken at ratios the estimate has since
+/// left, bias the end estimate: measured in docs/controllers.md, "Online
+/// estimation"; with parts independent of ℓ this is plain recursive least
+/// squares). Before the first
 /// fracture only the stiffness part is non-zero and the stiffness is the
 /// slope of the indentation's forces ([`Self::observe_indentation`]); after
 /// it each tick brings two rows (normal and tangential force), weighed by
@@ -47,17 +48,19 @@ impl ScaleEstimator {
     pub const BOUNDS: (f64, f64) = (0.2, 5.0);
 
     /// The plant's tangential force that no factor explains, as a fraction
-    /// of the normal force: pressing (ξ = 0) with the chef's knife through
-    /// the half potato, where the model's tangential force is 0, the
-    /// measured one is 1–2 % of the normal force (the curved edge's
-    /// inclination, the sections' asymmetry).
+    /// of the normal force: where the model's tangential force is 0
+    /// (pressing, ξ = 0) a curved edge's inclination and the sections'
+    /// asymmetry still give the plant one; 0.02 covers what pressing the
+    /// half potato with the chef's knife shows (docs/controllers.md,
+    /// "Online estimation").
     pub const LATERAL_FORCE: f64 = 0.02;
 
     /// Starts at the nominal material (all factors 1) with prior variance
     /// `prior_variance` per factor and forgetting factor `forgetting` in
     /// (0, 1] (1: no forgetting) per row. `relative_error` is the model's
-    /// force error as a fraction of the force (the surrogates' force RMS
-    /// errors are 4–6 %): [`Self::observe_cut`] weighs each row by it.
+    /// force error as a fraction of the force (the surrogates' held-out
+    /// force RMS errors, `config/surrogates/*.accuracy.toml`):
+    /// [`Self::observe_cut`] weighs each row by it.
     pub fn new(prior_variance: f64, forgetting: f64, relative_error: f64) -> Self {
         Self {
             theta: Vector3::new(1.0, 1.0, 1.0),

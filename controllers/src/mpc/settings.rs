@@ -58,13 +58,10 @@ pub struct MpcSettings {
     /// estimating, m/s (default 0.005; only with `estimate = true`): a
     /// guarded touch. The stiffness factor is identified only by the
     /// indentation before the first fracture (after it, toughness and
-    /// stiffness are nearly collinear), which on potato lasts 50–120 µm of
-    /// travel: at the full 48 mm/s that is one or two 1 kHz ticks, and a
-    /// plant stiffer and less tough than the preset (R_c ×0.7, E ×1.3)
-    /// fractures on the tick after the touch, leaving the stiffness at its
-    /// prior. At 5 mm/s the indentation spans 10–25 ticks. Costs the
-    /// approach from rest at this speed (0.2 s for the loop scenarios'
-    /// 1 mm clearance).
+    /// stiffness are nearly collinear), which lasts a fraction of a
+    /// millimetre of travel: at full speed a few servo ticks or none, at
+    /// the default enough ticks for a fit (measured in docs/controllers.md,
+    /// "Online estimation"). Costs the approach from rest at this speed.
     pub touch_speed: f64,
     /// Sawing: the most reversals of the tangential direction the MPC may
     /// make in one cut (default 16; 0 keeps the whole cut within one stroke

@@ -13,9 +13,9 @@ const ONSET_STEP: f64 = 1e-3;
 const CATCH_UP_INTERVALS: usize = 32;
 
 /// Normal travel after the first fracture that the onset's cost covers, in
-/// onset depths d*(ξ): the crack's jump, the edge catching up with the tip
-/// and the knee after it take 1–2.5 d* in the full model
-/// (`docs/surrogates.md`).
+/// onset depths d*(ξ): more than the crack's jump, the edge catching up
+/// with the tip and the knee after it take in the full model
+/// (`docs/surrogates.md`, "Structure").
 const CATCH_UP_SPAN_ONSETS: f64 = 4.0;
 
 /// Smallest such travel, m (a few bevel heights: the wedge entering the

@@ -17,25 +17,21 @@ pub struct FractureSettings {
     /// the force; 5 leaves room for that.
     pub sigmas: f64,
     /// Least drop below the peak that counts, as a fraction of the peak
-    /// (default 0.04, in [0, 0.5]). Measured on the plant over the loop
-    /// scenarios (docs/observers.md): the first fracture drops the force by
-    /// 11–33 % on the potato cuboid and 7–13 % on the eggplant, but
-    /// on the half potato one section of many fractures first and the total
-    /// falls by as little as 0.4 %, the larger drops coming as more sections
-    /// follow;
-    /// and while the chef's knife slices the eggplant the plant's force
-    /// falls by more than 6 % before any section has fractured. 0.04 keeps
-    /// the half potato's detection within 51 ms at 20 mm/s (0.02: 14 ms,
-    /// 0.06: 88 ms) and is early on the eggplant only when slicing at
-    /// ξ = 0.5, 20 mm/s (0.02 is early on three of its four motions).
+    /// (default 0.04, in [0, 0.5]). A fraction rather than the noise alone
+    /// because a first fracture may drop the force by far less than
+    /// another fall does: on a dome one section of many fractures first,
+    /// while the plant's force can fall without any fracture. 0.04 balances
+    /// a late detection on the half potato against an early one on the
+    /// eggplant (the drops and delays at 0.02, 0.04 and 0.06 are measured
+    /// in docs/observers.md, "First fracture").
     pub drop_fraction: f64,
     /// Travel of the knife past the force's peak without a new peak after
     /// which the force has stopped rising, m (default 1e-3, in [1e-5, 0.1]):
     /// a fracture that plateaus the force without a drop is detected at
     /// most this far past the peak. Before the first fracture the force
-    /// rises with every step of indentation; the longest stretch without a
-    /// new peak measured before a fracture is 0.43 mm (eggplant, slicing,
-    /// the same plant artefact).
+    /// rises with every step of indentation, so the default lies above the
+    /// longest stretch without a new peak that precedes a fracture on the
+    /// shipped plants (docs/observers.md, "First fracture").
     pub plateau_travel: f64,
 }
 

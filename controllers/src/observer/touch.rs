@@ -15,19 +15,18 @@ pub const TOUCH_HISTORY: usize = 16;
 pub struct TouchSettings {
     /// Threshold on the tared normal force in units of its free-air noise
     /// level σ ([`WrenchTare::sigma`](super::WrenchTare::sigma) of fy)
-    /// (default 5, in [1, 100]). σ measured from N free-air samples may be
-    /// 1/√(2(N − 1)) low (26 % at N = 10), so 5 σ̂ is at least 3.7 σ with
-    /// odds of about 5:1 at N = 10: one sample of pure noise exceeds 3.7 σ
-    /// with probability 1.1·10⁻⁴.
+    /// (default 5, in [1, 100]). σ̂ from N free-air samples may be
+    /// 1/√(2(N − 1)) low, and 5 σ̂ is still high enough that pure noise
+    /// rarely crosses it (the odds and probabilities: docs/observers.md,
+    /// "Why these thresholds").
     pub sigmas: f64,
     /// Least threshold, N (default 0.02, in [0, 100]): the threshold with a
     /// noise-free sensor or no free-air samples.
     pub min_force: f64,
     /// Consecutive readings above the threshold that make a touch (default
-    /// 2, in [1, 8]). Two readings above 3.7 σ by noise alone happen with
-    /// probability 1.2·10⁻⁸ per tick (10⁻⁵ over a second's approach at
-    /// 1 kHz); each extra reading delays the detection by a tick but not
-    /// the back-dated touch.
+    /// 2, in [1, 8]): two in a row by noise alone are rare over a whole
+    /// approach (docs/observers.md, "Why these thresholds"); each extra
+    /// reading delays the detection by a tick but not the back-dated touch.
     pub consecutive: usize,
 }
 

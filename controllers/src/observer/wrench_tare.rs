@@ -12,9 +12,10 @@ pub struct WrenchTareSettings {
     /// Clearance of the edge above the object's outline (as the task gives
     /// it) above which the knife counts as in free air, m (default 2.5e-4,
     /// in [0, 0.05]). It covers the outline's error: a vision system's top
-    /// is good to a few tenths of a millimetre. The plant starts the edge
-    /// 1 mm above the object, which leaves 0.75 mm of free air: 15 samples
-    /// at 50 mm/s and 1 kHz, 37 at 20 mm/s, plus those of the ramp-up.
+    /// is good to a few tenths of a millimetre. A knife starting 1 mm above
+    /// the object (the loop scenarios' start) keeps 0.75 mm of free air:
+    /// (0.75 mm / v)·1 kHz samples at speed v, plus those of the ramp-up
+    /// (the counts per scenario: docs/observers.md, "Tare").
     pub clearance: f64,
 }
 

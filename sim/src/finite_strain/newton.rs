@@ -200,10 +200,10 @@ mod tests {
     /// Regression: at small strain (ε ~ 10⁻⁶–10⁻⁴, as in the far field or a
     /// shallow indentation) the total energy is ~ε² of its summands, so its
     /// round-off (~10⁻¹⁶ of the summands) exceeds 10⁻¹² of |Π|; a line
-    /// search that only forgave rises within 10⁻¹² |Π| rejected Newton steps
-    /// whose energy change was below round-off, at random, and stalled above
+    /// search that forgives rises only within 10⁻¹² |Π| rejects Newton steps
+    /// whose energy change is below round-off, at random, and stalls above
     /// the tolerance. Twelve load cases make a stall by chance all but
-    /// certain for that rule. The tolerance, 10⁻¹² μ·size, is the slab's
+    /// certain under such a rule. The tolerance, 10⁻¹² μ·size, is the slab's
     /// default relative tolerance 10⁻⁹ μR scaled to this patch's forces.
     #[test]
     fn newton_reaches_the_tolerance_at_small_strain() {

@@ -12,8 +12,8 @@
 //!
 //! (mirrored across X = 0, where σ₁ is even). A pointwise surface value has
 //! no mesh limit where slicing puts the maximum, at the edge of the contact:
-//! there σ₁ falls off below the surface like ln(1/depth) (measured: about
-//! 0.6μ per e-fold in depth at θ = 75°), so a value read at the surface grows
+//! there σ₁ falls off below the surface like ln(1/depth) (measured in
+//! docs/seed001.md, "Mesh"), so a value read at the surface grows
 //! with every refinement of the element rows, and it jumps as contact nodes
 //! come and go. Its average over a cell is finite and converges. The seed's
 //! own σ₁ is that of a lattice cell: its 3D slab (Fig. 3, where σ* = 2μ is

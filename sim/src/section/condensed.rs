@@ -1472,8 +1472,8 @@ mod tests {
         }
     }
 
-    /// The default mesh of the loop's half potato (≈ 5 s in release, minutes
-    /// in debug).
+    /// The default mesh of the loop's half potato (a large reference
+    /// computation: run in a release build).
     #[test]
     #[ignore = "the reference takes minutes in a debug build; run with --release -- --ignored"]
     fn partial_factorisation_matches_unit_solves_on_the_default_potato_mesh() {

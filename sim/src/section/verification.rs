@@ -83,10 +83,9 @@ fn block(row_spacing: f64) -> SectionMesh {
 /// top node of the cut line, bottom fixed at 200 mm depth, sides 200 mm away.
 /// Compared away from the load, 4–16 mm from it: the near field of a nodal
 /// load (one 0.5 mm row) is not resolved, and the block's finite size adds a
-/// smooth field of order P/L that perturbs Flamant's 2P/(πr) by O(r/L): the
-/// measured error grows with r, 0.6 % at 4 mm to 0.9 % at 10 mm for the
-/// surface (halved from a 100 mm block, which confirms the cause), up to ~4 %
-/// for σ_rr at 16 mm. Tolerances: 2 % (surface), 5 % (stresses).
+/// smooth field of order P/L that perturbs Flamant's 2P/(πr) by O(r/L), so
+/// the error grows with r (measured in docs/model.md, "Verification").
+/// Tolerances: 2 % (surface), 5 % (stresses).
 #[test]
 fn flamant_line_load_on_a_large_block() {
     let mesh = block(5e-4);

@@ -221,11 +221,10 @@ pub const STRAIN_DEPTH_TERMS: usize = 3;
 /// apart by 2Δ over the whole cut, so the halves store an energy that grows
 /// with the length of cut they are pushed apart over (seed 000 eq. 1: the
 /// knife pays dU/dd on top of r·R_c even when the wedge's ramps are done).
-/// The section model's dU/dd after the bevel has entered (potato, travel
-/// since fracture ≥ 8 mm) is 11–12 N/m on 30 × 15 mm and 15–18 N/m on
-/// 25 × 15 mm, about ξ-independent; the ramps' slopes vanish there and
-/// (d/H)³, (d/H)⁴ alone made the fit trade that level against the wedge's
-/// entry (`docs/surrogates.md`, "The normal force's mean after fracture").
+/// The section model's dU/dd after the bevel has entered is a level about
+/// independent of ξ; the ramps' slopes vanish there, and (d/H)³, (d/H)⁴
+/// alone make the fit trade that level against the wedge's entry (measured
+/// in `docs/surrogates.md`, "The normal force's mean after fracture").
 #[inline]
 pub fn strain_depth_rate_basis(height: f64, lh: f64, lw: f64) -> [f64; STRAIN_DEPTH_TERMS] {
     [1.0 / height, lh / height, lw / height]
@@ -246,9 +245,9 @@ pub const SPLIT_TERMS: usize = 5;
 /// [ξ, ξλ_H, ξλ_w, ξ², ξ/(1+ξ²)]: σ vanishes at pressing; its slope
 /// depends on the section, whose antiplane and plane compliances scale
 /// differently with its size (as C_t and C_n do before fracture). The full
-/// model's σ rises steeply up to ξ ≈ 0.5 and then about linearly (eggplant
-/// after the knee: 0.06 at ξ = 0.25, 0.10 at 0.5, 0.13–0.18 at 1, 0.21–0.32
-/// at 2.4), which ξ/(1+ξ²) (slope 1 at 0, flat by ξ = 1) lets the fit follow.
+/// model's σ rises steeply up to ξ ≈ 0.5 and then about linearly
+/// (`docs/surrogates.md`, "Structure"), which ξ/(1+ξ²) (slope 1 at 0, flat
+/// by ξ = 1) lets the fit follow.
 #[inline]
 pub fn split_basis(xi: f64, lh: f64, lw: f64) -> [f64; SPLIT_TERMS] {
     [xi, xi * lh, xi * lw, xi * xi, xi / (1.0 + xi * xi)]

@@ -515,9 +515,8 @@ fn friction_work_factor(xi: f64, slip: f64) -> f64 {
 /// least squares over the fractured samples with ξ > 0 (1 without any).
 /// The knife moves along (1, ξ); the material at the faces follows it down
 /// a little (the halves are pushed down as the cut deepens), so the faces
-/// slip less vertically than the knife: potato shows k = 1.027 at every ξ
-/// on 30 × 15 and 25 × 15 mm (`docs/surrogates.md`, "The normal force's
-/// mean after fracture").
+/// slip less vertically than the knife, k > 1 (measured in
+/// `docs/surrogates.md`, "The normal force's mean after fracture").
 fn fit_slip_ratio(runs: &[SweepRun]) -> f64 {
     let (mut num, mut den) = (0.0, 0.0);
     for run in runs.iter().filter(|r| r.case.xi > 0.0) {
@@ -753,6 +752,7 @@ fn onset_drag(pre: &PreFracture, material: &Material, case: &SweepCase, b: f64) 
 /// Travel since fracture from which a run's samples count to its window
 /// mean ([`WindowMean`]), m: on potato, where the crack does not jump ahead
 /// of the edge, past the knee after the first fracture. On eggplant, whose
-/// catch-up lasts ~14 mm after the fracture, the window would include it;
+/// catch-up lasts many millimetres after the fracture (`docs/surrogates.md`,
+/// "At other stiffness-to-toughness ratios"), the window would include it;
 /// the shipped eggplant files are fitted without window rows.
 const WINDOW_TRAVEL: f64 = 2e-3;

@@ -162,8 +162,8 @@ pub struct PostFracture {
     /// The strain-energy rate U̇/(E·Δ²) (1/m) that stays in steady cutting
     /// (the blade's body holding the faces apart over the cut), on
     /// [1, λ_H, λ_w]/H (`basis::strain_depth_rate_basis`); fitted with
-    /// `strain_energy_rate`. Zero when absent (files fitted before it), and
-    /// then the outputs are bit for bit those without it.
+    /// `strain_energy_rate`. Zero when absent from a file, which then gives
+    /// the outputs of a surrogate without the term, bit for bit.
     #[serde(default)]
     pub strain_depth_rate: [f64; STRAIN_DEPTH_TERMS],
     /// Surface deflection over Δ on [1, ρ₀, λ_w].
@@ -174,8 +174,8 @@ pub struct PostFracture {
     /// knife's own direction (1, ξ); k > 1 when the material at the faces
     /// follows the blade down (it slips less vertically than the knife
     /// moves). Fitted to the section's F_t^f against ξ·F_n^f; 1 when absent
-    /// (files fitted before it, whose outputs are then bit for bit those
-    /// without it).
+    /// from a file, which then gives the outputs of a surrogate without the
+    /// term, bit for bit.
     #[serde(default = "unit_slip_ratio")]
     pub slip_ratio: f64,
     /// The face reaction's dependence on ξ in steady cutting, N/(E·Δ) on
@@ -567,8 +567,8 @@ impl Surrogate {
     /// in ξ, held at least r·R'_c₀/(E₀·H): the nominal onset depth d*₀ is
     /// at most the section height `height` (the crack starts before the
     /// edge reaches the board). Within the fitted sizes d*₀ is well under
-    /// H (at most about a quarter of it, eggplant's onsets at ξ = 0.6) and
-    /// the bound never holds; beyond them the linear fit in
+    /// H (`docs/surrogates.md`, "File format") and the bound never holds;
+    /// beyond them the linear fit in
     /// (λ_H, λ_w, H/w) can reach zero (tall narrow sections, H/w ≳ 10, or
     /// sections of metres), where an unbounded d*₀ made the forces infinite.
     #[inline]

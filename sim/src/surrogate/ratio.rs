@@ -59,10 +59,9 @@ pub fn slice_size_basis(
 
 /// [ξ, ξ², ξ/(1+ξ²)] as jets in ξ: how the faces' reaction's departure
 /// from linear scaling depends on the slice-push ratio, as a factor of the
-/// nominal reaction N₀ (potato, 30 × 15 mm, steady cutting at E × 2: the
-/// full model's friction is 0.86 of linear scaling at ξ = 0, 0.70 at 0.5,
-/// 0.60 at 1, 0.61 at 1.8, 0.64 at 2.4; at E × 0.5 1.09, 1.04, 1.02, 1.02,
-/// 1.04). No constant: N₀ itself is a combination of the face basis.
+/// nominal reaction N₀ (the full model's friction against linear scaling
+/// per ξ: `docs/surrogates.md`, "The stiffness-to-toughness ratio"). No
+/// constant: N₀ itself is a combination of the face basis.
 #[inline]
 pub fn slice_basis(xi: f64) -> [Jet; SLICE_TERMS] {
     let q = 1.0 + xi * xi;
@@ -168,12 +167,11 @@ pub const FITTED_LOG_RATIO: [f64; 2] = [-std::f64::consts::LN_2, std::f64::const
 /// the fitted range [`FITTED_LOG_RATIO`] and the excess beyond it (0
 /// inside). Beyond the range a correction is continued along its tangent at
 /// the range's end ([`corrected`]) rather than along its quadratic: the
-/// quadratic was fitted over ±ln 2 only, and an estimator's first guesses
-/// can pass far beyond (the toughness estimate once ran to its bound 0.2,
-/// ρ ≈ 7, and the friction to 17 on the half potato at R_c ×0.7, E ×1.3
-/// with the quadratic extrapolated); holding the correction constant
-/// instead left no gradient in ℓ there, and the estimate stuck at the
-/// range's end.
+/// quadratic is fitted over ±ln 2 only, and an estimator's first guesses
+/// can pass far beyond, where the extrapolated quadratic drives the
+/// estimate to its bounds; a correction held constant there would leave
+/// no gradient in ℓ, and the estimate would stick at the range's end
+/// (`docs/surrogates.md`, "The stiffness-to-toughness ratio").
 #[inline]
 pub fn fitted_log_ratio(toughness: f64, stiffness: f64) -> (f64, f64) {
     let l = log_ratio(toughness, stiffness);
