@@ -214,15 +214,20 @@ impl JobRow {
     }
 
     /// Writes the row under `dir` atomically: to a temporary file, then
-    /// renamed into place.
+    /// renamed into place. A failed write (a full device) removes its
+    /// temporary file: the rows directory holds whole rows only.
     pub fn write(&self, dir: &Path) -> Result<(), RunError> {
         let path = Self::path(dir, &self.id);
         let tmp = dir
             .join("rows")
             .join(format!(".{}.{}.tmp", self.id, std::process::id()));
         let text = serde_json::to_string_pretty(self).map_err(|e| RunError::write(&path, e))?;
-        std::fs::write(&tmp, text + "\n").map_err(|e| RunError::write(&tmp, e))?;
-        std::fs::rename(&tmp, &path).map_err(|e| RunError::write(&path, e))
+        std::fs::write(&tmp, text + "\n")
+            .map_err(|e| RunError::write(&tmp, e))
+            .and_then(|()| std::fs::rename(&tmp, &path).map_err(|e| RunError::write(&path, e)))
+            .inspect_err(|_| {
+                let _ = std::fs::remove_file(&tmp);
+            })
     }
 
     /// Reads job `id`'s row under `dir`; `None` if there is none, or it is
@@ -293,6 +298,21 @@ mod tests {
         assert!(back.outcome.max_deformation_m.is_nan());
         assert_eq!(back.timing, row.timing);
         assert!(JobRow::read(&dir, "other").is_none());
+
+        // A row that cannot be put in place (here a directory holds its
+        // name, as a full device fails a write) is an error and leaves no
+        // temporary file behind.
+        let blocked = JobRow {
+            id: "blocked".into(),
+            ..row
+        };
+        std::fs::create_dir_all(JobRow::path(&dir, "blocked").join("x")).unwrap();
+        assert!(blocked.write(&dir).is_err());
+        let names: Vec<String> = std::fs::read_dir(dir.join("rows"))
+            .unwrap()
+            .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+            .collect();
+        assert!(names.iter().all(|n| !n.ends_with(".tmp")), "{names:?}");
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }
