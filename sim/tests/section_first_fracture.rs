@@ -261,7 +261,7 @@ fn surface_stress_needs_a_soft_nearly_incompressible_material() {
 
 /// After a surface-stress nucleation the crack arrests at the wire and then
 /// advances with it (seed 001 Fig. 1c: the force drops at nucleation, then
-/// stays at a steady cutting value), at θ = 0°, 45° and 75°, over 1.5 mm of
+/// stays at a steady cutting value), at θ = 0°, 45° and 75°, over 2 mm of
 /// knife travel after nucleation.
 ///
 /// - **Where the tip stops.** Ahead of the edge the crack is driven only by
@@ -281,12 +281,13 @@ fn surface_stress_needs_a_soft_nearly_incompressible_material() {
 ///   below a quarter of the load at nucleation in every row: the cut's load
 ///   is of the order of the toughness r·R_c (the knife's work per unit
 ///   advance pays r·R_c per unit of crack), at most 5 N/m, against the
-///   envelope's 15–66 N/m.
-/// - **Steady.** The row means stay within a factor 2 of each other: the
-///   row's saw-tooth is not fully averaged where the tip crosses rows
-///   unevenly, and at 75° the lead still grows towards its steady value while
-///   the crack is only a few leads deep (an edge crack's G depends on its
-///   depth until it is several ℓ deep).
+///   envelope's 10–66 N/m.
+/// - **Steady.** Over the last millimetre the row means stay within a
+///   factor 1.5 of each other: the row's saw-tooth is not fully averaged
+///   where the tip crosses rows unevenly, and at 75° the load still eases
+///   as the crack deepens (an edge crack's G depends on its depth until it
+///   is several leads deep; the first millimetre after a nucleation at
+///   0.17 mm is that approach, its load falling twofold).
 #[test]
 fn surface_stress_crack_arrests_at_the_wire_and_cuts_on_steadily() {
     let material = MaterialPreset::Agar.material();
@@ -309,7 +310,7 @@ fn surface_stress_crack_arrests_at_the_wire_and_cuts_on_steadily() {
         let peak = elastic(&before);
         let mut lead = at.crack_depth - at.knife_displacement;
         let mut loads = Vec::new();
-        for _ in 0..150 {
+        for _ in 0..200 {
             assert!(lead <= lead_max, "θ = {theta}: lead {lead} > {lead_max}");
             let s = section.advance(step, xi * step).unwrap();
             lead = s.crack_depth - s.knife_displacement;
@@ -320,10 +321,11 @@ fn surface_stress_crack_arrests_at_the_wire_and_cuts_on_steadily() {
             .chunks_exact(per_row)
             .map(|c| c.iter().sum::<f64>() / per_row as f64)
             .collect();
-        let (lo, hi) = means
+        let highest = means.iter().fold(f64::MIN, |a, &m| a.max(m));
+        assert!(highest < 0.25 * peak, "θ = {theta}: {highest} vs {peak}");
+        let (lo, hi) = means[means.len() / 2..]
             .iter()
             .fold((f64::MAX, f64::MIN), |(lo, hi), &m| (lo.min(m), hi.max(m)));
-        assert!(hi < 0.25 * peak, "θ = {theta}: {hi} vs {peak}");
-        assert!(hi < 2.0 * lo, "θ = {theta}: {means:?}");
+        assert!(hi < 1.5 * lo, "θ = {theta}: {means:?}");
     }
 }
