@@ -2,8 +2,9 @@
 //! wire–slab model at the default mesh, Newton's residual history in one load
 //! step, and the mesh convergence of the nucleation forces at every angle.
 //!
-//! It also prints the nucleation envelope of the default mesh's sweep, the
-//! table of [`NucleationEnvelope::SEED_GEL`].
+//! It also prints the nucleation envelope of the default mesh's sweep,
+//! extended beyond its sliding limit by the slab with friction coefficient 3
+//! at θ = 75° and 85°: the table of [`NucleationEnvelope::SEED_GEL`].
 //!
 //! Run: `cargo bench -p shearcut-sim --bench finite_strain` (environment:
 //! `SWEEP_SAMPLES`, default 3; `MESH_LEVELS`, element rows per radius,
@@ -52,10 +53,17 @@ fn main() {
         times[times.len() - 1]
     );
 
-    if let Some(e) = envelope {
+    // Beyond the default slab's sliding limit (ψ ≈ 47°): the slab with
+    // friction coefficient 3 at θ = 75° and 85°.
+    let sliding = WireSlabSettings {
+        friction_coefficient: 3.0,
+        ..settings
+    };
+    let beyond = sweep_angles(&sliding, &[75.0, 85.0], 2).unwrap();
+    if let Some(e) = envelope.and_then(|e| e.extended_by(&sliding, &beyond.runs)) {
         println!(
-            "nucleation envelope (f_n, f_t)/(μR) at θ = 0, 15, …, 75°: {:?}",
-            e.points
+            "nucleation envelope (f_n, f_t)/(μR) at θ = 0, 15, …, 75° and, friction coefficient 3, 75°, 85°: {:?}",
+            &e.points[..e.len]
         );
     }
 

@@ -14,31 +14,49 @@
 //!
 //! The envelope is polar: for the load's direction ψ = atan(|f_t|/f_n) the
 //! radius ρ*(ψ) = |f|/(μR) at which σ₁ reaches σ*, linear in ψ between the
-//! angles of the sweep it was built from and constant beyond its ends.
+//! points of the sweeps it was built from and constant beyond its ends.
+//!
+//! The directions a sweep reaches are bounded by the wire's friction: where
+//! the wire slides along itself, f_t is μ_f times the contact force, so a
+//! slab with friction coefficient μ_f = 1 never loads beyond ψ ≈ 47°
+//! however steep θ is (θ = 75°, 80° and 85° nucleate at the same load). A
+//! slab with a larger coefficient reaches further, and where the wire of
+//! both sticks it nucleates at the same loads (docs/seed001.md), so its
+//! points beyond the first sweep's last direction extend the same envelope
+//! ([`NucleationEnvelope::extended_by`]).
 
 use super::settings::WireSlabSettings;
 use super::slab::IndentationRun;
 
-/// Number of points of an envelope: the kinematic angles θ = 0, 15, …, 75°
-/// of seed 001's sweep.
-pub const ENVELOPE_POINTS: usize = 6;
+/// Most points of an envelope: the kinematic angles θ = 0, 15, …, 75° of
+/// seed 001's sweep and two beyond its sliding limit.
+pub const ENVELOPE_POINTS: usize = 8;
 
 /// Nucleation loads per unit length of wire, scaled by μR, by increasing
 /// direction ψ = atan(f_t/f_n).
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct NucleationEnvelope {
-    /// (f_n, f_t)/(μR) at nucleation, one point per kinematic angle, by
-    /// increasing ψ.
+    /// (f_n, f_t)/(μR) at nucleation, one point per run, by increasing ψ;
+    /// the first `len` are the envelope's.
     pub points: [[f64; 2]; ENVELOPE_POINTS],
+    /// Number of points, 2 ..= [`ENVELOPE_POINTS`].
+    pub len: usize,
+}
+
+/// The direction ψ (rad) and radius ρ of a point (f_n, f_t).
+fn polar(p: &[f64; 2]) -> (f64, f64) {
+    (p[1].atan2(p[0]), p[0].hypot(p[1]))
 }
 
 impl NucleationEnvelope {
-    /// The envelope of seed 001's gel: the finite-strain slab's nucleation
-    /// loads at θ = 0, 15, …, 75° with the default [`WireSlabSettings`]
-    /// (K = 30μ, σ* = 2μ over a surface cell R/4 across, friction
-    /// coefficient 1 along the wire, L = B = 267R), as printed by
-    /// `cargo bench -p shearcut-sim --bench finite_strain` (docs/seed001.md,
-    /// "Use in the cutting model"): F/(μRh) with μRh = 0.02625 N.
+    /// The envelope of seed 001's gel (K = 30μ, σ* = 2μ over a surface cell
+    /// R/4 across, L = B = 267R, the default [`WireSlabSettings`]): F/(μRh)
+    /// with μRh = 0.02625 N. The first six points are the default slab's
+    /// (friction coefficient 1 along the wire) at θ = 0, 15, …, 75°, as
+    /// printed by `cargo bench -p shearcut-sim --bench finite_strain`; the
+    /// last two, at ψ = 54° and 70°, beyond that slab's sliding limit
+    /// (ψ = 47°), the same slab's with friction coefficient 3 at θ = 75° and
+    /// 85° (docs/seed001.md, "Use in the cutting model").
     pub const SEED_GEL: Self = Self {
         points: [
             [12.604144148954985, 0.0],
@@ -47,45 +65,65 @@ impl NucleationEnvelope {
             [6.7757050891249175, 2.7605035384756924],
             [3.7483313304975185, 2.60986081611155],
             [1.9964397193382817, 2.1713216309807977],
+            [1.24184104701702, 1.7375402542361682],
+            [0.34153194424079086, 0.9320212383062417],
         ],
+        len: ENVELOPE_POINTS,
     };
 
-    /// The envelope of `runs` (θ = 0, 15, …, 75°, each nucleated) of a slab
-    /// with `settings`; `None` if there are not [`ENVELOPE_POINTS`] runs,
-    /// one did not nucleate, or the directions do not increase with θ.
+    /// The envelope of `runs` (2 ..= [`ENVELOPE_POINTS`], each nucleated,
+    /// by increasing direction) of a slab with `settings`; `None` otherwise.
     pub fn from_runs(settings: &WireSlabSettings, runs: &[IndentationRun]) -> Option<Self> {
-        if runs.len() != ENVELOPE_POINTS {
+        if runs.len() < 2 {
+            return None;
+        }
+        Self {
+            points: [[0.0; 2]; ENVELOPE_POINTS],
+            len: 0,
+        }
+        .extended_by(settings, runs)
+    }
+
+    /// This envelope with the points of `runs` of a slab with `settings`
+    /// appended; `None` if one did not nucleate, the directions do not
+    /// increase past this envelope's last, or there would be more than
+    /// [`ENVELOPE_POINTS`].
+    pub fn extended_by(
+        mut self,
+        settings: &WireSlabSettings,
+        runs: &[IndentationRun],
+    ) -> Option<Self> {
+        if self.len + runs.len() > ENVELOPE_POINTS {
             return None;
         }
         let scale = settings.shear_modulus * settings.wire_radius * settings.wire_length;
-        let mut points = [[0.0; 2]; ENVELOPE_POINTS];
-        for (p, run) in points.iter_mut().zip(runs) {
+        for run in runs {
             let n = run.nucleation?;
-            *p = [n.force_normal / scale, n.force_tangential / scale];
+            self.points[self.len] = [n.force_normal / scale, n.force_tangential / scale];
+            self.len += 1;
         }
-        let direction = |p: &[f64; 2]| p[1].atan2(p[0]);
-        points
+        self.points[..self.len]
             .windows(2)
-            .all(|w| direction(&w[1]) > direction(&w[0]))
-            .then_some(Self { points })
+            .all(|w| polar(&w[1]).0 > polar(&w[0]).0)
+            .then_some(self)
     }
 
     /// Radius ρ*(ψ) of the envelope in the direction ψ (rad): the scaled
     /// load magnitude |f|/(μR) at which the surface nucleates.
     pub fn radius(&self, direction: f64) -> f64 {
-        let polar = |p: &[f64; 2]| (p[1].atan2(p[0]), p[0].hypot(p[1]));
-        let first = polar(&self.points[0]);
+        let points = &self.points[..self.len];
+        let first = polar(&points[0]);
         if direction <= first.0 {
             return first.1;
         }
-        for w in self.points.windows(2) {
+        for w in points.windows(2) {
             let (a, b) = (polar(&w[0]), polar(&w[1]));
             if direction <= b.0 {
                 let t = (direction - a.0) / (b.0 - a.0);
                 return a.1 + t * (b.1 - a.1);
             }
         }
-        polar(&self.points[ENVELOPE_POINTS - 1]).1
+        polar(&points[self.len - 1]).1
     }
 
     /// Whether a load per unit length (f_n, f_t) (N/m; f_n pressing into the
@@ -111,11 +149,8 @@ mod tests {
     #[test]
     fn envelope_interpolates_its_points() {
         let e = NucleationEnvelope::SEED_GEL;
-        let polar: Vec<(f64, f64)> = e
-            .points
-            .iter()
-            .map(|p| (p[1].atan2(p[0]), p[0].hypot(p[1])))
-            .collect();
+        let points: Vec<(f64, f64)> = e.points[..e.len].iter().map(polar).collect();
+        let polar = points;
         for w in polar.windows(2) {
             assert!(w[1].0 > w[0].0, "{polar:?}");
         }
@@ -125,7 +160,7 @@ mod tests {
         let mid = 0.5 * (polar[2].0 + polar[3].0);
         assert!((e.radius(mid) - 0.5 * (polar[2].1 + polar[3].1)).abs() < 1e-12);
         assert_eq!(e.radius(-1.0), polar[0].1);
-        assert_eq!(e.radius(1.5), polar[5].1);
+        assert_eq!(e.radius(1.5), polar[7].1);
         let scale = 35e3 * 150e-6;
         let (psi, rho) = polar[3];
         let f = |s: f64| (s * rho * psi.cos() * scale, s * rho * psi.sin() * scale);

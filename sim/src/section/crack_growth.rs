@@ -1,10 +1,12 @@
 //! The crack growth of one knife step (seed 000 eq. 1, §III.C): the energy
 //! release rate R(s) of a trial extension s, the first fracture's criterion
 //! (R'_c, or seed 001's nucleation envelope), and the extension that
-//! balances R(s) against the step's toughness.
+//! balances R(s) against the step's toughness (or, under seed 001's
+//! surface-stress option, where the crack arrests: `crack_arrest`).
 
 use crate::finite_strain::NucleationEnvelope;
 
+use super::crack_arrest::solve_arrest;
 use super::equilibrium::Eval;
 use super::fracture::{Extension, solve_extension};
 use super::knife_step::KnifeStep;
@@ -18,7 +20,8 @@ use super::step_toughness::StepToughness;
 pub(super) struct CrackGrowth {
     /// Crack extension s ≥ 0, m.
     pub(super) extension: f64,
-    /// Energy release rate R(s) at the extension, N/m (0 without growth).
+    /// Energy release rate R(s) at the extension, N/m (0 without growth);
+    /// for an arrested crack, the toughness r·Γ(s)/s it pays.
     rate: f64,
     /// `Indenting` without growth, else `Cutting` (balanced), `CutThrough`
     /// or `Unbracketed` (as [`Extension`]).
@@ -39,7 +42,12 @@ impl CrackGrowth {
     /// the end of the step, without growth, is on or beyond the nucleation
     /// envelope scaled by μb; then, as after it, by the balance with R_c.
     /// The extension is [`solve_extension`]'s on the [`StepToughness`]
-    /// balance, at most down to one row above the board. Allocation-free.
+    /// balance, at most down to one row above the board; with
+    /// [`FirstFracture::SurfaceStress`] it is [`solve_arrest`]'s instead:
+    /// the crack runs while its release rate, resolved over one row, is at
+    /// least the toughness and stops where it falls below, the energy
+    /// released beyond the toughness being the step's unstable release.
+    /// Allocation-free.
     pub(super) fn solve(
         model: &Model,
         ws: &mut Workspace,
@@ -71,8 +79,25 @@ impl CrackGrowth {
         };
         let s_max = step.y_tip - model.h;
         let set = &model.settings;
+        let arrest = model.settings.first_fracture == FirstFracture::SurfaceStress;
         let ext = if surface_stress && !nucleated {
             Extension::None
+        } else if arrest && dn > 0.0 && toughness.trigger.is_finite() && s_max > 0.0 {
+            let released = |s: f64| {
+                let e = step.at_extension(model, ws, s);
+                elastic_work(step, start, &e) - (e.energy - start.energy)
+            };
+            solve_arrest(
+                released,
+                |s| toughness.target_at(s) * s,
+                set.initial_crack_extension,
+                (step.y_tip - step.y_edge1).max(0.0) + model.h,
+                s_max,
+                model.h,
+                set.bisection_tolerance,
+                set.max_bracket_doublings,
+                set.max_bisection_iterations,
+            )
         } else if dn > 0.0 && toughness.trigger.is_finite() && s_max > 0.0 {
             solve_extension(
                 &mut balance,
@@ -90,6 +115,11 @@ impl CrackGrowth {
         };
         let (extension, rate, status) = match ext {
             Extension::None => (0.0, 0.0, StepStatus::Indenting),
+            // An arrested crack pays the toughness; what it released beyond
+            // is the step's unstable release.
+            Extension::Balanced { s, .. } if arrest => {
+                (s, toughness.target_at(s), StepStatus::Cutting)
+            }
             Extension::Balanced { s, r } => (s, toughness.rate(s, r), StepStatus::Cutting),
             Extension::RunsThrough { s, r } => (s, toughness.rate(s, r), StepStatus::CutThrough),
             Extension::Unbracketed { s, r } => (s, toughness.rate(s, r), StepStatus::Unbracketed),
@@ -105,7 +135,7 @@ impl CrackGrowth {
     /// Energy the extension spends on fracture, J/m: R(s)·s (= W − ΔU
     /// exactly) when balanced, R = target within the tolerance; the
     /// toughness's r·Γ(s) for a crack that runs through or is unbracketed,
-    /// whose excess release is unstable.
+    /// or is arrested, whose excess release is unstable.
     pub(super) fn fracture_energy(&self) -> f64 {
         let s = self.extension;
         if matches!(self.status, StepStatus::Cutting) {

@@ -34,11 +34,37 @@ pub(crate) enum Extension {
     },
 }
 
+/// Where growth starts (seed 000 §III.C): the smallest trial extension
+/// 2ᵏ·`delta0` (k ≥ 0, capped at min(`s_scan`, `s_max`)) whose
+/// `release(s)` reaches `trigger`, with that release; `None` if none does or
+/// `s_max` ≤ 0.
+pub(crate) fn growth_start(
+    mut release: impl FnMut(f64) -> f64,
+    delta0: f64,
+    s_scan: f64,
+    s_max: f64,
+    trigger: f64,
+) -> Option<(f64, f64)> {
+    if s_max <= 0.0 {
+        return None;
+    }
+    let mut d0 = delta0.min(s_max);
+    let mut r0 = release(d0);
+    while r0 < trigger {
+        if d0 >= s_scan.min(s_max) {
+            return None;
+        }
+        d0 = (2.0 * d0).min(s_scan.min(s_max));
+        r0 = release(d0);
+    }
+    Some((d0, r0))
+}
+
 /// Bracketing of seed 000 §III.C, then Illinois regula falsi on the bracket.
 ///
 /// `release(s)` is the energy release rate R(s) = (dW − dU)/s for a trial
-/// extension s. Growth starts when R(δ₀) ≥ `trigger`, or when R(2ᵏδ₀) ≥
-/// `trigger` for a larger trial up to `s_scan`: R(s) need not be monotone,
+/// extension s. Growth starts ([`growth_start`]) when R(δ₀) ≥ `trigger`, or
+/// when R(2ᵏδ₀) ≥ `trigger` for a larger trial up to `s_scan`: R(s) need not be monotone,
 /// because the stiffness under the edge changes with the crack depth (near the
 /// top surface the strip stiffens as the crack faces beside it form, so the
 /// balance can be met only by an extension that releases the indentation's
@@ -59,18 +85,9 @@ pub(crate) fn solve_extension(
     max_doublings: u32,
     max_bisections: u32,
 ) -> Extension {
-    if s_max <= 0.0 {
+    let Some((d0, r0)) = growth_start(&mut release, delta0, s_scan, s_max, trigger) else {
         return Extension::None;
-    }
-    let mut d0 = delta0.min(s_max);
-    let mut r0 = release(d0);
-    while r0 < trigger {
-        if d0 >= s_scan.min(s_max) {
-            return Extension::None;
-        }
-        d0 = (2.0 * d0).min(s_scan.min(s_max));
-        r0 = release(d0);
-    }
+    };
     let (mut lo, mut r_lo) = (d0, r0);
     let mut hi = d0;
     let mut r_hi = r0;

@@ -12,7 +12,8 @@
 //! forces and energies at a fixed crack tip, edge and drag), `knife_step`
 //! (one step's kinematics: the edge's end and the drag along the cut),
 //! `crack_growth` (a step's energy release rate, first-fracture criterion
-//! and balanced extension), `step_toughness` (the toughness an extension
+//! and balanced extension), `crack_arrest` (where a running crack stops
+//! under seed 001's surface-stress option), `step_toughness` (the toughness an extension
 //! pays, skin layer included), `knife_work` (the knife's work over a step),
 //! `fracture` (toughness ratio, bracketing and regula falsi), `simulation`
 //! ([`CrossSection`]), `settings`, `error`.
@@ -20,6 +21,7 @@
 mod antiplane;
 mod condensed;
 mod contact;
+mod crack_arrest;
 mod crack_growth;
 mod equilibrium;
 mod error;

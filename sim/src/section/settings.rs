@@ -22,8 +22,9 @@ pub enum FirstFracture {
     /// finite-strain slab's surface σ₁ reaches σ* = 2μ
     /// ([`NucleationEnvelope::SEED_GEL`](crate::finite_strain::NucleationEnvelope::SEED_GEL),
     /// scaled by μR with R the edge flat's width: a wire knife's flat is R
-    /// wide); from then on it grows by the energy balance with R_c (R'_c
-    /// plays no part, except as a skin layer's toughness). For nearly
+    /// wide); from then on it grows while its release rate, resolved over a
+    /// row, is at least r·R_c and arrests where it falls below (R'_c plays
+    /// no part, except as a skin layer's toughness). For nearly
     /// incompressible soft solids (Poisson ratio at least 0.45), like the
     /// seed's gel (K = 30μ) whose envelope it is.
     SurfaceStress,

@@ -203,8 +203,11 @@ struct State {
 /// not R'_c's: before it the crack grows only in a step whose end load per
 /// unit length (F_n, F_t), without growth, is on or beyond the
 /// finite-strain slab's nucleation envelope scaled by μb (b the edge flat's
-/// width, a wire's radius R); from that step on it grows by the balance with
-/// r·R_c. The criterion reads the present load only: the envelope was
+/// width, a wire's radius R); from that step on it grows while its release
+/// rate, resolved over a row, is at least r·R_c and arrests where it falls
+/// below (`crack_arrest`: Griffith's balance along the crack's path, which
+/// stops the crack at the wire instead of spending the stored energy of the
+/// nucleation on crack). The criterion reads the present load only: the envelope was
 /// measured along straight paths at fixed θ, and a path that turns is judged
 /// by where its load stands, not by how it got there.
 ///
