@@ -3,6 +3,13 @@
 //! from then on the other side can tell the process is there, and see it go
 //! if it ends before serving. A run id that a live node of the same role
 //! already serves is refused at creation.
+//!
+//! iceoryx2's own cleanups of dead nodes (on a node's creation, on a
+//! service's opening) are off under shearcut's configuration
+//! ([`config`](super::loop_services::config)): they would remove a peer's
+//! dead node before this process could see it die. The node's creation
+//! cleans instead, and tells whether the peer it removed was alive just
+//! before.
 
 use std::time::Duration;
 
@@ -11,7 +18,11 @@ use iceoryx2::node::NodeView;
 use iceoryx2::prelude::*;
 
 use super::loop_services::{PeerState, Role, ServiceError, config, is_name, node_name};
+use super::peer_watch::{PeerFate, PeerWatch};
 use super::termination_watch::TerminationWatch;
+
+/// How long a cleanup waits for a concurrent cleaner of the same dead node.
+const CLEANUP_WAIT: Duration = Duration::from_millis(100);
 
 /// One process's node in run `run_id`.
 #[derive(Debug)]
@@ -26,11 +37,18 @@ pub struct RunNode {
     pub role: Role,
     /// SIGINT/SIGTERM, watched from before the node's creation.
     pub watch: TerminationWatch,
+    /// The other role's node in this run, watched from this node's
+    /// creation until the loop starts.
+    pub peer: PeerWatch,
 }
 
 impl RunNode {
     /// Creates `role`'s node for run `run_id` under `prefix`, cleaning the
-    /// resources of dead nodes under that prefix.
+    /// resources of dead nodes under that prefix, and starts watching the
+    /// peer's node: a peer alive just before the creation and dead at its
+    /// cleanup died ([`PeerFate::Died`]); a peer found dead without having
+    /// been seen alive is one of an earlier run, or one that died before
+    /// this process came, and is not seen.
     ///
     /// # Errors
     /// The run id or prefix is not allowed; another live process of this
@@ -43,6 +61,8 @@ impl RunNode {
         let config = config(prefix)?;
         let watch = TerminationWatch::new();
         let own = node_name(role, run_id);
+        let peer = node_name(role.peer(), run_id);
+        let peer_before = node_state(&config, &peer, None);
         let name =
             NodeName::new(&own).map_err(|e| ServiceError::Iceoryx(format!("node name: {e:?}")))?;
         let node = NodeBuilder::new()
@@ -50,23 +70,50 @@ impl RunNode {
             .config(&config)
             .create::<ipc::Service>()
             .map_err(|e| ServiceError::Iceoryx(format!("node: {e:?}")))?;
-        // Stale resources of killed processes under this prefix; the node
-        // creation already tried, this waits for a concurrent cleaner.
-        let _ = node.blocking_cleanup_dead_nodes(Duration::from_millis(100));
+        // Stale resources of killed processes under this prefix.
+        let peer_died = cleanup_dead_nodes(&config, &peer);
         if node_state(&config, &own, Some(node.id())) == PeerState::Alive {
             return Err(ServiceError::RunIdInUse {
                 run_id: run_id.to_string(),
                 role,
             });
         }
+        let initial = match (peer_before, peer_died) {
+            (PeerState::Alive, true) => PeerFate::Died,
+            (PeerState::Alive, false) => PeerFate::Alive,
+            _ => PeerFate::NotSeen,
+        };
+        let peer = PeerWatch::start(config.clone(), peer, initial);
         Ok(Self {
             node,
             run_id: run_id.to_string(),
             config,
             role,
             watch,
+            peer,
         })
     }
+}
+
+/// Removes the stale resources of every dead node under `config` (waiting
+/// up to [`CLEANUP_WAIT`] for a concurrent cleaner of each); whether a dead
+/// node named `peer` was among them.
+fn cleanup_dead_nodes(config: &Config, peer: &str) -> bool {
+    let mut peer_died = false;
+    let _ = Node::<ipc::Service>::list(config, |n| {
+        if let NodeState::Dead(dead) = n {
+            if dead
+                .details()
+                .as_ref()
+                .is_some_and(|d| d.name().as_str() == peer)
+            {
+                peer_died = true;
+            }
+            let _ = dead.blocking_remove_stale_resources(CLEANUP_WAIT);
+        }
+        CallbackProgression::Continue
+    });
+    peer_died
 }
 
 /// The state of the nodes named `name` under `config` other than `except`:
