@@ -1033,6 +1033,11 @@ fn a_run_over_the_series_budget_is_refused_before_it_preallocates() {
         &["`resources.series` = 7.2e7 rows: must be at most 1e6 rows"],
     );
     assert!(!out.exists());
+    // What a run at the budget preallocates (docs/reliability.md quotes it).
+    let bytes = shearcut::closed_loop::record_capacity(72_000_000)
+        * shearcut::closed_loop::LOOP_RECORD_BYTES;
+    eprintln!("records at the series budget: {bytes} bytes");
+    assert_eq!(bytes, 1_000_000 * shearcut::closed_loop::LOOP_RECORD_BYTES);
 }
 
 /// Both children refuse their input (an iceoryx2 prefix that is not
@@ -1063,4 +1068,36 @@ fn issue_27_a_childs_refusal_is_the_supervisors_exit_2_and_one_line() {
     assert_eq!(e.matches(quoted).count(), 2, "{e}");
     assert!(elapsed < STARTUP_FAULT_BOUND, "{elapsed:?}");
     assert!(!out.exists());
+}
+
+/// The number written just before ` label` in `text` (`…, 12 successor
+/// deferrals`).
+fn count_before(text: &str, label: &str) -> u64 {
+    let end = text
+        .find(&format!(" {label}"))
+        .unwrap_or_else(|| panic!("`{label}` not in: {text}"));
+    let word = text[..end].rsplit([' ', ',']).next().unwrap();
+    word.parse()
+        .unwrap_or_else(|e| panic!("`{word}` before `{label}`: {e}"))
+}
+
+/// The realtime plant's successor counts (its end line) reach the
+/// controller's `loop_stats.json` through the plant's counts board.
+#[test]
+fn issue_27_the_plants_successor_counts_are_in_loop_stats() {
+    let sb = sandbox::Sandbox::new("successor-counts");
+    let s = sb.scenario("short-rt", 0.003, REALTIME_SLOW);
+    let out = sb.dir.join("out");
+    let o = sandbox::watchdog(sb.spawn_run(&s, "iceoryx2", &out), sandbox::WATCHDOG);
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(0), "{e}");
+    let stats = sandbox::read_json(&out.join("loop_stats.json"));
+    for label in ["successor deferrals", "successor waits"] {
+        let key = label.replace(' ', "_");
+        assert_eq!(
+            stats[&key].as_u64(),
+            Some(count_before(&e, label)),
+            "{key}: {stats}"
+        );
+    }
 }

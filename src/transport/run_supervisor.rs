@@ -325,7 +325,8 @@ pub fn run_both(
     let mut stopped_by = None;
     let (plant_end, ctl_end) = loop {
         if let Some(sig) = watch.requested_within(Duration::from_millis(5)) {
-            tracing::info!(
+            let _ = writeln!(
+                std::io::stderr(),
                 "run {run_id}: termination requested ({sig}), stopping controller and plant"
             );
             stopped_by = Some(sig);
