@@ -700,6 +700,29 @@ fn timed(child: std::process::Child) -> (Output, std::time::Duration) {
 /// gives the measured times.
 const STARTUP_FAULT_BOUND: std::time::Duration = std::time::Duration::from_secs(5);
 
+/// `child` ends (under the watchdog) with exit 1 and one line holding
+/// `needle`, within [`STARTUP_FAULT_BOUND`].
+fn assert_start_up_fault(child: std::process::Child, needle: &str) {
+    let (o, elapsed) = timed(child);
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{e}");
+    assert_eq!(e.lines().count(), 1, "one line: {e}");
+    assert!(e.contains(needle), "`{needle}` not in: {e}");
+    assert!(elapsed < STARTUP_FAULT_BOUND, "{elapsed:?}");
+}
+
+/// `scenario` with the plant's build made slow (16 segments of a fine
+/// mesh: about a second on the 2-core machine), for faults while it builds.
+fn slow_plant(sb: &sandbox::Sandbox, name: &str) -> String {
+    let s = sb.scenario(name, 0.02, REALTIME_SLOW);
+    let s_text = std::fs::read_to_string(&s)
+        .unwrap()
+        .replace("segments = 2", "segments = 16")
+        .replace("row_spacing = 0.0005", "row_spacing = 0.0001");
+    std::fs::write(&s, s_text).unwrap();
+    s
+}
+
 #[test]
 fn issue_27_a_second_controller_or_plant_on_a_live_run_id_is_refused_at_once() {
     let sb = sandbox::Sandbox::new("in-use");
@@ -752,14 +775,8 @@ fn wait_for_node(prefix: &str, name: &str, child: &mut std::process::Child) {
 #[test]
 fn issue_27_a_plant_that_dies_before_serving_is_reported_at_once() {
     let sb = sandbox::Sandbox::new("plant-dies");
-    // A plant that takes about a second to build (16 segments of a fine
-    // mesh): it is killed while it builds, its node there, its boards not.
-    let s = sb.scenario("slow-plant", 0.02, REALTIME_SLOW);
-    let s_text = std::fs::read_to_string(&s)
-        .unwrap()
-        .replace("segments = 2", "segments = 16")
-        .replace("row_spacing = 0.0005", "row_spacing = 0.0001");
-    std::fs::write(&s, s_text).unwrap();
+    // It is killed while it builds, its node there, its boards not.
+    let s = slow_plant(&sb, "slow-plant");
     let out = sb.dir.join("never");
     let (mut plant, mut controller) = sb.spawn_pair(&s, "dies", &out);
     // The controller past its start-up (its series files exist): its
@@ -773,15 +790,10 @@ fn issue_27_a_plant_that_dies_before_serving_is_reported_at_once() {
     wait_for_node(sb.prefix(), "plant/dies", &mut plant);
     plant.kill().unwrap(); // SIGKILL while it builds.
     plant.wait().unwrap();
-    let (o, elapsed) = timed(controller);
-    let e = stderr(&o);
-    assert_eq!(o.status.code(), Some(1), "{e}");
-    assert_eq!(e.lines().count(), 1, "one line: {e}");
-    assert!(
-        e.contains("the plant 'plant/dies' died before serving run 'dies'"),
-        "{e}"
+    assert_start_up_fault(
+        controller,
+        "the plant 'plant/dies' died before serving run 'dies'",
     );
-    assert!(elapsed < STARTUP_FAULT_BOUND, "{elapsed:?}");
     // The run never started: it leaves no directory.
     assert!(!out.exists());
 }
@@ -818,51 +830,6 @@ fn issue_27_sigint_and_sigterm_stop_an_iceoryx2_run_with_130_and_143() {
     }
 }
 
-/// `scenario` with the plant's build made slow (16 segments of a fine
-/// mesh: about a second on the 2-core machine), for faults while it builds.
-fn slow_plant(sb: &sandbox::Sandbox, name: &str) -> String {
-    let s = sb.scenario(name, 0.02, REALTIME_SLOW);
-    let s_text = std::fs::read_to_string(&s)
-        .unwrap()
-        .replace("segments = 2", "segments = 16")
-        .replace("row_spacing = 0.0005", "row_spacing = 0.0001");
-    std::fs::write(&s, s_text).unwrap();
-    s
-}
-
-/// The plant of run `id`.
-fn spawn_plant(sb: &sandbox::Sandbox, scenario: &str, id: &str) -> std::process::Child {
-    sb.spawn(&[
-        "plant",
-        "--scenario",
-        scenario,
-        "--run-id",
-        id,
-        "--controller",
-        "slice:0.75",
-    ])
-}
-
-/// The controller of run `id`, writing to `out`.
-fn spawn_controller(
-    sb: &sandbox::Sandbox,
-    scenario: &str,
-    id: &str,
-    out: &std::path::Path,
-) -> std::process::Child {
-    sb.spawn(&[
-        "controller",
-        "--scenario",
-        scenario,
-        "--run-id",
-        id,
-        "--controller",
-        "slice:0.75",
-        "--out",
-        out.to_str().unwrap(),
-    ])
-}
-
 /// A controller that dies (SIGKILL) or exits (SIGTERM: a clean stop, its
 /// node removed) before its first command, while its plant builds: the
 /// plant's peer watch saw it alive and sees it go, and the plant says so
@@ -876,9 +843,9 @@ fn issue_27_a_plant_whose_controller_dies_before_its_first_command_says_so_at_on
         ("TERM", "ctl-stopped", "ended before its first command"),
     ] {
         // The controller first: it waits for its plant.
-        let mut controller = spawn_controller(&sb, &s, id, &sb.dir.join(id));
+        let mut controller = sb.spawn_controller(&s, id, &sb.dir.join(id));
         wait_for_node(sb.prefix(), &format!("controller/{id}"), &mut controller);
-        let mut plant = spawn_plant(&sb, &s, id);
+        let mut plant = sb.spawn_plant(&s, id);
         wait_for_node(sb.prefix(), &format!("plant/{id}"), &mut plant);
         // The plant builds for about a second from here.
         let sent = Command::new("kill")
@@ -887,17 +854,12 @@ fn issue_27_a_plant_whose_controller_dies_before_its_first_command_says_so_at_on
             .unwrap();
         assert!(sent.success());
         controller.wait().unwrap();
-        let (o, elapsed) = timed(plant);
-        let e = stderr(&o);
-        assert_eq!(o.status.code(), Some(1), "{signal}: {e}");
-        assert_eq!(e.lines().count(), 1, "{signal}: one line: {e}");
-        assert!(
-            e.contains(&format!(
+        assert_start_up_fault(
+            plant,
+            &format!(
                 "plant/{id}: lost the controller: the controller 'controller/{id}' {cause} of run '{id}'"
-            )),
-            "{signal}: {e}"
+            ),
         );
-        assert!(elapsed < STARTUP_FAULT_BOUND, "{signal}: {elapsed:?}");
     }
 }
 
@@ -909,22 +871,17 @@ fn issue_27_a_plant_whose_controller_dies_before_its_first_command_says_so_at_on
 fn issue_27_a_plant_that_dies_as_its_controller_starts_is_reported_at_once() {
     let sb = sandbox::Sandbox::new("plant-dies-early");
     let s = slow_plant(&sb, "slow-plant");
-    let mut plant = spawn_plant(&sb, &s, "early");
+    let mut plant = sb.spawn_plant(&s, "early");
     wait_for_node(sb.prefix(), "plant/early", &mut plant);
     let out = sb.dir.join("never");
-    let mut controller = spawn_controller(&sb, &s, "early", &out);
+    let mut controller = sb.spawn_controller(&s, "early", &out);
     wait_for_node(sb.prefix(), "controller/early", &mut controller);
     plant.kill().unwrap(); // SIGKILL while it builds.
     plant.wait().unwrap();
-    let (o, elapsed) = timed(controller);
-    let e = stderr(&o);
-    assert_eq!(o.status.code(), Some(1), "{e}");
-    assert_eq!(e.lines().count(), 1, "one line: {e}");
-    assert!(
-        e.contains("the plant 'plant/early' died before serving run 'early'"),
-        "{e}"
+    assert_start_up_fault(
+        controller,
+        "the plant 'plant/early' died before serving run 'early'",
     );
-    assert!(elapsed < STARTUP_FAULT_BOUND, "{elapsed:?}");
     assert!(!out.exists());
 }
 
@@ -989,7 +946,7 @@ fn issue_27_a_signal_during_the_board_retries_stops_the_controller_with_130_or_1
             .create()
             .unwrap();
         let out = sb.dir.join(&id);
-        let mut controller = spawn_controller(&sb, &s, &id, &out);
+        let mut controller = sb.spawn_controller(&s, &id, &out);
         // Its series files come just before its services.
         let series = out.join("controller.csv");
         wait_until("the controller's series files", &mut controller, || {

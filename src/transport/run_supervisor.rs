@@ -134,10 +134,16 @@ impl Supervised {
         }
     }
 
-    /// Waits up to `patience` for the child to end by itself, then asks it
-    /// to stop with SIGTERM ([`stop`], up to `grace`).
-    fn settle(&mut self, patience: Duration, grace: Duration) -> ChildEnd {
-        match wait_within(&mut self.child, patience) {
+    /// Its end once its peer ended as `peer`: after a peer that ended well
+    /// it has up to `grace` to end by itself (then SIGKILL); after a peer
+    /// that failed, [`PEER_FAILED_PATIENCE`], and is then asked to stop with
+    /// SIGTERM ([`stop`], up to `grace`).
+    fn after_peer(&mut self, peer: &ChildEnd, grace: Duration) -> ChildEnd {
+        if peer.is_fine() {
+            let s = wait_or_kill(&mut self.child, grace);
+            return self.ended(s, false);
+        }
+        match wait_within(&mut self.child, PEER_FAILED_PATIENCE) {
             Some(s) => self.ended(Some(s), false),
             None => {
                 let s = stop(&mut self.child, StopSignal::Sigterm, grace);
@@ -338,28 +344,16 @@ pub fn run_both(
             let p = stop(&mut plant.child, sig, PLANT_GRACE);
             break (plant.ended(p, true), c);
         }
+        // After a successful run the plant has acknowledged its end and
+        // leaves by itself; a plant that ended well leaves the controller
+        // writing its results.
         if let Ok(Some(c)) = ctl.child.try_wait() {
             let c = ctl.ended(Some(c), false);
-            // After a successful run the plant has acknowledged its end and
-            // leaves by itself.
-            let p = if c.is_fine() {
-                let p = wait_or_kill(&mut plant.child, PLANT_GRACE);
-                plant.ended(p, false)
-            } else {
-                plant.settle(PEER_FAILED_PATIENCE, PLANT_GRACE)
-            };
-            break (p, c);
+            break (plant.after_peer(&c, PLANT_GRACE), c);
         }
         if let Ok(Some(p)) = plant.child.try_wait() {
             let p = plant.ended(Some(p), false);
-            // A plant that ended well (the controller ended the run) leaves
-            // the controller writing its results.
-            let c = if p.is_fine() {
-                let c = wait_or_kill(&mut ctl.child, CONTROLLER_GRACE);
-                ctl.ended(c, false)
-            } else {
-                ctl.settle(PEER_FAILED_PATIENCE, CONTROLLER_GRACE)
-            };
+            let c = ctl.after_peer(&p, CONTROLLER_GRACE);
             break (p, c);
         }
     };
