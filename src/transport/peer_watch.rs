@@ -9,10 +9,11 @@ use std::sync::{Arc, Mutex};
 use std::thread::JoinHandle;
 use std::time::Duration;
 
+use iceoryx2::identifiers::UniqueNodeId;
 use iceoryx2::prelude::*;
 
 use super::loop_services::{PeerState, Role, node_name};
-use super::run_node::node_state;
+use super::run_node::look;
 
 /// How often the watch looks at the peer's node (iceoryx2's node list:
 /// about 1.2k allocations a look, on the watch's own thread).
@@ -72,8 +73,15 @@ pub struct PeerWatch {
 
 impl PeerWatch {
     /// Starts watching the node named `peer` under `config`, from what was
-    /// known at the start (`initial`).
-    pub fn start(config: Config, peer: String, initial: PeerFate) -> Self {
+    /// known at the start (`initial`; `seen`, the id of the peer's node seen
+    /// alive). Only the node seen alive can die or end: a dead node of the
+    /// same name never seen alive is an earlier run's.
+    pub fn start(
+        config: Config,
+        peer: String,
+        initial: PeerFate,
+        seen: Option<UniqueNodeId>,
+    ) -> Self {
         let fate = Arc::new(AtomicU8::new(initial as u8));
         let stop = Arc::new(AtomicBool::new(false));
         let thread = if initial.is_gone() {
@@ -83,9 +91,11 @@ impl PeerWatch {
             std::thread::Builder::new()
                 .name("peer-watch".to_string())
                 .spawn(move || {
+                    let mut seen = seen;
                     while !stop.load(Ordering::Acquire) {
-                        let now = PeerFate::from_code(fate.load(Ordering::Acquire))
-                            .after(node_state(&config, &peer, None));
+                        let (state, id) = look(&config, &peer, seen);
+                        seen = id;
+                        let now = PeerFate::from_code(fate.load(Ordering::Acquire)).after(state);
                         fate.store(now as u8, Ordering::Release);
                         if now.is_gone() {
                             break;

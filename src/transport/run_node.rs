@@ -62,7 +62,7 @@ impl RunNode {
         let watch = TerminationWatch::new();
         let own = node_name(role, run_id);
         let peer = node_name(role.peer(), run_id);
-        let peer_before = node_state(&config, &peer, None);
+        let (_, peer_before) = look(&config, &peer, None);
         let name =
             NodeName::new(&own).map_err(|e| ServiceError::Iceoryx(format!("node name: {e:?}")))?;
         let node = NodeBuilder::new()
@@ -71,19 +71,21 @@ impl RunNode {
             .create::<ipc::Service>()
             .map_err(|e| ServiceError::Iceoryx(format!("node: {e:?}")))?;
         // Stale resources of killed processes under this prefix.
-        let peer_died = cleanup_dead_nodes(&config, &peer);
+        let dead_peers = cleanup_dead_nodes(&config, &peer);
         if node_state(&config, &own, Some(node.id())) == PeerState::Alive {
             return Err(ServiceError::RunIdInUse {
                 run_id: run_id.to_string(),
                 role,
             });
         }
-        let initial = match (peer_before, peer_died) {
-            (PeerState::Alive, true) => PeerFate::Died,
-            (PeerState::Alive, false) => PeerFate::Alive,
-            _ => PeerFate::NotSeen,
+        // A dead peer node other than the one seen alive is an earlier
+        // run's (or one that died before it could be seen).
+        let initial = match peer_before {
+            Some(id) if dead_peers.contains(&id) => PeerFate::Died,
+            Some(_) => PeerFate::Alive,
+            None => PeerFate::NotSeen,
         };
-        let peer = PeerWatch::start(config.clone(), peer, initial);
+        let peer = PeerWatch::start(config.clone(), peer, initial, peer_before);
         Ok(Self {
             node,
             run_id: run_id.to_string(),
@@ -96,10 +98,10 @@ impl RunNode {
 }
 
 /// Removes the stale resources of every dead node under `config` (waiting
-/// up to [`CLEANUP_WAIT`] for a concurrent cleaner of each); whether a dead
-/// node named `peer` was among them.
-fn cleanup_dead_nodes(config: &Config, peer: &str) -> bool {
-    let mut peer_died = false;
+/// up to [`CLEANUP_WAIT`] for a concurrent cleaner of each); the ids of the
+/// dead nodes named `peer` among them.
+fn cleanup_dead_nodes(config: &Config, peer: &str) -> Vec<UniqueNodeId> {
+    let mut dead_peers = Vec::new();
     let _ = Node::<ipc::Service>::list(config, |n| {
         if let NodeState::Dead(dead) = n {
             if dead
@@ -107,13 +109,52 @@ fn cleanup_dead_nodes(config: &Config, peer: &str) -> bool {
                 .as_ref()
                 .is_some_and(|d| d.name().as_str() == peer)
             {
-                peer_died = true;
+                dead_peers.push(*dead.id());
             }
             let _ = dead.blocking_remove_stale_resources(CLEANUP_WAIT);
         }
         CallbackProgression::Continue
     });
-    peer_died
+    dead_peers
+}
+
+/// A look at the nodes named `name` under `config`: with `seen`, the state
+/// of that node (alive, dead, or absent: gone); without, alive and its id
+/// if one of them is alive, else absent (a dead one never seen alive is an
+/// earlier run's, or died unseen). Lists every node of the prefix (about
+/// 1.2k allocations): keep it off the tick path.
+pub fn look(
+    config: &Config,
+    name: &str,
+    seen: Option<UniqueNodeId>,
+) -> (PeerState, Option<UniqueNodeId>) {
+    let mut found = (PeerState::Absent, seen);
+    let _ = Node::<ipc::Service>::list(config, |n| {
+        let (id, details, alive) = match &n {
+            NodeState::Alive(v) => (*v.id(), v.details(), true),
+            NodeState::Dead(v) => (*v.id(), v.details(), false),
+            _ => return CallbackProgression::Continue,
+        };
+        if details.as_ref().is_none_or(|d| d.name().as_str() != name) {
+            return CallbackProgression::Continue;
+        }
+        match seen {
+            Some(s) if s == id => {
+                found.0 = if alive {
+                    PeerState::Alive
+                } else {
+                    PeerState::Dead
+                };
+                CallbackProgression::Stop
+            }
+            None if alive => {
+                found = (PeerState::Alive, Some(id));
+                CallbackProgression::Stop
+            }
+            _ => CallbackProgression::Continue,
+        }
+    });
+    found
 }
 
 /// The state of the nodes named `name` under `config` other than `except`:
