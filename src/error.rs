@@ -93,9 +93,19 @@ pub enum RunError {
         /// What was stopped, on one line.
         message: String,
     },
+    /// A child process of `run --transport iceoryx2` failed: the supervisor
+    /// exits with `code` (2 when a child refused its input, 130/143 when a
+    /// child was stopped by a signal the supervisor did not send, else 1).
+    #[error("{message}")]
+    Supervised {
+        /// The exit code.
+        code: u8,
+        /// How each failed child ended, with its error line, on one line.
+        message: String,
+    },
     /// A signal stopped the run after its results were written: exit code
     /// 130 (SIGINT) or 143 (SIGTERM).
-    #[error("stopped by {signal:?}: partial results in {dir}/")]
+    #[error("stopped by {signal}: partial results in {dir}/")]
     Stopped {
         /// The signal.
         signal: crate::transport::StopSignal,
@@ -117,6 +127,7 @@ impl RunError {
             RunError::Stopped { signal, .. } | RunError::Signalled { signal, .. } => {
                 signal.exit_code()
             }
+            RunError::Supervised { code, .. } => *code,
             RunError::Write { .. } | RunError::Loop(_) | RunError::Stdout(_) => 1,
         }
     }
@@ -128,16 +139,33 @@ impl RunError {
     }
 
     /// The error of a process named `name` (`plant/<run-id>`) whose
-    /// iceoryx2 services failed: a run id in use is bad input (exit 2),
-    /// anything else a failed run (exit 1).
+    /// iceoryx2 services failed: a run id that is not allowed or in use, or
+    /// a prefix that is not allowed, is bad input (exit 2), a signal during
+    /// the set-up a stop (130/143), anything else a failed run (exit 1).
     pub fn service(name: &str, e: crate::transport::ServiceError) -> Self {
+        use crate::transport::loop_services::PREFIX_ENV;
+        let names = "characters among letters, digits, '-', '_' and '.'";
         match e {
+            crate::transport::ServiceError::RunId(id) => RunError::Config(ConfigError::Argument(
+                InvalidSetting::new("--run-id", id, format!("must be 1 to 64 {names}")),
+            )),
+            crate::transport::ServiceError::Prefix(prefix) => {
+                RunError::Config(ConfigError::Argument(InvalidSetting::new(
+                    PREFIX_ENV,
+                    prefix,
+                    format!("must be 1 to 32 {names} (the iceoryx2 prefix)"),
+                )))
+            }
             crate::transport::ServiceError::RunIdInUse { run_id, role } => {
                 RunError::Config(ConfigError::RunIdInUse {
                     run_id,
                     role: role.as_str(),
                 })
             }
+            crate::transport::ServiceError::Stopped(signal) => RunError::Signalled {
+                signal,
+                message: format!("{name}: {e}"),
+            },
             e => RunError::Loop(format!("{name}: {e}")),
         }
     }

@@ -731,9 +731,16 @@ pub fn check_controller_ranges(c: &ControllerSettings) -> Result<(), InvalidSett
     if let Some(b) = c.blade_budget {
         EDGE_OFFSET.check("blade_budget", b)?;
     }
-    match c.kind {
-        ControllerChoice::Slice(xi) => SLICE_PUSH_RATIO.check("kind (slice ratio)", xi),
-        ControllerChoice::Force(f) => FORCE.check("kind (force setpoint)", f),
+    check_controller_kind("kind", c.kind)
+}
+
+/// The physical range of a controller choice's constant (its slice-push
+/// ratio or force setpoint), named `<key> (slice ratio)` or `<key> (force
+/// setpoint)` in an error.
+pub fn check_controller_kind(key: &str, kind: ControllerChoice) -> Result<(), InvalidSetting> {
+    match kind {
+        ControllerChoice::Slice(xi) => SLICE_PUSH_RATIO.check(&format!("{key} (slice ratio)"), xi),
+        ControllerChoice::Force(f) => FORCE.check(&format!("{key} (force setpoint)"), f),
         ControllerChoice::Mpc | ControllerChoice::Press => Ok(()),
     }
 }

@@ -700,6 +700,29 @@ fn timed(child: std::process::Child) -> (Output, std::time::Duration) {
 /// gives the measured times.
 const STARTUP_FAULT_BOUND: std::time::Duration = std::time::Duration::from_secs(5);
 
+/// `child` ends (under the watchdog) with exit 1 and one line holding
+/// `needle`, within [`STARTUP_FAULT_BOUND`].
+fn assert_start_up_fault(child: std::process::Child, needle: &str) {
+    let (o, elapsed) = timed(child);
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{e}");
+    assert_eq!(e.lines().count(), 1, "one line: {e}");
+    assert!(e.contains(needle), "`{needle}` not in: {e}");
+    assert!(elapsed < STARTUP_FAULT_BOUND, "{elapsed:?}");
+}
+
+/// `scenario` with the plant's build made slow (16 segments of a fine
+/// mesh: about a second on the 2-core machine), for faults while it builds.
+fn slow_plant(sb: &sandbox::Sandbox, name: &str) -> String {
+    let s = sb.scenario(name, 0.02, REALTIME_SLOW);
+    let s_text = std::fs::read_to_string(&s)
+        .unwrap()
+        .replace("segments = 2", "segments = 16")
+        .replace("row_spacing = 0.0005", "row_spacing = 0.0001");
+    std::fs::write(&s, s_text).unwrap();
+    s
+}
+
 #[test]
 fn issue_27_a_second_controller_or_plant_on_a_live_run_id_is_refused_at_once() {
     let sb = sandbox::Sandbox::new("in-use");
@@ -752,14 +775,8 @@ fn wait_for_node(prefix: &str, name: &str, child: &mut std::process::Child) {
 #[test]
 fn issue_27_a_plant_that_dies_before_serving_is_reported_at_once() {
     let sb = sandbox::Sandbox::new("plant-dies");
-    // A plant that takes about a second to build (16 segments of a fine
-    // mesh): it is killed while it builds, its node there, its boards not.
-    let s = sb.scenario("slow-plant", 0.02, REALTIME_SLOW);
-    let s_text = std::fs::read_to_string(&s)
-        .unwrap()
-        .replace("segments = 2", "segments = 16")
-        .replace("row_spacing = 0.0005", "row_spacing = 0.0001");
-    std::fs::write(&s, s_text).unwrap();
+    // It is killed while it builds, its node there, its boards not.
+    let s = slow_plant(&sb, "slow-plant");
     let out = sb.dir.join("never");
     let (mut plant, mut controller) = sb.spawn_pair(&s, "dies", &out);
     // The controller past its start-up (its series files exist): its
@@ -773,15 +790,10 @@ fn issue_27_a_plant_that_dies_before_serving_is_reported_at_once() {
     wait_for_node(sb.prefix(), "plant/dies", &mut plant);
     plant.kill().unwrap(); // SIGKILL while it builds.
     plant.wait().unwrap();
-    let (o, elapsed) = timed(controller);
-    let e = stderr(&o);
-    assert_eq!(o.status.code(), Some(1), "{e}");
-    assert_eq!(e.lines().count(), 1, "one line: {e}");
-    assert!(
-        e.contains("the plant 'plant/dies' died before serving run 'dies'"),
-        "{e}"
+    assert_start_up_fault(
+        controller,
+        "the plant 'plant/dies' died before serving run 'dies'",
     );
-    assert!(elapsed < STARTUP_FAULT_BOUND, "{elapsed:?}");
     // The run never started: it leaves no directory.
     assert!(!out.exists());
 }
@@ -815,5 +827,234 @@ fn issue_27_sigint_and_sigterm_stop_an_iceoryx2_run_with_130_and_143() {
         assert_eq!(v["ticks"].as_u64().unwrap() as usize, rows, "{summary}");
         assert_eq!(v["dropped_rows"]["controller"], 0, "{summary}");
         assert!(out.join("loop_stats.json").is_file());
+    }
+}
+
+/// A controller that dies (SIGKILL) or exits (SIGTERM: a clean stop, its
+/// node removed) before its first command, while its plant builds: the
+/// plant's peer watch saw it alive and sees it go, and the plant says so
+/// as soon as its build is done (not after its 30 s connect timeout).
+#[test]
+fn issue_27_a_plant_whose_controller_dies_before_its_first_command_says_so_at_once() {
+    let sb = sandbox::Sandbox::new("controller-dies");
+    let s = slow_plant(&sb, "slow-plant");
+    for (signal, id, cause) in [
+        ("KILL", "ctl-killed", "died before its first command"),
+        ("TERM", "ctl-stopped", "ended before its first command"),
+    ] {
+        // The controller first: it waits for its plant.
+        let mut controller = sb.spawn_controller(&s, id, &sb.dir.join(id));
+        wait_for_node(sb.prefix(), &format!("controller/{id}"), &mut controller);
+        let mut plant = sb.spawn_plant(&s, id);
+        wait_for_node(sb.prefix(), &format!("plant/{id}"), &mut plant);
+        // The plant builds for about a second from here.
+        let sent = Command::new("kill")
+            .args([&format!("-{signal}"), &controller.id().to_string()])
+            .status()
+            .unwrap();
+        assert!(sent.success());
+        controller.wait().unwrap();
+        assert_start_up_fault(
+            plant,
+            &format!(
+                "plant/{id}: lost the controller: the controller 'controller/{id}' {cause} of run '{id}'"
+            ),
+        );
+    }
+}
+
+/// A plant killed while its controller starts (its node just created, its
+/// dead-node cleanup running or just done): the controller saw the plant
+/// alive before its cleanup and reports its death, instead of taking it
+/// for a plant that never came and waiting for its connect timeout.
+#[test]
+fn issue_27_a_plant_that_dies_as_its_controller_starts_is_reported_at_once() {
+    let sb = sandbox::Sandbox::new("plant-dies-early");
+    let s = slow_plant(&sb, "slow-plant");
+    let mut plant = sb.spawn_plant(&s, "early");
+    wait_for_node(sb.prefix(), "plant/early", &mut plant);
+    let out = sb.dir.join("never");
+    let mut controller = sb.spawn_controller(&s, "early", &out);
+    wait_for_node(sb.prefix(), "controller/early", &mut controller);
+    plant.kill().unwrap(); // SIGKILL while it builds.
+    plant.wait().unwrap();
+    assert_start_up_fault(
+        controller,
+        "the plant 'plant/early' died before serving run 'early'",
+    );
+    assert!(!out.exists());
+}
+
+/// The supervisor refuses bad input itself, before it starts a process:
+/// exit 2 and the one line `run` gives in process (both children used to
+/// fail on it and the supervisor exit 1).
+#[test]
+fn issue_27_an_iceoryx2_run_on_bad_input_exits_2_with_one_line() {
+    let sb = sandbox::Sandbox::new("ipc-bad-input");
+    let s = sb.scenario("bad", 0.003, "\n[controller]\nkind = \"force:0\"\n");
+    let out = sb.dir.join("never");
+    let (o, _) = timed(sb.spawn_run(&s, "iceoryx2", &out));
+    assert_refused(&o, &["force"]);
+    assert!(!out.exists());
+    // A controller the command line names, refused the same way, within
+    // the ranges of the scenario's `[controller] kind`.
+    let s = sb.scenario("good", 0.003, "");
+    for (controller, needle) in [
+        ("shear:1", "`--controller` = shear:1: one of"),
+        (
+            "slice:1000",
+            "`--controller (slice ratio)` = 1000: must be in [0, 20]",
+        ),
+    ] {
+        let (o, _) = timed(sb.spawn(&[
+            "run",
+            &s,
+            "--controller",
+            controller,
+            "--transport",
+            "iceoryx2",
+            "--out",
+            out.to_str().unwrap(),
+        ]));
+        assert_refused(&o, &[needle]);
+        assert!(!out.exists());
+    }
+}
+
+/// A squatter holding the run's command board (a node of another name):
+/// the controller's board creation retries for a second; a SIGINT or
+/// SIGTERM meanwhile stops it at once with 130/143 and one line, not as a
+/// failed board after the retries.
+#[test]
+fn issue_27_a_signal_during_the_board_retries_stops_the_controller_with_130_or_143() {
+    use iceoryx2::prelude::*;
+    use shearcut::transport::wire::WireCommand;
+    let sb = sandbox::Sandbox::new("board-signal");
+    let s = sb.scenario("short", 0.003, "");
+    let config = shearcut::transport::loop_services::config(sb.prefix()).unwrap();
+    let node = NodeBuilder::new()
+        .config(&config)
+        .create::<ipc::Service>()
+        .unwrap();
+    for (signal, code, name) in [("INT", 130, "SIGINT"), ("TERM", 143, "SIGTERM")] {
+        let id = format!("held-{name}");
+        let service = ServiceName::new(&format!("shearcut/{id}/command")).unwrap();
+        let _board = node
+            .service_builder(&service)
+            .blackboard_creator::<u64>()
+            .add::<WireCommand>(0, WireCommand::empty())
+            .create()
+            .unwrap();
+        let out = sb.dir.join(&id);
+        let mut controller = sb.spawn_controller(&s, &id, &out);
+        // Its series files come just before its services.
+        let series = out.join("controller.csv");
+        wait_until("the controller's series files", &mut controller, || {
+            series.exists()
+        });
+        let sent = Command::new("kill")
+            .args([&format!("-{signal}"), &controller.id().to_string()])
+            .status()
+            .unwrap();
+        assert!(sent.success());
+        let (o, _) = timed(controller);
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(code), "{name}: {e}");
+        assert_eq!(e.lines().count(), 1, "{name}: one line: {e}");
+        assert!(
+            e.contains(&format!(
+                "controller/{id}: stopped by {name} while starting"
+            )),
+            "{name}: {e}"
+        );
+    }
+}
+
+/// A scenario whose series would exceed the budget is refused by `run`
+/// before it preallocates anything: the loop's records are preallocated
+/// for at most the budget's rows (`record_capacity`).
+#[test]
+fn a_run_over_the_series_budget_is_refused_before_it_preallocates() {
+    let d = Dir::new("run-budget");
+    let s = d.file(
+        "s.toml",
+        &with_table(
+            &quick_loop_text().replace("[controller]", "[controller]\nmax_duration = 3600"),
+            "[loop]\nrate_hz = 20000",
+        ),
+    );
+    let out = d.0.join("never");
+    let o = shearcut(&["run", &s, "--out", out.to_str().unwrap()]);
+    assert_refused(
+        &o,
+        &["`resources.series` = 7.2e7 rows: must be at most 1e6 rows"],
+    );
+    assert!(!out.exists());
+    // What a run at the budget preallocates (docs/reliability.md quotes it).
+    let bytes = shearcut::closed_loop::record_capacity(72_000_000)
+        * shearcut::closed_loop::LOOP_RECORD_BYTES;
+    eprintln!("records at the series budget: {bytes} bytes");
+    assert_eq!(bytes, 1_000_000 * shearcut::closed_loop::LOOP_RECORD_BYTES);
+}
+
+/// Both children refuse their input (an iceoryx2 prefix that is not
+/// allowed, from the environment they inherit): the supervisor exits 2, not
+/// 1, on one line that quotes each child's line.
+#[test]
+fn issue_27_a_childs_refusal_is_the_supervisors_exit_2_and_one_line() {
+    let sb = sandbox::Sandbox::new("ipc-child-refuses");
+    let s = sb.scenario("short", 0.003, "");
+    let out = sb.dir.join("never");
+    let child = Command::new(env!("CARGO_BIN_EXE_shearcut"))
+        .args(["run", &s, "--transport", "iceoryx2", "--out"])
+        .arg(&out)
+        .env("RUST_LOG", "error")
+        .env("SHEARCUT_IPC_PREFIX", "not/a/prefix")
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    let (o, elapsed) = timed(child);
+    let e = stderr(&o);
+    assert_refused(&o, &["failed: the "]);
+    for role in ["controller", "plant"] {
+        assert!(e.contains(&format!("the {role} process (pid ")), "{e}");
+    }
+    let quoted =
+        "exited with code 2: `SHEARCUT_IPC_PREFIX` = not/a/prefix: must be 1 to 32 characters";
+    assert_eq!(e.matches(quoted).count(), 2, "{e}");
+    assert!(elapsed < STARTUP_FAULT_BOUND, "{elapsed:?}");
+    assert!(!out.exists());
+}
+
+/// The number written just before ` label` in `text` (`…, 12 successor
+/// deferrals`).
+fn count_before(text: &str, label: &str) -> u64 {
+    let end = text
+        .find(&format!(" {label}"))
+        .unwrap_or_else(|| panic!("`{label}` not in: {text}"));
+    let word = text[..end].rsplit([' ', ',']).next().unwrap();
+    word.parse()
+        .unwrap_or_else(|e| panic!("`{word}` before `{label}`: {e}"))
+}
+
+/// The realtime plant's successor counts (its end line) reach the
+/// controller's `loop_stats.json` through the plant's counts board.
+#[test]
+fn issue_27_the_plants_successor_counts_are_in_loop_stats() {
+    let sb = sandbox::Sandbox::new("successor-counts");
+    let s = sb.scenario("short-rt", 0.003, REALTIME_SLOW);
+    let out = sb.dir.join("out");
+    let o = sandbox::watchdog(sb.spawn_run(&s, "iceoryx2", &out), sandbox::WATCHDOG);
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(0), "{e}");
+    let stats = sandbox::read_json(&out.join("loop_stats.json"));
+    for label in ["successor deferrals", "successor waits"] {
+        let key = label.replace(' ', "_");
+        assert_eq!(
+            stats[&key].as_u64(),
+            Some(count_before(&e, label)),
+            "{key}: {stats}"
+        );
     }
 }

@@ -86,7 +86,7 @@ impl CutStory {
             LoopEnd::ControllerDone => "the controller ended its cut, knife at rest".to_string(),
             LoopEnd::TimedOut => "timed out".to_string(),
             LoopEnd::Failed(why) => format!("failed: {why}"),
-            LoopEnd::Stopped(signal) => format!("stopped by {signal:?}"),
+            LoopEnd::Stopped(signal) => format!("stopped by {signal}"),
         };
         match truth {
             Some(t) => tracing::info!(

@@ -4,6 +4,7 @@ use shearcut_plant::Plant;
 use shearcut_sim::arm::KnifeCommand;
 
 use super::plant_link::{LinkAnswer, LinkError, PlantLink};
+use crate::transport::wire::WirePlantCounts;
 
 /// A [`Plant`] stepped directly: each command advances it one period.
 #[derive(Debug, Clone)]
@@ -37,6 +38,13 @@ impl PlantLink for InProcessPlant {
         Ok(LinkAnswer {
             reading: step.reading,
             truth: Some(step.truth),
+        })
+    }
+
+    fn successor_counts(&self) -> Option<WirePlantCounts> {
+        Some(WirePlantCounts {
+            successor_deferrals: self.plant.successor_deferrals() as u64,
+            successor_waits: self.plant.successor_waits() as u64,
         })
     }
 }

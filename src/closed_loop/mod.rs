@@ -23,6 +23,8 @@ pub use loop_setup::{
     LoopSetup, cut_task, make_controller, make_plant, mpc_cutting_ratio, mpc_profile, mpc_start,
 };
 pub use plant_link::{LinkAnswer, LinkError, PlantLink};
-pub use runner::{LoopCut, LoopEnd, LoopOutput, run_loop, run_loop_recorded};
+pub use runner::{
+    LOOP_RECORD_BYTES, LoopCut, LoopEnd, LoopOutput, record_capacity, run_loop, run_loop_recorded,
+};
 pub use series_stream::{DroppedRows, LoopRecorder, NoRecorder, QUEUE_RECORDS, SeriesStream};
 pub use series_writer::FLUSH_PERIOD;

@@ -5,6 +5,7 @@ use shearcut_plant::PlantTruth;
 use shearcut_sim::arm::{ArmReading, KnifeCommand};
 
 use crate::transport::StopSignal;
+use crate::transport::wire::WirePlantCounts;
 
 /// Why a plant link stopped answering.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -17,7 +18,7 @@ pub enum LinkError {
     Lost(String),
     /// A signal (SIGINT/SIGTERM) asked this process to stop while it
     /// waited for the plant.
-    #[error("stopped by {0:?} while waiting for the plant")]
+    #[error("stopped by {0} while waiting for the plant")]
     Stopped(StopSignal),
 }
 
@@ -44,4 +45,10 @@ pub trait PlantLink {
     /// # Errors
     /// The plant failed or is gone.
     fn exchange(&mut self, command: &KnifeCommand) -> Result<LinkAnswer, LinkError>;
+
+    /// The simulated plant's successor counts so far; `None` for a plant
+    /// without them (an arm, or a remote plant that has not published them).
+    fn successor_counts(&self) -> Option<WirePlantCounts> {
+        None
+    }
 }

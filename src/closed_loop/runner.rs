@@ -12,6 +12,7 @@ use super::plant_link::{LinkError, PlantLink};
 use super::series_stream::{LoopRecorder, NoRecorder};
 use crate::cut_record::CutSample;
 use crate::transport::StopSignal;
+use shearcut_sim::resource_budget::SERIES_ROWS_BUDGET;
 
 /// Speed below which the knife is at rest, m/s: a nanometre per second, far
 /// below any arm's resolution, far above the residue a jerk-limited stop
@@ -140,8 +141,8 @@ pub fn run_loop_recorded(
 ) -> LoopOutput {
     let max_ticks = (cut.max_duration / link.period()).ceil() as usize;
     // Every per-tick record is preallocated: the loop thread never
-    // allocates while it runs (up to 2²⁰ ticks).
-    let capacity = max_ticks.min(1 << 20);
+    // allocates while it runs (within the series budget).
+    let capacity = record_capacity(max_ticks);
     let mut samples = Vec::with_capacity(capacity);
     let mut control = Vec::with_capacity(capacity);
     let mut durations = Vec::with_capacity(capacity);
@@ -218,6 +219,24 @@ pub fn run_loop_recorded(
     }
 }
 
+/// Ticks of records [`run_loop_recorded`] preallocates for a loop of at
+/// most `max_ticks` ticks: at most [`SERIES_ROWS_BUDGET`], the rows a
+/// scenario's `controller.max_duration × loop.rate_hz` may ask for
+/// (`sim/src/resource_budget.rs`; a scenario above it is refused on load).
+/// A tick holds [`LOOP_RECORD_BYTES`], so the preallocation is at most
+/// [`SERIES_ROWS_BUDGET`] × [`LOOP_RECORD_BYTES`] (address space; pages
+/// become resident as the ticks fill them). A loop built outside a scenario
+/// that runs longer grows its records past the capacity.
+pub fn record_capacity(max_ticks: usize) -> usize {
+    max_ticks.min(SERIES_ROWS_BUDGET as usize)
+}
+
+/// Bytes [`run_loop_recorded`] holds per tick: a cut sample, a control
+/// record and two tick durations.
+pub const LOOP_RECORD_BYTES: usize = std::mem::size_of::<CutSample>()
+    + std::mem::size_of::<ControlSample>()
+    + 2 * std::mem::size_of::<f64>();
+
 fn failed(e: LinkError, wall_s: f64) -> LoopOutput {
     LoopOutput {
         samples: Vec::new(),
@@ -286,6 +305,13 @@ mod tests {
     /// A controller done with the knife at rest (to within floating-point
     /// residue) ends the loop at once rather than idling until the time runs
     /// out.
+    #[test]
+    fn the_preallocation_is_bounded_by_the_series_budget() {
+        // An hour at 20 kHz would be 72 million ticks: the budget caps it.
+        assert_eq!(record_capacity(72_000_000), SERIES_ROWS_BUDGET as usize);
+        assert_eq!(record_capacity(548), 548);
+    }
+
     #[test]
     fn a_done_controller_at_rest_ends_the_loop() {
         let mut arm = EchoArm {

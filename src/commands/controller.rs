@@ -7,7 +7,7 @@ use std::path::Path;
 
 use serde::Serialize;
 
-use crate::closed_loop::LinkError;
+use crate::closed_loop::{LinkError, PlantLink};
 use crate::closed_loop::{LoopEnd, SeriesStream, TickTimes, run_loop_recorded};
 use crate::closed_loop::{LoopSetup, RunOutput};
 use crate::commands::run::{Transport, print_summary, write_results};
@@ -17,10 +17,11 @@ use crate::error::{ConfigError, RunError};
 use crate::result_file::write_json;
 use crate::run_dir::{self, Destination};
 use crate::run_replica::RunReplica;
-use crate::scenario::{ClockMode, Scenario};
+use crate::scenario::{ClockMode, Scenario, check_controller_kind};
 use crate::transport::loop_services::{node_name, prefix};
 use crate::transport::servo_priority::raise_servo_thread;
 use crate::transport::{Iceoryx2PlantLink, LinkTimeouts, LoopServices, Role, RunNode, WaitMode};
+use shearcut_sim::InvalidSetting;
 
 /// `loop_stats.json`: how the link between the processes behaved.
 #[derive(Debug, Serialize)]
@@ -35,17 +36,33 @@ struct LoopStats<'a> {
     missed_commands: u32,
     /// Commands the arm refused for breaking a limit.
     limit_faults: usize,
+    /// The simulated plant's successor sections found unbuilt when due and
+    /// gone on without (realtime clock; `null` from a plant that does not
+    /// publish its counts, e.g. an arm bridge).
+    successor_deferrals: Option<u64>,
+    /// The simulated plant's successor sections waited for (lockstep;
+    /// `null` as above).
+    successor_waits: Option<u64>,
     end: &'a LoopEnd,
 }
 
-/// The controller choice named on the command line, or the scenario's.
+/// The controller choice named on the command line (`--controller`,
+/// within the same ranges as the scenario's `[controller] kind`), or the
+/// scenario's.
 pub fn controller_choice(s: &Scenario, text: Option<&str>) -> Result<ControllerChoice, RunError> {
-    match text {
-        Some(text) => text
-            .parse::<ControllerChoice>()
-            .map_err(|e| RunError::Config(ConfigError::Argument(e.prefixed("-")))),
-        None => Ok(s.controller.kind),
-    }
+    const KEY: &str = "--controller";
+    let Some(text) = text else {
+        return Ok(s.controller.kind);
+    };
+    let refused = |e: InvalidSetting| RunError::Config(ConfigError::Argument(e));
+    let choice = text.parse::<ControllerChoice>().map_err(|e| {
+        refused(InvalidSetting {
+            key: KEY.to_string(),
+            ..e
+        })
+    })?;
+    check_controller_kind(KEY, choice).map_err(refused)?;
+    Ok(choice)
 }
 
 /// The link's timeouts for a scenario: the plant must serve the run within
@@ -147,6 +164,9 @@ fn serve(
     };
     write_results(s, &run, Transport::Iceoryx2, dropped, dir)?;
     let round_trip = link.round_trips();
+    // The plant writes its counts before each answer: after the end of the
+    // run's acknowledgement they are final.
+    let successors = link.successor_counts();
     write_json(
         &dir.join("loop_stats.json"),
         &LoopStats {
@@ -160,6 +180,8 @@ fn serve(
             round_trip,
             missed_commands: link.missed_commands(),
             limit_faults: run.output.limit_faults,
+            successor_deferrals: successors.map(|c| c.successor_deferrals),
+            successor_waits: successors.map(|c| c.successor_waits),
             end: &run.output.end,
         },
     )?;

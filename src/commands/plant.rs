@@ -3,12 +3,15 @@
 //! (`shearcut controller`) until the run ends, the plant brakes after too
 //! many missed commands, or SIGINT/SIGTERM.
 
+use std::io::Write;
+
 use crate::closed_loop::InProcessPlant;
 use crate::closed_loop::LoopSetup;
 use crate::commands::controller::controller_choice;
 use crate::error::RunError;
 use crate::scenario::{ClockMode, Scenario};
 use crate::transport::loop_services::{node_name, prefix};
+use crate::transport::peer_watch::{PeerFate, gone_before_loop};
 use crate::transport::{
     LoopServices, PlantEnd, PlantServerSettings, Role, RunNode, WaitMode, serve_plant,
 };
@@ -60,7 +63,11 @@ pub fn run(
     );
     match report.end {
         PlantEnd::Ended => {
-            eprintln!("{name}: the controller ended the run; {counts}");
+            // A closed stderr (a supervisor gone) leaves the exit code.
+            let _ = writeln!(
+                std::io::stderr(),
+                "{name}: the controller ended the run; {counts}"
+            );
             Ok(())
         }
         PlantEnd::Braked(n) => Err(RunError::Loop(format!(
@@ -74,9 +81,17 @@ pub fn run(
             "{name}: no controller sent a command within {:?}",
             settings.connect_timeout
         ))),
+        PlantEnd::ControllerDied => Err(RunError::Loop(format!(
+            "{name}: lost the controller: {}",
+            gone_before_loop(Role::Controller, run_id, PeerFate::Died)
+        ))),
+        PlantEnd::ControllerEnded => Err(RunError::Loop(format!(
+            "{name}: lost the controller: {}",
+            gone_before_loop(Role::Controller, run_id, PeerFate::Ended)
+        ))),
         PlantEnd::Terminated(signal) => Err(RunError::Signalled {
             signal,
-            message: format!("{name}: stopped by {signal:?}; {counts}"),
+            message: format!("{name}: stopped by {signal}; {counts}"),
         }),
     }
 }

@@ -10,7 +10,6 @@ use shearcut_sim::InvalidSetting;
 use crate::closed_loop::{
     DroppedRows, LoopEnd, RunOutput, SeriesStream, TickTimes, run_closed_loop_recorded,
 };
-use crate::controller_choice::ControllerChoice;
 use crate::cut_record::{CutSample, CutSummary};
 use crate::error::{ConfigError, RunError};
 use crate::plot::control_trace::draw_control_trace;
@@ -82,15 +81,13 @@ pub fn run(
                 ),
             )));
         }
+        // Bad input is refused here, on one line, before any process starts.
+        let s = Scenario::load(scenario)?;
+        crate::commands::controller::controller_choice(&s, controller)?;
         return crate::transport::run_supervisor::run_both(scenario, controller, out);
     }
     let s = Scenario::load(scenario)?;
-    let choice = match controller {
-        Some(text) => text
-            .parse::<ControllerChoice>()
-            .map_err(|e| RunError::Config(ConfigError::Argument(e.prefixed("-"))))?,
-        None => s.controller.kind,
-    };
+    let choice = crate::commands::controller::controller_choice(&s, controller)?;
     let dir = run_dir::claim(&s.name, out, &crate::commands::check::resolved_toml(&s))?;
     let mut stream = SeriesStream::create_watching(&dir, TerminationWatch::new())?;
     let run = run_closed_loop_recorded(&s, choice, replica, &mut stream)

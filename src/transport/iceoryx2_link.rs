@@ -9,8 +9,9 @@ use shearcut_sim::arm::KnifeCommand;
 
 use super::board::{BoardReader, BoardWriter};
 use super::loop_services::{LoopServices, PeerState, Role, node_name};
+use super::peer_watch::gone_before_loop;
 use super::wait_mode::WaitMode;
-use super::wire::{WireCommand, WireError, WireMeasurement, WireTruth};
+use super::wire::{WireCommand, WireError, WireMeasurement, WirePlantCounts, WireTruth};
 use crate::closed_loop::{LinkAnswer, LinkError, PlantLink, TickTimes};
 
 /// How long the controller waits for the plant.
@@ -55,6 +56,8 @@ pub struct Iceoryx2PlantLink {
     /// The simulated plant's truth board, if it has one (an arm bridge
     /// does not): recorded, never given to the controller.
     truth: Option<BoardReader<WireTruth>>,
+    /// The simulated plant's successor counts board, if it has one.
+    counts: Option<BoardReader<WirePlantCounts>>,
     notifier: Notifier<ipc::Service>,
     listener: Listener<ipc::Service>,
     period: f64,
@@ -105,6 +108,7 @@ impl Iceoryx2PlantLink {
             commands,
             measurements: None,
             truth: None,
+            counts: None,
             notifier,
             listener,
             period,
@@ -123,16 +127,22 @@ impl Iceoryx2PlantLink {
     /// Waits until a plant serves the run (its measurement board exists)
     /// and opens its board. A plant that dies before it serves (its node
     /// dead), or whose node was seen and is gone (it ended while starting),
-    /// is reported within [`PLANT_LOOK`].
+    /// is reported within a look of the services' peer watch
+    /// ([`PEER_LOOK`](super::peer_watch::PEER_LOOK)), which ends here.
     ///
     /// # Errors
     /// No plant within the connect timeout, the plant ended before serving,
     /// a termination request, or iceoryx2 refused to open the plant's board.
-    #[allow(clippy::disallowed_methods)] // Timeouts, not model time.
     pub fn wait_for_plant(&mut self) -> Result<(), LinkError> {
+        let waited = self.wait_for_board();
+        self.services.stop_peer_watch();
+        waited
+    }
+
+    /// [`Self::wait_for_plant`] but for the end of the peer watch.
+    #[allow(clippy::disallowed_methods)] // Timeouts, not model time.
+    fn wait_for_board(&mut self) -> Result<(), LinkError> {
         let started = Instant::now();
-        let mut next_look = started;
-        let mut seen = false;
         loop {
             let board = self
                 .services
@@ -146,31 +156,23 @@ impl Iceoryx2PlantLink {
                 if let Some(truth) = self.services.open_truth_board().map_err(lost)? {
                     self.truth = Some(BoardReader::new(truth).map_err(lost)?);
                 }
+                if let Some(counts) = self.services.open_counts_board().map_err(lost)? {
+                    self.counts = Some(BoardReader::new(counts).map_err(lost)?);
+                }
                 return Ok(());
             }
             if let Some(signal) = self.services.termination_request(Duration::from_millis(1)) {
                 return Err(LinkError::Stopped(signal));
             }
-            if Instant::now() >= next_look {
-                next_look = Instant::now() + PLANT_LOOK;
-                match self.services.peer_state(Role::Plant) {
-                    PeerState::Alive => seen = true,
-                    // Dead nodes were cleaned when this process's node
-                    // was created: a dead plant node died since.
-                    PeerState::Dead => {
-                        return Err(LinkError::Lost(format!(
-                            "the plant '{}' died before serving run '{}' (iceoryx2 dead-node detection)",
-                            self.plant, self.services.run_id
-                        )));
-                    }
-                    PeerState::Absent if seen => {
-                        return Err(LinkError::Lost(format!(
-                            "the plant '{}' ended before serving run '{}' (its process exited; its stderr says why)",
-                            self.plant, self.services.run_id
-                        )));
-                    }
-                    PeerState::Absent => {}
-                }
+            // Dead nodes were cleaned when this process's node was created:
+            // a dead plant node died since.
+            let fate = self.services.peer_fate();
+            if fate.is_gone() {
+                return Err(LinkError::Lost(gone_before_loop(
+                    Role::Plant,
+                    &self.services.run_id,
+                    fate,
+                )));
             }
             if started.elapsed() > self.timeouts.connect {
                 return Err(LinkError::Lost(format!(
@@ -318,11 +320,6 @@ impl Iceoryx2PlantLink {
     }
 }
 
-/// How often a controller waiting for its plant to serve looks whether the
-/// plant's process is there (iceoryx2's node list: about 1.2k allocations,
-/// before the loop).
-const PLANT_LOOK: Duration = Duration::from_millis(20);
-
 /// How long a controller that finds the plant gone waits for a termination
 /// request before reporting the plant lost.
 const TERMINATION_GRACE: Duration = Duration::from_millis(50);
@@ -349,5 +346,9 @@ impl PlantLink for Iceoryx2PlantLink {
             .filter(|t| t.sequence == answer.sequence)
             .map(|t| t.truth());
         Ok(LinkAnswer { reading, truth })
+    }
+
+    fn successor_counts(&self) -> Option<WirePlantCounts> {
+        self.counts.as_ref().map(BoardReader::latest)
     }
 }

@@ -6,7 +6,9 @@
 //! measurement board) and opened by the other side once it exists. A
 //! simulated plant also writes its ground truth on a third board
 //! (`…/truth`), which the controller process may record but never passes
-//! to a controller; an arm bridge does not create it. All live
+//! to a controller; an arm bridge does not create it. The simulated plant
+//! also writes its successor counts (`…/plant-counts`,
+//! [`WirePlantCounts`]) for the controller's `loop_stats.json`. All live
 //! under one iceoryx2 prefix (default [`DEFAULT_PREFIX`], or the
 //! environment's [`PREFIX_ENV`]): the next node created under the prefix
 //! cleans what killed processes left behind, and the run id in the names
@@ -19,9 +21,10 @@ use iceoryx2::service::builder::blackboard::{BlackboardCreateError, BlackboardOp
 use iceoryx2::service::port_factory::event;
 
 use super::board::{Board, ENTRY_KEY};
+use super::peer_watch::{PEER_LOOK, PeerFate, PeerWatch, gone_before_loop};
 use super::run_node::{RunNode, node_state};
 use super::termination_watch::{StopSignal, TerminationWatch};
-use super::wire::{WireCommand, WireMeasurement, WireTruth};
+use super::wire::{WireCommand, WireMeasurement, WirePlantCounts, WireTruth};
 
 /// The iceoryx2 prefix of every shearcut run (files under `/dev/shm` and
 /// `/tmp/iceoryx2` start with it).
@@ -59,6 +62,19 @@ pub enum ServiceError {
     /// iceoryx2 refused.
     #[error("iceoryx2: {0}")]
     Iceoryx(String),
+    /// SIGINT or SIGTERM arrived while the services were being set up.
+    #[error("stopped by {0} while starting")]
+    Stopped(StopSignal),
+    /// The other side died or ended before the services were set up (a
+    /// service it was creating may be left half made): the line of
+    /// [`gone_before_loop`].
+    #[error("lost the {}: {line}", peer.as_str())]
+    PeerGone {
+        /// The other side's role.
+        peer: Role,
+        /// How it went, on one line.
+        line: String,
+    },
 }
 
 fn iceoryx(context: &str, e: impl std::fmt::Debug) -> ServiceError {
@@ -110,12 +126,21 @@ fn board_name(role: Role) -> &'static str {
 /// The simulated plant's truth board.
 const TRUTH_BOARD: &str = "truth";
 
+/// The simulated plant's successor counts board.
+const COUNTS_BOARD: &str = "plant-counts";
+
 /// Creates `role`'s board `name` holding `empty` (its `what`: `command`,
-/// `measurement` or `truth`). A board left by a killed process of an
-/// earlier run under the same run id is being removed by the dead-node
-/// cleanup: retry for up to a second.
+/// `measurement`, `truth` or `plant-counts`). A board left by a killed
+/// process of an earlier run under the same run id is being removed by the
+/// dead-node cleanup: retry for up to a second, looking at `watch` between
+/// tries.
+///
+/// # Errors
+/// The board stays taken; iceoryx2 refused; SIGINT or SIGTERM arrived
+/// ([`ServiceError::Stopped`]).
 fn create_board<T: Copy + ZeroCopySend + std::fmt::Debug + 'static>(
     node: &Node<ipc::Service>,
+    watch: &TerminationWatch,
     name: &ServiceName,
     role: Role,
     what: &str,
@@ -135,8 +160,8 @@ fn create_board<T: Copy + ZeroCopySend + std::fmt::Debug + 'static>(
             ) => {
                 last = Some(e);
                 let _ = node.try_cleanup_dead_nodes();
-                if node.wait(Duration::from_millis(10)).is_err() {
-                    break;
+                if let Some(signal) = watch.requested_within(Duration::from_millis(10)) {
+                    return Err(ServiceError::Stopped(signal));
                 }
             }
             Err(e) => return Err(iceoryx(&format!("{what} board"), e)),
@@ -159,7 +184,9 @@ pub fn prefix() -> String {
     std::env::var(PREFIX_ENV).unwrap_or_else(|_| DEFAULT_PREFIX.to_string())
 }
 
-/// The iceoryx2 configuration of `prefix`.
+/// The iceoryx2 configuration of `prefix`: the defaults, with iceoryx2's
+/// cleanups of dead nodes on a node's creation and a service's opening
+/// off ([`RunNode::create`] cleans, and sees which peer it removed).
 ///
 /// # Errors
 /// The prefix is not allowed.
@@ -170,6 +197,8 @@ pub fn config(prefix: &str) -> Result<Config, ServiceError> {
     let mut cfg = Config::default();
     cfg.global.prefix =
         FileName::new(prefix.as_bytes()).map_err(|_| ServiceError::Prefix(prefix.to_string()))?;
+    cfg.global.node.cleanup_dead_nodes_on_creation = false;
+    cfg.global.service.cleanup_dead_nodes_on_open = false;
     Ok(cfg)
 }
 
@@ -184,6 +213,9 @@ pub struct LoopServices {
     /// The simulated plant's truth board, created by the plant (`None` for
     /// the controller).
     pub truth_board: Option<Board>,
+    /// The simulated plant's successor counts board, created by the plant
+    /// (`None` for the controller).
+    pub counts_board: Option<Board>,
     /// Notifications "a command is waiting" (controller → plant).
     pub command_ready: event::PortFactory<ipc::Service>,
     /// Notifications "a measurement is waiting" (plant → controller).
@@ -196,6 +228,8 @@ pub struct LoopServices {
     pub role: Role,
     /// SIGINT/SIGTERM, watched from before the node's creation.
     watch: TerminationWatch,
+    /// The other role's node, watched until the loop starts.
+    peer: PeerWatch,
 }
 
 impl LoopServices {
@@ -214,66 +248,49 @@ impl LoopServices {
     /// created earlier.
     ///
     /// # Errors
-    /// iceoryx2 refused (or another process of this role serves the run:
-    /// its board exists).
+    /// The other side is gone ([`ServiceError::PeerGone`]: found before, or
+    /// within two looks of its watch after a step failed); iceoryx2 refused
+    /// (or another process of this role serves the run: its board exists);
+    /// a signal arrived.
     pub fn on(node: RunNode) -> Result<Self, ServiceError> {
+        let gone = |fate: PeerFate| ServiceError::PeerGone {
+            peer: node.role.peer(),
+            line: gone_before_loop(node.role.peer(), &node.run_id, fate),
+        };
+        let fate = node.peer.fate();
+        if fate.is_gone() {
+            return Err(gone(fate));
+        }
+        let made = match RunServices::create(&node) {
+            Ok(made) => made,
+            Err(e @ ServiceError::Stopped(_)) => return Err(e),
+            Err(e) => {
+                return Err(match node.peer.gone_within(2 * PEER_LOOK) {
+                    Some(fate) => gone(fate),
+                    None => e,
+                });
+            }
+        };
         let RunNode {
             node,
             run_id,
             config,
             role,
             watch,
+            peer,
         } = node;
-        let service_name = |what: &str| {
-            ServiceName::new(&format!("shearcut/{run_id}/{what}"))
-                .map_err(|e| iceoryx("service name", e))
-        };
-        let command_ready = node
-            .service_builder(&service_name("command-ready")?)
-            .event()
-            .open_or_create()
-            .map_err(|e| iceoryx("command-ready service", e))?;
-        let measurement_ready = node
-            .service_builder(&service_name("measurement-ready")?)
-            .event()
-            .open_or_create()
-            .map_err(|e| iceoryx("measurement-ready service", e))?;
-        let own_name = service_name(board_name(role))?;
-        let (own_board, truth_board) = match role {
-            Role::Controller => (
-                create_board(&node, &own_name, role, "command", WireCommand::empty())?,
-                None,
-            ),
-            Role::Plant => {
-                // The truth board first: a controller that finds the
-                // measurement board finds the truth board beside it.
-                let truth = create_board(
-                    &node,
-                    &service_name(TRUTH_BOARD)?,
-                    role,
-                    TRUTH_BOARD,
-                    WireTruth::empty(),
-                )?;
-                let own = create_board(
-                    &node,
-                    &own_name,
-                    role,
-                    "measurement",
-                    WireMeasurement::empty(),
-                )?;
-                (own, Some(truth))
-            }
-        };
         Ok(Self {
             node,
-            own_board,
-            truth_board,
-            command_ready,
-            measurement_ready,
+            own_board: made.own_board,
+            truth_board: made.truth_board,
+            counts_board: made.counts_board,
+            command_ready: made.command_ready,
+            measurement_ready: made.measurement_ready,
             run_id,
             config,
             role,
             watch,
+            peer,
         })
     }
 
@@ -300,6 +317,15 @@ impl LoopServices {
     /// iceoryx2 failed for another reason.
     pub fn open_truth_board(&self) -> Result<Option<Board>, ServiceError> {
         self.open_board(TRUTH_BOARD)
+    }
+
+    /// Opens the simulated plant's successor counts board (`None` while it
+    /// does not exist; an arm bridge never creates it).
+    ///
+    /// # Errors
+    /// iceoryx2 failed for another reason.
+    pub fn open_counts_board(&self) -> Result<Option<Board>, ServiceError> {
+        self.open_board(COUNTS_BOARD)
     }
 
     fn open_board(&self, what: &str) -> Result<Option<Board>, ServiceError> {
@@ -333,10 +359,104 @@ impl LoopServices {
         }
     }
 
+    /// What this process knows of the other role's process since its node
+    /// was created (one atomic load; the last look before
+    /// [`stop_peer_watch`](Self::stop_peer_watch)).
+    pub fn peer_fate(&self) -> PeerFate {
+        self.peer.fate()
+    }
+
+    /// Ends the watch of the other role's node: the loop starts, and the
+    /// watch's looks allocate.
+    pub fn stop_peer_watch(&self) {
+        self.peer.stop();
+    }
+
     /// The state of `role`'s node in this run: alive, dead (its process died
     /// without cleaning up) or absent.
     pub fn peer_state(&self, role: Role) -> PeerState {
         node_state(&self.config, &node_name(role, &self.run_id), None)
+    }
+}
+
+/// The services a process of one run creates or opens on its node.
+struct RunServices {
+    own_board: Board,
+    truth_board: Option<Board>,
+    counts_board: Option<Board>,
+    command_ready: event::PortFactory<ipc::Service>,
+    measurement_ready: event::PortFactory<ipc::Service>,
+}
+
+impl RunServices {
+    /// Opens or creates the run's services on `run`'s node.
+    fn create(run: &RunNode) -> Result<Self, ServiceError> {
+        let (node, watch, role) = (&run.node, &run.watch, run.role);
+        let service_name = |what: &str| {
+            ServiceName::new(&format!("shearcut/{}/{what}", run.run_id))
+                .map_err(|e| iceoryx("service name", e))
+        };
+        let command_ready = node
+            .service_builder(&service_name("command-ready")?)
+            .event()
+            .open_or_create()
+            .map_err(|e| iceoryx("command-ready service", e))?;
+        let measurement_ready = node
+            .service_builder(&service_name("measurement-ready")?)
+            .event()
+            .open_or_create()
+            .map_err(|e| iceoryx("measurement-ready service", e))?;
+        let own_name = service_name(board_name(role))?;
+        let (own_board, truth_board, counts_board) = match role {
+            Role::Controller => (
+                create_board(
+                    node,
+                    watch,
+                    &own_name,
+                    role,
+                    "command",
+                    WireCommand::empty(),
+                )?,
+                None,
+                None,
+            ),
+            Role::Plant => {
+                // The truth and counts boards first: a controller that
+                // finds the measurement board finds them beside it.
+                let truth = create_board(
+                    node,
+                    watch,
+                    &service_name(TRUTH_BOARD)?,
+                    role,
+                    TRUTH_BOARD,
+                    WireTruth::empty(),
+                )?;
+                let counts = create_board(
+                    node,
+                    watch,
+                    &service_name(COUNTS_BOARD)?,
+                    role,
+                    COUNTS_BOARD,
+                    WirePlantCounts::default(),
+                )?;
+                let own = create_board(
+                    node,
+                    watch,
+                    &own_name,
+                    role,
+                    "measurement",
+                    WireMeasurement::empty(),
+                )?;
+                (own, Some(truth), Some(counts))
+            }
+        };
+        Ok(Self {
+            own_board,
+            truth_board,
+            counts_board,
+            command_ready,
+            measurement_ready,
+        })
     }
 }
 

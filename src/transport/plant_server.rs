@@ -12,9 +12,12 @@ use shearcut_sim::arm::{ArmReading, KnifeCommand};
 
 use super::board::{BoardReader, BoardWriter};
 use super::loop_services::{LoopServices, ServiceError};
+use super::peer_watch::PeerFate;
 use super::termination_watch::StopSignal;
 use super::wait_mode::WaitMode;
-use super::wire::{NO_SEQUENCE, WireCommand, WireFault, WireMeasurement, WireStatus, WireTruth};
+use super::wire::{
+    NO_SEQUENCE, WireCommand, WireFault, WireMeasurement, WirePlantCounts, WireStatus, WireTruth,
+};
 use crate::closed_loop::PlantLink;
 use crate::scenario::ClockMode;
 
@@ -62,6 +65,12 @@ pub enum PlantEnd {
     ModelFailed(String),
     /// No controller sent a first command in time.
     NoController,
+    /// The run's controller died before its first command (its iceoryx2
+    /// node dead).
+    ControllerDied,
+    /// The run's controller, seen alive, ended before its first command
+    /// (its iceoryx2 node gone).
+    ControllerEnded,
     /// SIGINT or SIGTERM.
     Terminated(StopSignal),
 }
@@ -94,6 +103,7 @@ struct PlantPorts<'a> {
     commands: Option<BoardReader<WireCommand>>,
     measurements: BoardWriter<WireMeasurement>,
     truth: Option<BoardWriter<WireTruth>>,
+    counts: Option<BoardWriter<WirePlantCounts>>,
     notifier: iceoryx2::port::notifier::Notifier<ipc::Service>,
     wait: WaitMode,
     /// The sequence number of the last command answered.
@@ -124,8 +134,12 @@ impl PlantPorts<'_> {
         }
     }
 
-    /// Writes `w` (the answer to command `w.sequence`) and wakes the controller.
-    fn answer(&mut self, w: WireMeasurement) {
+    /// Writes the plant's successor counts (if it has them) and `w` (the
+    /// answer to command `w.sequence`), and wakes the controller.
+    fn answer(&mut self, w: WireMeasurement, counts: Option<WirePlantCounts>) {
+        if let (Some(board), Some(counts)) = (&self.counts, counts) {
+            board.publish(counts);
+        }
         self.measurements.publish(w);
         self.answered = Some(w.sequence);
         if self.wait == WaitMode::Blocking {
@@ -136,8 +150,10 @@ impl PlantPorts<'_> {
 
 /// Serves `plant` (any [`PlantLink`], e.g. an
 /// [`InProcessPlant`](crate::closed_loop::InProcessPlant)) on `services`
-/// until the controller ends the run, the plant brakes or fails, or a
-/// termination request arrives.
+/// until the controller ends the run, the plant brakes or fails, the
+/// controller is gone before its first command ([`PlantEnd::ControllerDied`],
+/// [`PlantEnd::ControllerEnded`]: seen by the services' peer watch within a
+/// look), or a termination request arrives.
 ///
 /// Lockstep: each command is stepped as soon as it arrives; silence longer
 /// than the patience counts as a missed command. Realtime: the plant steps
@@ -169,6 +185,10 @@ pub fn serve_plant(
         commands: None,
         measurements: BoardWriter::new(&services.own_board)?,
         truth: match &services.truth_board {
+            Some(board) => Some(BoardWriter::new(board)?),
+            None => None,
+        },
+        counts: match &services.counts_board {
             Some(board) => Some(BoardWriter::new(board)?),
             None => None,
         },
@@ -214,6 +234,10 @@ pub fn serve_plant(
             }
         }
         if let Some(command) = ports.poll()? {
+            if window_start.is_none() {
+                // The loop starts: the controller is there.
+                services.stop_peer_watch();
+            }
             consecutive = 0;
             if command.is_end_of_run() {
                 let m = last.unwrap_or_else(rest_measurement);
@@ -223,6 +247,7 @@ pub fn serve_plant(
                         WireFault::None,
                         0.0,
                     ),
+                    plant.successor_counts(),
                 );
                 report.end = PlantEnd::Ended;
                 return Ok(report);
@@ -233,11 +258,14 @@ pub fn serve_plant(
                     if let Some(truth) = &answer.truth {
                         ports.record(command.sequence, truth);
                     }
-                    ports.answer(WireMeasurement::new(
-                        command.sequence,
-                        &answer.reading,
-                        report.missed_commands,
-                    ));
+                    ports.answer(
+                        WireMeasurement::new(
+                            command.sequence,
+                            &answer.reading,
+                            report.missed_commands,
+                        ),
+                        plant.successor_counts(),
+                    );
                     last = Some(answer.reading);
                 }
                 Err(e) => {
@@ -248,6 +276,7 @@ pub fn serve_plant(
                             WireFault::None,
                             0.0,
                         ),
+                        plant.successor_counts(),
                     );
                     report.end = PlantEnd::ModelFailed(e.to_string());
                     return Ok(report);
@@ -264,7 +293,18 @@ pub fn serve_plant(
         // No command waiting.
         let now = Instant::now();
         let Some(start) = window_start else {
-            // Before the first command: wait for a controller.
+            // Before the first command: wait for a controller, and see it go.
+            match services.peer_fate() {
+                PeerFate::Died => {
+                    report.end = PlantEnd::ControllerDied;
+                    return Ok(report);
+                }
+                PeerFate::Ended => {
+                    report.end = PlantEnd::ControllerEnded;
+                    return Ok(report);
+                }
+                PeerFate::NotSeen | PeerFate::Alive => {}
+            }
             if now - started > settings.connect_timeout {
                 report.end = PlantEnd::NoController;
                 return Ok(report);
@@ -319,6 +359,7 @@ pub fn serve_plant(
                     WireFault::MissedCommands,
                     f64::from(consecutive),
                 ),
+                plant.successor_counts(),
             );
             return Ok(report);
         }

@@ -3,6 +3,13 @@
 //! from then on the other side can tell the process is there, and see it go
 //! if it ends before serving. A run id that a live node of the same role
 //! already serves is refused at creation.
+//!
+//! iceoryx2's own cleanups of dead nodes (on a node's creation, on a
+//! service's opening) are off under shearcut's configuration
+//! ([`config`](super::loop_services::config)): they would remove a peer's
+//! dead node before this process could see it die. The node's creation
+//! cleans instead, and tells whether the peer it removed was alive just
+//! before.
 
 use std::time::Duration;
 
@@ -11,7 +18,11 @@ use iceoryx2::node::NodeView;
 use iceoryx2::prelude::*;
 
 use super::loop_services::{PeerState, Role, ServiceError, config, is_name, node_name};
+use super::peer_watch::{PeerFate, PeerWatch};
 use super::termination_watch::TerminationWatch;
+
+/// How long a cleanup waits for a concurrent cleaner of the same dead node.
+const CLEANUP_WAIT: Duration = Duration::from_millis(100);
 
 /// One process's node in run `run_id`.
 #[derive(Debug)]
@@ -26,11 +37,18 @@ pub struct RunNode {
     pub role: Role,
     /// SIGINT/SIGTERM, watched from before the node's creation.
     pub watch: TerminationWatch,
+    /// The other role's node in this run, watched from this node's
+    /// creation until the loop starts.
+    pub peer: PeerWatch,
 }
 
 impl RunNode {
     /// Creates `role`'s node for run `run_id` under `prefix`, cleaning the
-    /// resources of dead nodes under that prefix.
+    /// resources of dead nodes under that prefix, and starts watching the
+    /// peer's node: a peer alive just before the creation and dead at its
+    /// cleanup died ([`PeerFate::Died`]); a peer found dead without having
+    /// been seen alive is one of an earlier run, or one that died before
+    /// this process came, and is not seen.
     ///
     /// # Errors
     /// The run id or prefix is not allowed; another live process of this
@@ -43,6 +61,8 @@ impl RunNode {
         let config = config(prefix)?;
         let watch = TerminationWatch::new();
         let own = node_name(role, run_id);
+        let peer = node_name(role.peer(), run_id);
+        let (_, peer_before) = look(&config, &peer, None);
         let name =
             NodeName::new(&own).map_err(|e| ServiceError::Iceoryx(format!("node name: {e:?}")))?;
         let node = NodeBuilder::new()
@@ -50,23 +70,91 @@ impl RunNode {
             .config(&config)
             .create::<ipc::Service>()
             .map_err(|e| ServiceError::Iceoryx(format!("node: {e:?}")))?;
-        // Stale resources of killed processes under this prefix; the node
-        // creation already tried, this waits for a concurrent cleaner.
-        let _ = node.blocking_cleanup_dead_nodes(Duration::from_millis(100));
+        // Stale resources of killed processes under this prefix.
+        let dead_peers = cleanup_dead_nodes(&config, &peer);
         if node_state(&config, &own, Some(node.id())) == PeerState::Alive {
             return Err(ServiceError::RunIdInUse {
                 run_id: run_id.to_string(),
                 role,
             });
         }
+        // A dead peer node other than the one seen alive is an earlier
+        // run's (or one that died before it could be seen).
+        let initial = match peer_before {
+            Some(id) if dead_peers.contains(&id) => PeerFate::Died,
+            Some(_) => PeerFate::Alive,
+            None => PeerFate::NotSeen,
+        };
+        let peer = PeerWatch::start(config.clone(), peer, initial, peer_before);
         Ok(Self {
             node,
             run_id: run_id.to_string(),
             config,
             role,
             watch,
+            peer,
         })
     }
+}
+
+/// Removes the stale resources of every dead node under `config` (waiting
+/// up to [`CLEANUP_WAIT`] for a concurrent cleaner of each); the ids of the
+/// dead nodes named `peer` among them.
+fn cleanup_dead_nodes(config: &Config, peer: &str) -> Vec<UniqueNodeId> {
+    let mut dead_peers = Vec::new();
+    let _ = Node::<ipc::Service>::list(config, |n| {
+        if let NodeState::Dead(dead) = n {
+            if dead
+                .details()
+                .as_ref()
+                .is_some_and(|d| d.name().as_str() == peer)
+            {
+                dead_peers.push(*dead.id());
+            }
+            let _ = dead.blocking_remove_stale_resources(CLEANUP_WAIT);
+        }
+        CallbackProgression::Continue
+    });
+    dead_peers
+}
+
+/// A look at the nodes named `name` under `config`: with `seen`, the state
+/// of that node (alive, dead, or absent: gone); without, alive and its id
+/// if one of them is alive, else absent (a dead one never seen alive is an
+/// earlier run's, or died unseen). Lists every node of the prefix (about
+/// 1.2k allocations): keep it off the tick path.
+pub fn look(
+    config: &Config,
+    name: &str,
+    seen: Option<UniqueNodeId>,
+) -> (PeerState, Option<UniqueNodeId>) {
+    let mut found = (PeerState::Absent, seen);
+    let _ = Node::<ipc::Service>::list(config, |n| {
+        let (id, details, alive) = match &n {
+            NodeState::Alive(v) => (*v.id(), v.details(), true),
+            NodeState::Dead(v) => (*v.id(), v.details(), false),
+            _ => return CallbackProgression::Continue,
+        };
+        if details.as_ref().is_none_or(|d| d.name().as_str() != name) {
+            return CallbackProgression::Continue;
+        }
+        match seen {
+            Some(s) if s == id => {
+                found.0 = if alive {
+                    PeerState::Alive
+                } else {
+                    PeerState::Dead
+                };
+                CallbackProgression::Stop
+            }
+            None if alive => {
+                found = (PeerState::Alive, Some(id));
+                CallbackProgression::Stop
+            }
+            _ => CallbackProgression::Continue,
+        }
+    });
+    found
 }
 
 /// The state of the nodes named `name` under `config` other than `except`:

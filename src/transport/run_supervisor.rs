@@ -1,8 +1,12 @@
 //! `shearcut run --transport iceoryx2`: spawns the plant and controller
-//! processes for one run, supervises them and reports how they ended.
+//! processes for one run, supervises them and reports how they ended, on
+//! one line and with the exit code that names the cause (a child's bad
+//! input 2, a child stopped by a signal 130/143, any other failure 1).
 
+use std::io::{BufRead, BufReader, Write};
 use std::path::Path;
-use std::process::{Child, Command, ExitStatus};
+use std::process::{Child, Command, ExitStatus, Stdio};
+use std::thread::JoinHandle;
 use std::time::{Duration, Instant};
 
 use super::termination_watch::{StopSignal, TerminationWatch};
@@ -15,6 +19,10 @@ const PLANT_GRACE: Duration = Duration::from_secs(5);
 /// How long the controller may outlive the plant (it detects the loss
 /// within its response timeout).
 const CONTROLLER_GRACE: Duration = Duration::from_secs(10);
+/// How long a child may outlive its peer's failure before the supervisor
+/// asks it to stop: a controller that never saw its plant would otherwise
+/// wait for its connect timeout, a plant for its missed-command limit.
+const PEER_FAILED_PATIENCE: Duration = Duration::from_secs(1);
 
 /// A unique run id: `<scenario>-<pid>-<ns>` (scenario name reduced to the
 /// allowed characters and 32 of them).
@@ -40,16 +48,148 @@ pub fn new_run_id(scenario: &str) -> String {
     format!("{name}-{}-{ns}", std::process::id())
 }
 
-fn describe(role: &str, child: &Child, status: ExitStatus) -> String {
+/// How a child ended, in words: `the plant process (pid N) exited with
+/// code C` or `… died by signal S`.
+fn describe(role: &str, pid: u32, status: ExitStatus) -> String {
     use std::os::unix::process::ExitStatusExt;
     match (status.code(), status.signal()) {
-        (Some(c), _) => format!(
-            "the {role} process (pid {}) exited with code {c}",
-            child.id()
-        ),
-        (None, Some(s)) => format!("the {role} process (pid {}) died by signal {s}", child.id()),
-        _ => format!("the {role} process (pid {}) ended: {status}", child.id()),
+        (Some(c), _) => format!("the {role} process (pid {pid}) exited with code {c}"),
+        (None, Some(s)) => format!("the {role} process (pid {pid}) died by signal {s}"),
+        _ => format!("the {role} process (pid {pid}) ended: {status}"),
     }
+}
+
+/// Forwards `child`'s stderr to this process's stderr line by line, but for
+/// the lines starting `error: ` (a process's one error line, its last):
+/// the last of them is returned once the child's stderr closes, for the
+/// supervisor's own line. A closed stderr here loses the forwarded lines
+/// only.
+fn forward_stderr(child: &mut Child) -> JoinHandle<Option<String>> {
+    let stderr = child.stderr.take();
+    std::thread::spawn(move || {
+        let mut error = None;
+        let mut reader = BufReader::new(stderr?);
+        let mut line = Vec::new();
+        loop {
+            line.clear();
+            match reader.read_until(b'\n', &mut line) {
+                Ok(0) | Err(_) => return error,
+                Ok(_) => {}
+            }
+            let text = String::from_utf8_lossy(&line);
+            let text = text.trim_end_matches(['\n', '\r']);
+            match text.strip_prefix("error: ") {
+                Some(e) => error = Some(e.to_string()),
+                None => {
+                    let _ = writeln!(std::io::stderr(), "{text}");
+                }
+            }
+        }
+    })
+}
+
+/// One child process: the process, its role and its stderr's forwarder.
+struct Supervised {
+    role: &'static str,
+    child: Child,
+    stderr: Option<JoinHandle<Option<String>>>,
+}
+
+/// How a supervised child ended.
+struct ChildEnd {
+    role: &'static str,
+    pid: u32,
+    /// `None` if it could not be reaped.
+    status: Option<ExitStatus>,
+    /// Whether the supervisor had asked it to stop (sent it a signal).
+    asked: bool,
+    /// Its error line (without `error: `), if it printed one.
+    error: Option<String>,
+}
+
+impl Supervised {
+    /// Starts `command` as the `role` process, its stderr forwarded.
+    fn spawn(role: &'static str, command: &mut Command) -> Result<Self, RunError> {
+        let mut child = command
+            .stderr(Stdio::piped())
+            .spawn()
+            .map_err(|e| RunError::Loop(format!("cannot start the {role} process: {e}")))?;
+        let stderr = Some(forward_stderr(&mut child));
+        Ok(Self {
+            role,
+            child,
+            stderr,
+        })
+    }
+
+    /// Its end, once its `status` is known (joins the stderr forwarder).
+    fn ended(&mut self, status: Option<ExitStatus>, asked: bool) -> ChildEnd {
+        let error = self.stderr.take().and_then(|h| h.join().ok()).flatten();
+        ChildEnd {
+            role: self.role,
+            pid: self.child.id(),
+            status,
+            asked,
+            error,
+        }
+    }
+
+    /// Its end once its peer ended as `peer`: after a peer that ended well
+    /// it has up to `grace` to end by itself (then SIGKILL); after a peer
+    /// that failed, [`PEER_FAILED_PATIENCE`], and is then asked to stop with
+    /// SIGTERM ([`stop`], up to `grace`).
+    fn after_peer(&mut self, peer: &ChildEnd, grace: Duration) -> ChildEnd {
+        if peer.is_fine() {
+            let s = wait_or_kill(&mut self.child, grace);
+            return self.ended(s, false);
+        }
+        match wait_within(&mut self.child, PEER_FAILED_PATIENCE) {
+            Some(s) => self.ended(Some(s), false),
+            None => {
+                let s = stop(&mut self.child, StopSignal::Sigterm, grace);
+                self.ended(s, true)
+            }
+        }
+    }
+}
+
+impl ChildEnd {
+    /// Whether it ended well: success, or a clean stop on a signal the
+    /// supervisor sent.
+    fn is_fine(&self) -> bool {
+        self.status
+            .is_some_and(|s| s.success() || (self.asked && stopped_cleanly(Some(s))))
+    }
+
+    /// `the plant process (pid N) exited with code C: <its error line>`.
+    fn failure(&self) -> String {
+        let how = match self.status {
+            Some(s) => describe(self.role, self.pid, s),
+            None => format!(
+                "the {} process (pid {}) could not be reaped",
+                self.role, self.pid
+            ),
+        };
+        match &self.error {
+            Some(e) => format!("{how}: {e}"),
+            None => how,
+        }
+    }
+}
+
+/// The supervisor's exit code for children that failed: 2 if one refused
+/// its input, else 130/143 if one stopped cleanly on a signal the
+/// supervisor did not send, else 1.
+fn failure_code(failed: &[&ChildEnd]) -> u8 {
+    let codes: Vec<i32> = failed.iter().filter_map(|c| c.status?.code()).collect();
+    if codes.contains(&2) {
+        return 2;
+    }
+    [StopSignal::Sigint, StopSignal::Sigterm]
+        .into_iter()
+        .map(StopSignal::exit_code)
+        .find(|&c| codes.contains(&i32::from(c)))
+        .unwrap_or(1)
 }
 
 /// Sends `signal` to `child` (through `kill(1)`: no unsafe code here).
@@ -133,15 +273,21 @@ fn stopped_cleanly(status: Option<ExitStatus>) -> bool {
     })
 }
 
-/// Runs `scenario` as two processes (plant and controller) over iceoryx2,
-/// supervising both: a child that dies is reported; SIGINT/SIGTERM is
-/// forwarded to the controller (which writes its partial results) and then
-/// to the plant, and the supervisor exits 130/143 once both stopped.
+/// Runs `scenario` (loaded and checked by the caller) as two processes
+/// (plant and controller) over iceoryx2, supervising both: their stderr is
+/// forwarded but for their error lines, which the supervisor's one line
+/// quotes. A child that fails is reported with its line, and its peer is
+/// asked to stop (SIGTERM) if it has not ended within
+/// [`PEER_FAILED_PATIENCE`]; SIGINT/SIGTERM is forwarded to the controller
+/// (which writes its partial results) and then to the plant, and the
+/// supervisor exits 130/143 once both stopped.
 ///
 /// # Errors
-/// A child could not start, or either ended with a failure (its message is
-/// on stderr; the controller still wrote the partial results); a signal
-/// stopped the run ([`RunError::Signalled`]: exit 130/143).
+/// A child could not start; either ended with a failure
+/// ([`RunError::Supervised`]: exit 2 if a child refused its input, 130/143
+/// if one was stopped by a signal from elsewhere, else 1; the controller
+/// still wrote its partial results); a signal stopped the run
+/// ([`RunError::Signalled`]: exit 130/143).
 pub fn run_both(
     scenario: &str,
     controller: Option<&str>,
@@ -152,7 +298,7 @@ pub fn run_both(
         .map_err(|e| RunError::Loop(format!("cannot find the shearcut executable: {e}")))?;
     let run_id = new_run_id(scenario);
     let watch = TerminationWatch::new();
-    let spawn = |role: &str| {
+    let command = |role: &str| {
         let mut c = Command::new(&exe);
         c.args([role, "--scenario", scenario, "--run-id", &run_id]);
         if let Some(name) = controller {
@@ -166,77 +312,117 @@ pub fn run_both(
                 c.arg("--overwrite");
             }
         }
-        c.spawn()
-            .map_err(|e| RunError::Loop(format!("cannot start the {role} process: {e}")))
+        c
     };
-    let mut plant = spawn("plant")?;
-    let mut ctl = match spawn("controller") {
+    let mut plant = Supervised::spawn("plant", &mut command("plant"))?;
+    let mut ctl = match Supervised::spawn("controller", &mut command("controller")) {
         Ok(c) => c,
         Err(e) => {
-            terminate(&plant);
-            wait_or_kill(&mut plant, PLANT_GRACE);
+            terminate(&plant.child);
+            wait_or_kill(&mut plant.child, PLANT_GRACE);
             return Err(e);
         }
     };
-    eprintln!(
+    tracing::info!(
         "run {run_id}: plant pid {}, controller pid {}",
-        plant.id(),
-        ctl.id()
+        plant.child.id(),
+        ctl.child.id()
     );
     let mut stopped_by = None;
-    let (plant_status, ctl_status) = loop {
+    let (plant_end, ctl_end) = loop {
         if let Some(sig) = watch.requested_within(Duration::from_millis(5)) {
-            eprintln!(
-                "run {run_id}: termination requested ({sig:?}), stopping controller and plant"
+            let _ = writeln!(
+                std::io::stderr(),
+                "run {run_id}: termination requested ({sig}), stopping controller and plant"
             );
             stopped_by = Some(sig);
             // The controller first, and the plant once it has gone: the
             // controller then stops on its own signal (and writes its partial
             // results saying so) instead of finding the plant gone first.
-            let c = stop(&mut ctl, sig, CONTROLLER_GRACE);
-            let p = stop(&mut plant, sig, PLANT_GRACE);
+            let c = stop(&mut ctl.child, sig, CONTROLLER_GRACE);
+            let c = ctl.ended(c, true);
+            let p = stop(&mut plant.child, sig, PLANT_GRACE);
+            break (plant.ended(p, true), c);
+        }
+        // After a successful run the plant has acknowledged its end and
+        // leaves by itself; a plant that ended well leaves the controller
+        // writing its results.
+        if let Ok(Some(c)) = ctl.child.try_wait() {
+            let c = ctl.ended(Some(c), false);
+            break (plant.after_peer(&c, PLANT_GRACE), c);
+        }
+        if let Ok(Some(p)) = plant.child.try_wait() {
+            let p = plant.ended(Some(p), false);
+            let c = ctl.after_peer(&p, CONTROLLER_GRACE);
             break (p, c);
-        }
-        if let Ok(Some(c)) = ctl.try_wait() {
-            let p = wait_or_kill(&mut plant, PLANT_GRACE);
-            break (p, Some(c));
-        }
-        if let Ok(Some(p)) = plant.try_wait() {
-            if !p.success() {
-                eprintln!("run {run_id}: {}", describe("plant", &plant, p));
-            }
-            let c = wait_or_kill(&mut ctl, CONTROLLER_GRACE);
-            break (Some(p), c);
         }
     };
     if let Some(signal) = stopped_by
-        && stopped_cleanly(ctl_status)
-        && stopped_cleanly(plant_status)
+        && ctl_end.is_fine()
+        && plant_end.is_fine()
     {
+        let said = ctl_end
+            .error
+            .as_deref()
+            .map_or(String::new(), |e| format!(": the controller said: {e}"));
         return Err(RunError::Signalled {
             signal,
             message: format!(
-                "run {run_id}: stopped by {signal:?}; plant and controller stopped cleanly (the controller's partial results are where it said)"
+                "run {run_id}: stopped by {signal}; plant and controller stopped cleanly{said}"
             ),
         });
     }
-    let mut failures = Vec::new();
-    match ctl_status {
-        Some(s) if s.success() => {}
-        Some(s) => failures.push(describe("controller", &ctl, s)),
-        None => failures.push("the controller process could not be reaped".to_string()),
+    let failed: Vec<&ChildEnd> = [&ctl_end, &plant_end]
+        .into_iter()
+        .filter(|c| !c.is_fine())
+        .collect();
+    if failed.is_empty() {
+        return Ok(());
     }
-    match plant_status {
-        Some(s) if s.success() => {}
-        Some(s) => failures.push(describe("plant", &plant, s)),
-        None => failures.push("the plant process could not be reaped".to_string()),
-    }
-    if failures.is_empty() {
-        Ok(())
-    } else {
-        Err(RunError::Loop(format!(
+    Err(RunError::Supervised {
+        code: failure_code(&failed),
+        message: format!(
             "run {run_id} failed: {}",
-            failures.join("; ")
-        )))
+            failed
+                .iter()
+                .map(|c| c.failure())
+                .collect::<Vec<_>>()
+                .join("; ")
+        ),
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::os::unix::process::ExitStatusExt;
+
+    fn exited(role: &'static str, code: i32, asked: bool) -> ChildEnd {
+        ChildEnd {
+            role,
+            pid: 1,
+            status: Some(ExitStatus::from_raw(code << 8)),
+            asked,
+            error: Some(format!("{role} said {code}")),
+        }
+    }
+
+    #[test]
+    fn a_childs_bad_input_is_exit_2_and_a_signal_from_elsewhere_its_code() {
+        let bad = exited("controller", 2, false);
+        let lost = exited("plant", 1, false);
+        assert_eq!(failure_code(&[&bad, &lost]), 2);
+        assert_eq!(failure_code(&[&lost, &bad]), 2);
+        assert_eq!(failure_code(&[&lost]), 1);
+        let interrupted = exited("plant", 130, false);
+        assert_eq!(failure_code(&[&lost, &interrupted]), 130);
+        assert!(!interrupted.is_fine());
+        // A clean stop the supervisor asked for is no failure.
+        assert!(exited("plant", 143, true).is_fine());
+        assert!(!exited("plant", 1, true).is_fine());
+        assert_eq!(
+            bad.failure(),
+            "the controller process (pid 1) exited with code 2: controller said 2"
+        );
     }
 }

@@ -24,6 +24,21 @@ impl StopSignal {
             StopSignal::Sigterm => 143,
         }
     }
+
+    /// The signal's conventional name: `SIGINT` or `SIGTERM`.
+    pub fn name(self) -> &'static str {
+        match self {
+            StopSignal::Sigint => "SIGINT",
+            StopSignal::Sigterm => "SIGTERM",
+        }
+    }
+}
+
+impl std::fmt::Display for StopSignal {
+    /// Writes [`StopSignal::name`].
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
 }
 
 /// Watches for SIGINT and SIGTERM. Its creation installs iceoryx2's

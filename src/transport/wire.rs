@@ -202,6 +202,23 @@ impl WireTruth {
     }
 }
 
+/// The simulated plant's successor counts so far, on their own service (16
+/// bytes): for the controller's `loop_stats.json` only. Written before
+/// every measurement, so the answer to the end of the run finds the final
+/// counts; an arm bridge does not publish it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, ZeroCopySend)]
+#[type_name("shearcut::WirePlantCounts")]
+#[repr(C)]
+pub struct WirePlantCounts {
+    /// Successor sections found unbuilt when due and gone on without
+    /// (`SuccessorPolicy::KeepCurrent`, the realtime clock): one per
+    /// segment per tick.
+    pub successor_deferrals: u64,
+    /// Successor sections found unbuilt when due and waited for
+    /// (`SuccessorPolicy::Wait`, lockstep): one per wait.
+    pub successor_waits: u64,
+}
+
 /// A measurement the controller cannot use: the plant stopped, or the
 /// message is malformed.
 #[derive(Debug, Clone, Copy, PartialEq, thiserror::Error)]

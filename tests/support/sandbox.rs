@@ -81,9 +81,9 @@ impl Sandbox {
         ])
     }
 
-    /// Starts plant and controller of run `id` as separate processes.
-    pub fn spawn_pair(&self, scenario: &str, id: &str, out: &Path) -> (Child, Child) {
-        let plant = self.spawn(&[
+    /// Starts the plant of run `id` (`--controller slice:0.75`).
+    pub fn spawn_plant(&self, scenario: &str, id: &str) -> Child {
+        self.spawn(&[
             "plant",
             "--scenario",
             scenario,
@@ -91,8 +91,13 @@ impl Sandbox {
             id,
             "--controller",
             "slice:0.75",
-        ]);
-        let controller = self.spawn(&[
+        ])
+    }
+
+    /// Starts the controller of run `id` (`--controller slice:0.75`),
+    /// writing to `out`.
+    pub fn spawn_controller(&self, scenario: &str, id: &str, out: &Path) -> Child {
+        self.spawn(&[
             "controller",
             "--scenario",
             scenario,
@@ -102,8 +107,15 @@ impl Sandbox {
             "slice:0.75",
             "--out",
             out.to_str().unwrap(),
-        ]);
-        (plant, controller)
+        ])
+    }
+
+    /// Starts plant and controller of run `id` as separate processes.
+    pub fn spawn_pair(&self, scenario: &str, id: &str, out: &Path) -> (Child, Child) {
+        (
+            self.spawn_plant(scenario, id),
+            self.spawn_controller(scenario, id, out),
+        )
     }
 
     /// A short lockstep run under run id `id` completes on both sides: what

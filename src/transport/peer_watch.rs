@@ -1,0 +1,193 @@
+//! Whether the other side of a run is there while this process starts up:
+//! a thread that looks at the peer's iceoryx2 node every [`PEER_LOOK`] from
+//! the moment this process's own node exists until the loop starts, so that
+//! a peer that dies (or exits) before the loop is noticed within a look,
+//! even while this process is busy building its plant or controller.
+
+use std::sync::atomic::{AtomicBool, AtomicU8, Ordering};
+use std::sync::{Arc, Mutex};
+use std::thread::JoinHandle;
+use std::time::Duration;
+
+use iceoryx2::identifiers::UniqueNodeId;
+use iceoryx2::prelude::*;
+
+use super::loop_services::{PeerState, Role, node_name};
+use super::run_node::look;
+
+/// How often the watch looks at the peer's node (iceoryx2's node list:
+/// about 1.2k allocations a look, on the watch's own thread).
+pub const PEER_LOOK: Duration = Duration::from_millis(20);
+
+/// What this process knows of its peer before the loop starts.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PeerFate {
+    /// Not seen yet (it may not have started).
+    NotSeen = 0,
+    /// Seen alive at the last look.
+    Alive = 1,
+    /// Its node is dead: the process died without cleaning up (a kill, a
+    /// crash), iceoryx2 dead-node detection.
+    Died = 2,
+    /// Seen alive, and its node is gone: the process exited (or died and
+    /// another process of the prefix cleaned its node before a look).
+    Ended = 3,
+}
+
+impl PeerFate {
+    fn from_code(code: u8) -> Self {
+        match code {
+            1 => PeerFate::Alive,
+            2 => PeerFate::Died,
+            3 => PeerFate::Ended,
+            _ => PeerFate::NotSeen,
+        }
+    }
+
+    /// Whether the peer is gone for good (died or ended).
+    pub fn is_gone(self) -> bool {
+        matches!(self, PeerFate::Died | PeerFate::Ended)
+    }
+
+    /// The fate after a look that found the node `state`.
+    fn after(self, state: PeerState) -> Self {
+        match (state, self) {
+            (_, PeerFate::Died | PeerFate::Ended) => self,
+            (PeerState::Alive, _) => PeerFate::Alive,
+            (PeerState::Dead, _) => PeerFate::Died,
+            (PeerState::Absent, PeerFate::Alive) => PeerFate::Ended,
+            (PeerState::Absent, PeerFate::NotSeen) => PeerFate::NotSeen,
+        }
+    }
+}
+
+/// The watching thread and what it found. Reading the fate is one atomic
+/// load; [`PeerWatch::stop`] ends the thread (it must end before the loop:
+/// its looks allocate).
+#[derive(Debug)]
+pub struct PeerWatch {
+    fate: Arc<AtomicU8>,
+    stop: Arc<AtomicBool>,
+    thread: Mutex<Option<JoinHandle<()>>>,
+}
+
+impl PeerWatch {
+    /// Starts watching the node named `peer` under `config`, from what was
+    /// known at the start (`initial`; `seen`, the id of the peer's node seen
+    /// alive). Only the node seen alive can die or end: a dead node of the
+    /// same name never seen alive is an earlier run's.
+    pub fn start(
+        config: Config,
+        peer: String,
+        initial: PeerFate,
+        seen: Option<UniqueNodeId>,
+    ) -> Self {
+        let fate = Arc::new(AtomicU8::new(initial as u8));
+        let stop = Arc::new(AtomicBool::new(false));
+        let thread = if initial.is_gone() {
+            None
+        } else {
+            let (fate, stop) = (Arc::clone(&fate), Arc::clone(&stop));
+            std::thread::Builder::new()
+                .name("peer-watch".to_string())
+                .spawn(move || {
+                    let mut seen = seen;
+                    while !stop.load(Ordering::Acquire) {
+                        let (state, id) = look(&config, &peer, seen);
+                        seen = id;
+                        let now = PeerFate::from_code(fate.load(Ordering::Acquire)).after(state);
+                        fate.store(now as u8, Ordering::Release);
+                        if now.is_gone() {
+                            break;
+                        }
+                        std::thread::park_timeout(PEER_LOOK);
+                    }
+                })
+                .ok()
+        };
+        Self {
+            fate,
+            stop,
+            thread: Mutex::new(thread),
+        }
+    }
+
+    /// What the watch found at its last look (one atomic load).
+    pub fn fate(&self) -> PeerFate {
+        PeerFate::from_code(self.fate.load(Ordering::Acquire))
+    }
+
+    /// The peer's fate if it is gone, waiting up to `patience` for the
+    /// watch's next looks (a step that failed may have failed because the
+    /// peer died in it).
+    #[allow(clippy::disallowed_methods)] // A wait for the watch, not model time.
+    pub fn gone_within(&self, patience: Duration) -> Option<PeerFate> {
+        let until = std::time::Instant::now() + patience;
+        loop {
+            let fate = self.fate();
+            if fate.is_gone() {
+                return Some(fate);
+            }
+            if std::time::Instant::now() >= until || self.stop.load(Ordering::Acquire) {
+                return None;
+            }
+            std::thread::sleep(Duration::from_millis(1));
+        }
+    }
+
+    /// Ends the watch (waits for a look in progress); its last fate stays
+    /// readable.
+    pub fn stop(&self) {
+        self.stop.store(true, Ordering::Release);
+        let handle = self.thread.lock().ok().and_then(|mut t| t.take());
+        if let Some(handle) = handle {
+            handle.thread().unpark();
+            let _ = handle.join();
+        }
+    }
+}
+
+impl Drop for PeerWatch {
+    fn drop(&mut self) {
+        self.stop();
+    }
+}
+
+/// The one line saying how `peer`, the other side of run `run_id`, went
+/// before the loop started (`fate` is [`PeerFate::Died`] or
+/// [`PeerFate::Ended`]): `the plant 'plant/x' died before serving run 'x'
+/// (iceoryx2 dead-node detection)`, `the controller 'controller/x' ended
+/// before its first command of run 'x' (its process exited; …)`.
+pub fn gone_before_loop(peer: Role, run_id: &str, fate: PeerFate) -> String {
+    let before = match peer {
+        Role::Plant => "serving",
+        Role::Controller => "its first command of",
+    };
+    let (verb, why) = match fate {
+        PeerFate::Died => ("died", "iceoryx2 dead-node detection"),
+        _ => ("ended", "its process exited; its stderr says why"),
+    };
+    format!(
+        "the {} '{}' {verb} before {before} run '{run_id}' ({why})",
+        peer.as_str(),
+        node_name(peer, run_id)
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_peer_seen_and_then_absent_ended_and_a_dead_one_died() {
+        use PeerFate::*;
+        assert_eq!(NotSeen.after(PeerState::Absent), NotSeen);
+        assert_eq!(NotSeen.after(PeerState::Alive), Alive);
+        assert_eq!(Alive.after(PeerState::Absent), Ended);
+        assert_eq!(NotSeen.after(PeerState::Dead), Died);
+        assert_eq!(Alive.after(PeerState::Dead), Died);
+        // Gone stays gone.
+        assert_eq!(Ended.after(PeerState::Alive), Ended);
+        assert_eq!(Died.after(PeerState::Absent), Died);
+    }
+}
