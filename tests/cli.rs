@@ -153,3 +153,55 @@ fn replica_counts_and_indices_out_of_range_are_refused_in_one_line() {
     let e = stderr(&o);
     assert!(e.contains("--replica") && e.contains("0..=20"), "{e}");
 }
+
+/// `RUST_LOG=info` tells the story of a closed-loop cut, one line per
+/// milestone and a summary of the plant's re-choices; by default a run is
+/// quiet on stderr.
+#[test]
+fn info_logs_tell_the_story_of_a_cut_and_the_default_is_quiet() {
+    let dir = binary_run::scratch("story");
+    let scenario = dir.join("small.toml");
+    let text = include_str!("../config/scenarios/fig7-potato.toml")
+        .replace("depth = 0.02", "depth = 0.006")
+        + "\n[plant]\nsegments = 2\n\n[section]\nrow_spacing = 0.0005\n";
+    std::fs::write(&scenario, text).unwrap();
+    let run = |log: &str, out: &str| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_shearcut"))
+            .args([
+                "run",
+                scenario.to_str().unwrap(),
+                "--controller",
+                "slice:0.75",
+            ])
+            .args(["--out", dir.join(out).to_str().unwrap()])
+            .env("RUST_LOG", log)
+            .output()
+            .expect("the shearcut binary runs")
+    };
+    let told = run("info", "told");
+    binary_run::assert_success(&told);
+    let story = stderr(&told);
+    for line in [
+        "the edge touches",
+        "first fracture",
+        "target depth reached after",
+        "the plant re-chose its moving sections",
+        "results written to",
+    ] {
+        assert_eq!(story.matches(line).count(), 1, "{line}:\n{story}");
+    }
+    let quiet = std::process::Command::new(env!("CARGO_BIN_EXE_shearcut"))
+        .args([
+            "run",
+            scenario.to_str().unwrap(),
+            "--controller",
+            "slice:0.75",
+        ])
+        .args(["--out", dir.join("quiet").to_str().unwrap()])
+        .env_remove("RUST_LOG")
+        .output()
+        .unwrap();
+    binary_run::assert_success(&quiet);
+    assert!(quiet.stderr.is_empty(), "{}", stderr(&quiet));
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -5,7 +5,9 @@ use std::mem::{align_of, offset_of, size_of};
 
 use nalgebra::Vector3;
 use proptest::prelude::*;
-use shearcut::transport::wire::{WireCommand, WireError, WireMeasurement, WireStatus, WireTruth};
+use shearcut::transport::wire::{
+    WireCommand, WireError, WireMeasurement, WirePlantCounts, WireStatus, WireTruth,
+};
 use shearcut_plant::{PlantTruth, Wrench};
 use shearcut_sim::arm::{ArmReading, ArmStatus, KnifeCommand, LimitViolation};
 
@@ -40,6 +42,14 @@ fn measurement_layout_is_the_documented_one() {
     for (i, (got, want)) in offsets.iter().enumerate() {
         assert_eq!(got, want, "field {i}");
     }
+}
+
+#[test]
+fn plant_counts_layout_is_the_documented_one() {
+    assert_eq!(size_of::<WirePlantCounts>(), 16);
+    assert_eq!(align_of::<WirePlantCounts>(), 8);
+    assert_eq!(offset_of!(WirePlantCounts, successor_deferrals), 0);
+    assert_eq!(offset_of!(WirePlantCounts, successor_waits), 8);
 }
 
 #[test]

@@ -78,8 +78,17 @@ impl CutStory {
     }
 
     /// Logs how the run ended after `ticks` controller ticks and `time` s
-    /// of simulated time; `last` is the final answer.
-    pub fn end(&self, end: &LoopEnd, ticks: usize, time: f64, last: &LinkAnswer) {
+    /// of simulated time; `last` is the final answer, `rechoices` the
+    /// plant's section re-choices over the run if it says (summarised
+    /// here, not one line each).
+    pub fn end(
+        &self,
+        end: &LoopEnd,
+        ticks: usize,
+        time: f64,
+        last: &LinkAnswer,
+        rechoices: Option<usize>,
+    ) {
         let truth = last.truth;
         let what = match end {
             LoopEnd::Completed => "target depth reached".to_string(),
@@ -99,6 +108,9 @@ impl CutStory {
                 "t = {time:.3} s: {what} after {ticks} ticks ({} reversals)",
                 self.reversals
             ),
+        }
+        if let Some(n) = rechoices {
+            tracing::info!("the plant re-chose its moving sections {n} times over the cut");
         }
     }
 }

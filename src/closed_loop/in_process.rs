@@ -47,4 +47,8 @@ impl PlantLink for InProcessPlant {
             successor_waits: self.plant.successor_waits() as u64,
         })
     }
+
+    fn rechoices(&self) -> Option<usize> {
+        Some(self.plant.rechoices())
+    }
 }

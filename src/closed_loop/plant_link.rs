@@ -51,4 +51,11 @@ pub trait PlantLink {
     fn successor_counts(&self) -> Option<WirePlantCounts> {
         None
     }
+
+    /// How often the simulated plant has re-chosen its moving cross
+    /// sections so far (seed 000 §IV); `None` for a plant that does not
+    /// say (an arm, or a plant in another process).
+    fn rechoices(&self) -> Option<usize> {
+        None
+    }
 }

@@ -204,7 +204,7 @@ pub fn run_loop_recorded(
             break;
         }
     }
-    story.end(&end, ticks, answer.reading.time, &answer);
+    story.end(&end, ticks, answer.reading.time, &answer, link.rechoices());
     LoopOutput {
         samples,
         control,

@@ -17,8 +17,8 @@ use super::series_record::SeriesRecord;
 use crate::error::RunError;
 use crate::transport::{StopSignal, TerminationWatch};
 
-/// Simulated time between flushes, s: the issue's "at least every 100 ms
-/// of run time".
+/// Simulated time between flushes, s: a kill loses at most the last
+/// 100 ms of run time.
 pub const FLUSH_PERIOD: f64 = 0.1;
 
 /// How long the writer sleeps when the queue is empty: the wall-clock

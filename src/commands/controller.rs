@@ -185,6 +185,7 @@ fn serve(
             end: &run.output.end,
         },
     )?;
+    tracing::info!("results written to {}/", dir.display());
     print_summary(s, &run)?;
     crate::outln!(
         "loop over iceoryx2 (run {run_id}, {:?} clock): round trip median {:.1} us, p99 {:.1} us, max {:.1} us; missed commands {}",

@@ -52,6 +52,10 @@ pub fn run(
     settings.wait = wait;
     let report = serve_plant(&services, &mut link, &settings)
         .map_err(|e| RunError::Loop(format!("{name}: {e}")))?;
+    tracing::info!(
+        "the plant re-chose its moving sections {} times over the cut",
+        link.plant().rechoices()
+    );
     let counts = format!(
         "{} commands answered, {} steps, {} missed commands (longest run {}), {} successor deferrals, {} successor waits",
         report.commands,

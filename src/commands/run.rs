@@ -94,6 +94,7 @@ pub fn run(
         .inspect_err(|_| run_dir::abandon(&dir))?;
     let dropped = stream.finish()?;
     write_results(&s, &run, transport, dropped, &dir)?;
+    tracing::info!("results written to {}/", dir.display());
     print_summary(&s, &run)?;
     crate::outln!(
         "results: {}/ (timeseries.csv, controller.csv, summary.json, scenario.toml, forces_work.svg/.png, controller.svg/.png)",

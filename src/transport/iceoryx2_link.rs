@@ -27,9 +27,9 @@ pub struct LinkTimeouts {
 }
 
 impl Default for LinkTimeouts {
-    /// Connect 10 s, response 30 s (a lockstep plant may rebuild a section:
-    /// up to 4.7 s measured on a loaded 2-core machine; a dead plant is
-    /// still detected within a check), checks every 5 ms.
+    /// Connect 10 s, response 30 s (a lockstep plant may wait for a section
+    /// build: far less than this, docs/benchmarks.md; a dead plant is still
+    /// detected within a check), checks every 5 ms.
     fn default() -> Self {
         Self {
             connect: Duration::from_secs(10),

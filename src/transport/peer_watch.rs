@@ -16,7 +16,7 @@ use super::loop_services::{PeerState, Role, node_name};
 use super::run_node::look;
 
 /// How often the watch looks at the peer's node (iceoryx2's node list:
-/// about 1.2k allocations a look, on the watch's own thread).
+/// allocating on every look, on the watch's own thread).
 pub const PEER_LOOK: Duration = Duration::from_millis(20);
 
 /// What this process knows of its peer before the loop starts.

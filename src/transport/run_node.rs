@@ -121,8 +121,8 @@ fn cleanup_dead_nodes(config: &Config, peer: &str) -> Vec<UniqueNodeId> {
 /// A look at the nodes named `name` under `config`: with `seen`, the state
 /// of that node (alive, dead, or absent: gone); without, alive and its id
 /// if one of them is alive, else absent (a dead one never seen alive is an
-/// earlier run's, or died unseen). Lists every node of the prefix (about
-/// 1.2k allocations): keep it off the tick path.
+/// earlier run's, or died unseen). Lists every node of the prefix (it
+/// allocates): keep it off the tick path.
 pub fn look(
     config: &Config,
     name: &str,
@@ -159,7 +159,7 @@ pub fn look(
 
 /// The state of the nodes named `name` under `config` other than `except`:
 /// alive if one is, else dead if one died without cleaning up, else
-/// absent. Lists every node of the prefix (about 1.2k allocations): keep it
+/// absent. Lists every node of the prefix (it allocates): keep it
 /// off the tick path.
 pub fn node_state(config: &Config, name: &str, except: Option<&UniqueNodeId>) -> PeerState {
     let mut state = PeerState::Absent;

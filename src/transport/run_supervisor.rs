@@ -215,9 +215,9 @@ const RESEND: Duration = Duration::from_millis(500);
 /// every [`RESEND`] until it exits or `grace` has passed (then SIGKILL).
 /// iceoryx2 keeps one pending signal in a flag that its own calls can reset
 /// (`SignalHandler::call_and_fetch` clears it before a call, and every
-/// termination check consumes it): a controller under load once ran on for
-/// the whole 10 s grace after a single SIGTERM and was killed. A repeated
-/// signal gets through.
+/// termination check consumes it), so a single signal can be lost and a
+/// child under load run on for the whole grace. A repeated signal gets
+/// through.
 fn stop(child: &mut Child, sent: StopSignal, grace: Duration) -> Option<ExitStatus> {
     #[allow(clippy::disallowed_methods)] // Supervision deadline.
     let until = Instant::now() + grace;
