@@ -1058,3 +1058,55 @@ fn issue_27_the_plants_successor_counts_are_in_loop_stats() {
         );
     }
 }
+
+/// `simulate` stopped by SIGINT or SIGTERM mid-cut: 130/143 and one line,
+/// and the results so far written as a finished run's are (whole rows, a
+/// summary saying why it stopped and summarising the cut in progress, the
+/// plot).
+#[test]
+fn issue_27_sigint_and_sigterm_stop_a_simulation_with_its_results_so_far() {
+    let d = Dir::new("simulate-signals");
+    // Seed 000 Fig. 10's half potato on coarse sections: three cuts of 4 s
+    // of simulated time each, seconds of wall time in release; the signal
+    // comes during the first.
+    let scenario = d.file(
+        "fig10-coarse.toml",
+        &(include_str!("../config/scenarios/fig10-potato-whole.toml").to_string()
+            + "\n[section]\nrow_spacing = 0.0005\n"),
+    );
+    for (signal, code, name) in [("INT", 130, "sigint"), ("TERM", 143, "sigterm")] {
+        let out = d.0.join(name);
+        let mut child = Command::new(env!("CARGO_BIN_EXE_shearcut"))
+            .args(["simulate", &scenario, "--out", out.to_str().unwrap()])
+            .env("RUST_LOG", "error")
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        // The handlers are installed before the run's directory is claimed.
+        wait_until("the run's directory", &mut child, || {
+            out.join("scenario.toml").is_file()
+        });
+        let sent = Command::new("kill")
+            .args([&format!("-{signal}"), &child.id().to_string()])
+            .status()
+            .unwrap();
+        assert!(sent.success());
+        let o = sandbox::watchdog(child, sandbox::WATCHDOG);
+        assert_eq!(o.status.code(), Some(code), "{name}: {}", stderr(&o));
+        assert_eq!(stderr(&o).lines().count(), 1, "{}", stderr(&o));
+        assert!(stderr(&o).contains("partial results in"), "{}", stderr(&o));
+        let summary = std::fs::read_to_string(out.join("summary.json")).unwrap();
+        let v: serde_json::Value = serde_json::from_str(&summary).unwrap();
+        assert_eq!(v["end"]["stopped"], name, "{summary}");
+        let cuts = v["cuts"].as_array().unwrap();
+        assert_eq!(
+            cuts.len(),
+            1,
+            "stopped in the first of three cuts: {summary}"
+        );
+        assert_eq!(cuts[0]["completed"], false, "{summary}");
+        assert!(whole_rows(&out.join("timeseries.csv")) > 0);
+        assert!(out.join("forces_work.png").is_file());
+    }
+}

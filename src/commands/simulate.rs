@@ -25,6 +25,7 @@ use crate::render_plot;
 use crate::result_file::{write_csv, write_json};
 use crate::run_dir::{self, Destination};
 use crate::scenario::{Scenario, WireSlabScenario};
+use crate::transport::{StopSignal, TerminationWatch};
 
 /// Everything a simulation produced.
 #[derive(Debug, Clone)]
@@ -37,6 +38,10 @@ pub struct SimulationOutput {
     pub target_depth_m: f64,
     /// Which model ran.
     pub model: &'static str,
+    /// The signal that stopped the simulation before its last cut ended
+    /// (`None`: every cut ran to its end). The samples then hold every step
+    /// up to the stop; the cut in progress has a summary of its own.
+    pub stopped: Option<StopSignal>,
 }
 
 /// The summary file's content.
@@ -46,7 +51,24 @@ struct SummaryFile<'a> {
     model: &'a str,
     target_depth_m: f64,
     cuts: &'a [CutSummary],
+    /// `{"stopped": "sigint"}` when a signal stopped the run (absent
+    /// otherwise).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    end: Option<StoppedEnd>,
 }
+
+/// How a stopped simulation ended, in `summary.json`.
+#[derive(Debug, serde::Serialize)]
+struct StoppedEnd {
+    stopped: StopSignal,
+}
+
+/// Steps between two looks for a stop request: a look takes a lock, a
+/// step of the section model tens of microseconds.
+const STOP_POLL_STEPS: usize = 256;
+
+/// A stop request source: the signal to stop for, if one came.
+type StopCheck<'a> = &'a dyn Fn() -> Option<StopSignal>;
 
 /// Model name of the single-section path.
 pub const SINGLE_SECTION: &str = "single cross section x piece length";
@@ -58,12 +80,19 @@ const RAMP_S: f64 = 0.05;
 
 /// Runs the cuts of `scenario` (no files written).
 pub fn simulate(scenario: &Scenario) -> Result<SimulationOutput, RunError> {
+    simulate_until(scenario, &|| None)
+}
+
+/// Runs the cuts of `scenario`, looking at `stop` every
+/// [`STOP_POLL_STEPS`] steps: a signal ends the simulation there, with the
+/// samples so far ([`SimulationOutput::stopped`]).
+pub fn simulate_until(scenario: &Scenario, stop: StopCheck) -> Result<SimulationOutput, RunError> {
     let knife = Knife::new(&scenario.knife).map_err(|e| invalid(scenario, e.prefixed("knife")))?;
     match (&scenario.object, &scenario.knife.edge) {
         (ObjectShape::Cuboid(c), EdgeShape::Straight { .. } | EdgeShape::Wire { .. }) => {
-            simulate_section(scenario, &knife, c)
+            simulate_section(scenario, &knife, c, stop)
         }
-        _ => simulate_plant(scenario, &knife),
+        _ => simulate_plant(scenario, &knife, stop),
     }
 }
 
@@ -79,6 +108,7 @@ fn simulate_section(
     scenario: &Scenario,
     knife: &Knife,
     cuboid: &Cuboid,
+    stop: StopCheck,
 ) -> Result<SimulationOutput, RunError> {
     let depth = scenario.motion.depth.unwrap_or(0.8 * cuboid.height);
     let edge_length = knife.edge().length();
@@ -121,6 +151,7 @@ fn simulate_section(
     let mut samples = Vec::new();
     let mut summaries = Vec::new();
     let bar = run_bar(cuts.len(), &format!("simulate {}", scenario.name));
+    let mut stopped = None;
     for &(xi, z0) in &cuts {
         bar.inc(1);
         section.reset();
@@ -137,8 +168,17 @@ fn simulate_section(
                 )
             })?;
             samples.push(section_sample(knife, xi, z0, &s, v_n, cuboid));
+            if (samples.len() - first).is_multiple_of(STOP_POLL_STEPS) {
+                stopped = stop();
+                if stopped.is_some() {
+                    break;
+                }
+            }
         }
         summaries.push(CutSummary::from_samples(&samples[first..], depth));
+        if stopped.is_some() {
+            break;
+        }
     }
     bar.finish_and_clear();
     Ok(SimulationOutput {
@@ -146,6 +186,7 @@ fn simulate_section(
         summaries,
         target_depth_m: depth,
         model: SINGLE_SECTION,
+        stopped,
     })
 }
 
@@ -202,7 +243,11 @@ fn section_sample(
 }
 
 /// The multi-section plant at the loop rate.
-fn simulate_plant(scenario: &Scenario, knife: &Knife) -> Result<SimulationOutput, RunError> {
+fn simulate_plant(
+    scenario: &Scenario,
+    knife: &Knife,
+    stop: StopCheck,
+) -> Result<SimulationOutput, RunError> {
     let mesh = scenario.object.mesh().map_err(|e| {
         invalid(
             scenario,
@@ -218,6 +263,7 @@ fn simulate_plant(scenario: &Scenario, knife: &Knife) -> Result<SimulationOutput
     let mut summaries = Vec::new();
     let cuts = scenario.motion.cuts();
     let bar = run_bar(cuts.len(), &format!("simulate {}", scenario.name));
+    let mut stopped = None;
     for (i, (xi, z0)) in cuts.into_iter().enumerate() {
         bar.inc(1);
         let alpha = xi.atan();
@@ -277,8 +323,17 @@ fn simulate_plant(scenario: &Scenario, knife: &Knife) -> Result<SimulationOutput
             if step.truth.crack_depth >= depth {
                 break;
             }
+            if tick.is_multiple_of(STOP_POLL_STEPS) {
+                stopped = stop();
+                if stopped.is_some() {
+                    break;
+                }
+            }
         }
         summaries.push(CutSummary::from_samples(&samples[first..], depth));
+        if stopped.is_some() {
+            break;
+        }
     }
     bar.finish_and_clear();
     Ok(SimulationOutput {
@@ -286,6 +341,7 @@ fn simulate_plant(scenario: &Scenario, knife: &Knife) -> Result<SimulationOutput
         summaries,
         target_depth_m: depth,
         model: MULTI_SECTION,
+        stopped,
     })
 }
 
@@ -301,8 +357,13 @@ pub fn run(scenario: &str, out: &Destination) -> Result<(), RunError> {
 
 /// Simulates a loaded scenario and writes its results.
 pub fn run_scenario(s: &Scenario, out: &Destination) -> Result<(), RunError> {
+    // SIGINT/SIGTERM stop the simulation between steps (from before the
+    // run's directory exists); the results so far are written as a finished
+    // run's would be, and the exit is 130/143.
+    let watch = TerminationWatch::new();
     let dir = run_dir::claim(&s.name, out, &crate::commands::check::resolved_toml(s))?;
-    let output = simulate(s).inspect_err(|_| run_dir::abandon(&dir))?;
+    let output =
+        simulate_until(s, &|| watch.requested()).inspect_err(|_| run_dir::abandon(&dir))?;
     write_csv(&dir.join("timeseries.csv"), &output.samples)?;
     write_json(
         &dir.join("summary.json"),
@@ -311,6 +372,7 @@ pub fn run_scenario(s: &Scenario, out: &Destination) -> Result<(), RunError> {
             model: output.model,
             target_depth_m: output.target_depth_m,
             cuts: &output.summaries,
+            end: output.stopped.map(|stopped| StoppedEnd { stopped }),
         },
     )?;
     let cuts: Vec<&[CutSample]> = output
@@ -338,7 +400,14 @@ pub fn run_scenario(s: &Scenario, out: &Destination) -> Result<(), RunError> {
         "{}results: {}/ (timeseries.csv, summary.json, scenario.toml, forces_work.svg/.png)\n",
         summary_table(s, output.model, &output.summaries),
         dir.display()
-    ))
+    ))?;
+    match output.stopped {
+        Some(signal) => Err(RunError::Stopped {
+            signal,
+            dir: dir.display().to_string(),
+        }),
+        None => Ok(()),
+    }
 }
 
 fn summary_table(s: &Scenario, model: &str, summaries: &[CutSummary]) -> String {
