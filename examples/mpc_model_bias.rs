@@ -169,9 +169,10 @@ fn predict(trace: &Trace, model: &Surrogate, profile: &DepthProfile) -> Predicti
 /// rest at (J): its stages as `MpcPlanJob::replan` builds them from edge
 /// depth 0 before the first fracture — `stages` equal stages of the
 /// target depth, each at the sections' mean depth, the first with the
-/// onset's cost (the work to the fracture and the catch-up after it,
-/// `SliceModel::stage`), the later ones at the rates after the catch-up
-/// span (`SliceModel::catch_up_span`) — summed as L_0·W_onset +
+/// onset's cost for the whole edge (the work to the fracture and the
+/// catch-up after it, each depth weighted by the edge in contact there,
+/// `SliceModel::onset_cost`), the later ones at the rates after the
+/// catch-up span (`SliceModel::catch_up_span`) — summed as W_onset +
 /// Σ Δd·L_k·w_k, the work terms of its objective at ξ̄ = `xi`.
 fn planner_work(
     model: &SurrogateModel,
@@ -195,9 +196,14 @@ fn planner_work(
             let edge = (k as f64 + 0.5) * dd;
             let depth = profile.section_depth(edge);
             let since = if k == 0 { span } else { (depth - s0).max(span) };
-            let c = model.stage(xi, &state(depth, k > 0, since));
+            let stage = state(depth, k > 0, since);
+            let c = model.stage(xi, &stage);
             let length = profile.contact_length(edge);
-            let onset = if k == 0 { length * c.onset_work } else { 0.0 };
+            let onset = if k == 0 {
+                model.onset_cost(xi, &stage, |d| profile.contact_at_section_depth(d))[0]
+            } else {
+                0.0
+            };
             onset + dd * length * c.work_per_depth
         })
         .sum()

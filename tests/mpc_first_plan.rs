@@ -72,6 +72,51 @@ fn the_eggplant_onset_cost_nets_out_the_catch_up() {
     );
 }
 
+/// The onset's cost for the whole edge weighs each depth by the edge in
+/// contact there. On a constant contact that is the per-length cost times
+/// the contact (the indentation's force is linear in depth, which the
+/// trapezoidal rule integrates exactly). On the eggplant's dome the
+/// contact widens over the catch-up span, where the crack's run ahead of
+/// the edge saves work: the whole edge's saving from pressing is larger
+/// than the first stage's contact would make it, and slicing's (a shallow
+/// onset, a short jump) gains less from the widening.
+#[test]
+fn the_onset_cost_weighs_each_depth_by_the_edge_in_contact() {
+    let (model, intact) = model_and_profile("loop-eggplant-whole");
+    let span = model.catch_up_span(0.0, &intact);
+    let state = StageState {
+        travel_since_fracture: span,
+        ..intact
+    };
+    let l = 0.04;
+    for xi in [0.0, 0.5, 1.0] {
+        let per_length = model.stage(xi, &state).onset_work;
+        let [whole, _, _] = model.onset_cost(xi, &state, |_| l);
+        assert!(
+            (whole - l * per_length).abs() <= 1e-9 * (l * per_length).abs(),
+            "ξ = {xi}: {whole} J against {} J",
+            l * per_length
+        );
+    }
+    // A chord of the 70 mm round, 2√(d(D − d)), at the sections' depth.
+    let chord = |d: f64| 2.0 * (d.max(0.0) * (0.07 - d.max(0.0)).max(0.0)).sqrt();
+    let first = chord(intact.depth);
+    let pressing = model.onset_cost(0.0, &state, chord)[0];
+    let slicing = model.onset_cost(1.0, &state, chord)[0];
+    let per_length = |xi| first * model.stage(xi, &state).onset_work;
+    assert!(
+        pressing < per_length(0.0),
+        "pressing: {pressing} J on the widening contact, {} J at the first stage's",
+        per_length(0.0)
+    );
+    assert!(
+        slicing - pressing > per_length(1.0) - per_length(0.0),
+        "slicing's premium {} J on the widening contact, {} J at the first stage's",
+        slicing - pressing,
+        per_length(1.0) - per_length(0.0)
+    );
+}
+
 /// On the whole eggplant the plan from rest presses (the skin's onset is
 /// not cheaper sliced, and the flesh's work rises with ξ); on the potatoes
 /// it slices. The plant builds its first sections for that ratio.
@@ -81,8 +126,13 @@ fn the_first_plan_sets_the_direction_the_plant_is_planned_for() {
         ("loop-eggplant-whole", 0.0, 0.15),
         ("loop-potato-whole", 0.4, 1.2),
         ("loop-potato-cuboid", 0.4, 1.2),
+        ("eggplant-small", 0.0, 0.15),
     ] {
-        let s = Scenario::load(name).expect("a built-in scenario");
+        let s = if name == "eggplant-small" {
+            small_eggplant()
+        } else {
+            Scenario::load(name).expect("a built-in scenario")
+        };
         let setup = LoopSetup::new(&s, ControllerChoice::Mpc).expect("a valid scenario");
         let profile = setup.profile.as_ref().expect("the MPC's profile");
         let ratio = mpc_cutting_ratio(&s, &setup.task, profile).expect("a plan");
@@ -96,6 +146,22 @@ fn the_first_plan_sets_the_direction_the_plant_is_planned_for() {
             "{name}: the plant's direction is the plan's"
         );
     }
+}
+
+/// The coarse whole eggplant at ×0.75 (the held-out variant): 20 mm of
+/// blade over 30 mm of depth lets the plan start at ratios up to 0.67; the
+/// plan prices pressing's deep onset, whose crack runs ahead of the edge
+/// where the contact has widened, below slicing's shallow one, and
+/// presses.
+fn small_eggplant() -> Scenario {
+    let base = include_str!("../config/scenarios/loop-eggplant-whole-coarse.toml");
+    let text = base
+        .replace("length = 0.2", "length = 0.15")
+        .replace("diameter = 0.07", "diameter = 0.0525")
+        .replace("flat = 0.004", "flat = 0.003")
+        .replace("depth = 0.04", "depth = 0.03");
+    assert_eq!(text.matches("0.0525").count(), 1, "the object was scaled");
+    Scenario::parse(&text, "eggplant-small", "eggplant-small").expect("a valid scenario")
 }
 
 /// `[plant] reach` widens the plant's segmented edge beyond the blade

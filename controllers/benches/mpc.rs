@@ -86,6 +86,7 @@ fn main() {
                 xi_bar: xi_bar[k],
                 cost: Quadratic.stage(xi_bar[k], &state),
                 before_fracture: false,
+                onset: [0.0; 3],
                 entering: Default::default(),
             };
         }

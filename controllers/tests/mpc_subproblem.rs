@@ -22,6 +22,7 @@ fn stage(xi_bar: f64, contact_length: f64, depth_step: f64) -> StageData {
             ..StageCost::default()
         },
         before_fracture: false,
+        onset: [0.0; 3],
         entering: Default::default(),
     }
 }

@@ -239,6 +239,31 @@ impl DepthProfile {
         }
     }
 
+    /// The edge's depth below the top at which the sections' mean depth
+    /// ([`section_depth`](Self::section_depth)) is `section_depth`, m: the
+    /// least such depth, by bisection to 1 nm (the mean depth never exceeds
+    /// the edge's, and beyond the last sample it trails it by at most the
+    /// last sample's depth).
+    pub fn edge_depth_at(&self, section_depth: f64) -> f64 {
+        let target = section_depth.max(0.0);
+        let (mut lo, mut hi) = (target, target + self.depths[self.depths.len() - 1].max(0.0));
+        while hi - lo > 1e-9 {
+            let mid = 0.5 * (lo + hi);
+            if self.section_depth(mid) < target {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+        hi
+    }
+
+    /// Length of edge in contact when the sections' mean depth is
+    /// `section_depth`, m.
+    pub fn contact_at_section_depth(&self, section_depth: f64) -> f64 {
+        self.contact_length(self.edge_depth_at(section_depth))
+    }
+
     /// Section height at the cut, m.
     pub fn height(&self) -> f64 {
         self.height
@@ -276,6 +301,19 @@ mod tests {
         let deep = p.section_depth(0.04);
         assert!((deep - (0.5 * 0.03 * 0.06 + 0.01 * 0.06) / 0.06).abs() < 1e-15);
         assert_eq!(p.section_depth(0.0), 0.0);
+    }
+
+    #[test]
+    fn the_edge_depth_of_a_section_depth_inverts_it() {
+        let depths: Vec<f64> = (0..=40).map(|k| k as f64 * 1e-3).collect();
+        let lengths: Vec<f64> = depths.iter().map(|h| 0.5 * h.sqrt()).collect();
+        let p = DepthProfile::new(depths, lengths, 0.035, 0.03).unwrap();
+        for e in [0.0, 1e-4, 0.004, 0.02, 0.039, 0.05] {
+            let back = p.edge_depth_at(p.section_depth(e));
+            assert!((back - e).abs() < 2e-9, "{e}: {back}");
+        }
+        let flat = DepthProfile::uniform(0.03, 0.025, 0.015).unwrap();
+        assert!((flat.contact_at_section_depth(0.01) - flat.contact_length(0.01)).abs() < 1e-15);
     }
 
     #[test]

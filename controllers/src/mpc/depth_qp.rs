@@ -8,7 +8,7 @@
 //! convexified quadratic model and the force per unit length by its tangent:
 //!
 //! minimise   Σ_k Δd_k L_k [g_k (ξ_k − ξ̄_k) + ½ h_k (ξ_k − ξ̄_k)²]      work
-//!          + L_0 [W'_0 (ξ_0 − ξ̄_0) + ½ W''⁺_0 (ξ_0 − ξ̄_0)²]    work to fracture
+//!          + W'_0 (ξ_0 − ξ̄_0) + ½ W''⁺_0 (ξ_0 − ξ̄_0)²          work to fracture
 //!          + w_D L_0 δ'_0 ξ_0   (both before the first fracture)     deformation
 //!          + w_D Σ_k ΔL_k δ*'_k ξ_k                                   deformation
 //!          + w_T Σ_k Δd_k τ_k                                         time
@@ -19,7 +19,10 @@
 //!            Σ_k Δd_k ξ_k ≤ S                                         (blade left)
 //!            L_k (f_k + f'_k (ξ_k − ξ̄_k)) − σ_k ≤ F_max,  σ_k ≥ 0     (force, soft)
 //!
-//! with h_k = max(w''(ξ̄_k), h_min) so the program is convex, L_k the
+//! with h_k = max(w''(ξ̄_k), h_min) so the program is convex, W_0 the cost
+//! of reaching the first fracture for the whole edge (the indentation and
+//! the catch-up span after it, each depth weighted by the edge in contact
+//! there: [`SliceModel::onset_cost`](super::SliceModel::onset_cost)), L_k the
 //! length of edge in contact at the stage, ΔL_k the length of edge that
 //! comes into contact during it (intact material it indents until it
 //! fractures), and δ*'_k the slope in ξ of the surface deflection at which
@@ -49,6 +52,10 @@ pub struct StageData {
     pub cost: StageCost,
     /// Whether the stage is before the first fracture (deformation counts).
     pub before_fracture: bool,
+    /// Before the first fracture (stage 0): the onset's cost for the whole
+    /// edge at `xi_bar`, J, and its first and second derivatives with
+    /// respect to ξ ([`SliceModel::onset_cost`](super::SliceModel::onset_cost)).
+    pub onset: [f64; 3],
     /// Edge that comes into contact during the stage and is indented from
     /// intact until it fractures, with the deflection it reaches then.
     pub entering: EnteringEdge,
@@ -296,8 +303,8 @@ impl DepthQp {
                 * l
                 * (s.cost.work_per_depth + s.cost.work_per_depth_slope * dx + 0.5 * h * dx * dx);
             if k == 0 && s.before_fracture {
-                let h0 = s.cost.onset_work_curvature.max(0.0);
-                j += l * (s.cost.onset_work + s.cost.onset_work_slope * dx + 0.5 * h0 * dx * dx);
+                let [w0, g0, h0] = s.onset;
+                j += w0 + g0 * dx + 0.5 * h0.max(0.0) * dx * dx;
                 j += limits.deformation_weight
                     * l
                     * (s.cost.deformation + s.cost.deformation_slope * dx);
@@ -346,9 +353,10 @@ impl DepthQp {
             self.q[k] += dd * l * (s.cost.work_per_depth_slope - h * s.xi_bar);
             if k == 0 && s.before_fracture {
                 // Work to reach the fracture, ½h₀dx² + g₀dx, and deflection.
-                let h0 = s.cost.onset_work_curvature.max(0.0);
-                self.p.nzval[self.p_diag[0]] += l * h0;
-                self.q[0] += l * (s.cost.onset_work_slope - h0 * s.xi_bar);
+                let [_, g0, h0] = s.onset;
+                let h0 = h0.max(0.0);
+                self.p.nzval[self.p_diag[0]] += h0;
+                self.q[0] += g0 - h0 * s.xi_bar;
                 self.q[0] += limits.deformation_weight * l * s.cost.deformation_slope;
             }
             // Deflection of the edge entering contact, linear in ξ.

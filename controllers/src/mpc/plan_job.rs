@@ -226,12 +226,20 @@ impl<M: SliceModel> MpcPlanJob<M> {
             } else {
                 EnteringEdge::default()
             };
+            let onset = if before_fracture {
+                let profile = &self.profile;
+                self.model
+                    .onset_cost(xi_bar, &state, |d| profile.contact_at_section_depth(d))
+            } else {
+                [0.0; 3]
+            };
             self.stages[k] = StageData {
                 depth_step: dd,
                 contact_length: self.profile.contact_length(edge),
                 xi_bar,
                 cost: self.model.stage(xi_bar, &state),
                 before_fracture,
+                onset,
                 entering,
             };
         }

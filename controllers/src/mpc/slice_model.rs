@@ -89,6 +89,26 @@ pub trait SliceModel {
         0.0
     }
 
+    /// Before the first fracture: what reaching it at `xi` from `state`
+    /// costs for the whole edge, J, with its first and second derivatives
+    /// with respect to ξ — the onset's cost ([`StageCost::onset_work`])
+    /// with each depth's work weighted by the length of edge in contact
+    /// there. `contact(depth)` is that length, m, when the sections' depth
+    /// is `depth` (m). A whole object's contact grows while it is indented
+    /// and over the catch-up span after the fracture, so a deep onset's
+    /// cost and saving fall where more edge is in contact than at the
+    /// first stage. The default weighs the per-length cost by the contact
+    /// at the stage's depth.
+    fn onset_cost<C: Fn(f64) -> f64>(&self, xi: f64, state: &StageState, contact: C) -> [f64; 3] {
+        let c = self.stage(xi, state);
+        let l = contact(state.depth);
+        [
+            l * c.onset_work,
+            l * c.onset_work_slope,
+            l * c.onset_work_curvature,
+        ]
+    }
+
     /// The surface deflection, m, at which intact material in `state`
     /// (read with `fractured` false and no depth cut) fractures when
     /// indented at `xi`, and its derivative with respect to ξ: what the edge

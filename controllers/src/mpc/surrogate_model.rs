@@ -1,6 +1,6 @@
 //! The fitted surrogate as the MPC's [`SliceModel`].
 
-use shearcut_sim::surrogate::{CutState, ScaleFactors, ScaledParts, Surrogate};
+use shearcut_sim::surrogate::{CutState, ScaleFactors, ScaledParts, Surrogate, SurrogateOutput};
 
 use super::slice_model::{ForceModel, SliceModel, StageCost, StageState};
 
@@ -17,6 +17,10 @@ const CATCH_UP_INTERVALS: usize = 32;
 /// with the tip and the knee after it take in the full model
 /// (`docs/surrogates.md`, "Structure").
 const CATCH_UP_SPAN_ONSETS: f64 = 4.0;
+
+/// Intervals of the indentation integral of [`SliceModel::onset_cost`]
+/// (trapezoidal rule).
+const INDENTATION_INTERVALS: usize = 8;
 
 /// Smallest such travel, m (a few bevel heights: the wedge entering the
 /// crack after a shallow onset).
@@ -64,6 +68,16 @@ impl SurrogateModel {
     /// travel after the onset costs beyond the rate at its end
     /// ([`Self::catch_up_excess`]).
     fn onset(&self, xi: f64, cut: &CutState, span: f64) -> (f64, f64, f64) {
+        let (d_star, o) = self.at_onset(xi, cut);
+        (
+            0.5 * o.work_per_depth * d_star + self.catch_up_excess(xi, d_star, cut, span, |_| 1.0),
+            o.deformation,
+            o.force_normal,
+        )
+    }
+
+    /// The onset depth d*(ξ), m, and the surrogate's answer there.
+    fn at_onset(&self, xi: f64, cut: &CutState) -> (f64, SurrogateOutput) {
         let d_star = self
             .surrogate
             .evaluate(xi, cut, &self.scale)
@@ -73,18 +87,38 @@ impl SurrogateModel {
             fractured: false,
             ..*cut
         };
-        let o = self.surrogate.evaluate(xi, &at_onset, &self.scale);
-        (
-            0.5 * o.work_per_depth * d_star + self.catch_up_excess(xi, d_star, cut, span),
-            o.deformation,
-            o.force_normal,
-        )
+        (d_star, self.surrogate.evaluate(xi, &at_onset, &self.scale))
+    }
+
+    /// [`Self::onset`]'s work for the whole edge, J, with `contact(d)` the
+    /// length of edge in contact (m) at the sections' depth d: the
+    /// indentation's force per unit length w(d*)·d/d* weighted by it over
+    /// the indentation, ∫₀^{d*} L(d) w(d*) d/d* dd, and the catch-up's
+    /// excess over it along the span (trapezoidal rules).
+    fn weighted_onset_work<C: Fn(f64) -> f64>(
+        &self,
+        xi: f64,
+        cut: &CutState,
+        span: f64,
+        contact: &C,
+    ) -> f64 {
+        let (d_star, o) = self.at_onset(xi, cut);
+        let dd = d_star / INDENTATION_INTERVALS as f64;
+        let force = |i: usize| {
+            let d = i as f64 * dd;
+            contact(d) * o.work_per_depth * d / d_star.max(f64::MIN_POSITIVE)
+        };
+        let inner: f64 = (1..INDENTATION_INTERVALS).map(force).sum();
+        let indentation = (inner + 0.5 * force(INDENTATION_INTERVALS)) * dd;
+        indentation + self.catch_up_excess(xi, d_star, cut, span, |s| contact(d_star + s))
     }
 
     /// What the first `span` of normal travel after a first fracture at
     /// `xi` (onset depth `d_star`) costs beyond cutting it at the rate
-    /// reached at its end: ∫₀^span [w(ξ, s) − w(ξ, span)] ds over the travel
-    /// s since the fracture, J/m (trapezoidal rule).
+    /// reached at its end, each travel s since the fracture weighted by
+    /// `weight(s)`: ∫₀^span weight(s) [w(ξ, s) − w(ξ, span)] ds
+    /// (trapezoidal rule); J/m for a weight of 1, J for the length of edge
+    /// in contact.
     ///
     /// The strain energy stored while indenting, about ½·r·R'_c·d* (seed
     /// 000 eq. 1), is not lost: it runs the crack ahead of the edge, and
@@ -95,7 +129,14 @@ impl SurrogateModel {
     /// the fracture, not on those planned for the depths it spans, so it
     /// belongs to the onset's cost, and the stages planned before the
     /// fracture are priced at the rates after it.
-    fn catch_up_excess(&self, xi: f64, d_star: f64, cut: &CutState, span: f64) -> f64 {
+    fn catch_up_excess<W: Fn(f64) -> f64>(
+        &self,
+        xi: f64,
+        d_star: f64,
+        cut: &CutState,
+        span: f64,
+        weight: W,
+    ) -> f64 {
         if span <= 0.0 {
             return 0.0;
         }
@@ -112,10 +153,9 @@ impl SurrogateModel {
         };
         let ds = span / CATCH_UP_INTERVALS as f64;
         let end = at(span);
-        let inner: f64 = (1..CATCH_UP_INTERVALS)
-            .map(|i| at(i as f64 * ds) - end)
-            .sum();
-        (inner + 0.5 * (at(0.0) - end)) * ds
+        let excess = |s: f64| weight(s) * (at(s) - end);
+        let inner: f64 = (1..CATCH_UP_INTERVALS).map(|i| excess(i as f64 * ds)).sum();
+        (inner + 0.5 * excess(0.0)) * ds
     }
 }
 
@@ -166,6 +206,25 @@ impl SliceModel for SurrogateModel {
             onset_work_slope: (wh - wl) / span,
             onset_work_curvature: if xi - lo > 0.0 { curvature } else { 0.0 },
         }
+    }
+
+    fn onset_cost<C: Fn(f64) -> f64>(&self, xi: f64, state: &StageState, contact: C) -> [f64; 3] {
+        let cut = CutState {
+            fractured: false,
+            ..Self::cut_state(state)
+        };
+        let span = state.travel_since_fracture.max(0.0);
+        let h = ONSET_STEP;
+        let (lo, hi) = ((xi - h).max(0.0), xi + h);
+        let w0 = self.weighted_onset_work(xi, &cut, span, &contact);
+        let wl = self.weighted_onset_work(lo, &cut, span, &contact);
+        let wh = self.weighted_onset_work(hi, &cut, span, &contact);
+        let curvature = if xi - lo > 0.0 {
+            2.0 * ((wh - w0) / (hi - xi) - (w0 - wl) / (xi - lo)) / (hi - lo)
+        } else {
+            0.0
+        };
+        [w0, (wh - wl) / (hi - lo), curvature]
     }
 
     fn onset_deflection(&self, xi: f64, state: &StageState) -> (f64, f64) {
