@@ -135,7 +135,8 @@ fn the_first_plan_sets_the_direction_the_plant_is_planned_for() {
         };
         let setup = LoopSetup::new(&s, ControllerChoice::Mpc).expect("a valid scenario");
         let profile = setup.profile.as_ref().expect("the MPC's profile");
-        let ratio = mpc_cutting_ratio(&s, &setup.task, profile).expect("a plan");
+        let start_z = setup.cut(&s).start.z;
+        let ratio = mpc_cutting_ratio(&s, &setup.task, profile, start_z).expect("a plan");
         assert!(
             (low..=high).contains(&ratio),
             "{name}: planned ratio {ratio}, expected in [{low}, {high}] (start {})",

@@ -87,11 +87,13 @@ pub fn mpc_start(task: &CutTask) -> f64 {
 /// plan from the intact object ([`Mpc::planned_ratio_from_rest`]). The plant builds its first
 /// sections for it before the loop starts, so that a real-time loop finds
 /// them ready (its results do not depend on it: the sections are placed
-/// where the edge arrives).
+/// where the edge arrives). `start_z` is the knife frame origin's world z
+/// at the start, m ([`Plant::start_position`]).
 pub fn mpc_cutting_ratio(
     s: &Scenario,
     task: &CutTask,
     profile: &DepthProfile,
+    start_z: f64,
 ) -> Result<f64, RunError> {
     let surrogate = surrogate_for(s).map_err(|e| invalid(s, e))?;
     Mpc::planned_ratio_from_rest(
@@ -100,6 +102,7 @@ pub fn mpc_cutting_ratio(
         SurrogateModel::new(surrogate),
         profile.clone(),
         mpc_start(task),
+        start_z,
     )
     .map_err(|e| invalid(s, e.prefixed("controller")))
 }
@@ -278,8 +281,13 @@ impl LoopSetup {
             ControllerChoice::Mpc => Some(mpc_profile(s, &task, &mesh)?),
             _ => None,
         };
+        let start_gap = replica.start_gap(s.plant.start_gap);
+        let z0 = s.motion.z0.first().copied().unwrap_or(0.0);
         let xi = match &profile {
-            Some(p) => mpc_cutting_ratio(s, &task, p)?,
+            Some(p) => {
+                let start_z = Plant::start_position(&knife, &mesh, z0, start_gap).z;
+                mpc_cutting_ratio(s, &task, p, start_z)?
+            }
             None => choice.nominal_slice_push_ratio(mpc_start(&task)),
         };
         Ok(Self {
@@ -288,7 +296,7 @@ impl LoopSetup {
             task,
             xi,
             profile,
-            start_gap: replica.start_gap(s.plant.start_gap),
+            start_gap,
         })
     }
 

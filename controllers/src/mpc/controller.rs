@@ -149,7 +149,7 @@ const MIN_PLANNED_TRAVEL: f64 = 1e-3;
 /// let profile = DepthProfile::new(vec![0.0, 0.02], vec![0.03, 0.03], 0.025, 0.015)?;
 /// let settings = MpcSettings::default();
 /// let model = SurrogateModel::new(surrogate);
-/// let xi = Mpc::planned_ratio_from_rest(&task, &settings, model.clone(), profile.clone(), 0.6)?;
+/// let xi = Mpc::planned_ratio_from_rest(&task, &settings, model.clone(), profile.clone(), 0.6, 0.0)?;
 /// assert!((0.0..=1.0).contains(&xi), "{xi}");
 ///
 /// let mut mpc = Mpc::new(&task, &settings, model, profile, 0.6)?;
@@ -313,7 +313,10 @@ impl<M: SliceModel + Clone + Send + 'static> Mpc<M> {
     /// first sections for a direction of motion; this is the one the MPC
     /// is going to cut along. Successive plans re-linearise within a trust
     /// region, so it replans (at most [`FIRST_PLAN_ITERATIONS`] times)
-    /// until the plan settles. Plans here, on the caller's thread.
+    /// until the plan settles. Plans here, on the caller's thread, with the
+    /// knife frame origin at world z = `knife_z` (m; where the edge meets
+    /// the object matters along an inclined edge,
+    /// [`MpcSettings::edge_inclination`]).
     ///
     /// # Errors
     /// Invalid settings or task.
@@ -323,6 +326,7 @@ impl<M: SliceModel + Clone + Send + 'static> Mpc<M> {
         model: M,
         profile: DepthProfile,
         initial_xi: f64,
+        knife_z: f64,
     ) -> Result<f64, InvalidSetting> {
         task.validate()?;
         settings.validate().map_err(|e| e.prefixed("mpc"))?;
@@ -341,6 +345,8 @@ impl<M: SliceModel + Clone + Send + 'static> Mpc<M> {
             normal_speed: 0.0,
             tangential_speed: 0.0,
             normal_limit: normal_speed_limit(task, settings, settings.estimate, false),
+            knife_z,
+            direction: 1.0,
         };
         let mean = |xi: &[f64]| xi.iter().sum::<f64>() / xi.len() as f64;
         let mut last = f64::NAN;
@@ -428,7 +434,7 @@ impl<M: SliceModel + Clone + Send + 'static> Mpc<M> {
     }
 
     /// The request for a plan from the state after this tick's reading.
-    fn request(&self, fractured: bool) -> PlanRequest {
+    fn request(&self, fractured: bool, knife_z: f64) -> PlanRequest {
         PlanRequest {
             edge_depth: self.depth,
             remaining: (self.task.target_depth - self.depth).max(MIN_PLANNED_TRAVEL),
@@ -446,6 +452,8 @@ impl<M: SliceModel + Clone + Send + 'static> Mpc<M> {
                 self.estimator.is_some(),
                 self.depth_at_fracture.is_some(),
             ),
+            knife_z,
+            direction: self.stroke.direction(),
         }
     }
 }
@@ -502,7 +510,8 @@ impl<M: SliceModel + Clone + Send + 'static> Controller for Mpc<M> {
         let arrived = self.planner.poll().fresh;
         self.replanned = !done
             && self.ticks.is_multiple_of(self.ticks_per_plan)
-            && self.planner.submit(&self.request(fractured)) == SubmitStatus::Accepted;
+            && self.planner.submit(&self.request(fractured, m.position.z))
+                == SubmitStatus::Accepted;
         // Inline plans arrive in the submit.
         if arrived || self.planner.plan().fresh {
             self.apply();

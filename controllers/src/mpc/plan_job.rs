@@ -1,11 +1,14 @@
 //! The MPC's planning half: one convexified subproblem per plan, run off
 //! the servo tick by a [`Planner`](crate::planner::Planner).
 
+use std::sync::Arc;
+
 use super::depth_profile::DepthProfile;
 use super::depth_qp::{DepthQp, EnteringEdge, QpLimits, QpStatus, StageData};
 use super::settings::MpcSettings;
 use super::slice_model::{SliceModel, StageState};
 use crate::controller::{CutTask, MotionLimits, stopping_distance, stopping_duration};
+use crate::observer::{EdgeOutline, INCLINATION_BINS};
 use crate::planner::PlanJob;
 
 /// What the servo tick knows when it asks for a plan.
@@ -36,6 +39,10 @@ pub struct PlanRequest {
     /// The normal speed allowed now, m/s (the guarded touch's before the
     /// first fracture while estimating).
     pub normal_limit: f64,
+    /// The knife frame origin's world z now, m (the arm's pose).
+    pub knife_z: f64,
+    /// The current stroke's direction along world z (+1 or −1).
+    pub direction: f64,
 }
 
 /// A plan: ξ and τ per stage from the edge's depth `origin`, and the
@@ -97,6 +104,9 @@ impl MpcPlan {
 pub struct MpcPlanJob<M: SliceModel> {
     /// The task's motion limits.
     motion: MotionLimits,
+    /// The task's edge against the object's outline (for the edge's
+    /// inclination, [`MpcSettings::edge_inclination`]).
+    outline: Arc<EdgeOutline>,
     settings: MpcSettings,
     model: M,
     profile: DepthProfile,
@@ -136,6 +146,7 @@ impl<M: SliceModel> MpcPlanJob<M> {
         };
         Self {
             motion: task.limits,
+            outline: Arc::clone(&task.outline),
             settings: *settings,
             model,
             profile,
@@ -191,6 +202,8 @@ impl<M: SliceModel> MpcPlanJob<M> {
             };
             self.model.catch_up_span(self.last.xi[0], &first)
         };
+        // The tangential travel the plan makes before a stage's middle, m.
+        let mut slide = 0.0;
         for k in 0..n {
             let edge = d0 + (k as f64 + 0.5) * dd;
             let depth = section_depth(edge);
@@ -226,18 +239,43 @@ impl<M: SliceModel> MpcPlanJob<M> {
             } else {
                 EnteringEdge::default()
             };
-            let onset = if before_fracture {
-                let profile = &self.profile;
-                self.model
-                    .onset_cost(xi_bar, &state, |d| profile.contact_at_section_depth(d))
+            let slopes = if self.settings.edge_inclination {
+                let z = r.knife_z + r.direction * (slide + 0.5 * xi_bar * dd);
+                contact_slopes(&self.outline, z, edge, r.direction)
             } else {
-                [0.0; 3]
+                None
             };
+            let profile = &self.profile;
+            let model = &self.model;
+            let onset_at =
+                |xi: f64| model.onset_cost(xi, &state, |d| profile.contact_at_section_depth(d));
+            let onset = if !before_fracture {
+                [0.0; 3]
+            } else if let Some(o) = slopes.and_then(|s| s.mean(xi_bar, false, onset_at)) {
+                o
+            } else {
+                onset_at(xi_bar)
+            };
+            let mut cost = model.stage(xi_bar, &state);
+            let rates = |xi: f64| {
+                let c = model.stage(xi, &state);
+                [
+                    c.work_per_depth,
+                    c.work_per_depth_slope,
+                    c.work_per_depth_curvature,
+                ]
+            };
+            if let Some([w, g, h]) = slopes.and_then(|s| s.mean(xi_bar, true, rates)) {
+                cost.work_per_depth = w;
+                cost.work_per_depth_slope = g;
+                cost.work_per_depth_curvature = h;
+            }
+            slide += xi_bar * dd;
             self.stages[k] = StageData {
                 depth_step: dd,
                 contact_length: self.profile.contact_length(edge),
                 xi_bar,
-                cost: self.model.stage(xi_bar, &state),
+                cost,
                 before_fracture,
                 onset,
                 entering,
@@ -345,6 +383,78 @@ impl<M: SliceModel> MpcPlanJob<M> {
     }
 }
 
+/// The edge in contact with the knife frame origin at world `z`, the edge
+/// `edge_depth` (m) deep, moving along `direction` (±1 in world z): the
+/// slope κ of each share of the contact and κ_d at the deepest point, each
+/// times `direction` (so that a point of slope κ descends at 1 + κξ times
+/// the knife's descent). `None` where the edge does not meet the outline
+/// at `z`.
+fn contact_slopes(
+    outline: &EdgeOutline,
+    z: f64,
+    edge_depth: f64,
+    direction: f64,
+) -> Option<Slopes> {
+    let y = outline.touch_height(z)? - edge_depth;
+    let inclination = outline.contact_inclination(z, y);
+    Some(Slopes {
+        shares: inclination.bins.map(|k| direction * k),
+        deepest: direction * inclination.deepest,
+    })
+}
+
+/// The contact's slopes along the direction of motion ([`contact_slopes`]).
+#[derive(Debug, Clone, Copy)]
+struct Slopes {
+    shares: [f64; INCLINATION_BINS],
+    deepest: f64,
+}
+
+impl Slopes {
+    /// The mean over the shares of the contact of m(ξ)·f(|x(ξ)|) and its
+    /// first and second derivatives in ξ at the commanded ratio `xi`, by
+    /// the chain rule from `f`'s value and derivatives at the local ratio
+    /// (`f(x)` = [f, f′, f″] at x ≥ 0): each share of slope κ is cut at
+    /// x = (ξ − κ)/(1 + κξ) (seed 000 §IV, Fig. 4(a)); with `per_depth`, m
+    /// = (1 + κξ)/(1 + κ_d ξ), the share's descent per unit of the edge's
+    /// depth (a rate per unit depth), else m = 1 (a cost per unit length).
+    /// `None` if a share, or the deepest point, does not move into the
+    /// material at `xi` (1 + κξ ≤ 0).
+    fn mean<F: Fn(f64) -> [f64; 3]>(&self, xi: f64, per_depth: bool, f: F) -> Option<[f64; 3]> {
+        let kd = if per_depth { self.deepest } else { 0.0 };
+        let qd = 1.0 + kd * xi;
+        if qd <= 0.0 {
+            return None;
+        }
+        let mut sum = [0.0; 3];
+        for k in self.shares {
+            let q = 1.0 + k * xi;
+            if q <= 0.0 {
+                return None;
+            }
+            let x = (xi - k) / q;
+            let sign = if x < 0.0 { -1.0 } else { 1.0 };
+            let [w, w1, w2] = f(x.abs());
+            let w1 = sign * w1;
+            let x1 = (1.0 + k * k) / (q * q);
+            let x2 = -2.0 * k * (1.0 + k * k) / (q * q * q);
+            let (m, m1, m2) = if per_depth {
+                (
+                    q / qd,
+                    (k - kd) / (qd * qd),
+                    -2.0 * kd * (k - kd) / (qd * qd * qd),
+                )
+            } else {
+                (1.0, 0.0, 0.0)
+            };
+            sum[0] += m * w;
+            sum[1] += m1 * w + m * w1 * x1;
+            sum[2] += m2 * w + 2.0 * m1 * w1 * x1 + m * (w2 * x1 * x1 + w1 * x2);
+        }
+        Some(sum.map(|v| v / INCLINATION_BINS as f64))
+    }
+}
+
 /// The fallback's plan: the last solved plan shifted to the edge's depth
 /// `d0`, so that its first stage is the one the edge is in (stages past
 /// the plan's end repeat its last). Nothing before the first solved plan.
@@ -377,5 +487,71 @@ impl<M: SliceModel + Send + 'static> PlanJob for MpcPlanJob<M> {
     fn plan(&mut self, request: &PlanRequest, out: &mut MpcPlan) {
         self.replan(request);
         out.clone_from(&self.last);
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{INCLINATION_BINS, Slopes};
+
+    /// A smooth even work law w(x) = a + b·x² + c·x⁴ with its derivatives.
+    fn law(x: f64) -> [f64; 3] {
+        let (a, b, c) = (100.0, -30.0, 8.0);
+        [
+            a + b * x * x + c * x.powi(4),
+            2.0 * b * x + 4.0 * c * x.powi(3),
+            2.0 * b + 12.0 * c * x * x,
+        ]
+    }
+
+    #[test]
+    fn a_level_edge_is_cut_at_the_commanded_ratio() {
+        let level = Slopes {
+            shares: [0.0; INCLINATION_BINS],
+            deepest: 0.0,
+        };
+        for xi in [0.0, 0.3, 1.2] {
+            let got = level.mean(xi, true, law).unwrap();
+            for (a, b) in got.iter().zip(law(xi)) {
+                // The mean of four equal terms, to rounding.
+                assert!((a - b).abs() <= 1e-14 * b.abs(), "ξ = {xi}: {got:?}");
+            }
+        }
+    }
+
+    #[test]
+    fn an_inclined_edge_is_cut_at_the_local_ratio_and_its_derivatives_agree() {
+        let inclined = Slopes {
+            shares: [0.05, 0.15, 0.25, 0.35],
+            deepest: 0.05,
+        };
+        // Pressing along a rising edge slices it locally: a share of slope κ
+        // is cut at |−κ| and descends as fast as the knife.
+        let [w0, _, _] = inclined.mean(0.0, true, law).unwrap();
+        let expected: f64 = inclined.shares.iter().map(|k| law(*k)[0]).sum::<f64>() / 4.0;
+        assert!((w0 - expected).abs() < 1e-12, "{w0} against {expected}");
+        // Central differences of the value and the slope (away from the
+        // local ratio's kink at ξ = κ).
+        let h = 1e-5;
+        for xi in [0.5, 0.9] {
+            let at = |x: f64| inclined.mean(x, true, law).unwrap();
+            let [_, g, c] = at(xi);
+            let g_fd = (at(xi + h)[0] - at(xi - h)[0]) / (2.0 * h);
+            let c_fd = (at(xi + h)[1] - at(xi - h)[1]) / (2.0 * h);
+            assert!(
+                (g - g_fd).abs() < 1e-6 * (1.0 + g.abs()),
+                "ξ = {xi}: {g} against {g_fd}"
+            );
+            assert!(
+                (c - c_fd).abs() < 1e-5 * (1.0 + c.abs()),
+                "ξ = {xi}: {c} against {c_fd}"
+            );
+        }
+        // A share that would move out of the material is refused.
+        let steep = Slopes {
+            shares: [-2.0; INCLINATION_BINS],
+            deepest: 0.0,
+        };
+        assert_eq!(steep.mean(0.6, true, law), None);
     }
 }

@@ -68,6 +68,19 @@ pub struct MpcSettings {
     /// of the blade budget). A plan uses strokes only if their cost (the
     /// time a reversal loses, at `time_weight`) is below the work they save.
     pub max_reversals: u32,
+    /// Price each stage at the edge's local slice-push ratios (default
+    /// false): where the edge in contact is inclined (a chef's edge along
+    /// its rise), a point of slope κ is cut at the local ratio
+    /// (ξ − κ)/(1 + κξ) and moves into the material at (1 + κξ) times the
+    /// knife's descent (seed 000 §IV, Fig. 4(a); [`EdgeOutline::contact_inclination`](crate::observer::EdgeOutline::contact_inclination)),
+    /// and the edge's depth grows at 1 + κ_d·ξ times the descent with κ_d
+    /// the slope at its deepest point. The stage's work per unit of the
+    /// edge's depth is then the mean over the contact of
+    /// (1 + κξ)·w((ξ − κ)/(1 + κξ)) / (1 + κ_d ξ), from the task's edge and
+    /// outline at the knife's pose, the slide the plan makes before the
+    /// stage included. With false every point is cut at ξ, as under a
+    /// straight horizontal edge. Measured in docs/heldout.md.
+    pub edge_inclination: bool,
     /// How plans reach the servo tick (`[controller.mpc.planner]`; default
     /// lockstep, one tick after their request).
     pub planner: PlannerSettings,
@@ -90,6 +103,7 @@ impl Default for MpcSettings {
             forgetting: 1.0,
             touch_speed: 0.005,
             max_reversals: 16,
+            edge_inclination: false,
             planner: PlannerSettings::default(),
         }
     }

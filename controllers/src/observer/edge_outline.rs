@@ -16,6 +16,21 @@ const EDGE_SAMPLES: usize = 401;
 /// (a cuboid's top edge) is rounded over one column.
 const OUTLINE_COLUMNS: usize = 2001;
 
+/// Equal shares of the contact length [`EdgeOutline::contact_inclination`]
+/// reports a mean slope for.
+pub const INCLINATION_BINS: usize = 4;
+
+/// How the edge in contact is inclined ([`EdgeOutline::contact_inclination`]).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ContactInclination {
+    /// The edge's slope dy/dz at its deepest point in the object (knife
+    /// frame; positive rising towards the tip): the rate at which the edge's
+    /// depth grows per unit of the knife's travel towards its tip.
+    pub deepest: f64,
+    /// Mean slope over each equal share of the contact length, heel to tip.
+    pub bins: [f64; INCLINATION_BINS],
+}
+
 /// The knife edge against the object's outline in the knife plane (world z,
 /// y; what a vision system reports as `knife_plane_silhouette` of the
 /// object): for a knife frame origin at (z, y) (world, m), the edge's
@@ -170,6 +185,71 @@ impl EdgeOutline {
     /// linear interpolation of the signed distance to the outline.
     pub fn contact_length(&self, z: f64, y: f64) -> f64 {
         let mut length = 0.0;
+        self.for_each_chord_inside(z, y, |inside, _| length += inside);
+        length
+    }
+
+    /// How the edge in contact with the knife frame origin at world (`z`,
+    /// `y`) is inclined: the edge's slope dy/dz (knife frame, rising towards
+    /// the tip when positive) at its deepest point, and the mean slope over
+    /// each of [`INCLINATION_BINS`] equal shares of the contact length, heel
+    /// to tip. Zero slopes where nothing is in contact. A knife moving
+    /// towards its tip (world +z) at tangential speed v_t and down at v_n
+    /// moves an edge point of slope κ into the material at v_n + κ·v_t and
+    /// along itself at v_t − κ·v_n (per √(1 + κ²)): the local slice-push
+    /// ratio (seed 000 §IV, Fig. 4(a)) is (ξ − κ)/(1 + κξ) for ξ = v_t/v_n.
+    pub fn contact_inclination(&self, z: f64, y: f64) -> ContactInclination {
+        let total = self.contact_length(z, y);
+        let mut bins = [0.0; INCLINATION_BINS];
+        if total > 0.0 {
+            let share = total / INCLINATION_BINS as f64;
+            let (mut bin, mut along) = (0, 0.0);
+            self.for_each_chord_inside(z, y, |inside, slope| {
+                // Split the chord's inside length over the bins it spans.
+                let mut left = inside;
+                loop {
+                    let last = bin + 1 == INCLINATION_BINS;
+                    let part = if last {
+                        left
+                    } else {
+                        left.min((bin + 1) as f64 * share - along).max(0.0)
+                    };
+                    bins[bin] += part * slope;
+                    along += part;
+                    left -= part;
+                    if left <= 0.0 || last {
+                        break;
+                    }
+                    bin += 1;
+                }
+            });
+            for b in &mut bins {
+                *b /= share;
+            }
+        }
+        let mut deepest = (f64::NEG_INFINITY, 0.0);
+        for (i, p) in self.edge.iter().enumerate() {
+            if let Some(top) = self.top_at(z + p[0]) {
+                let depth = top - (y + p[1]);
+                if depth > deepest.0 {
+                    let (a, b) = (
+                        self.edge[i.saturating_sub(1)],
+                        self.edge[(i + 1).min(self.edge.len() - 1)],
+                    );
+                    deepest = (depth, chord_slope(a, b));
+                }
+            }
+        }
+        ContactInclination {
+            deepest: if deepest.0 > 0.0 { deepest.1 } else { 0.0 },
+            bins,
+        }
+    }
+
+    /// Calls `f(length inside, slope)` for each chord between edge samples
+    /// with a part inside the outline, heel to tip (see
+    /// [`contact_length`](Self::contact_length)).
+    fn for_each_chord_inside<F: FnMut(f64, f64)>(&self, z: f64, y: f64, mut f: F) {
         let mut previous: Option<([f64; 2], f64)> = None;
         for p in &self.edge {
             let depth = self.depth_inside(z + p[0], y + p[1]);
@@ -185,11 +265,12 @@ impl EdgeOutline {
                 } else {
                     0.0
                 };
-                length += chord * fraction;
+                if fraction > 0.0 {
+                    f(chord * fraction, chord_slope(q, *p));
+                }
             }
             previous = Some((*p, depth));
         }
-        length
     }
 
     /// The fraction of the span [`a`, `b`] of z (either order) over the
@@ -229,6 +310,17 @@ impl EdgeOutline {
         }
         let i = (x.floor() as usize).min(self.top.len() - 2);
         Some((i, x - i as f64))
+    }
+}
+
+/// Slope dy/dz of the chord from `a` to `b` ((z, y) points), 0 for a
+/// vertical or empty one.
+fn chord_slope(a: [f64; 2], b: [f64; 2]) -> f64 {
+    let dz = b[0] - a[0];
+    if dz.abs() > 0.0 {
+        (b[1] - a[1]) / dz
+    } else {
+        0.0
     }
 }
 
@@ -307,6 +399,43 @@ mod tests {
         // Beside the block: no clearance to speak of.
         assert_eq!(o.clearance(0.5, 0.02), f64::INFINITY);
         assert_eq!(o.top(), 0.025);
+    }
+
+    #[test]
+    fn the_inclination_of_a_chefs_edge_over_a_block() {
+        // The chef's edge: flat to 60 mm from the heel, then the parabola
+        // y = 0.035·((z − 0.06)/0.14)², slope 0.5·(z − 0.06)/0.14.
+        let knife = Knife::new(&KnifePreset::Chef.settings()).unwrap();
+        let o = EdgeOutline::new(knife.edge(), &block());
+        let slope = |z: f64| 0.5 * ((z - 0.06) / 0.14).max(0.0);
+        // The block (z 0.02–0.05) under the flat part: no inclination.
+        let flat = o.contact_inclination(0.0, 0.02);
+        assert_eq!(flat.deepest, 0.0);
+        assert!(flat.bins.iter().all(|b| b.abs() < 1e-12), "{flat:?}");
+        // The block under 100–130 mm of the edge (origin at z = −0.08), the
+        // edge's lowest point over it 4 mm below its top: the contact runs
+        // from the heel side of the block to where the parabola leaves the
+        // top, and each quarter's mean slope is the parabola's over it; the
+        // deepest point is at the block's heel-side end.
+        let y = 0.025 - 0.004 - 0.035 * (0.04f64 / 0.14).powi(2);
+        let i = o.contact_inclination(-0.08, y);
+        let l = o.contact_length(-0.08, y);
+        assert!((i.deepest - slope(0.1)).abs() < 3e-3, "{i:?}");
+        let z_end = 0.06 + 0.14 * ((0.035f64 * (0.04f64 / 0.14).powi(2) + 0.004) / 0.035).sqrt();
+        assert!(
+            (l - (z_end - 0.1)).abs() < 5e-4,
+            "{l} against {}",
+            z_end - 0.1
+        );
+        for (k, b) in i.bins.iter().enumerate() {
+            let mid = 0.1 + (k as f64 + 0.5) * (z_end - 0.1) / 4.0;
+            assert!(
+                (b - slope(mid)).abs() < 5e-3,
+                "bin {k}: {b} against {}",
+                slope(mid)
+            );
+        }
+        assert!(i.bins.windows(2).all(|w| w[1] > w[0]), "{i:?}");
     }
 
     #[test]

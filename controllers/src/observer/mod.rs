@@ -32,7 +32,7 @@ pub use contact_length::ContactLength;
 pub use cut_done::{CutDone, CutTarget};
 pub use cut_observer::{CutEstimate, CutObserver, CutObserverSettings};
 pub use edge_depth::EdgeDepth;
-pub use edge_outline::EdgeOutline;
+pub use edge_outline::{ContactInclination, EdgeOutline, INCLINATION_BINS};
 pub use first_fracture::{FirstFracture, FractureDetector, FractureSettings};
 pub use touch::{TOUCH_HISTORY, Touch, TouchDetector, TouchSettings};
 pub use wrench_tare::{WrenchTare, WrenchTareSettings};
