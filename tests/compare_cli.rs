@@ -10,7 +10,7 @@ use std::io::BufRead;
 use std::path::Path;
 use std::process::{Command, Stdio};
 
-use binary_run::{assert_success, scratch, shearcut, stderr};
+use binary_run::{assert_success, scratch, shearcut, signal_and_wait, stderr};
 
 /// `loop-potato-cuboid-short-stroke` 6 mm deep with 1.2 mm of blade (the
 /// same ratio cap, 0.2), on a coarse plant: a compare on two replicas runs
@@ -150,15 +150,8 @@ fn sigint_and_sigterm_stop_compare_with_the_finished_rows_written() {
             assert!(stdout.read_line(&mut line).unwrap() > 0, "no run line");
             printed.push(line);
         }
-        let sent = Command::new("kill")
-            .args([&format!("-{signal}"), &child.id().to_string()])
-            .status()
-            .unwrap();
-        assert!(sent.success());
-        let mut rest = String::new();
-        std::io::Read::read_to_string(&mut stdout, &mut rest).unwrap();
+        let (o, rest) = signal_and_wait(child, stdout, signal);
         printed.extend(rest.lines().map(str::to_string));
-        let o = child.wait_with_output().unwrap();
         let e = stderr(&o);
         assert_eq!(o.status.code(), Some(code), "{name}: {e}");
         assert_eq!(e.lines().count(), 1, "{e}");
