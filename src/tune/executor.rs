@@ -53,8 +53,8 @@ pub fn default_threads() -> usize {
 /// order, under a progress bar labelled `label` (on a terminal; elsewhere
 /// one line per finished job, `[k/n] line`). `run` gives a job's result, or
 /// `None` when the job was stopped mid-run; `describe` its progress line.
-/// An error from `run` (or a failed print) lets no thread take another job
-/// and is returned; so is nothing else. A stop request lets no thread take
+/// The first error from `run` (or from printing a line) lets no thread
+/// take another job and is returned. A stop request lets no thread take
 /// another job; the results so far are returned with the signal.
 pub fn execute<J: Sync, T: Send>(
     jobs: &[J],
