@@ -99,6 +99,10 @@ pub enum Command {
         #[arg(long, default_value_t = crate::commands::compare::DEFAULT_REPLICAS,
               value_parser = clap::value_parser!(u64).range(1..=crate::commands::compare::MAX_REPLICAS))]
         replicas: u64,
+        /// Runs at a time (default: the machine's cores); the results do
+        /// not depend on it.
+        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
+        jobs: Option<u32>,
         /// Where the results go.
         #[command(flatten)]
         out: crate::run_dir::Destination,
@@ -192,11 +196,31 @@ pub enum Command {
 
 impl Cli {
     /// Parses the process's arguments; `--help` ends with the built-in
-    /// scenarios' names. Exits like [`Parser::parse`] on bad arguments.
+    /// scenarios' names. Bad arguments exit 2 with clap's first line
+    /// ([`exit_on`]).
     pub fn parse_with_scenarios() -> Self {
         let matches = <Self as clap::CommandFactory>::command()
             .after_help(crate::commands::scenarios::names_help())
-            .get_matches();
-        <Self as clap::FromArgMatches>::from_arg_matches(&matches).unwrap_or_else(|e| e.exit())
+            .try_get_matches()
+            .unwrap_or_else(|e| exit_on(e));
+        <Self as clap::FromArgMatches>::from_arg_matches(&matches).unwrap_or_else(|e| exit_on(e))
+    }
+}
+
+/// Ends the process for a parse outcome: help and version as clap prints
+/// them; bad arguments (exit 2) with the one line that says what is wrong
+/// (`error: invalid value '0' for '--jobs <N>': …`), without clap's tips
+/// and usage.
+fn exit_on(e: clap::Error) -> ! {
+    use clap::error::ErrorKind;
+    match e.kind() {
+        ErrorKind::DisplayHelp
+        | ErrorKind::DisplayVersion
+        | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => e.exit(),
+        _ => {
+            let text = e.render().to_string();
+            eprintln!("{}", text.lines().next().unwrap_or("error: bad arguments"));
+            std::process::exit(2)
+        }
     }
 }

@@ -33,8 +33,14 @@ fn main() -> ExitCode {
         Some(Command::Compare {
             scenario,
             replicas,
+            jobs,
             out,
-        }) => commands::compare::run(&scenario, replicas, &out),
+        }) => commands::compare::run(
+            &scenario,
+            replicas,
+            jobs.map_or_else(shearcut::tune::executor::default_threads, |n| n as usize),
+            &out,
+        ),
         Some(Command::Tune(args)) => commands::tune::run(args),
         Some(Command::Trajectory { cases, out }) => {
             commands::trajectory::run(&cases, out.as_deref())

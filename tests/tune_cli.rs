@@ -1,8 +1,11 @@
 //! `shearcut tune` as a user meets it: a small sweep run locally in
 //! parallel is deterministic whatever the thread count, resumes where it
-//! stopped, shards and merges to the same table bit for bit (by flag and by
+//! stopped (by a closed stdout or SIGINT/SIGTERM), shards and merges to the same table bit for bit (by flag and by
 //! the Slurm and Kubernetes environment), and bad sweep files exit 2 with
 //! one line.
+
+#[path = "support/binary_run.rs"]
+mod binary_run;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -182,17 +185,18 @@ fn a_sweep_is_deterministic_resumable_and_analysed() {
     );
 }
 
-/// A reader that stops reading mid-sweep (`shearcut tune … | head -n 3`):
-/// the sweep stops quietly (141, as any command on a closed pipe), no
-/// thread panics, and the rows written stay for a re-run to skip.
-#[test]
-fn a_stdout_closed_mid_sweep_stops_it_quietly_and_keeps_its_rows() {
+/// `shearcut tune SWEEP --jobs 1 --out OUT`, returned running once it has
+/// printed its first job's line, with its stdout.
+fn tune_after_first_job(
+    sweep: &Path,
+    out: &Path,
+) -> (
+    std::process::Child,
+    std::io::BufReader<std::process::ChildStdout>,
+) {
     use std::io::BufRead;
-    let t = TempDir::new("closed");
-    let sweep = write_sweep(&t.0, SWEEP);
-    let a = t.0.join("a");
     let mut child = Command::new(env!("CARGO_BIN_EXE_shearcut"))
-        .args(["tune", s(&sweep), "--jobs", "1", "--out", s(&a)])
+        .args(["tune", s(sweep), "--jobs", "1", "--out", s(out)])
         .env("RUST_LOG", "error")
         .stdout(std::process::Stdio::piped())
         .stderr(std::process::Stdio::piped())
@@ -204,6 +208,18 @@ fn a_stdout_closed_mid_sweep_stops_it_quietly_and_keeps_its_rows() {
         first.clear();
         assert!(stdout.read_line(&mut first).unwrap() > 0, "no job line");
     }
+    (child, stdout)
+}
+
+/// A reader that stops reading mid-sweep (`shearcut tune … | head -n 3`):
+/// the sweep stops quietly (141, as any command on a closed pipe), no
+/// thread panics, and the rows written stay for a re-run to skip.
+#[test]
+fn a_stdout_closed_mid_sweep_stops_it_quietly_and_keeps_its_rows() {
+    let t = TempDir::new("closed");
+    let sweep = write_sweep(&t.0, SWEEP);
+    let a = t.0.join("a");
+    let (child, stdout) = tune_after_first_job(&sweep, &a);
     drop(stdout);
     let o = child.wait_with_output().unwrap();
     let err = String::from_utf8_lossy(&o.stderr);
@@ -219,6 +235,41 @@ fn a_stdout_closed_mid_sweep_stops_it_quietly_and_keeps_its_rows() {
         "{out}"
     );
     assert_eq!(read(&a.join("results.csv")).lines().count(), 7);
+}
+
+/// SIGINT or SIGTERM mid-sweep ends the run in flight at its next tick
+/// (no row for it) and starts no other: the finished runs' rows are
+/// tabulated, the exit is 130/143 with one line, and a re-run runs the
+/// rest.
+#[test]
+fn sigint_and_sigterm_stop_a_sweep_with_the_finished_rows_tabulated() {
+    let t = TempDir::new("signals");
+    let sweep = write_sweep(&t.0, SWEEP);
+    for (signal, code) in [("INT", 130), ("TERM", 143)] {
+        let a = t.0.join(signal);
+        let (child, stdout) = tune_after_first_job(&sweep, &a);
+        let (o, rest) = binary_run::signal_and_wait(child, stdout, signal);
+        let err = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(o.status.code(), Some(code), "{err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.contains(&format!("stopped by SIG{signal}")), "{err}");
+        // The first job's line was read before the signal; each other
+        // finished job printed its line.
+        let finished = 1 + rest.lines().filter(|l| l.contains("] job")).count();
+        let written = std::fs::read_dir(a.join("rows")).unwrap().count();
+        assert_eq!(written, finished, "{rest}");
+        assert!(written < 6, "{written} rows");
+        assert_eq!(
+            read(&a.join("results.csv")).lines().count(),
+            1 + written,
+            "{rest}"
+        );
+        let out = ok(&tune(&[s(&sweep), "--out", s(&a)], &[]));
+        assert!(
+            out.contains(&format!("{written} runs already done")),
+            "{out}"
+        );
+    }
 }
 
 #[test]

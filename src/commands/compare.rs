@@ -20,19 +20,22 @@
 
 use serde::Serialize;
 
-use crate::closed_loop::{LoopSetup, RunOutput, run_closed_loop_on};
+use crate::closed_loop::{LoopSetup, RunOutput};
 use crate::constant_ratio::{
-    coarse_grid, completed_mean_work, constant_choice, least_mean_work, ratio_cap, round3,
+    completed_mean_work, constant_choice, least_mean_work, ratio_cap, round3,
 };
 use crate::controller_choice::ControllerChoice;
 use crate::error::RunError;
 use crate::plot::comparison::draw_comparison;
-use crate::progress::run_bar;
 use crate::render_plot;
 use crate::result_file::{write_csv, write_json, write_text};
 use crate::run_dir::{self, Destination};
-use crate::run_replica::RunReplica;
 use crate::scenario::Scenario;
+use crate::transport::{StopSignal, TerminationWatch};
+use crate::tune::constant_grid::ConstantGridPoint;
+use crate::tune::controller_setting::ControllerSetting;
+use crate::tune::staged_runs::{StageEnd, StagedRuns};
+use crate::tune::stop_request::StopRequest;
 
 /// Points of the coarse search over constant ratios (0 to the cap).
 pub const SEARCH_POINTS: usize = 6;
@@ -210,61 +213,70 @@ pub struct Comparison {
     /// The MPC's work against the best constant's, paired by replica
     /// (`None` if the MPC did not run).
     pub mpc_vs_best_constant: Option<PairedDifference>,
+    /// The signal that stopped the comparison before its last run: the
+    /// rows are then those of the runs finished, one per controller, roles
+    /// `mpc`, `press`, `force` or `search` (no best constant chosen).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub stopped: Option<StopSignal>,
 }
 
-/// Runs each (controller, replica) of `jobs` on `s`, two at a time (the
-/// machine's cores).
-fn run_all(
-    s: &Scenario,
-    jobs: &[(ControllerChoice, RunReplica)],
-) -> Vec<Result<RunOutput, RunError>> {
-    let mut results: Vec<Option<Result<RunOutput, RunError>>> = jobs.iter().map(|_| None).collect();
-    let bar = run_bar(jobs.len(), &format!("compare {}", s.name));
-    for (chunk, slots) in jobs.chunks(2).zip(results.chunks_mut(2)) {
-        std::thread::scope(|scope| {
-            let handles: Vec<_> = chunk
-                .iter()
-                .map(|&(c, replica)| scope.spawn(move || run_closed_loop_on(s, c, replica)))
-                .collect();
-            for (h, slot) in handles.into_iter().zip(slots.iter_mut()) {
-                *slot = Some(h.join().expect("a closed-loop run does not panic"));
-            }
-        });
-        bar.inc(chunk.len() as u64);
-        for ((c, replica), r) in chunk.iter().zip(slots.iter()) {
-            if let Some(Ok(run)) = r {
-                let on = match replica.index {
-                    0 => String::new(),
-                    k => format!(" (replica {k})"),
-                };
-                // Progress: a closed stdout ends the command at its next
-                // checked print, after the runs under way.
-                let _ = crate::outln!(
-                    "  {:<25} work {:.4} J, peak Fv {:.2} N, completed {}",
-                    format!("{c}{on}"),
-                    run.summary.work_j,
-                    run.summary.peak_force_vertical_n,
-                    run.summary.completed
-                );
+impl Comparison {
+    /// The comparison stopped by `signal`: a row per controller of the
+    /// runs finished, in the order they were first run.
+    fn stopped(runs: &StagedRuns, signal: StopSignal) -> Self {
+        let mut choices: Vec<ControllerChoice> = Vec::new();
+        for r in runs.done() {
+            if !choices.contains(&r.choice) {
+                choices.push(r.choice);
             }
         }
+        let rows = choices
+            .into_iter()
+            .map(|c| {
+                let role = match c {
+                    ControllerChoice::Mpc => "mpc",
+                    ControllerChoice::Press => "press",
+                    ControllerChoice::Force(_) => "force",
+                    ControllerChoice::Slice(_) => "search",
+                };
+                ComparisonRow::new(role, &runs.of(c))
+            })
+            .collect();
+        Self {
+            rows,
+            mpc_vs_best_constant: None,
+            stopped: Some(signal),
+        }
     }
-    bar.finish_and_clear();
-    results
-        .into_iter()
-        .map(|r| r.expect("every slot filled"))
-        .collect()
-}
 
-/// Runs `choices` as the scenario gives them (the nominal replica).
-fn run_nominal(s: &Scenario, choices: &[ControllerChoice]) -> Vec<Result<RunOutput, RunError>> {
-    let jobs: Vec<_> = choices.iter().map(|&c| (c, RunReplica::NOMINAL)).collect();
-    run_all(s, &jobs)
+    /// The rows of the table and the plot: the main rows, or every row of
+    /// a stopped comparison.
+    fn shown_rows(&self) -> Vec<ComparisonRow> {
+        self.rows
+            .iter()
+            .filter(|r| self.stopped.is_some() || r.role != "search")
+            .cloned()
+            .collect()
+    }
 }
 
 /// The comparison for a loaded scenario, each contestant on `replicas`
-/// replicas of the run (1: the nominal replica only).
-pub fn compare(s: &Scenario, replicas: u64) -> Result<Comparison, RunError> {
+/// replicas of the run (1: the nominal replica only), `threads` runs at a
+/// time; a stop request ends it with the rows of the runs finished
+/// ([`Comparison::stopped`]).
+///
+/// Its runs are small sweeps on the scenario ([`StagedRuns`]), one batch
+/// each: the coarse grid (a `best-constant` grid of [`SEARCH_POINTS`]
+/// points, nominal replica), each golden-section step (`slice:a`,
+/// `slice:b`), then the MPC and the cheapest candidates on every replica
+/// with the force loop on the nominal one (runs done before are not run
+/// again).
+pub fn compare(
+    s: &Scenario,
+    replicas: u64,
+    threads: usize,
+    stop: &StopRequest,
+) -> Result<Comparison, RunError> {
     let replicas = replicas.clamp(1, MAX_REPLICAS) as usize;
     let task = LoopSetup::new(s, ControllerChoice::Press)?.task;
     let target = task.target_depth;
@@ -276,14 +288,30 @@ pub fn compare(s: &Scenario, replicas: u64) -> Result<Comparison, RunError> {
         task.blade_budget * 1e3,
         target * 1e3
     )?;
+    let mut runs = StagedRuns::new(s, threads, stop, &format!("compare {}", s.name));
     // Coarse search over constant ratios (ξ = 0 is pressing).
-    let grid = coarse_grid(xi_cap, SEARCH_POINTS);
-    let choices: Vec<ControllerChoice> = grid.iter().map(|&xi| constant_choice(xi)).collect();
     crate::outln!("searching the best constant ratio:")?;
-    let mut tried: Vec<(f64, RunOutput)> = Vec::new();
-    for (xi, r) in grid.iter().zip(run_nominal(s, &choices)) {
-        tried.push((*xi, r?));
+    let grid: Vec<ControllerSetting> = (0..SEARCH_POINTS)
+        .map(|index| ControllerSetting {
+            grid_point: Some(ConstantGridPoint {
+                index,
+                points: SEARCH_POINTS,
+            }),
+            ..ControllerSetting::fixed(ControllerChoice::Press)
+        })
+        .collect();
+    let coarse = runs.sweep(grid, 1)?;
+    let mut ratios: Vec<f64> = coarse.iter().map(|j| ratio_of(j.choice)).collect();
+    if let Some(stopped) = stage_done(runs.run(coarse)?)? {
+        return Ok(Comparison::stopped(&runs, stopped));
     }
+    let nominal = |runs: &StagedRuns, xi: f64| -> Option<RunOutput> {
+        runs.of(constant_choice(xi)).first().map(|r| (*r).clone())
+    };
+    let mut tried: Vec<(f64, RunOutput)> = ratios
+        .iter()
+        .filter_map(|&xi| nominal(&runs, xi).map(|r| (xi, r)))
+        .collect();
     // Golden-section refinement around the best completed grid point.
     let work = |r: &RunOutput| {
         if r.summary.completed {
@@ -306,15 +334,23 @@ pub fn compare(s: &Scenario, replicas: u64) -> Result<Comparison, RunError> {
         let b = round3(lo + INV_PHI * (hi - lo));
         // Ratios already run (the rounding to 3 decimals makes repeats
         // likely near the end) are not run again.
-        let fresh: Vec<ControllerChoice> = [a, b]
-            .into_iter()
-            .filter(|x| !tried.iter().any(|(t, _)| t == x))
-            .map(ControllerChoice::Slice)
-            .collect();
-        for (c, r) in fresh.iter().zip(run_nominal(s, &fresh)) {
-            if let ControllerChoice::Slice(x) = c {
-                tried.push((*x, r?));
+        let mut fresh: Vec<f64> = Vec::new();
+        for x in [a, b] {
+            if !ratios.contains(&x) && !fresh.contains(&x) {
+                fresh.push(x);
             }
+        }
+        let settings = fresh
+            .iter()
+            .map(|&x| ControllerSetting::fixed(ControllerChoice::Slice(x)))
+            .collect();
+        let jobs = runs.sweep(settings, 1)?;
+        if let Some(stopped) = stage_done(runs.run(jobs)?)? {
+            return Ok(Comparison::stopped(&runs, stopped));
+        }
+        for x in fresh {
+            ratios.push(x);
+            tried.extend(nominal(&runs, x).map(|r| (x, r)));
         }
         let work_at = |x: f64| {
             tried
@@ -342,41 +378,32 @@ pub fn compare(s: &Scenario, replicas: u64) -> Result<Comparison, RunError> {
         .expect("the grid starts at 0");
     let setpoint = s.controller.force_setpoint;
     let (mpc, force) = (ControllerChoice::Mpc, ControllerChoice::Force(setpoint));
-    // Each job with whose row it is: None for the MPC and the force loop
-    // (told apart by the choice), Some(i) for the search's ratio i.
-    let mut jobs = vec![(mpc, RunReplica::NOMINAL), (force, RunReplica::NOMINAL)];
-    let mut owners = vec![None, None];
-    for index in 1..replicas {
-        let replica = RunReplica {
-            index: index as u32,
-        };
-        jobs.push((mpc, replica));
-        owners.push(None);
-        for &i in &order {
-            jobs.push((constant_choice(tried[i].0), replica));
-            owners.push(Some(i));
-        }
-    }
     if replicas > 1 {
         crate::outln!(
             "the contestants on {replicas} replicas of the run (the knife starting 0, 5, 10, … µm higher):"
         )?;
     }
-    // Runs per contestant, the nominal replica's first.
-    let (mut of_mpc, mut of_force) = (Vec::new(), Vec::new());
-    let mut of_tried: Vec<Vec<RunOutput>> = tried.iter().map(|_| Vec::new()).collect();
-    for ((owner, (c, _)), run) in owners.iter().zip(&jobs).zip(run_all(s, &jobs)) {
-        match (owner, c) {
-            (Some(i), _) => of_tried[*i].push(run?),
-            (None, ControllerChoice::Mpc) => of_mpc.push(run),
-            (None, _) => of_force.push(run),
+    let contestants = std::iter::once(mpc)
+        .chain(order.iter().map(|&i| constant_choice(tried[i].0)))
+        .map(ControllerSetting::fixed)
+        .collect();
+    let mut jobs = runs.sweep(contestants, replicas as u32)?;
+    jobs.extend(runs.sweep(vec![ControllerSetting::fixed(force)], 1)?);
+    let end = runs.run(jobs)?;
+    let mut mpc_failure = None;
+    for (choice, e) in end.failed {
+        match choice {
+            ControllerChoice::Mpc => {
+                mpc_failure.get_or_insert(e);
+            }
+            _ => return Err(e),
         }
     }
-    let replicated = |i: usize| -> Vec<&RunOutput> {
-        std::iter::once(&tried[i].1)
-            .chain(of_tried[i].iter())
-            .collect()
-    };
+    if let Some(stopped) = end.stopped {
+        return Ok(Comparison::stopped(&runs, stopped));
+    }
+    // Runs per contestant, the nominal replica's first.
+    let replicated = |i: usize| runs.of(constant_choice(tried[i].0));
     let mean_work = |i: usize| {
         completed_mean_work(
             replicated(i)
@@ -388,21 +415,17 @@ pub fn compare(s: &Scenario, replicas: u64) -> Result<Comparison, RunError> {
         .unwrap_or_else(|| best_index(&tried));
     let mut rows = Vec::new();
     let mut mpc_vs_best_constant = None;
-    match of_mpc.into_iter().collect::<Result<Vec<_>, _>>() {
-        Ok(runs) => {
-            let runs: Vec<&RunOutput> = runs.iter().collect();
-            rows.push(ComparisonRow::new("mpc", &runs));
-            mpc_vs_best_constant = PairedDifference::new(&runs, &replicated(best));
+    match mpc_failure {
+        None => {
+            let of_mpc = runs.of(mpc);
+            rows.push(ComparisonRow::new("mpc", &of_mpc));
+            mpc_vs_best_constant = PairedDifference::new(&of_mpc, &replicated(best));
         }
-        Err(e) => crate::outln!("  mpc: not run ({e})")?,
+        Some(e) => crate::outln!("  mpc: not run ({e})")?,
     }
     rows.push(ComparisonRow::new("press", &replicated(press_index)));
     rows.push(ComparisonRow::new("best constant", &replicated(best)));
-    let force = of_force.into_iter().collect::<Result<Vec<_>, _>>()?;
-    rows.push(ComparisonRow::new(
-        "force",
-        &force.iter().collect::<Vec<_>>(),
-    ));
+    rows.push(ComparisonRow::new("force", &runs.of(force)));
     for i in 0..tried.len() {
         if i != best && i != press_index {
             rows.push(ComparisonRow::new("search", &replicated(i)));
@@ -411,15 +434,33 @@ pub fn compare(s: &Scenario, replicas: u64) -> Result<Comparison, RunError> {
     Ok(Comparison {
         rows,
         mpc_vs_best_constant,
+        stopped: None,
     })
 }
 
-/// Markdown table of the main rows.
+/// The constant ratio a job's controller runs (0: pressing).
+fn ratio_of(choice: ControllerChoice) -> f64 {
+    match choice {
+        ControllerChoice::Slice(xi) => xi,
+        _ => 0.0,
+    }
+}
+
+/// The end of a search stage: its first failure is the comparison's
+/// error; else the signal that stopped it, if any.
+fn stage_done(end: StageEnd) -> Result<Option<StopSignal>, RunError> {
+    match end.failed.into_iter().next() {
+        Some((_, e)) => Err(e),
+        None => Ok(end.stopped),
+    }
+}
+
+/// Markdown table of `rows`.
 pub fn markdown_table(rows: &[ComparisonRow]) -> String {
     let mut t = String::from(
         "| controller | role | work (J) | work range (J) | replicas | peak Fv (N) | max deformation (mm) | time (s) | blade used (mm) | blade path (mm) | reversals | completed | limit faults | plan p99 (µs) |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
     );
-    for r in rows.iter().filter(|r| r.role != "search") {
+    for r in rows {
         t += &format!(
             "| {} | {} | {:.4} | {:.4}–{:.4} | {} | {:.2} | {:.3} | {:.2} | {:.1} | {:.1} | {} | {} | {} | {:.0} |\n",
             r.controller,
@@ -443,40 +484,59 @@ pub fn markdown_table(rows: &[ComparisonRow]) -> String {
 }
 
 /// Runs the subcommand: compare (the MPC and the constant candidates on
-/// `replicas` replicas of the run), print the table, write table, CSV, JSON and the bar plot.
-pub fn run(scenario: &str, replicas: u64, out: &Destination) -> Result<(), RunError> {
+/// `replicas` replicas of the run, `threads` runs at a time), print the
+/// table, write table, CSV, JSON and the bar plot. SIGINT/SIGTERM end the
+/// runs in flight at their next tick: the rows of the finished runs are
+/// written, marked stopped, and the exit is 130/143.
+pub fn run(
+    scenario: &str,
+    replicas: u64,
+    threads: usize,
+    out: &Destination,
+) -> Result<(), RunError> {
+    let stop = StopRequest::watching(TerminationWatch::new());
     let s = Scenario::load(scenario)?;
     let dir = run_dir::claim(
         &format!("{}-compare", s.name),
         out,
         &crate::commands::check::resolved_toml(&s),
     )?;
-    let comparison = compare(&s, replicas).inspect_err(|_| run_dir::abandon(&dir))?;
+    let comparison =
+        compare(&s, replicas, threads, &stop).inspect_err(|_| run_dir::abandon(&dir))?;
     let rows = &comparison.rows;
-    let mut table = markdown_table(rows);
+    let shown = comparison.shown_rows();
+    let mut table = markdown_table(&shown);
     if let Some(p) = &comparison.mpc_vs_best_constant {
         table += &format!("\n{}\n", p.describe());
+    }
+    if let Some(signal) = comparison.stopped {
+        table += &format!(
+            "\nstopped by {signal} before the comparison was complete: the rows of the runs finished, no best constant chosen\n"
+        );
     }
     crate::outln!("\n{table}")?;
     write_text(&dir.join("comparison.md"), &table)?;
     write_csv(&dir.join("comparison.csv"), rows)?;
     write_json(&dir.join("comparison.json"), &comparison)?;
-    let main: Vec<ComparisonRow> = rows
-        .iter()
-        .filter(|r| r.role != "search")
-        .cloned()
-        .collect();
     let title = format!("{}: controllers compared in closed loop", s.name);
-    for name in ["comparison.svg", "comparison.png"] {
-        render_plot!(&dir.join(name), (1600, 500), |root| draw_comparison(
-            root, &title, &main
-        ))?;
+    if !shown.is_empty() {
+        for name in ["comparison.svg", "comparison.png"] {
+            render_plot!(&dir.join(name), (1600, 500), |root| draw_comparison(
+                root, &title, &shown
+            ))?;
+        }
     }
     crate::outln!(
         "results: {}/ (comparison.md, comparison.csv, comparison.json, comparison.svg/.png)",
         dir.display()
     )?;
-    Ok(())
+    match comparison.stopped {
+        Some(signal) => Err(RunError::Stopped {
+            signal,
+            dir: dir.display().to_string(),
+        }),
+        None => Ok(()),
+    }
 }
 
 #[cfg(test)]

@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 use clap::{Args, Subcommand};
 
 use crate::error::{ConfigError, RunError};
+use crate::transport::TerminationWatch;
 use crate::tune::analysis::analyse;
 use crate::tune::executor::{default_threads, run_pending};
 use crate::tune::job_list::{JobCatalog, JobList};
@@ -13,6 +14,7 @@ use crate::tune::job_outcome::JobRow;
 use crate::tune::merge::merge;
 use crate::tune::result_dir::{read_rows, tabulate, write_catalog};
 use crate::tune::shard::Shard;
+use crate::tune::stop_request::StopRequest;
 use crate::tune::sweep_file::Sweep;
 
 /// `shearcut tune`'s arguments.
@@ -88,6 +90,9 @@ pub fn run_sweep(
     threads: usize,
     out: Option<&Path>,
 ) -> Result<(), RunError> {
+    // SIGINT/SIGTERM end the runs in flight at their next tick; the rows
+    // finished are tabulated and the exit is 130/143 (a re-run resumes).
+    let stop = StopRequest::watching(TerminationWatch::new());
     let sweep = Sweep::load(path)?;
     let list = JobList::new(&sweep, &path.display().to_string())?;
     let base = out.map_or_else(
@@ -120,7 +125,7 @@ pub fn run_sweep(
         },
         threads
     )?;
-    let tally = run_pending(&mine, &dir, threads, &list.catalog.scenarios)?;
+    let tally = run_pending(&mine, &dir, threads, &list.catalog.scenarios, &stop)?;
     if tally.skipped > 0 {
         crate::outln!(
             "{} runs already done in {} (skipped)",
@@ -134,6 +139,12 @@ pub fn run_sweep(
         "results: {}/ (results.csv: {n} runs, timings.csv, jobs.json, rows/)",
         dir.display()
     )?;
+    if let Some(signal) = tally.stopped {
+        return Err(RunError::Stopped {
+            signal,
+            dir: dir.display().to_string(),
+        });
+    }
     let complete: Option<Vec<JobRow>> = rows.into_iter().collect();
     match complete {
         Some(rows) => report(&dir, &list.catalog, &rows),

@@ -1,44 +1,154 @@
-//! The local executor: runs a sweep's jobs on N threads with a progress bar,
-//! skipping the jobs whose row files are already there (resumption).
+//! The local executor: runs a batch of jobs on N threads with a progress
+//! bar, in a fixed order of taking ([`execute`]); for a sweep, skipping the
+//! jobs whose row files are already there (resumption, [`run_pending`]).
 //!
-//! Each thread takes the next pending job, runs it in process
-//! ([`run_closed_loop_on`]) and writes its row file atomically
-//! ([`JobRow::write`]). Runs share nothing, so the order in which threads
-//! finish changes no result; the tables are written in job order from the
-//! row files afterwards.
+//! Each thread takes the next job, runs it in process and hands its result
+//! back in its slot of the job order. Runs share nothing, so the order in
+//! which threads finish changes no result; tables are written in job order
+//! afterwards. SIGINT/SIGTERM ([`StopRequest`]) end the runs in flight at
+//! their next tick (those are not results) and start no other.
 
 use std::path::Path;
 use std::sync::Mutex;
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
-use crate::closed_loop::run_closed_loop_on;
+use crate::closed_loop::{LoopEnd, run_closed_loop_recorded};
 use crate::error::RunError;
 use crate::progress::run_bar;
+use crate::transport::StopSignal;
 use crate::tune::job_list::Job;
 use crate::tune::job_outcome::{JobOutcome, JobRow, JobTiming};
+use crate::tune::stop_request::{StopAtTick, StopRequest};
 
-/// What an execution did.
+/// What an execution of a sweep did.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Tally {
     /// Jobs run now.
     pub ran: usize,
     /// Jobs whose results were already there.
     pub skipped: usize,
+    /// The signal that stopped the execution before every job ran.
+    pub stopped: Option<StopSignal>,
 }
+
+/// What a batch gave: each job's result in job order, `None` for a job
+/// not run or stopped mid-run.
+#[derive(Debug)]
+pub struct Executed<T> {
+    /// The jobs' results, in job order.
+    pub results: Vec<Option<T>>,
+    /// The signal that stopped the batch before every job ran.
+    pub stopped: Option<StopSignal>,
+}
+
+/// How often the watcher thread looks for a signal, ms.
+const SIGNAL_POLL_MS: u64 = 5;
 
 /// The machine's cores: the default of `--jobs`.
 pub fn default_threads() -> usize {
     std::thread::available_parallelism().map_or(1, |n| n.get())
 }
 
+/// Runs `jobs`, `threads` at a time, each thread taking the next job in
+/// order, under a progress bar labelled `label` (on a terminal; elsewhere
+/// one line per finished job, `[k/n] line`). `run` gives a job's result, or
+/// `None` when the job was stopped mid-run; `describe` its progress line.
+/// The first error from `run` (or from printing a line) lets no thread
+/// take another job and is returned. A stop request lets no thread take
+/// another job; the results so far are returned with the signal.
+pub fn execute<J: Sync, T: Send>(
+    jobs: &[J],
+    threads: usize,
+    label: &str,
+    stop: &StopRequest,
+    run: impl Fn(&J) -> Result<Option<T>, RunError> + Sync,
+    describe: impl Fn(&J, &T) -> Option<String> + Sync,
+) -> Result<Executed<T>, RunError> {
+    let slots: Mutex<Vec<Option<T>>> = Mutex::new(jobs.iter().map(|_| None).collect());
+    if jobs.is_empty() || stop.signal().is_some() {
+        return Ok(Executed {
+            results: slots.into_inner().unwrap_or_else(|p| p.into_inner()),
+            stopped: stop.signal(),
+        });
+    }
+    let bar = run_bar(jobs.len(), label);
+    let next = AtomicUsize::new(0);
+    let finished = AtomicBool::new(false);
+    let first_error: Mutex<Option<RunError>> = Mutex::new(None);
+    let threads = threads.clamp(1, jobs.len());
+    std::thread::scope(|scope| {
+        if stop.is_watching() {
+            scope.spawn(|| {
+                while !finished.load(Ordering::Acquire) && stop.poll().is_none() {
+                    std::thread::sleep(std::time::Duration::from_millis(SIGNAL_POLL_MS));
+                }
+            });
+        }
+        let workers: Vec<_> = (0..threads)
+            .map(|_| {
+                scope.spawn(|| {
+                    while stop.signal().is_none() {
+                        let i = next.fetch_add(1, Ordering::Relaxed);
+                        let Some(job) = jobs.get(i) else { break };
+                        let result = run(job);
+                        // A closed or full stdout stops the batch like a
+                        // failed run (the results so far stay).
+                        let printed = match result.as_ref().map(|r| r.as_ref()) {
+                            Ok(Some(done)) => match describe(job, done) {
+                                Some(line) if bar.is_hidden() => {
+                                    crate::outln!("[{}/{}] {line}", i + 1, jobs.len())
+                                }
+                                Some(line) => {
+                                    bar.println(line);
+                                    Ok(())
+                                }
+                                None => Ok(()),
+                            },
+                            _ => Ok(()),
+                        };
+                        bar.inc(1);
+                        match result.and_then(|r| printed.map(|()| r)) {
+                            Ok(done) => {
+                                slots.lock().unwrap_or_else(|p| p.into_inner())[i] = done;
+                            }
+                            Err(e) => {
+                                let mut slot =
+                                    first_error.lock().unwrap_or_else(|p| p.into_inner());
+                                slot.get_or_insert(e);
+                                // No thread takes another job.
+                                next.store(jobs.len(), Ordering::Relaxed);
+                                break;
+                            }
+                        }
+                    }
+                })
+            })
+            .collect();
+        for worker in workers {
+            let _ = worker.join();
+        }
+        finished.store(true, Ordering::Release);
+    });
+    bar.finish_and_clear();
+    match first_error.into_inner().unwrap_or_else(|p| p.into_inner()) {
+        Some(e) => Err(e),
+        None => Ok(Executed {
+            results: slots.into_inner().unwrap_or_else(|p| p.into_inner()),
+            stopped: stop.signal(),
+        }),
+    }
+}
+
 /// Runs every job of `jobs` without a row file under `dir`, `threads` at a
-/// time, writing each one's row file as it finishes. `names[i]` names the
-/// scenario of index i in progress lines.
+/// time, writing each one's row file as it finishes (a run stopped by
+/// `stop` writes none: a re-run runs it). `names[i]` names the scenario of
+/// index i in progress lines.
 pub fn run_pending(
     jobs: &[&Job],
     dir: &Path,
     threads: usize,
     names: &[String],
+    stop: &StopRequest,
 ) -> Result<Tally, RunError> {
     let rows = dir.join("rows");
     std::fs::create_dir_all(&rows).map_err(|e| RunError::write(&rows, e))?;
@@ -47,64 +157,38 @@ pub fn run_pending(
         .copied()
         .filter(|j| JobRow::read(dir, &j.record.id).is_none())
         .collect();
-    let tally = Tally {
-        ran: pending.len(),
+    let executed = execute(
+        &pending,
+        threads,
+        "",
+        stop,
+        |job| run_job(job, dir, stop),
+        |job, row| Some(describe(job, row, names)),
+    )?;
+    Ok(Tally {
+        ran: executed.results.iter().flatten().count(),
         skipped: jobs.len() - pending.len(),
-    };
-    if pending.is_empty() {
-        return Ok(tally);
-    }
-    let bar = run_bar(pending.len(), "");
-    let next = AtomicUsize::new(0);
-    let first_error: Mutex<Option<RunError>> = Mutex::new(None);
-    let threads = threads.clamp(1, pending.len());
-    std::thread::scope(|scope| {
-        for _ in 0..threads {
-            scope.spawn(|| {
-                loop {
-                    let i = next.fetch_add(1, Ordering::Relaxed);
-                    let Some(job) = pending.get(i) else { break };
-                    let result = run_job(job, dir);
-                    let line = match &result {
-                        Ok(row) => describe(job, row, names),
-                        Err(e) => format!("job {}: {e}", job.record.index),
-                    };
-                    // A closed or full stdout stops the sweep like a failed row
-                    // write (the rows written so far stay; a rerun skips them).
-                    let printed = if bar.is_hidden() {
-                        crate::outln!("[{}/{}] {line}", i + 1, pending.len())
-                    } else {
-                        bar.println(line);
-                        Ok(())
-                    };
-                    bar.inc(1);
-                    let failed = result.err().or(printed.err());
-                    if let Some(e) = failed {
-                        let mut slot = first_error.lock().unwrap_or_else(|p| p.into_inner());
-                        slot.get_or_insert(e);
-                        // No thread takes another job.
-                        next.store(pending.len(), Ordering::Relaxed);
-                        break;
-                    }
-                }
-            });
-        }
-    });
-    bar.finish_and_clear();
-    match first_error.into_inner().unwrap_or_else(|p| p.into_inner()) {
-        Some(e) => Err(e),
-        None => Ok(tally),
-    }
+        stopped: executed.stopped,
+    })
 }
 
 /// Runs one job and writes its row file. A run that cannot be set up is
 /// a row too (`end = "error: …"`), so that a bad setting does not stop the
-/// sweep; only failing to write is an error.
+/// sweep; only failing to write is an error. A run stopped by `stop` is
+/// `None`, no row.
 #[allow(clippy::disallowed_methods)] // Wall time of a job is a statistic, not a model input.
-fn run_job(job: &Job, dir: &Path) -> Result<JobRow, RunError> {
+fn run_job(job: &Job, dir: &Path, stop: &StopRequest) -> Result<Option<JobRow>, RunError> {
     let started = std::time::Instant::now();
-    let run = run_closed_loop_on(&job.scenario, job.choice, job.replica);
+    let run = run_closed_loop_recorded(
+        &job.scenario,
+        job.choice,
+        job.replica,
+        &mut StopAtTick(stop),
+    );
     let run_s = started.elapsed().as_secs_f64();
+    if matches!(&run, Ok(r) if matches!(r.output.end, LoopEnd::Stopped(_))) {
+        return Ok(None);
+    }
     let (outcome, loop_s, ticks, plans) = match &run {
         Ok(r) => (
             JobOutcome::from_run(r),
@@ -133,7 +217,7 @@ fn run_job(job: &Job, dir: &Path) -> Result<JobRow, RunError> {
     drop(run);
     row.timing.job_s = started.elapsed().as_secs_f64();
     row.write(dir)?;
-    Ok(row)
+    Ok(Some(row))
 }
 
 /// One progress line for a finished job.

@@ -23,5 +23,7 @@ pub mod result_table;
 pub mod robust_stats;
 pub mod setting_effect;
 pub mod shard;
+pub mod staged_runs;
+pub mod stop_request;
 pub mod sweep_file;
 pub mod weighting;

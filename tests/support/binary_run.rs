@@ -49,3 +49,21 @@ pub fn stdout(o: &Output) -> String {
 pub fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
+
+/// Sends SIG`signal` (`INT`, `TERM`) to the running `child`, reads the rest
+/// of its stdout (`stdout`, taken from it) and waits for it: its output and
+/// what it printed after the signal.
+pub fn signal_and_wait(
+    child: std::process::Child,
+    mut stdout: std::io::BufReader<std::process::ChildStdout>,
+    signal: &str,
+) -> (Output, String) {
+    let sent = Command::new("kill")
+        .args([&format!("-{signal}"), &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(sent.success());
+    let mut rest = String::new();
+    std::io::Read::read_to_string(&mut stdout, &mut rest).unwrap();
+    (child.wait_with_output().unwrap(), rest)
+}
