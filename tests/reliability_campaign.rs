@@ -1059,6 +1059,57 @@ fn issue_27_the_plants_successor_counts_are_in_loop_stats() {
     }
 }
 
+/// Seed 000 Fig. 10's half potato on coarse sections: three cuts of 4 s
+/// of simulated time each, seconds of wall time in release; a signal or a
+/// kill comes during the first.
+fn long_simulation(d: &Dir) -> String {
+    d.file(
+        "fig10-coarse.toml",
+        &(include_str!("../config/scenarios/fig10-potato-whole.toml").to_string()
+            + "\n[section]\nrow_spacing = 0.0005\n"),
+    )
+}
+
+/// `simulate` killed (SIGKILL) mid-cut, once its first flush is on disk:
+/// its series hold whole rows, in the order of simulated time, and its
+/// `cuts.csv` the cuts that finished (none: it died in the first); no
+/// summary.
+#[test]
+fn issue_27_a_simulation_killed_mid_cut_leaves_whole_series() {
+    let d = Dir::new("simulate-sigkill");
+    let scenario = long_simulation(&d);
+    let out = d.0.join("killed");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_shearcut"))
+        .args(["simulate", &scenario, "--out", out.to_str().unwrap()])
+        .env("RUST_LOG", "error")
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let series = out.join("timeseries.csv");
+    // The header and the first flush's rows.
+    wait_for_lines(&series, 2, &mut child);
+    child.kill().unwrap();
+    child.wait().unwrap();
+    let rows = whole_rows(&series);
+    assert!(rows >= 1);
+    let mut r = csv::Reader::from_path(&series).unwrap();
+    let time = r
+        .headers()
+        .unwrap()
+        .iter()
+        .position(|h| h == "time_s")
+        .unwrap();
+    let times: Vec<f64> = r
+        .records()
+        .take(rows)
+        .map(|row| row.unwrap()[time].parse().unwrap())
+        .collect();
+    assert!(times.windows(2).all(|w| w[0] < w[1]), "{times:?}");
+    assert_eq!(std::fs::read(out.join("cuts.csv")).unwrap().len(), 0);
+    assert!(!out.join("summary.json").exists());
+}
+
 /// `simulate` stopped by SIGINT or SIGTERM mid-cut: 130/143 and one line,
 /// and the results so far written as a finished run's are (whole rows, a
 /// summary saying why it stopped and summarising the cut in progress, the
@@ -1066,14 +1117,7 @@ fn issue_27_the_plants_successor_counts_are_in_loop_stats() {
 #[test]
 fn issue_27_sigint_and_sigterm_stop_a_simulation_with_its_results_so_far() {
     let d = Dir::new("simulate-signals");
-    // Seed 000 Fig. 10's half potato on coarse sections: three cuts of 4 s
-    // of simulated time each, seconds of wall time in release; the signal
-    // comes during the first.
-    let scenario = d.file(
-        "fig10-coarse.toml",
-        &(include_str!("../config/scenarios/fig10-potato-whole.toml").to_string()
-            + "\n[section]\nrow_spacing = 0.0005\n"),
-    );
+    let scenario = long_simulation(&d);
     for (signal, code, name) in [("INT", 130, "sigint"), ("TERM", 143, "sigterm")] {
         let out = d.0.join(name);
         let mut child = Command::new(env!("CARGO_BIN_EXE_shearcut"))
@@ -1106,6 +1150,7 @@ fn issue_27_sigint_and_sigterm_stop_a_simulation_with_its_results_so_far() {
             "stopped in the first of three cuts: {summary}"
         );
         assert_eq!(cuts[0]["completed"], false, "{summary}");
+        assert_eq!(whole_rows(&out.join("cuts.csv")), 1);
         assert!(whole_rows(&out.join("timeseries.csv")) > 0);
         assert!(out.join("forces_work.png").is_file());
     }

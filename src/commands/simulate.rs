@@ -18,6 +18,7 @@ use shearcut_sim::{Cuboid, EdgeShape, InvalidSetting, Knife, ObjectShape};
 
 use crate::cli::print;
 use crate::cut_record::{CutSample, CutSummary};
+use crate::cut_stream::{CutRecorder, CutStream, NoCutRecorder};
 use crate::error::{ConfigError, RunError};
 use crate::plot::cut_curves::draw_cut_curves;
 use crate::progress::run_bar;
@@ -80,19 +81,27 @@ const RAMP_S: f64 = 0.05;
 
 /// Runs the cuts of `scenario` (no files written).
 pub fn simulate(scenario: &Scenario) -> Result<SimulationOutput, RunError> {
-    simulate_until(scenario, &|| None)
+    simulate_until(scenario, &|| None, &mut NoCutRecorder)
 }
 
-/// Runs the cuts of `scenario`, looking at `stop` every
+/// Runs the cuts of `scenario`, handing each sample and each finished
+/// cut's summary to `recorder` as they come, and looking at `stop` every
 /// [`STOP_POLL_STEPS`] steps: a signal ends the simulation there, with the
 /// samples so far ([`SimulationOutput::stopped`]).
-pub fn simulate_until(scenario: &Scenario, stop: StopCheck) -> Result<SimulationOutput, RunError> {
+///
+/// # Errors
+/// The scenario cannot run (exit 2), or the recorder failed.
+pub fn simulate_until(
+    scenario: &Scenario,
+    stop: StopCheck,
+    recorder: &mut dyn CutRecorder,
+) -> Result<SimulationOutput, RunError> {
     let knife = Knife::new(&scenario.knife).map_err(|e| invalid(scenario, e.prefixed("knife")))?;
     match (&scenario.object, &scenario.knife.edge) {
         (ObjectShape::Cuboid(c), EdgeShape::Straight { .. } | EdgeShape::Wire { .. }) => {
-            simulate_section(scenario, &knife, c, stop)
+            simulate_section(scenario, &knife, c, stop, recorder)
         }
-        _ => simulate_plant(scenario, &knife, stop),
+        _ => simulate_plant(scenario, &knife, stop, recorder),
     }
 }
 
@@ -109,6 +118,7 @@ fn simulate_section(
     knife: &Knife,
     cuboid: &Cuboid,
     stop: StopCheck,
+    recorder: &mut dyn CutRecorder,
 ) -> Result<SimulationOutput, RunError> {
     let depth = scenario.motion.depth.unwrap_or(0.8 * cuboid.height);
     let edge_length = knife.edge().length();
@@ -167,7 +177,9 @@ fn simulate_section(
                     InvalidSetting::new("section", "step", e.to_string()),
                 )
             })?;
-            samples.push(section_sample(knife, xi, z0, &s, v_n, cuboid));
+            let sample = section_sample(knife, xi, z0, &s, v_n, cuboid);
+            recorder.sample(&sample)?;
+            samples.push(sample);
             if (samples.len() - first).is_multiple_of(STOP_POLL_STEPS) {
                 stopped = stop();
                 if stopped.is_some() {
@@ -175,7 +187,9 @@ fn simulate_section(
                 }
             }
         }
-        summaries.push(CutSummary::from_samples(&samples[first..], depth));
+        let summary = CutSummary::from_samples(&samples[first..], depth);
+        recorder.cut_done(&summary)?;
+        summaries.push(summary);
         if stopped.is_some() {
             break;
         }
@@ -247,6 +261,7 @@ fn simulate_plant(
     scenario: &Scenario,
     knife: &Knife,
     stop: StopCheck,
+    recorder: &mut dyn CutRecorder,
 ) -> Result<SimulationOutput, RunError> {
     let mesh = scenario.object.mesh().map_err(|e| {
         invalid(
@@ -318,6 +333,7 @@ fn simulate_plant(
             if let Some(sample) =
                 CutSample::from_plant(&step.reading, &step.truth, xi, z0, &start, gap)
             {
+                recorder.sample(&sample)?;
                 samples.push(sample);
             }
             if step.truth.crack_depth >= depth {
@@ -330,7 +346,9 @@ fn simulate_plant(
                 }
             }
         }
-        summaries.push(CutSummary::from_samples(&samples[first..], depth));
+        let summary = CutSummary::from_samples(&samples[first..], depth);
+        recorder.cut_done(&summary)?;
+        summaries.push(summary);
         if stopped.is_some() {
             break;
         }
@@ -362,9 +380,10 @@ pub fn run_scenario(s: &Scenario, out: &Destination) -> Result<(), RunError> {
     // run's would be, and the exit is 130/143.
     let watch = TerminationWatch::new();
     let dir = run_dir::claim(&s.name, out, &crate::commands::check::resolved_toml(s))?;
-    let output =
-        simulate_until(s, &|| watch.requested()).inspect_err(|_| run_dir::abandon(&dir))?;
-    write_csv(&dir.join("timeseries.csv"), &output.samples)?;
+    let mut stream = CutStream::create(&dir).inspect_err(|_| run_dir::abandon(&dir))?;
+    let output = simulate_until(s, &|| watch.requested(), &mut stream)
+        .inspect_err(|_| run_dir::abandon(&dir))?;
+    stream.finish()?;
     write_json(
         &dir.join("summary.json"),
         &SummaryFile {
@@ -397,7 +416,7 @@ pub fn run_scenario(s: &Scenario, out: &Destination) -> Result<(), RunError> {
         ))?;
     }
     print(&format!(
-        "{}results: {}/ (timeseries.csv, summary.json, scenario.toml, forces_work.svg/.png)\n",
+        "{}results: {}/ (timeseries.csv, cuts.csv, summary.json, scenario.toml, forces_work.svg/.png)\n",
         summary_table(s, output.model, &output.summaries),
         dir.display()
     ))?;
