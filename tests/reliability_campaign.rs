@@ -1110,6 +1110,40 @@ fn issue_27_a_simulation_killed_mid_cut_leaves_whole_series() {
     assert!(!out.join("summary.json").exists());
 }
 
+/// `simulate scenario --out out` sent `signal` (`kill -INT`: `("INT",
+/// 130, "sigint")`) once its directory is claimed (its handlers are
+/// installed before): exit `code`, one line naming the partial results, and
+/// the summary's `end` naming the signal. The summary, parsed and as text.
+fn simulation_stopped_by(
+    scenario: &str,
+    out: &std::path::Path,
+    (signal, code, name): (&str, i32, &str),
+) -> (serde_json::Value, String) {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_shearcut"))
+        .args(["simulate", scenario, "--out", out.to_str().unwrap()])
+        .env("RUST_LOG", "error")
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    wait_until("the run's directory", &mut child, || {
+        out.join("scenario.toml").is_file()
+    });
+    let sent = Command::new("kill")
+        .args([&format!("-{signal}"), &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(sent.success());
+    let o = sandbox::watchdog(child, sandbox::WATCHDOG);
+    assert_eq!(o.status.code(), Some(code), "{name}: {}", stderr(&o));
+    assert_eq!(stderr(&o).lines().count(), 1, "{}", stderr(&o));
+    assert!(stderr(&o).contains("partial results in"), "{}", stderr(&o));
+    let summary = std::fs::read_to_string(out.join("summary.json")).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&summary).unwrap();
+    assert_eq!(v["end"]["stopped"], name, "{summary}");
+    (v, summary)
+}
+
 /// `simulate` stopped by SIGINT or SIGTERM mid-cut: 130/143 and one line,
 /// and the results so far written as a finished run's are (whole rows, a
 /// summary saying why it stopped and summarising the cut in progress, the
@@ -1120,29 +1154,7 @@ fn issue_27_sigint_and_sigterm_stop_a_simulation_with_its_results_so_far() {
     let scenario = long_simulation(&d);
     for (signal, code, name) in [("INT", 130, "sigint"), ("TERM", 143, "sigterm")] {
         let out = d.0.join(name);
-        let mut child = Command::new(env!("CARGO_BIN_EXE_shearcut"))
-            .args(["simulate", &scenario, "--out", out.to_str().unwrap()])
-            .env("RUST_LOG", "error")
-            .stdout(Stdio::piped())
-            .stderr(Stdio::piped())
-            .spawn()
-            .unwrap();
-        // The handlers are installed before the run's directory is claimed.
-        wait_until("the run's directory", &mut child, || {
-            out.join("scenario.toml").is_file()
-        });
-        let sent = Command::new("kill")
-            .args([&format!("-{signal}"), &child.id().to_string()])
-            .status()
-            .unwrap();
-        assert!(sent.success());
-        let o = sandbox::watchdog(child, sandbox::WATCHDOG);
-        assert_eq!(o.status.code(), Some(code), "{name}: {}", stderr(&o));
-        assert_eq!(stderr(&o).lines().count(), 1, "{}", stderr(&o));
-        assert!(stderr(&o).contains("partial results in"), "{}", stderr(&o));
-        let summary = std::fs::read_to_string(out.join("summary.json")).unwrap();
-        let v: serde_json::Value = serde_json::from_str(&summary).unwrap();
-        assert_eq!(v["end"]["stopped"], name, "{summary}");
+        let (v, summary) = simulation_stopped_by(&scenario, &out, (signal, code, name));
         let cuts = v["cuts"].as_array().unwrap();
         assert_eq!(
             cuts.len(),
@@ -1153,5 +1165,32 @@ fn issue_27_sigint_and_sigterm_stop_a_simulation_with_its_results_so_far() {
         assert_eq!(whole_rows(&out.join("cuts.csv")), 1);
         assert!(whole_rows(&out.join("timeseries.csv")) > 0);
         assert!(out.join("forces_work.png").is_file());
+    }
+}
+
+/// The wire slab's `simulate` (seed 001) stopped by SIGINT or SIGTERM:
+/// 130/143 and one line, the angles in progress ended after their load
+/// step and written with the rest (`series.csv` whole rows, each run
+/// marked stopped, the summary's `end`, the plots).
+#[test]
+fn issue_27_sigint_and_sigterm_stop_a_wire_slab_sweep_with_its_angles_so_far() {
+    let d = Dir::new("slab-signals");
+    for (signal, code, name) in [("INT", 130, "sigint"), ("TERM", 143, "sigterm")] {
+        let out = d.0.join(name);
+        // The sweep of six angles takes tens of seconds.
+        let (v, summary) = simulation_stopped_by("seed001-agar-wire", &out, (signal, code, name));
+        // Two threads: each one's first angle started and was stopped.
+        let angles = v["nucleation"].as_array().unwrap();
+        assert!(
+            !angles.is_empty() && angles.len() < 6,
+            "stopped mid-sweep: {summary}"
+        );
+        assert!(angles.iter().any(|a| a["stopped"] == true), "{summary}");
+        let steps: u64 = angles
+            .iter()
+            .map(|a| a["load_steps"].as_u64().unwrap())
+            .sum();
+        assert_eq!(whole_rows(&out.join("series.csv")) as u64, steps);
+        assert!(out.join("stress_map.png").is_file());
     }
 }

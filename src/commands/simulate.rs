@@ -480,6 +480,10 @@ struct SlabNucleation {
     position_m: Option<f64>,
     under_wire: Option<bool>,
     load_steps: usize,
+    /// `true` when a signal stopped this angle's indentation (absent
+    /// otherwise).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    stopped: bool,
 }
 
 /// The finite-strain run's summary file.
@@ -492,14 +496,33 @@ struct SlabSummary<'a> {
     unknowns: usize,
     nucleation: Vec<SlabNucleation>,
     seed_comparison: shearcut_sim::finite_strain::SeedComparison,
+    /// `{"stopped": "sigint"}` when a signal stopped the sweep (absent
+    /// otherwise).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    end: Option<StoppedEnd>,
 }
 
 /// Runs seed 001's finite-strain wire–slab sweep and writes its series
 /// (`series.csv`), surface σ₁ profiles at nucleation (`surface.csv`), a
 /// summary with the seed's numbers side by side (`summary.json`), the resolved
 /// scenario and the plots in the seed's form.
+///
+/// SIGINT/SIGTERM stop the sweep after the load step in progress: the
+/// angles so far are written as a finished sweep's are (the ones stopped
+/// marked `"stopped": true`, the summary's `"end": {"stopped": "sigint"}`),
+/// and the exit is 130/143.
 pub fn run_wire_slab(s: &WireSlabScenario, out: &Destination) -> Result<(), RunError> {
-    use shearcut_sim::finite_strain::{SeedComparison, WireSlab, WireSlabError, sweep_angles};
+    use shearcut_sim::finite_strain::{
+        SeedComparison, WireSlab, WireSlabError, sweep_angles_until,
+    };
+    let watch = TerminationWatch::new();
+    let signal = std::sync::OnceLock::new();
+    let stop = || {
+        if let Some(sig) = watch.requested() {
+            let _ = signal.set(sig);
+        }
+        signal.get().is_some()
+    };
     let model_error = |e: WireSlabError| match e {
         WireSlabError::Setting(setting) => RunError::Config(ConfigError::Invalid {
             path: s.name.clone(),
@@ -510,7 +533,7 @@ pub fn run_wire_slab(s: &WireSlabScenario, out: &Destination) -> Result<(), RunE
     let probe = WireSlab::new(&s.slab).map_err(model_error)?;
     let resolved = toml::to_string(s).map_err(|e| RunError::write("scenario.toml", e))?;
     let dir = run_dir::claim(&s.name, out, &resolved)?;
-    let sweep = sweep_angles(&s.slab, &s.sweep.angles_deg, s.sweep.threads)
+    let sweep = sweep_angles_until(&s.slab, &s.sweep.angles_deg, s.sweep.threads, &stop)
         .map_err(model_error)
         .inspect_err(|_| run_dir::abandon(&dir))?;
     let runs = &sweep.runs;
@@ -550,6 +573,7 @@ pub fn run_wire_slab(s: &WireSlabScenario, out: &Destination) -> Result<(), RunE
             position_m: run.nucleation.map(|n| n.position),
             under_wire: run.nucleation.map(|n| n.under_wire),
             load_steps: run.states.len(),
+            stopped: run.stopped,
         })
         .collect();
     write_json(
@@ -562,6 +586,7 @@ pub fn run_wire_slab(s: &WireSlabScenario, out: &Destination) -> Result<(), RunE
             unknowns: probe.unknowns(),
             nucleation,
             seed_comparison: comparison,
+            end: signal.get().map(|&stopped| StoppedEnd { stopped }),
         },
     )?;
     let sl = &s.slab;
@@ -632,6 +657,11 @@ pub fn run_wire_slab(s: &WireSlabScenario, out: &Destination) -> Result<(), RunE
                 n.position * 1e6,
                 n.under_wire
             )?,
+            None if run.stopped => crate::outln!(
+                "  {:>11.0}  stopped at {:.3} mm",
+                run.angle.to_degrees(),
+                run.states.last().map_or(0.0, |st| st.depth) * 1e3
+            )?,
             None => crate::outln!(
                 "  {:>11.0}  no nucleation up to {:.3} mm",
                 run.angle.to_degrees(),
@@ -666,5 +696,11 @@ pub fn run_wire_slab(s: &WireSlabScenario, out: &Destination) -> Result<(), RunE
         "results: {}/ (series.csv, surface.csv, summary.json, scenario.toml, forces_depth, nucleation_angle, stress_map .svg/.png)",
         dir.display()
     )?;
-    Ok(())
+    match signal.get() {
+        Some(&signal) => Err(RunError::Stopped {
+            signal,
+            dir: dir.display().to_string(),
+        }),
+        None => Ok(()),
+    }
 }
