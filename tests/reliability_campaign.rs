@@ -885,6 +885,63 @@ fn issue_27_a_plant_that_dies_as_its_controller_starts_is_reported_at_once() {
     assert!(!out.exists());
 }
 
+/// A peer killed (SIGKILL) before the other process starts: the other
+/// finds its dead node, recent, at its node's creation, and reports the
+/// death once no live peer of the name has appeared within the grace
+/// (`UNSEEN_GRACE`), instead of waiting for its connect timeout (10 s for
+/// the controller, 30 s for the plant).
+#[test]
+fn issue_27_a_peer_killed_before_the_other_starts_is_reported_at_once() {
+    let sb = sandbox::Sandbox::new("peer-gone-first");
+    let s = sb.scenario("quick", 0.003, "");
+    let mut plant = sb.spawn_plant(&s, "gone-p");
+    wait_for_node(sb.prefix(), "plant/gone-p", &mut plant);
+    plant.kill().unwrap();
+    plant.wait().unwrap();
+    let out = sb.dir.join("never");
+    assert_start_up_fault(
+        sb.spawn_controller(&s, "gone-p", &out),
+        "the plant 'plant/gone-p' died before serving run 'gone-p'",
+    );
+    assert!(!out.exists());
+    let mut controller = sb.spawn_controller(&s, "gone-c", &sb.dir.join("gone-c"));
+    wait_for_node(sb.prefix(), "controller/gone-c", &mut controller);
+    controller.kill().unwrap();
+    controller.wait().unwrap();
+    assert_start_up_fault(
+        sb.spawn_plant(&s, "gone-c"),
+        "plant/gone-c: lost the controller: the controller 'controller/gone-c' died before its first command of run 'gone-c'",
+    );
+}
+
+/// A lockstep plant whose controller is killed (SIGKILL) mid-run: at its
+/// first missed command it looks at the controller's node, finds it dead,
+/// brakes and says so (not after its 20 missed commands); the controller's
+/// series hold whole rows.
+#[test]
+fn issue_27_a_lockstep_plant_whose_controller_dies_mid_run_says_so_at_its_first_miss() {
+    let sb = sandbox::Sandbox::new("controller-dies-mid-run");
+    let s = sb.scenario("long", 0.02, "");
+    let out = sb.dir.join("killed");
+    let (plant, mut controller) = sb.spawn_pair(&s, "mid", &out);
+    let series = out.join("controller.csv");
+    wait_for_lines(&series, 101, &mut controller);
+    controller.kill().unwrap();
+    controller.wait().unwrap();
+    let (o, elapsed) = timed(plant);
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{e}");
+    assert_eq!(e.lines().count(), 1, "one line: {e}");
+    assert!(
+        e.contains("plant/mid: lost the controller: the controller 'controller/mid' died after"),
+        "{e}"
+    );
+    assert!(e.contains("; braked;"), "{e}");
+    assert!(elapsed < STARTUP_FAULT_BOUND, "{elapsed:?}");
+    assert!(whole_rows(&series) >= 100);
+    whole_rows(&out.join("timeseries.csv"));
+}
+
 /// The supervisor refuses bad input itself, before it starts a process:
 /// exit 2 and the one line `run` gives in process (both children used to
 /// fail on it and the supervisor exit 1).

@@ -11,7 +11,7 @@ use crate::commands::controller::controller_choice;
 use crate::error::RunError;
 use crate::scenario::{ClockMode, Scenario};
 use crate::transport::loop_services::{node_name, prefix};
-use crate::transport::peer_watch::{PeerFate, gone_before_loop};
+use crate::transport::peer_watch::{PeerFate, gone_before_loop, gone_in_loop};
 use crate::transport::{
     LoopServices, PlantEnd, PlantServerSettings, Role, RunNode, WaitMode, serve_plant,
 };
@@ -92,6 +92,14 @@ pub fn run(
         PlantEnd::ControllerEnded => Err(RunError::Loop(format!(
             "{name}: lost the controller: {}",
             gone_before_loop(Role::Controller, run_id, PeerFate::Ended)
+        ))),
+        PlantEnd::ControllerDiedInLoop => Err(RunError::Loop(format!(
+            "{name}: lost the controller: {}; braked; {counts}",
+            gone_in_loop(Role::Controller, run_id, PeerFate::Died, report.commands)
+        ))),
+        PlantEnd::ControllerEndedInLoop => Err(RunError::Loop(format!(
+            "{name}: lost the controller: {}; braked; {counts}",
+            gone_in_loop(Role::Controller, run_id, PeerFate::Ended, report.commands)
         ))),
         PlantEnd::Terminated(signal) => Err(RunError::Signalled {
             signal,
