@@ -942,6 +942,78 @@ fn issue_27_a_lockstep_plant_whose_controller_dies_mid_run_says_so_at_its_first_
     whole_rows(&out.join("timeseries.csv"));
 }
 
+/// `run --transport iceoryx2` killed (SIGKILL) mid-run: its children,
+/// orphaned, finish the run by themselves (their stderr closed), and the
+/// controller's directory holds the whole run: a summary that parses and
+/// whole rows, one per tick.
+#[test]
+#[allow(clippy::disallowed_methods)] // A watchdog on orphaned processes.
+fn issue_27_an_iceoryx2_run_whose_supervisor_is_killed_mid_run_is_finished_by_its_children() {
+    let sb = sandbox::Sandbox::new("supervisor-killed");
+    let s = sb.scenario("long", 0.02, "");
+    let out = sb.dir.join("orphans");
+    let mut run = sb.spawn_run(&s, "iceoryx2", &out);
+    let series = out.join("controller.csv");
+    wait_for_lines(&series, 101, &mut run);
+    run.kill().unwrap();
+    run.wait().unwrap();
+    let summary = out.join("summary.json");
+    let started = std::time::Instant::now();
+    while !summary.is_file() {
+        assert!(
+            started.elapsed() < sandbox::WATCHDOG,
+            "watchdog: the orphaned controller's summary"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
+    // The summary is renamed into place after the series' last flush.
+    let text = std::fs::read_to_string(&summary).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(
+        v["ticks"].as_u64().unwrap() as usize,
+        whole_rows(&series),
+        "{text}"
+    );
+    assert!(
+        v.get("end").is_none_or(|e| e.get("stopped").is_none()),
+        "{text}"
+    );
+}
+
+/// A plant stopped by SIGTERM (or SIGINT) while it builds: it stops once
+/// its build is done, 143 (130) and one line; its controller reports the
+/// plant ended before serving, exit 1, and leaves no directory.
+#[test]
+fn issue_27_a_plant_stopped_while_it_builds_exits_cleanly_and_its_controller_says_so() {
+    let sb = sandbox::Sandbox::new("plant-stopped-building");
+    let s = slow_plant(&sb, "slow-plant");
+    for (signal, code, id) in [("TERM", 143, "pterm"), ("INT", 130, "pint")] {
+        let out = sb.dir.join(id);
+        let mut controller = sb.spawn_controller(&s, id, &out);
+        wait_for_node(sb.prefix(), &format!("controller/{id}"), &mut controller);
+        let mut plant = sb.spawn_plant(&s, id);
+        wait_for_node(sb.prefix(), &format!("plant/{id}"), &mut plant);
+        let sent = Command::new("kill")
+            .args([&format!("-{signal}"), &plant.id().to_string()])
+            .status()
+            .unwrap();
+        assert!(sent.success());
+        let (o, _) = timed(plant);
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(code), "{e}");
+        assert_eq!(e.lines().count(), 1, "one line: {e}");
+        assert!(
+            e.contains(&format!("plant/{id}: stopped by SIG{signal}")),
+            "{e}"
+        );
+        assert_start_up_fault(
+            controller,
+            &format!("the plant 'plant/{id}' ended before serving run '{id}'"),
+        );
+        assert!(!out.exists());
+    }
+}
+
 /// The supervisor refuses bad input itself, before it starts a process:
 /// exit 2 and the one line `run` gives in process (both children used to
 /// fail on it and the supervisor exit 1).

@@ -13,7 +13,7 @@ use crate::scenario::{ClockMode, Scenario};
 use crate::transport::loop_services::{node_name, prefix};
 use crate::transport::peer_watch::{PeerFate, gone_before_loop, gone_in_loop};
 use crate::transport::{
-    LoopServices, PlantEnd, PlantServerSettings, Role, RunNode, WaitMode, serve_plant,
+    LoopServices, PlantEnd, PlantServerSettings, Role, RunNode, ServiceError, WaitMode, serve_plant,
 };
 use shearcut_plant::SuccessorPolicy;
 
@@ -46,6 +46,11 @@ pub fn run(
         plant.set_successor_policy(SuccessorPolicy::KeepCurrent);
     }
     let mut link = InProcessPlant::new(plant, task.period);
+    // A stop asked while it built: it never serves (its controller sees
+    // its node go before serving).
+    if let Some(signal) = node.watch.requested() {
+        return Err(RunError::service(&name, ServiceError::Stopped(signal)));
+    }
     let services = LoopServices::on(node).map_err(|e| RunError::service(&name, e))?;
     let mut settings =
         PlantServerSettings::new(s.control_loop.clock, s.control_loop.missed_command_limit);
