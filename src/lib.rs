@@ -2,6 +2,7 @@
 //! they land) the plant and controller processes, the iceoryx2 transport and
 //! run orchestration.
 
+pub mod angle_stream;
 pub mod cli;
 pub mod closed_loop;
 pub mod commands;

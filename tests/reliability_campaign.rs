@@ -1199,6 +1199,21 @@ fn long_simulation(d: &Dir) -> String {
     )
 }
 
+/// `simulate scenario --out out`, killed (SIGKILL) once `file` holds its
+/// header and a row.
+fn simulation_killed_at(scenario: &str, out: &std::path::Path, file: &std::path::Path) {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_shearcut"))
+        .args(["simulate", scenario, "--out", out.to_str().unwrap()])
+        .env("RUST_LOG", "error")
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    wait_for_lines(file, 2, &mut child);
+    child.kill().unwrap();
+    child.wait().unwrap();
+}
+
 /// `simulate` killed (SIGKILL) mid-cut, once its first flush is on disk:
 /// its series hold whole rows, in the order of simulated time, and its
 /// `cuts.csv` the cuts that finished (none: it died in the first); no
@@ -1208,18 +1223,8 @@ fn issue_27_a_simulation_killed_mid_cut_leaves_whole_series() {
     let d = Dir::new("simulate-sigkill");
     let scenario = long_simulation(&d);
     let out = d.0.join("killed");
-    let mut child = Command::new(env!("CARGO_BIN_EXE_shearcut"))
-        .args(["simulate", &scenario, "--out", out.to_str().unwrap()])
-        .env("RUST_LOG", "error")
-        .stdout(Stdio::null())
-        .stderr(Stdio::null())
-        .spawn()
-        .unwrap();
     let series = out.join("timeseries.csv");
-    // The header and the first flush's rows.
-    wait_for_lines(&series, 2, &mut child);
-    child.kill().unwrap();
-    child.wait().unwrap();
+    simulation_killed_at(&scenario, &out, &series);
     let rows = whole_rows(&series);
     assert!(rows >= 1);
     let mut r = csv::Reader::from_path(&series).unwrap();
@@ -1322,4 +1327,51 @@ fn issue_27_sigint_and_sigterm_stop_a_wire_slab_sweep_with_its_angles_so_far() {
         assert_eq!(whole_rows(&out.join("series.csv")) as u64, steps);
         assert!(out.join("stress_map.png").is_file());
     }
+}
+
+/// The wire slab's `simulate` killed (SIGKILL) once its first angle has
+/// ended: `series.csv` and `surface.csv` hold whole rows of the angles
+/// that ended, each angle whole (one thread: angle after angle, each
+/// 15 load steps to a depth of 0.3 mm on a coarse mesh); no summary.
+#[test]
+fn issue_27_a_wire_slab_sweep_killed_mid_way_leaves_its_finished_angles() {
+    let d = Dir::new("slab-sigkill");
+    let scenario = d.file(
+        "slab-quick.toml",
+        &include_str!("../config/scenarios/seed001-agar-wire.toml")
+            .replace("max_depth = 8e-3", "max_depth = 0.3e-3")
+            .replace("threads = 2", "threads = 1")
+            .replace("elements_per_radius = 6 ", "elements_per_radius = 4 "),
+    );
+    let out = d.0.join("killed");
+    let series = out.join("series.csv");
+    simulation_killed_at(&scenario, &out, &series);
+    let rows = whole_rows(&series);
+    let mut r = csv::Reader::from_path(&series).unwrap();
+    let angles: Vec<String> = r
+        .records()
+        .take(rows)
+        .map(|row| row.unwrap()[0].to_string())
+        .collect();
+    let mut per_angle: Vec<(String, usize)> = Vec::new();
+    for a in angles {
+        match per_angle.last_mut() {
+            Some((last, n)) if *last == a => *n += 1,
+            _ => per_angle.push((a, 1)),
+        }
+    }
+    assert!(
+        !per_angle.is_empty() && per_angle.len() < 6,
+        "{per_angle:?}"
+    );
+    assert!(
+        per_angle.iter().all(|(_, n)| *n == per_angle[0].1),
+        "{per_angle:?}"
+    );
+    assert!(
+        std::fs::read_to_string(out.join("surface.csv"))
+            .unwrap()
+            .ends_with('\n')
+    );
+    assert!(!out.join("summary.json").exists());
 }

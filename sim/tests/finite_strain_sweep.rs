@@ -119,7 +119,7 @@ fn a_stopped_sweep_holds_one_load_step_of_each_threads_first_angle() {
         max_depth: 0.3e-3,
         ..coarse()
     };
-    let stopped = sweep_angles_until(&s, &[30.0, 60.0, 75.0], 2, &|| true).unwrap();
+    let stopped = sweep_angles_until(&s, &[30.0, 60.0, 75.0], 2, &|| true, &|_, _| {}).unwrap();
     let full = sweep_angles(&s, &[30.0, 60.0], 2).unwrap();
     assert_eq!(stopped.runs.len(), 2);
     for (run, whole) in stopped.runs.iter().zip(&full.runs) {

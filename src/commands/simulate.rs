@@ -16,6 +16,7 @@ use shearcut_sim::arm::{ArmStatus, KnifeCommand};
 use shearcut_sim::section::{CrossSection, SectionGeometry, SectionStep};
 use shearcut_sim::{Cuboid, EdgeShape, InvalidSetting, Knife, ObjectShape};
 
+use crate::angle_stream::AngleStream;
 use crate::cli::print;
 use crate::cut_record::{CutSample, CutSummary};
 use crate::cut_stream::{CutRecorder, CutStream, NoCutRecorder};
@@ -23,7 +24,7 @@ use crate::error::{ConfigError, RunError};
 use crate::plot::cut_curves::draw_cut_curves;
 use crate::progress::run_bar;
 use crate::render_plot;
-use crate::result_file::{write_csv, write_json};
+use crate::result_file::write_json;
 use crate::run_dir::{self, Destination};
 use crate::scenario::{Scenario, WireSlabScenario};
 use crate::transport::{StopSignal, TerminationWatch};
@@ -455,20 +456,6 @@ fn summary_table(s: &Scenario, model: &str, summaries: &[CutSummary]) -> String 
     t
 }
 
-/// One row of a finite-strain run's series.
-#[derive(Debug, serde::Serialize)]
-struct SlabRow {
-    angle_deg: f64,
-    depth_m: f64,
-    travel_m: f64,
-    force_normal_n: f64,
-    force_tangential_n: f64,
-    surface_stress_pa: f64,
-    surface_stress_position_m: f64,
-    contact_extent_m: f64,
-    newton_iterations: usize,
-}
-
 /// Nucleation of one angle in the summary.
 #[derive(Debug, serde::Serialize)]
 struct SlabNucleation {
@@ -513,7 +500,7 @@ struct SlabSummary<'a> {
 /// and the exit is 130/143.
 pub fn run_wire_slab(s: &WireSlabScenario, out: &Destination) -> Result<(), RunError> {
     use shearcut_sim::finite_strain::{
-        SeedComparison, WireSlab, WireSlabError, sweep_angles_until,
+        IndentationRun, SeedComparison, WireSlab, WireSlabError, sweep_angles_until,
     };
     let watch = TerminationWatch::new();
     let signal = std::sync::OnceLock::new();
@@ -533,34 +520,22 @@ pub fn run_wire_slab(s: &WireSlabScenario, out: &Destination) -> Result<(), RunE
     let probe = WireSlab::new(&s.slab).map_err(model_error)?;
     let resolved = toml::to_string(s).map_err(|e| RunError::write("scenario.toml", e))?;
     let dir = run_dir::claim(&s.name, out, &resolved)?;
-    let sweep = sweep_angles_until(&s.slab, &s.sweep.angles_deg, s.sweep.threads, &stop)
+    // Each angle's rows are written as it ends (in the angles' order).
+    let stream =
+        std::sync::Mutex::new(AngleStream::create(&dir).inspect_err(|_| run_dir::abandon(&dir))?);
+    let ended = |index: usize, run: &IndentationRun| {
+        if let Ok(mut stream) = stream.lock() {
+            stream.angle_ended(index, run);
+        }
+    };
+    let sweep = sweep_angles_until(&s.slab, &s.sweep.angles_deg, s.sweep.threads, &stop, &ended)
         .map_err(model_error)
         .inspect_err(|_| run_dir::abandon(&dir))?;
+    stream
+        .into_inner()
+        .map_err(|_| RunError::Loop("the angle stream's lock was poisoned".to_string()))?
+        .finish()?;
     let runs = &sweep.runs;
-    write_csv(
-        &dir.join("series.csv"),
-        runs.iter().flat_map(|run| {
-            run.states.iter().map(move |st| SlabRow {
-                angle_deg: run.angle.to_degrees(),
-                depth_m: st.depth,
-                travel_m: st.travel,
-                force_normal_n: st.force_normal,
-                force_tangential_n: st.force_tangential,
-                surface_stress_pa: st.surface_stress,
-                surface_stress_position_m: st.surface_stress_position,
-                contact_extent_m: st.contact_extent,
-                newton_iterations: st.newton_iterations,
-            })
-        }),
-    )?;
-    write_csv(
-        &dir.join("surface.csv"),
-        runs.iter().flat_map(|run| {
-            run.surface_profile
-                .iter()
-                .map(move |p| (run.angle.to_degrees(), p.position, p.stress))
-        }),
-    )?;
     let comparison = SeedComparison::new(&s.slab, runs);
     let nucleation: Vec<SlabNucleation> = runs
         .iter()

@@ -22,19 +22,22 @@ pub fn sweep_angles(
     angles_deg: &[f64],
     threads: usize,
 ) -> Result<AngleSweep, WireSlabError> {
-    sweep_angles_until(settings, angles_deg, threads, &|| false)
+    sweep_angles_until(settings, angles_deg, threads, &|| false, &|_, _| {})
 }
 
 /// [`sweep_angles`], each thread asking `stop` after each load step
 /// ([`WireSlab::indent_until`]): once it answers `true`, the runs in
 /// progress end there and no further angle is started (each thread's
 /// first angle is, so a stopped sweep holds a run per thread). `stop` must keep answering
-/// `true` once it has.
+/// `true` once it has. Each run that ends (stopped or not) is handed to
+/// `ended` on its thread with the index of its angle in `angles_deg`, as it
+/// ends.
 pub fn sweep_angles_until(
     settings: &WireSlabSettings,
     angles_deg: &[f64],
     threads: usize,
     stop: &(dyn Fn() -> bool + Sync),
+    ended: &(dyn Fn(usize, &IndentationRun) + Sync),
 ) -> Result<AngleSweep, WireSlabError> {
     settings.validate()?;
     let threads = threads.clamp(1, angles_deg.len().max(1));
@@ -56,6 +59,9 @@ pub fn sweep_angles_until(
                             break;
                         }
                         let run = slab.indent_until(a.to_radians(), stop);
+                        if let Ok(run) = &run {
+                            ended(i, run);
+                        }
                         out.push((i, run.map_err(WireSlabError::from)));
                     }
                     out
