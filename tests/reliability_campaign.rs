@@ -1014,6 +1014,41 @@ fn issue_27_a_plant_stopped_while_it_builds_exits_cleanly_and_its_controller_say
     }
 }
 
+/// SIGINT/SIGTERM to `run --transport iceoryx2` while its plant builds:
+/// the supervisor stops the controller, then the plant, which finds its
+/// controller ended and waits for its own signal: both stop cleanly and the
+/// run exits 130/143 (not 1 for a lost controller).
+#[test]
+fn issue_27_a_signal_to_an_iceoryx2_run_while_its_plant_builds_stops_both_cleanly() {
+    let sb = sandbox::Sandbox::new("ipc-signal-start-up");
+    let s = slow_plant(&sb, "slow-plant");
+    for (signal, code) in [("TERM", 143), ("INT", 130)] {
+        let out = sb.dir.join(signal);
+        let mut run = sb.spawn_run(&s, "iceoryx2", &out);
+        // The controller past its start-up (its series files exist), the
+        // plant building for about a second.
+        let series = out.join("controller.csv");
+        wait_until("the controller's series files", &mut run, || {
+            series.exists()
+        });
+        let sent = Command::new("kill")
+            .args([&format!("-{signal}"), &run.id().to_string()])
+            .status()
+            .unwrap();
+        assert!(sent.success());
+        let (o, _) = timed(run);
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(code), "{e}");
+        assert!(
+            e.lines()
+                .last()
+                .unwrap()
+                .contains("plant and controller stopped cleanly"),
+            "{e}"
+        );
+    }
+}
+
 /// The supervisor refuses bad input itself, before it starts a process:
 /// exit 2 and the one line `run` gives in process (both children used to
 /// fail on it and the supervisor exit 1).

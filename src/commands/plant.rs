@@ -11,7 +11,9 @@ use crate::commands::controller::controller_choice;
 use crate::error::RunError;
 use crate::scenario::{ClockMode, Scenario};
 use crate::transport::loop_services::{node_name, prefix};
-use crate::transport::peer_watch::{PeerFate, gone_before_loop, gone_in_loop};
+use crate::transport::peer_watch::{
+    ENDED_PEER_SIGNAL_WAIT, PeerFate, gone_before_loop, gone_in_loop,
+};
 use crate::transport::{
     LoopServices, PlantEnd, PlantServerSettings, Role, RunNode, ServiceError, WaitMode, serve_plant,
 };
@@ -47,8 +49,14 @@ pub fn run(
     }
     let mut link = InProcessPlant::new(plant, task.period);
     // A stop asked while it built: it never serves (its controller sees
-    // its node go before serving).
-    if let Some(signal) = node.watch.requested() {
+    // its node go before serving). A controller that exited meanwhile may
+    // have been stopped by the same signal (a supervisor's stop).
+    let pending = if node.peer.fate() == PeerFate::Ended {
+        node.watch.requested_within(ENDED_PEER_SIGNAL_WAIT)
+    } else {
+        node.watch.requested()
+    };
+    if let Some(signal) = pending {
         return Err(RunError::service(&name, ServiceError::Stopped(signal)));
     }
     let services = LoopServices::on(node).map_err(|e| RunError::service(&name, e))?;

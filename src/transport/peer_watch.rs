@@ -41,6 +41,13 @@ pub enum PeerFate {
     DiedUnseen = 4,
 }
 
+/// How long a process whose peer ended (exited) before the loop waits for
+/// a SIGINT/SIGTERM of its own before it reports the peer's end: a
+/// supervisor stopping a run on a signal stops the controller first and
+/// the plant just after, and the plant's end is then that clean stop, not
+/// a lost controller.
+pub const ENDED_PEER_SIGNAL_WAIT: Duration = Duration::from_millis(250);
+
 /// How long a [`PeerFate::DiedUnseen`] peer has to appear alive before it
 /// is taken for dead: longer than a process's start up to its node's
 /// creation, when two processes of a run are started together.

@@ -12,7 +12,7 @@ use shearcut_sim::arm::{ArmReading, KnifeCommand};
 
 use super::board::{BoardReader, BoardWriter};
 use super::loop_services::{LoopServices, ServiceError};
-use super::peer_watch::PeerFate;
+use super::peer_watch::{ENDED_PEER_SIGNAL_WAIT, PeerFate};
 use super::termination_watch::StopSignal;
 use super::wait_mode::WaitMode;
 use super::wire::{
@@ -320,7 +320,10 @@ pub fn serve_plant(
                     return Ok(report);
                 }
                 PeerFate::Ended => {
-                    report.end = PlantEnd::ControllerEnded;
+                    report.end = match services.termination_request(ENDED_PEER_SIGNAL_WAIT) {
+                        Some(signal) => PlantEnd::Terminated(signal),
+                        None => PlantEnd::ControllerEnded,
+                    };
                     return Ok(report);
                 }
                 PeerFate::NotSeen | PeerFate::Alive | PeerFate::DiedUnseen => {}
