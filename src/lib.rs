@@ -2,13 +2,16 @@
 //! they land) the plant and controller processes, the iceoryx2 transport and
 //! run orchestration.
 
+pub mod angle_stream;
 pub mod cli;
 pub mod closed_loop;
 pub mod commands;
 pub mod constant_ratio;
 pub mod controller_choice;
 pub mod controller_settings;
+pub mod csv_stream;
 pub mod cut_record;
+pub mod cut_stream;
 pub mod error;
 pub mod logging;
 pub mod object_profile;

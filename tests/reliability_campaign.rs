@@ -885,6 +885,170 @@ fn issue_27_a_plant_that_dies_as_its_controller_starts_is_reported_at_once() {
     assert!(!out.exists());
 }
 
+/// A peer killed (SIGKILL) before the other process starts: the other
+/// finds its dead node, recent, at its node's creation, and reports the
+/// death once no live peer of the name has appeared within the grace
+/// (`UNSEEN_GRACE`), instead of waiting for its connect timeout (10 s for
+/// the controller, 30 s for the plant).
+#[test]
+fn issue_27_a_peer_killed_before_the_other_starts_is_reported_at_once() {
+    let sb = sandbox::Sandbox::new("peer-gone-first");
+    let s = sb.scenario("quick", 0.003, "");
+    let mut plant = sb.spawn_plant(&s, "gone-p");
+    wait_for_node(sb.prefix(), "plant/gone-p", &mut plant);
+    plant.kill().unwrap();
+    plant.wait().unwrap();
+    let out = sb.dir.join("never");
+    assert_start_up_fault(
+        sb.spawn_controller(&s, "gone-p", &out),
+        "the plant 'plant/gone-p' died before serving run 'gone-p'",
+    );
+    assert!(!out.exists());
+    let mut controller = sb.spawn_controller(&s, "gone-c", &sb.dir.join("gone-c"));
+    wait_for_node(sb.prefix(), "controller/gone-c", &mut controller);
+    controller.kill().unwrap();
+    controller.wait().unwrap();
+    assert_start_up_fault(
+        sb.spawn_plant(&s, "gone-c"),
+        "plant/gone-c: lost the controller: the controller 'controller/gone-c' died before its first command of run 'gone-c'",
+    );
+}
+
+/// A lockstep plant whose controller is killed (SIGKILL) mid-run: at its
+/// first missed command it looks at the controller's node, finds it dead,
+/// brakes and says so (not after its 20 missed commands); the controller's
+/// series hold whole rows.
+#[test]
+fn issue_27_a_lockstep_plant_whose_controller_dies_mid_run_says_so_at_its_first_miss() {
+    let sb = sandbox::Sandbox::new("controller-dies-mid-run");
+    let s = sb.scenario("long", 0.02, "");
+    let out = sb.dir.join("killed");
+    let (plant, mut controller) = sb.spawn_pair(&s, "mid", &out);
+    let series = out.join("controller.csv");
+    wait_for_lines(&series, 101, &mut controller);
+    controller.kill().unwrap();
+    controller.wait().unwrap();
+    let (o, elapsed) = timed(plant);
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{e}");
+    assert_eq!(e.lines().count(), 1, "one line: {e}");
+    assert!(
+        e.contains("plant/mid: lost the controller: the controller 'controller/mid' died after"),
+        "{e}"
+    );
+    assert!(e.contains("; braked;"), "{e}");
+    assert!(elapsed < STARTUP_FAULT_BOUND, "{elapsed:?}");
+    assert!(whole_rows(&series) >= 100);
+    whole_rows(&out.join("timeseries.csv"));
+}
+
+/// `run --transport iceoryx2` killed (SIGKILL) mid-run: its children,
+/// orphaned, finish the run by themselves (their stderr closed), and the
+/// controller's directory holds the whole run: a summary that parses and
+/// whole rows, one per tick.
+#[test]
+#[allow(clippy::disallowed_methods)] // A watchdog on orphaned processes.
+fn issue_27_an_iceoryx2_run_whose_supervisor_is_killed_mid_run_is_finished_by_its_children() {
+    let sb = sandbox::Sandbox::new("supervisor-killed");
+    let s = sb.scenario("long", 0.02, "");
+    let out = sb.dir.join("orphans");
+    let mut run = sb.spawn_run(&s, "iceoryx2", &out);
+    let series = out.join("controller.csv");
+    wait_for_lines(&series, 101, &mut run);
+    run.kill().unwrap();
+    run.wait().unwrap();
+    let summary = out.join("summary.json");
+    let started = std::time::Instant::now();
+    while !summary.is_file() {
+        assert!(
+            started.elapsed() < sandbox::WATCHDOG,
+            "watchdog: the orphaned controller's summary"
+        );
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
+    // The summary is renamed into place after the series' last flush.
+    let text = std::fs::read_to_string(&summary).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&text).unwrap();
+    assert_eq!(
+        v["ticks"].as_u64().unwrap() as usize,
+        whole_rows(&series),
+        "{text}"
+    );
+    assert!(
+        v.get("end").is_none_or(|e| e.get("stopped").is_none()),
+        "{text}"
+    );
+}
+
+/// A plant stopped by SIGTERM (or SIGINT) while it builds: it stops once
+/// its build is done, 143 (130) and one line; its controller reports the
+/// plant ended before serving, exit 1, and leaves no directory.
+#[test]
+fn issue_27_a_plant_stopped_while_it_builds_exits_cleanly_and_its_controller_says_so() {
+    let sb = sandbox::Sandbox::new("plant-stopped-building");
+    let s = slow_plant(&sb, "slow-plant");
+    for (signal, code, id) in [("TERM", 143, "pterm"), ("INT", 130, "pint")] {
+        let out = sb.dir.join(id);
+        let mut controller = sb.spawn_controller(&s, id, &out);
+        wait_for_node(sb.prefix(), &format!("controller/{id}"), &mut controller);
+        let mut plant = sb.spawn_plant(&s, id);
+        wait_for_node(sb.prefix(), &format!("plant/{id}"), &mut plant);
+        let sent = Command::new("kill")
+            .args([&format!("-{signal}"), &plant.id().to_string()])
+            .status()
+            .unwrap();
+        assert!(sent.success());
+        let (o, _) = timed(plant);
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(code), "{e}");
+        assert_eq!(e.lines().count(), 1, "one line: {e}");
+        assert!(
+            e.contains(&format!("plant/{id}: stopped by SIG{signal}")),
+            "{e}"
+        );
+        assert_start_up_fault(
+            controller,
+            &format!("the plant 'plant/{id}' ended before serving run '{id}'"),
+        );
+        assert!(!out.exists());
+    }
+}
+
+/// SIGINT/SIGTERM to `run --transport iceoryx2` while its plant builds:
+/// the supervisor stops the controller, then the plant, which finds its
+/// controller ended and waits for its own signal: both stop cleanly and the
+/// run exits 130/143 (not 1 for a lost controller).
+#[test]
+fn issue_27_a_signal_to_an_iceoryx2_run_while_its_plant_builds_stops_both_cleanly() {
+    let sb = sandbox::Sandbox::new("ipc-signal-start-up");
+    let s = slow_plant(&sb, "slow-plant");
+    for (signal, code) in [("TERM", 143), ("INT", 130)] {
+        let out = sb.dir.join(signal);
+        let mut run = sb.spawn_run(&s, "iceoryx2", &out);
+        // The controller past its start-up (its series files exist), the
+        // plant building for about a second.
+        let series = out.join("controller.csv");
+        wait_until("the controller's series files", &mut run, || {
+            series.exists()
+        });
+        let sent = Command::new("kill")
+            .args([&format!("-{signal}"), &run.id().to_string()])
+            .status()
+            .unwrap();
+        assert!(sent.success());
+        let (o, _) = timed(run);
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(code), "{e}");
+        assert!(
+            e.lines()
+                .last()
+                .unwrap()
+                .contains("plant and controller stopped cleanly"),
+            "{e}"
+        );
+    }
+}
+
 /// The supervisor refuses bad input itself, before it starts a process:
 /// exit 2 and the one line `run` gives in process (both children used to
 /// fail on it and the supervisor exit 1).
@@ -1059,6 +1223,96 @@ fn issue_27_the_plants_successor_counts_are_in_loop_stats() {
     }
 }
 
+/// Seed 000 Fig. 10's half potato on coarse sections: three cuts of 4 s
+/// of simulated time each, seconds of wall time in release; a signal or a
+/// kill comes during the first.
+fn long_simulation(d: &Dir) -> String {
+    d.file(
+        "fig10-coarse.toml",
+        &(include_str!("../config/scenarios/fig10-potato-whole.toml").to_string()
+            + "\n[section]\nrow_spacing = 0.0005\n"),
+    )
+}
+
+/// `simulate scenario --out out`, killed (SIGKILL) once `file` holds its
+/// header and a row.
+fn simulation_killed_at(scenario: &str, out: &std::path::Path, file: &std::path::Path) {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_shearcut"))
+        .args(["simulate", scenario, "--out", out.to_str().unwrap()])
+        .env("RUST_LOG", "error")
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    wait_for_lines(file, 2, &mut child);
+    child.kill().unwrap();
+    child.wait().unwrap();
+}
+
+/// `simulate` killed (SIGKILL) mid-cut, once its first flush is on disk:
+/// its series hold whole rows, in the order of simulated time, and its
+/// `cuts.csv` the cuts that finished (none: it died in the first); no
+/// summary.
+#[test]
+fn issue_27_a_simulation_killed_mid_cut_leaves_whole_series() {
+    let d = Dir::new("simulate-sigkill");
+    let scenario = long_simulation(&d);
+    let out = d.0.join("killed");
+    let series = out.join("timeseries.csv");
+    simulation_killed_at(&scenario, &out, &series);
+    let rows = whole_rows(&series);
+    assert!(rows >= 1);
+    let mut r = csv::Reader::from_path(&series).unwrap();
+    let time = r
+        .headers()
+        .unwrap()
+        .iter()
+        .position(|h| h == "time_s")
+        .unwrap();
+    let times: Vec<f64> = r
+        .records()
+        .take(rows)
+        .map(|row| row.unwrap()[time].parse().unwrap())
+        .collect();
+    assert!(times.windows(2).all(|w| w[0] < w[1]), "{times:?}");
+    assert_eq!(std::fs::read(out.join("cuts.csv")).unwrap().len(), 0);
+    assert!(!out.join("summary.json").exists());
+}
+
+/// `simulate scenario --out out` sent `signal` (`kill -INT`: `("INT",
+/// 130, "sigint")`) once its directory is claimed (its handlers are
+/// installed before): exit `code`, one line naming the partial results, and
+/// the summary's `end` naming the signal. The summary, parsed and as text.
+fn simulation_stopped_by(
+    scenario: &str,
+    out: &std::path::Path,
+    (signal, code, name): (&str, i32, &str),
+) -> (serde_json::Value, String) {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_shearcut"))
+        .args(["simulate", scenario, "--out", out.to_str().unwrap()])
+        .env("RUST_LOG", "error")
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    wait_until("the run's directory", &mut child, || {
+        out.join("scenario.toml").is_file()
+    });
+    let sent = Command::new("kill")
+        .args([&format!("-{signal}"), &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(sent.success());
+    let o = sandbox::watchdog(child, sandbox::WATCHDOG);
+    assert_eq!(o.status.code(), Some(code), "{name}: {}", stderr(&o));
+    assert_eq!(stderr(&o).lines().count(), 1, "{}", stderr(&o));
+    assert!(stderr(&o).contains("partial results in"), "{}", stderr(&o));
+    let summary = std::fs::read_to_string(out.join("summary.json")).unwrap();
+    let v: serde_json::Value = serde_json::from_str(&summary).unwrap();
+    assert_eq!(v["end"]["stopped"], name, "{summary}");
+    (v, summary)
+}
+
 /// `simulate` stopped by SIGINT or SIGTERM mid-cut: 130/143 and one line,
 /// and the results so far written as a finished run's are (whole rows, a
 /// summary saying why it stopped and summarising the cut in progress, the
@@ -1066,39 +1320,10 @@ fn issue_27_the_plants_successor_counts_are_in_loop_stats() {
 #[test]
 fn issue_27_sigint_and_sigterm_stop_a_simulation_with_its_results_so_far() {
     let d = Dir::new("simulate-signals");
-    // Seed 000 Fig. 10's half potato on coarse sections: three cuts of 4 s
-    // of simulated time each, seconds of wall time in release; the signal
-    // comes during the first.
-    let scenario = d.file(
-        "fig10-coarse.toml",
-        &(include_str!("../config/scenarios/fig10-potato-whole.toml").to_string()
-            + "\n[section]\nrow_spacing = 0.0005\n"),
-    );
+    let scenario = long_simulation(&d);
     for (signal, code, name) in [("INT", 130, "sigint"), ("TERM", 143, "sigterm")] {
         let out = d.0.join(name);
-        let mut child = Command::new(env!("CARGO_BIN_EXE_shearcut"))
-            .args(["simulate", &scenario, "--out", out.to_str().unwrap()])
-            .env("RUST_LOG", "error")
-            .stdout(Stdio::piped())
-            .stderr(Stdio::piped())
-            .spawn()
-            .unwrap();
-        // The handlers are installed before the run's directory is claimed.
-        wait_until("the run's directory", &mut child, || {
-            out.join("scenario.toml").is_file()
-        });
-        let sent = Command::new("kill")
-            .args([&format!("-{signal}"), &child.id().to_string()])
-            .status()
-            .unwrap();
-        assert!(sent.success());
-        let o = sandbox::watchdog(child, sandbox::WATCHDOG);
-        assert_eq!(o.status.code(), Some(code), "{name}: {}", stderr(&o));
-        assert_eq!(stderr(&o).lines().count(), 1, "{}", stderr(&o));
-        assert!(stderr(&o).contains("partial results in"), "{}", stderr(&o));
-        let summary = std::fs::read_to_string(out.join("summary.json")).unwrap();
-        let v: serde_json::Value = serde_json::from_str(&summary).unwrap();
-        assert_eq!(v["end"]["stopped"], name, "{summary}");
+        let (v, summary) = simulation_stopped_by(&scenario, &out, (signal, code, name));
         let cuts = v["cuts"].as_array().unwrap();
         assert_eq!(
             cuts.len(),
@@ -1106,7 +1331,82 @@ fn issue_27_sigint_and_sigterm_stop_a_simulation_with_its_results_so_far() {
             "stopped in the first of three cuts: {summary}"
         );
         assert_eq!(cuts[0]["completed"], false, "{summary}");
+        assert_eq!(whole_rows(&out.join("cuts.csv")), 1);
         assert!(whole_rows(&out.join("timeseries.csv")) > 0);
         assert!(out.join("forces_work.png").is_file());
     }
+}
+
+/// The wire slab's `simulate` (seed 001) stopped by SIGINT or SIGTERM:
+/// 130/143 and one line, the angles in progress ended after their load
+/// step and written with the rest (`series.csv` whole rows, each run
+/// marked stopped, the summary's `end`, the plots).
+#[test]
+fn issue_27_sigint_and_sigterm_stop_a_wire_slab_sweep_with_its_angles_so_far() {
+    let d = Dir::new("slab-signals");
+    for (signal, code, name) in [("INT", 130, "sigint"), ("TERM", 143, "sigterm")] {
+        let out = d.0.join(name);
+        // The sweep of six angles takes tens of seconds.
+        let (v, summary) = simulation_stopped_by("seed001-agar-wire", &out, (signal, code, name));
+        // Two threads: each one's first angle started and was stopped.
+        let angles = v["nucleation"].as_array().unwrap();
+        assert!(
+            !angles.is_empty() && angles.len() < 6,
+            "stopped mid-sweep: {summary}"
+        );
+        assert!(angles.iter().any(|a| a["stopped"] == true), "{summary}");
+        let steps: u64 = angles
+            .iter()
+            .map(|a| a["load_steps"].as_u64().unwrap())
+            .sum();
+        assert_eq!(whole_rows(&out.join("series.csv")) as u64, steps);
+        assert!(out.join("stress_map.png").is_file());
+    }
+}
+
+/// The wire slab's `simulate` killed (SIGKILL) once its first angle has
+/// ended: `series.csv` and `surface.csv` hold whole rows of the angles
+/// that ended, each angle whole (one thread: angle after angle, each
+/// 15 load steps to a depth of 0.3 mm on a coarse mesh); no summary.
+#[test]
+fn issue_27_a_wire_slab_sweep_killed_mid_way_leaves_its_finished_angles() {
+    let d = Dir::new("slab-sigkill");
+    let scenario = d.file(
+        "slab-quick.toml",
+        &include_str!("../config/scenarios/seed001-agar-wire.toml")
+            .replace("max_depth = 8e-3", "max_depth = 0.3e-3")
+            .replace("threads = 2", "threads = 1")
+            .replace("elements_per_radius = 6 ", "elements_per_radius = 4 "),
+    );
+    let out = d.0.join("killed");
+    let series = out.join("series.csv");
+    simulation_killed_at(&scenario, &out, &series);
+    let rows = whole_rows(&series);
+    let mut r = csv::Reader::from_path(&series).unwrap();
+    let angles: Vec<String> = r
+        .records()
+        .take(rows)
+        .map(|row| row.unwrap()[0].to_string())
+        .collect();
+    let mut per_angle: Vec<(String, usize)> = Vec::new();
+    for a in angles {
+        match per_angle.last_mut() {
+            Some((last, n)) if *last == a => *n += 1,
+            _ => per_angle.push((a, 1)),
+        }
+    }
+    assert!(
+        !per_angle.is_empty() && per_angle.len() < 6,
+        "{per_angle:?}"
+    );
+    assert!(
+        per_angle.iter().all(|(_, n)| *n == per_angle[0].1),
+        "{per_angle:?}"
+    );
+    assert!(
+        std::fs::read_to_string(out.join("surface.csv"))
+            .unwrap()
+            .ends_with('\n')
+    );
+    assert!(!out.join("summary.json").exists());
 }

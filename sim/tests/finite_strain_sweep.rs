@@ -2,7 +2,9 @@
 //! (coarse mesh: 4 elements per wire radius, to keep the test short; the
 //! default mesh's numbers are in docs/seed001.md).
 
-use shearcut_sim::finite_strain::{SeedComparison, WireSlab, WireSlabSettings, sweep_angles};
+use shearcut_sim::finite_strain::{
+    SeedComparison, WireSlab, WireSlabSettings, sweep_angles, sweep_angles_until,
+};
 
 fn coarse() -> WireSlabSettings {
     WireSlabSettings {
@@ -106,4 +108,28 @@ fn bad_settings_are_refused() {
         e.to_string(),
         "`wire_radius` = -1: must be a finite number > 0"
     );
+}
+
+/// A stop asked from the start ends each thread's first angle after its
+/// first load step, marked stopped, and starts no other angle; the state it
+/// holds is the unstopped run's first, bit for bit.
+#[test]
+fn a_stopped_sweep_holds_one_load_step_of_each_threads_first_angle() {
+    let s = WireSlabSettings {
+        max_depth: 0.3e-3,
+        ..coarse()
+    };
+    let stopped = sweep_angles_until(&s, &[30.0, 60.0, 75.0], 2, &|| true, &|_, _| {}).unwrap();
+    let full = sweep_angles(&s, &[30.0, 60.0], 2).unwrap();
+    assert_eq!(stopped.runs.len(), 2);
+    for (run, whole) in stopped.runs.iter().zip(&full.runs) {
+        assert!(run.stopped && !whole.stopped);
+        assert_eq!(run.angle, whole.angle);
+        assert_eq!(run.states.len(), 1);
+        assert_eq!(run.nucleation, None);
+        assert_eq!(
+            run.states[0].force_normal.to_bits(),
+            whole.states[0].force_normal.to_bits()
+        );
+    }
 }

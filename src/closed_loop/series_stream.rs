@@ -12,7 +12,8 @@ use serde::Serialize;
 
 use super::control_record::ControlSample;
 use super::series_record::SeriesRecord;
-use super::series_writer::{CsvStream, SeriesWriter, StopFlag};
+use super::series_writer::{SeriesWriter, StopFlag};
+use crate::csv_stream::CsvStream;
 use crate::cut_record::CutSample;
 use crate::error::RunError;
 use crate::transport::{StopSignal, TerminationWatch};

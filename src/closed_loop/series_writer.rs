@@ -4,89 +4,19 @@
 //! simulated time. Everything that formats, allocates, locks or calls the
 //! system happens here, never on the loop's thread.
 
-use std::fs::File;
-use std::io::Write;
-use std::path::PathBuf;
 use std::sync::Arc;
 use std::sync::atomic::{AtomicU8, Ordering};
 use std::time::Duration;
 
-use serde::Serialize;
-
 use super::series_record::SeriesRecord;
+pub use crate::csv_stream::FLUSH_PERIOD;
+use crate::csv_stream::{CsvStream, FlushSchedule};
 use crate::error::RunError;
 use crate::transport::{StopSignal, TerminationWatch};
-
-/// Simulated time between flushes, s: a kill loses at most the last
-/// 100 ms of run time.
-pub const FLUSH_PERIOD: f64 = 0.1;
 
 /// How long the writer sleeps when the queue is empty: the wall-clock
 /// delay before a record is formatted and before a signal is seen.
 const IDLE: Duration = Duration::from_millis(1);
-
-/// A file that receives bytes into a buffer and writes the buffer to the
-/// file in one call on `flush`.
-#[derive(Debug)]
-struct WholeRecords {
-    file: File,
-    buffer: Vec<u8>,
-}
-
-impl Write for WholeRecords {
-    fn write(&mut self, bytes: &[u8]) -> std::io::Result<usize> {
-        self.buffer.extend_from_slice(bytes);
-        Ok(bytes.len())
-    }
-
-    fn flush(&mut self) -> std::io::Result<()> {
-        self.file.write_all(&self.buffer)?;
-        self.buffer.clear();
-        Ok(())
-    }
-}
-
-/// One CSV file written in whole records: rows are serialised into a
-/// buffer, which goes to the file in one write per flush (the CSV writer
-/// flushes its own buffer into it first), so a kill between flushes leaves
-/// whole lines only.
-#[derive(Debug)]
-pub(super) struct CsvStream {
-    path: PathBuf,
-    rows: csv::Writer<WholeRecords>,
-}
-
-impl CsvStream {
-    /// Creates (truncates) the file at `path`.
-    ///
-    /// # Errors
-    /// The file cannot be created.
-    pub(super) fn create(path: PathBuf) -> Result<Self, RunError> {
-        let file = File::create(&path).map_err(|e| RunError::write(&path, e))?;
-        // Capacity for a second of 1 kHz rows (under 400 bytes each): no
-        // growth within a flush period.
-        let sink = WholeRecords {
-            file,
-            buffer: Vec::with_capacity(1 << 19),
-        };
-        Ok(Self {
-            path,
-            rows: csv::Writer::from_writer(sink),
-        })
-    }
-
-    fn push<T: Serialize>(&mut self, row: &T) -> Result<(), RunError> {
-        self.rows
-            .serialize(row)
-            .map_err(|e| RunError::write(&self.path, e))
-    }
-
-    fn flush(&mut self) -> Result<(), RunError> {
-        self.rows
-            .flush()
-            .map_err(|e| RunError::write(&self.path, e))
-    }
-}
 
 /// A stop request the writer thread saw, shared with the loop's thread:
 /// 0 none, else [`StopSignal`] encoded by [`StopFlag::set`]. Reading it is
@@ -124,7 +54,7 @@ pub(super) struct SeriesWriter {
     pub(super) queue: rtrb::Consumer<SeriesRecord>,
     pub(super) watch: Option<TerminationWatch>,
     pub(super) stop: Arc<StopFlag>,
-    next_flush: f64,
+    schedule: FlushSchedule,
     error: Option<RunError>,
 }
 
@@ -144,7 +74,7 @@ impl SeriesWriter {
             queue,
             watch,
             stop,
-            next_flush: FLUSH_PERIOD,
+            schedule: FlushSchedule::default(),
             error: None,
         }
     }
@@ -175,9 +105,8 @@ impl SeriesWriter {
                 self.keep(r);
             }
             SeriesRecord::TickDone(time) => {
-                if time >= self.next_flush {
+                if self.schedule.due(time) {
                     self.flush();
-                    self.next_flush = time + FLUSH_PERIOD;
                 }
             }
         }

@@ -11,9 +11,11 @@ use crate::commands::controller::controller_choice;
 use crate::error::RunError;
 use crate::scenario::{ClockMode, Scenario};
 use crate::transport::loop_services::{node_name, prefix};
-use crate::transport::peer_watch::{PeerFate, gone_before_loop};
+use crate::transport::peer_watch::{
+    ENDED_PEER_SIGNAL_WAIT, PeerFate, gone_before_loop, gone_in_loop,
+};
 use crate::transport::{
-    LoopServices, PlantEnd, PlantServerSettings, Role, RunNode, WaitMode, serve_plant,
+    LoopServices, PlantEnd, PlantServerSettings, Role, RunNode, ServiceError, WaitMode, serve_plant,
 };
 use shearcut_plant::SuccessorPolicy;
 
@@ -46,6 +48,17 @@ pub fn run(
         plant.set_successor_policy(SuccessorPolicy::KeepCurrent);
     }
     let mut link = InProcessPlant::new(plant, task.period);
+    // A stop asked while it built: it never serves (its controller sees
+    // its node go before serving). A controller that exited meanwhile may
+    // have been stopped by the same signal (a supervisor's stop).
+    let pending = if node.peer.fate() == PeerFate::Ended {
+        node.watch.requested_within(ENDED_PEER_SIGNAL_WAIT)
+    } else {
+        node.watch.requested()
+    };
+    if let Some(signal) = pending {
+        return Err(RunError::service(&name, ServiceError::Stopped(signal)));
+    }
     let services = LoopServices::on(node).map_err(|e| RunError::service(&name, e))?;
     let mut settings =
         PlantServerSettings::new(s.control_loop.clock, s.control_loop.missed_command_limit);
@@ -92,6 +105,14 @@ pub fn run(
         PlantEnd::ControllerEnded => Err(RunError::Loop(format!(
             "{name}: lost the controller: {}",
             gone_before_loop(Role::Controller, run_id, PeerFate::Ended)
+        ))),
+        PlantEnd::ControllerDiedInLoop => Err(RunError::Loop(format!(
+            "{name}: lost the controller: {}; braked; {counts}",
+            gone_in_loop(Role::Controller, run_id, PeerFate::Died, report.commands)
+        ))),
+        PlantEnd::ControllerEndedInLoop => Err(RunError::Loop(format!(
+            "{name}: lost the controller: {}; braked; {counts}",
+            gone_in_loop(Role::Controller, run_id, PeerFate::Ended, report.commands)
         ))),
         PlantEnd::Terminated(signal) => Err(RunError::Signalled {
             signal,

@@ -16,13 +16,15 @@ use shearcut_sim::arm::{ArmStatus, KnifeCommand};
 use shearcut_sim::section::{CrossSection, SectionGeometry, SectionStep};
 use shearcut_sim::{Cuboid, EdgeShape, InvalidSetting, Knife, ObjectShape};
 
+use crate::angle_stream::AngleStream;
 use crate::cli::print;
 use crate::cut_record::{CutSample, CutSummary};
+use crate::cut_stream::{CutRecorder, CutStream, NoCutRecorder};
 use crate::error::{ConfigError, RunError};
 use crate::plot::cut_curves::draw_cut_curves;
 use crate::progress::run_bar;
 use crate::render_plot;
-use crate::result_file::{write_csv, write_json};
+use crate::result_file::write_json;
 use crate::run_dir::{self, Destination};
 use crate::scenario::{Scenario, WireSlabScenario};
 use crate::transport::{StopSignal, TerminationWatch};
@@ -80,19 +82,27 @@ const RAMP_S: f64 = 0.05;
 
 /// Runs the cuts of `scenario` (no files written).
 pub fn simulate(scenario: &Scenario) -> Result<SimulationOutput, RunError> {
-    simulate_until(scenario, &|| None)
+    simulate_until(scenario, &|| None, &mut NoCutRecorder)
 }
 
-/// Runs the cuts of `scenario`, looking at `stop` every
+/// Runs the cuts of `scenario`, handing each sample and each finished
+/// cut's summary to `recorder` as they come, and looking at `stop` every
 /// [`STOP_POLL_STEPS`] steps: a signal ends the simulation there, with the
 /// samples so far ([`SimulationOutput::stopped`]).
-pub fn simulate_until(scenario: &Scenario, stop: StopCheck) -> Result<SimulationOutput, RunError> {
+///
+/// # Errors
+/// The scenario cannot run (exit 2), or the recorder failed.
+pub fn simulate_until(
+    scenario: &Scenario,
+    stop: StopCheck,
+    recorder: &mut dyn CutRecorder,
+) -> Result<SimulationOutput, RunError> {
     let knife = Knife::new(&scenario.knife).map_err(|e| invalid(scenario, e.prefixed("knife")))?;
     match (&scenario.object, &scenario.knife.edge) {
         (ObjectShape::Cuboid(c), EdgeShape::Straight { .. } | EdgeShape::Wire { .. }) => {
-            simulate_section(scenario, &knife, c, stop)
+            simulate_section(scenario, &knife, c, stop, recorder)
         }
-        _ => simulate_plant(scenario, &knife, stop),
+        _ => simulate_plant(scenario, &knife, stop, recorder),
     }
 }
 
@@ -109,6 +119,7 @@ fn simulate_section(
     knife: &Knife,
     cuboid: &Cuboid,
     stop: StopCheck,
+    recorder: &mut dyn CutRecorder,
 ) -> Result<SimulationOutput, RunError> {
     let depth = scenario.motion.depth.unwrap_or(0.8 * cuboid.height);
     let edge_length = knife.edge().length();
@@ -167,7 +178,9 @@ fn simulate_section(
                     InvalidSetting::new("section", "step", e.to_string()),
                 )
             })?;
-            samples.push(section_sample(knife, xi, z0, &s, v_n, cuboid));
+            let sample = section_sample(knife, xi, z0, &s, v_n, cuboid);
+            recorder.sample(&sample)?;
+            samples.push(sample);
             if (samples.len() - first).is_multiple_of(STOP_POLL_STEPS) {
                 stopped = stop();
                 if stopped.is_some() {
@@ -175,7 +188,9 @@ fn simulate_section(
                 }
             }
         }
-        summaries.push(CutSummary::from_samples(&samples[first..], depth));
+        let summary = CutSummary::from_samples(&samples[first..], depth);
+        recorder.cut_done(&summary)?;
+        summaries.push(summary);
         if stopped.is_some() {
             break;
         }
@@ -247,6 +262,7 @@ fn simulate_plant(
     scenario: &Scenario,
     knife: &Knife,
     stop: StopCheck,
+    recorder: &mut dyn CutRecorder,
 ) -> Result<SimulationOutput, RunError> {
     let mesh = scenario.object.mesh().map_err(|e| {
         invalid(
@@ -318,6 +334,7 @@ fn simulate_plant(
             if let Some(sample) =
                 CutSample::from_plant(&step.reading, &step.truth, xi, z0, &start, gap)
             {
+                recorder.sample(&sample)?;
                 samples.push(sample);
             }
             if step.truth.crack_depth >= depth {
@@ -330,7 +347,9 @@ fn simulate_plant(
                 }
             }
         }
-        summaries.push(CutSummary::from_samples(&samples[first..], depth));
+        let summary = CutSummary::from_samples(&samples[first..], depth);
+        recorder.cut_done(&summary)?;
+        summaries.push(summary);
         if stopped.is_some() {
             break;
         }
@@ -362,9 +381,10 @@ pub fn run_scenario(s: &Scenario, out: &Destination) -> Result<(), RunError> {
     // run's would be, and the exit is 130/143.
     let watch = TerminationWatch::new();
     let dir = run_dir::claim(&s.name, out, &crate::commands::check::resolved_toml(s))?;
-    let output =
-        simulate_until(s, &|| watch.requested()).inspect_err(|_| run_dir::abandon(&dir))?;
-    write_csv(&dir.join("timeseries.csv"), &output.samples)?;
+    let mut stream = CutStream::create(&dir).inspect_err(|_| run_dir::abandon(&dir))?;
+    let output = simulate_until(s, &|| watch.requested(), &mut stream)
+        .inspect_err(|_| run_dir::abandon(&dir))?;
+    stream.finish()?;
     write_json(
         &dir.join("summary.json"),
         &SummaryFile {
@@ -397,7 +417,7 @@ pub fn run_scenario(s: &Scenario, out: &Destination) -> Result<(), RunError> {
         ))?;
     }
     print(&format!(
-        "{}results: {}/ (timeseries.csv, summary.json, scenario.toml, forces_work.svg/.png)\n",
+        "{}results: {}/ (timeseries.csv, cuts.csv, summary.json, scenario.toml, forces_work.svg/.png)\n",
         summary_table(s, output.model, &output.summaries),
         dir.display()
     ))?;
@@ -436,20 +456,6 @@ fn summary_table(s: &Scenario, model: &str, summaries: &[CutSummary]) -> String 
     t
 }
 
-/// One row of a finite-strain run's series.
-#[derive(Debug, serde::Serialize)]
-struct SlabRow {
-    angle_deg: f64,
-    depth_m: f64,
-    travel_m: f64,
-    force_normal_n: f64,
-    force_tangential_n: f64,
-    surface_stress_pa: f64,
-    surface_stress_position_m: f64,
-    contact_extent_m: f64,
-    newton_iterations: usize,
-}
-
 /// Nucleation of one angle in the summary.
 #[derive(Debug, serde::Serialize)]
 struct SlabNucleation {
@@ -461,6 +467,10 @@ struct SlabNucleation {
     position_m: Option<f64>,
     under_wire: Option<bool>,
     load_steps: usize,
+    /// `true` when a signal stopped this angle's indentation (absent
+    /// otherwise).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    stopped: bool,
 }
 
 /// The finite-strain run's summary file.
@@ -473,14 +483,33 @@ struct SlabSummary<'a> {
     unknowns: usize,
     nucleation: Vec<SlabNucleation>,
     seed_comparison: shearcut_sim::finite_strain::SeedComparison,
+    /// `{"stopped": "sigint"}` when a signal stopped the sweep (absent
+    /// otherwise).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    end: Option<StoppedEnd>,
 }
 
 /// Runs seed 001's finite-strain wire–slab sweep and writes its series
 /// (`series.csv`), surface σ₁ profiles at nucleation (`surface.csv`), a
 /// summary with the seed's numbers side by side (`summary.json`), the resolved
 /// scenario and the plots in the seed's form.
+///
+/// SIGINT/SIGTERM stop the sweep after the load step in progress: the
+/// angles so far are written as a finished sweep's are (the ones stopped
+/// marked `"stopped": true`, the summary's `"end": {"stopped": "sigint"}`),
+/// and the exit is 130/143.
 pub fn run_wire_slab(s: &WireSlabScenario, out: &Destination) -> Result<(), RunError> {
-    use shearcut_sim::finite_strain::{SeedComparison, WireSlab, WireSlabError, sweep_angles};
+    use shearcut_sim::finite_strain::{
+        IndentationRun, SeedComparison, WireSlab, WireSlabError, sweep_angles_until,
+    };
+    let watch = TerminationWatch::new();
+    let signal = std::sync::OnceLock::new();
+    let stop = || {
+        if let Some(sig) = watch.requested() {
+            let _ = signal.set(sig);
+        }
+        signal.get().is_some()
+    };
     let model_error = |e: WireSlabError| match e {
         WireSlabError::Setting(setting) => RunError::Config(ConfigError::Invalid {
             path: s.name.clone(),
@@ -491,34 +520,22 @@ pub fn run_wire_slab(s: &WireSlabScenario, out: &Destination) -> Result<(), RunE
     let probe = WireSlab::new(&s.slab).map_err(model_error)?;
     let resolved = toml::to_string(s).map_err(|e| RunError::write("scenario.toml", e))?;
     let dir = run_dir::claim(&s.name, out, &resolved)?;
-    let sweep = sweep_angles(&s.slab, &s.sweep.angles_deg, s.sweep.threads)
+    // Each angle's rows are written as it ends (in the angles' order).
+    let stream =
+        std::sync::Mutex::new(AngleStream::create(&dir).inspect_err(|_| run_dir::abandon(&dir))?);
+    let ended = |index: usize, run: &IndentationRun| {
+        if let Ok(mut stream) = stream.lock() {
+            stream.angle_ended(index, run);
+        }
+    };
+    let sweep = sweep_angles_until(&s.slab, &s.sweep.angles_deg, s.sweep.threads, &stop, &ended)
         .map_err(model_error)
         .inspect_err(|_| run_dir::abandon(&dir))?;
+    stream
+        .into_inner()
+        .map_err(|_| RunError::Loop("the angle stream's lock was poisoned".to_string()))?
+        .finish()?;
     let runs = &sweep.runs;
-    write_csv(
-        &dir.join("series.csv"),
-        runs.iter().flat_map(|run| {
-            run.states.iter().map(move |st| SlabRow {
-                angle_deg: run.angle.to_degrees(),
-                depth_m: st.depth,
-                travel_m: st.travel,
-                force_normal_n: st.force_normal,
-                force_tangential_n: st.force_tangential,
-                surface_stress_pa: st.surface_stress,
-                surface_stress_position_m: st.surface_stress_position,
-                contact_extent_m: st.contact_extent,
-                newton_iterations: st.newton_iterations,
-            })
-        }),
-    )?;
-    write_csv(
-        &dir.join("surface.csv"),
-        runs.iter().flat_map(|run| {
-            run.surface_profile
-                .iter()
-                .map(move |p| (run.angle.to_degrees(), p.position, p.stress))
-        }),
-    )?;
     let comparison = SeedComparison::new(&s.slab, runs);
     let nucleation: Vec<SlabNucleation> = runs
         .iter()
@@ -531,6 +548,7 @@ pub fn run_wire_slab(s: &WireSlabScenario, out: &Destination) -> Result<(), RunE
             position_m: run.nucleation.map(|n| n.position),
             under_wire: run.nucleation.map(|n| n.under_wire),
             load_steps: run.states.len(),
+            stopped: run.stopped,
         })
         .collect();
     write_json(
@@ -543,6 +561,7 @@ pub fn run_wire_slab(s: &WireSlabScenario, out: &Destination) -> Result<(), RunE
             unknowns: probe.unknowns(),
             nucleation,
             seed_comparison: comparison,
+            end: signal.get().map(|&stopped| StoppedEnd { stopped }),
         },
     )?;
     let sl = &s.slab;
@@ -613,6 +632,11 @@ pub fn run_wire_slab(s: &WireSlabScenario, out: &Destination) -> Result<(), RunE
                 n.position * 1e6,
                 n.under_wire
             )?,
+            None if run.stopped => crate::outln!(
+                "  {:>11.0}  stopped at {:.3} mm",
+                run.angle.to_degrees(),
+                run.states.last().map_or(0.0, |st| st.depth) * 1e3
+            )?,
             None => crate::outln!(
                 "  {:>11.0}  no nucleation up to {:.3} mm",
                 run.angle.to_degrees(),
@@ -647,5 +671,11 @@ pub fn run_wire_slab(s: &WireSlabScenario, out: &Destination) -> Result<(), RunE
         "results: {}/ (series.csv, surface.csv, summary.json, scenario.toml, forces_depth, nucleation_angle, stress_map .svg/.png)",
         dir.display()
     )?;
-    Ok(())
+    match signal.get() {
+        Some(&signal) => Err(RunError::Stopped {
+            signal,
+            dir: dir.display().to_string(),
+        }),
+        None => Ok(()),
+    }
 }

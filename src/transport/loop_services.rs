@@ -372,6 +372,12 @@ impl LoopServices {
         self.peer.stop();
     }
 
+    /// One look at the other role's node now, on this thread
+    /// ([`PeerWatch::look_now`]: it allocates, off any tick path).
+    pub fn look_at_peer(&self) -> PeerFate {
+        self.peer.look_now()
+    }
+
     /// The state of `role`'s node in this run: alive, dead (its process died
     /// without cleaning up) or absent.
     pub fn peer_state(&self, role: Role) -> PeerState {

@@ -32,7 +32,26 @@ pub enum PeerFate {
     /// Seen alive, and its node is gone: the process exited (or died and
     /// another process of the prefix cleaned its node before a look).
     Ended = 3,
+    /// Never seen alive, and a recent dead node of its name found at this
+    /// process's start ([`RECENT_PEER`](super::run_node::RECENT_PEER)): the
+    /// peer died before this process looked, unless a live node of the
+    /// name appears within [`UNSEEN_GRACE`] (then the dead one was an
+    /// earlier run's, killed just before this run started). The watch
+    /// turns it into [`PeerFate::Died`] after the grace.
+    DiedUnseen = 4,
 }
+
+/// How long a process whose peer ended (exited) before the loop waits for
+/// a SIGINT/SIGTERM of its own before it reports the peer's end: a
+/// supervisor stopping a run on a signal stops the controller first and
+/// the plant just after, and the plant's end is then that clean stop, not
+/// a lost controller.
+pub const ENDED_PEER_SIGNAL_WAIT: Duration = Duration::from_millis(250);
+
+/// How long a [`PeerFate::DiedUnseen`] peer has to appear alive before it
+/// is taken for dead: longer than a process's start up to its node's
+/// creation, when two processes of a run are started together.
+pub const UNSEEN_GRACE: Duration = Duration::from_secs(1);
 
 impl PeerFate {
     fn from_code(code: u8) -> Self {
@@ -40,6 +59,7 @@ impl PeerFate {
             1 => PeerFate::Alive,
             2 => PeerFate::Died,
             3 => PeerFate::Ended,
+            4 => PeerFate::DiedUnseen,
             _ => PeerFate::NotSeen,
         }
     }
@@ -56,19 +76,41 @@ impl PeerFate {
             (PeerState::Alive, _) => PeerFate::Alive,
             (PeerState::Dead, _) => PeerFate::Died,
             (PeerState::Absent, PeerFate::Alive) => PeerFate::Ended,
-            (PeerState::Absent, PeerFate::NotSeen) => PeerFate::NotSeen,
+            (PeerState::Absent, PeerFate::NotSeen | PeerFate::DiedUnseen) => self,
         }
     }
 }
 
 /// The watching thread and what it found. Reading the fate is one atomic
 /// load; [`PeerWatch::stop`] ends the thread (it must end before the loop:
-/// its looks allocate).
+/// its looks allocate). After that, [`PeerWatch::look_now`] looks once
+/// on the caller's thread.
 #[derive(Debug)]
 pub struct PeerWatch {
     fate: Arc<AtomicU8>,
     stop: Arc<AtomicBool>,
     thread: Mutex<Option<JoinHandle<()>>>,
+    target: Arc<Mutex<PeerTarget>>,
+}
+
+/// What a look at the peer needs: the configuration, the peer's node name
+/// and the id of its node once seen alive.
+#[derive(Debug)]
+struct PeerTarget {
+    config: Config,
+    peer: String,
+    seen: Option<UniqueNodeId>,
+}
+
+impl PeerTarget {
+    /// Looks at the peer's node; the fate that follows `fate`.
+    fn look(&mut self, fate: &AtomicU8) -> PeerFate {
+        let (state, id) = look(&self.config, &self.peer, self.seen);
+        self.seen = id;
+        let now = PeerFate::from_code(fate.load(Ordering::Acquire)).after(state);
+        fate.store(now as u8, Ordering::Release);
+        now
+    }
 }
 
 impl PeerWatch {
@@ -84,19 +126,25 @@ impl PeerWatch {
     ) -> Self {
         let fate = Arc::new(AtomicU8::new(initial as u8));
         let stop = Arc::new(AtomicBool::new(false));
+        let target = Arc::new(Mutex::new(PeerTarget { config, peer, seen }));
         let thread = if initial.is_gone() {
             None
         } else {
-            let (fate, stop) = (Arc::clone(&fate), Arc::clone(&stop));
+            let (fate, stop, target) = (Arc::clone(&fate), Arc::clone(&stop), Arc::clone(&target));
             std::thread::Builder::new()
                 .name("peer-watch".to_string())
                 .spawn(move || {
-                    let mut seen = seen;
+                    #[allow(clippy::disallowed_methods)] // The grace's wall time.
+                    let started = std::time::Instant::now();
                     while !stop.load(Ordering::Acquire) {
-                        let (state, id) = look(&config, &peer, seen);
-                        seen = id;
-                        let now = PeerFate::from_code(fate.load(Ordering::Acquire)).after(state);
-                        fate.store(now as u8, Ordering::Release);
+                        let mut now = match target.lock() {
+                            Ok(mut t) => t.look(&fate),
+                            Err(_) => break,
+                        };
+                        if now == PeerFate::DiedUnseen && started.elapsed() >= UNSEEN_GRACE {
+                            now = PeerFate::Died;
+                            fate.store(now as u8, Ordering::Release);
+                        }
                         if now.is_gone() {
                             break;
                         }
@@ -109,6 +157,21 @@ impl PeerWatch {
             fate,
             stop,
             thread: Mutex::new(thread),
+            target,
+        }
+    }
+
+    /// One look at the peer now, on the caller's thread (it lists the
+    /// prefix's nodes and allocates: off any tick path), from what the
+    /// watch knew; the fate that follows. A peer already gone stays so.
+    pub fn look_now(&self) -> PeerFate {
+        let fate = self.fate();
+        if fate.is_gone() {
+            return fate;
+        }
+        match self.target.lock() {
+            Ok(mut t) => t.look(&self.fate),
+            Err(_) => fate,
         }
     }
 
@@ -154,6 +217,27 @@ impl Drop for PeerWatch {
 }
 
 /// The one line saying how `peer`, the other side of run `run_id`, went
+/// after `commands` commands of the loop (`fate` is [`PeerFate::Died`] or
+/// [`PeerFate::Ended`]): `the controller 'controller/x' died after 12
+/// commands of run 'x' (iceoryx2 dead-node detection)`.
+pub fn gone_in_loop(peer: Role, run_id: &str, fate: PeerFate, commands: u64) -> String {
+    let (verb, why) = gone_verb(fate);
+    format!(
+        "the {} '{}' {verb} after {commands} commands of run '{run_id}' ({why})",
+        peer.as_str(),
+        node_name(peer, run_id)
+    )
+}
+
+/// The verb and the cause of a peer's `fate` (died or ended).
+fn gone_verb(fate: PeerFate) -> (&'static str, &'static str) {
+    match fate {
+        PeerFate::Died => ("died", "iceoryx2 dead-node detection"),
+        _ => ("ended", "its process exited; its stderr says why"),
+    }
+}
+
+/// The one line saying how `peer`, the other side of run `run_id`, went
 /// before the loop started (`fate` is [`PeerFate::Died`] or
 /// [`PeerFate::Ended`]): `the plant 'plant/x' died before serving run 'x'
 /// (iceoryx2 dead-node detection)`, `the controller 'controller/x' ended
@@ -163,10 +247,7 @@ pub fn gone_before_loop(peer: Role, run_id: &str, fate: PeerFate) -> String {
         Role::Plant => "serving",
         Role::Controller => "its first command of",
     };
-    let (verb, why) = match fate {
-        PeerFate::Died => ("died", "iceoryx2 dead-node detection"),
-        _ => ("ended", "its process exited; its stderr says why"),
-    };
+    let (verb, why) = gone_verb(fate);
     format!(
         "the {} '{}' {verb} before {before} run '{run_id}' ({why})",
         peer.as_str(),
@@ -189,5 +270,10 @@ mod tests {
         // Gone stays gone.
         assert_eq!(Ended.after(PeerState::Alive), Ended);
         assert_eq!(Died.after(PeerState::Absent), Died);
+        // A recent dead node never seen alive stays so until a live one
+        // of the name appears (the dead one was an earlier run's).
+        assert_eq!(DiedUnseen.after(PeerState::Absent), DiedUnseen);
+        assert_eq!(DiedUnseen.after(PeerState::Alive), Alive);
+        assert!(!DiedUnseen.is_gone());
     }
 }

@@ -12,7 +12,7 @@ use shearcut_sim::arm::{ArmReading, KnifeCommand};
 
 use super::board::{BoardReader, BoardWriter};
 use super::loop_services::{LoopServices, ServiceError};
-use super::peer_watch::PeerFate;
+use super::peer_watch::{ENDED_PEER_SIGNAL_WAIT, PeerFate};
 use super::termination_watch::StopSignal;
 use super::wait_mode::WaitMode;
 use super::wire::{
@@ -71,6 +71,14 @@ pub enum PlantEnd {
     /// The run's controller, seen alive, ended before its first command
     /// (its iceoryx2 node gone).
     ControllerEnded,
+    /// Lockstep: the run's controller died after its first command (its
+    /// iceoryx2 node dead at a look after a missed command); the plant
+    /// braked.
+    ControllerDiedInLoop,
+    /// Lockstep: the run's controller ended after its first command
+    /// without ending the run (its iceoryx2 node gone at a look after a
+    /// missed command); the plant braked.
+    ControllerEndedInLoop,
     /// SIGINT or SIGTERM.
     Terminated(StopSignal),
 }
@@ -153,7 +161,9 @@ impl PlantPorts<'_> {
 /// until the controller ends the run, the plant brakes or fails, the
 /// controller is gone before its first command ([`PlantEnd::ControllerDied`],
 /// [`PlantEnd::ControllerEnded`]: seen by the services' peer watch within a
-/// look), or a termination request arrives.
+/// look) or, lockstep, after it ([`PlantEnd::ControllerDiedInLoop`],
+/// [`PlantEnd::ControllerEndedInLoop`]: a look at each missed command), or
+/// a termination request arrives.
 ///
 /// Lockstep: each command is stepped as soon as it arrives; silence longer
 /// than the patience counts as a missed command. Realtime: the plant steps
@@ -235,8 +245,18 @@ pub fn serve_plant(
         }
         if let Some(command) = ports.poll()? {
             if window_start.is_none() {
-                // The loop starts: the controller is there.
+                // The loop starts: the controller is there. A lockstep
+                // plant looks at it again at a missed command, from the
+                // node the watch saw (a look now if it saw none).
                 services.stop_peer_watch();
+                if !realtime
+                    && matches!(
+                        services.peer_fate(),
+                        PeerFate::NotSeen | PeerFate::DiedUnseen
+                    )
+                {
+                    services.look_at_peer();
+                }
             }
             consecutive = 0;
             if command.is_end_of_run() {
@@ -300,10 +320,13 @@ pub fn serve_plant(
                     return Ok(report);
                 }
                 PeerFate::Ended => {
-                    report.end = PlantEnd::ControllerEnded;
+                    report.end = match services.termination_request(ENDED_PEER_SIGNAL_WAIT) {
+                        Some(signal) => PlantEnd::Terminated(signal),
+                        None => PlantEnd::ControllerEnded,
+                    };
                     return Ok(report);
                 }
-                PeerFate::NotSeen | PeerFate::Alive => {}
+                PeerFate::NotSeen | PeerFate::Alive | PeerFate::DiedUnseen => {}
             }
             if now - started > settings.connect_timeout {
                 report.end = PlantEnd::NoController;
@@ -345,6 +368,20 @@ pub fn serve_plant(
         report.missed_commands += 1;
         report.max_consecutive_missed = report.max_consecutive_missed.max(consecutive);
         window_start = Some(start + window);
+        if !realtime {
+            // Silence in lockstep: is the controller still there? (The
+            // look allocates; a missed command is off the answering path.)
+            let fate = services.look_at_peer();
+            if fate.is_gone() {
+                brake(plant, &mut report, &mut last);
+                report.end = if fate == PeerFate::Died {
+                    PlantEnd::ControllerDiedInLoop
+                } else {
+                    PlantEnd::ControllerEndedInLoop
+                };
+                return Ok(report);
+            }
+        }
         if consecutive >= settings.missed_command_limit {
             brake(plant, &mut report, &mut last);
             report.end = PlantEnd::Braked(consecutive);

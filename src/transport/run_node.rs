@@ -24,6 +24,15 @@ use super::termination_watch::TerminationWatch;
 /// How long a cleanup waits for a concurrent cleaner of the same dead node.
 const CLEANUP_WAIT: Duration = Duration::from_millis(100);
 
+/// The age (from its creation, by iceoryx2's node id) up to which a dead
+/// peer node that this process never saw alive is taken for this run's
+/// peer, which died before this process looked: two processes of a run are
+/// started within seconds of each other. An older dead node is an earlier
+/// run's under the same run id, cleaned and ignored. (A run with the same
+/// id killed within this age of its start and started again at once, the
+/// process that finds the dead node first, takes it for its peer.)
+pub const RECENT_PEER: Duration = Duration::from_secs(5);
+
 /// One process's node in run `run_id`.
 #[derive(Debug)]
 pub struct RunNode {
@@ -46,9 +55,11 @@ impl RunNode {
     /// Creates `role`'s node for run `run_id` under `prefix`, cleaning the
     /// resources of dead nodes under that prefix, and starts watching the
     /// peer's node: a peer alive just before the creation and dead at its
-    /// cleanup died ([`PeerFate::Died`]); a peer found dead without having
-    /// been seen alive is one of an earlier run, or one that died before
-    /// this process came, and is not seen.
+    /// cleanup died ([`PeerFate::Died`]), and so did a peer found dead
+    /// without having been seen alive whose node is at most
+    /// [`RECENT_PEER`] old, unless a live one appears within the watch's
+    /// grace ([`PeerFate::DiedUnseen`]); an older dead one is an earlier
+    /// run's, and is not seen.
     ///
     /// # Errors
     /// The run id or prefix is not allowed; another live process of this
@@ -79,10 +90,11 @@ impl RunNode {
             });
         }
         // A dead peer node other than the one seen alive is an earlier
-        // run's (or one that died before it could be seen).
+        // run's, unless it is recent (it died before it could be seen).
         let initial = match peer_before {
             Some(id) if dead_peers.contains(&id) => PeerFate::Died,
             Some(_) => PeerFate::Alive,
+            None if dead_peers.iter().any(is_recent) => PeerFate::DiedUnseen,
             None => PeerFate::NotSeen,
         };
         let peer = PeerWatch::start(config.clone(), peer, initial, peer_before);
@@ -95,6 +107,15 @@ impl RunNode {
             peer,
         })
     }
+}
+
+/// Whether the node `id` was created at most [`RECENT_PEER`] ago (the
+/// monotonic clock its id was stamped with is the host's).
+fn is_recent(id: &UniqueNodeId) -> bool {
+    id.creation_time::<ipc::Service>()
+        .ok()
+        .and_then(|created| created.elapsed().ok())
+        .is_some_and(|age| age <= RECENT_PEER)
 }
 
 /// Removes the stale resources of every dead node under `config` (waiting

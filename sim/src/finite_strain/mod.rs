@@ -37,4 +37,4 @@ pub use seed_comparison::SeedComparison;
 pub use settings::{Indenter, SideSupport, WireSlabSettings};
 pub use slab::{IndentationRun, Nucleation, SlabState, WireSlab, WireSlabError};
 pub use surface_stress::{StressField, SurfaceStress};
-pub use sweep::{AngleSweep, sweep_angles};
+pub use sweep::{AngleSweep, sweep_angles, sweep_angles_until};

@@ -100,6 +100,9 @@ pub struct IndentationRun {
     pub surface_profile: Vec<SurfaceStress>,
     /// The deformed slab with σ₁ at the last state.
     pub field: StressField,
+    /// Whether a stop request ended the indentation before nucleation and
+    /// before the largest depth ([`WireSlab::indent_until`]).
+    pub stopped: bool,
 }
 
 /// The finite-strain slab and wire (seed 001).
@@ -397,12 +400,24 @@ impl WireSlab {
     /// Indents at kinematic angle `angle` (rad) from first touch until the
     /// surface σ₁ reaches σ* or the depth reaches `max_depth`.
     pub fn indent(&mut self, angle: f64) -> Result<IndentationRun, FiniteStrainError> {
+        self.indent_until(angle, &|| false)
+    }
+
+    /// [`indent`](Self::indent), asking `stop` after each load step: `true`
+    /// ends the indentation there ([`IndentationRun::stopped`]), with at
+    /// least one state.
+    pub fn indent_until(
+        &mut self,
+        angle: f64,
+        stop: &dyn Fn() -> bool,
+    ) -> Result<IndentationRun, FiniteStrainError> {
         self.reset(angle);
         let s = self.settings;
         let target = s.nucleation_stress();
         let mut states: Vec<SlabState> = Vec::new();
         let mut nucleation = None;
         let mut previous: Option<SlabState> = None;
+        let mut stopped = false;
         while self.depth < s.max_depth * (1.0 - 1e-12) {
             let next = (self.depth + s.depth_step).min(s.max_depth);
             let st = self.advance_to(next)?;
@@ -429,6 +444,10 @@ impl WireSlab {
                 break;
             }
             previous = Some(st);
+            if stop() {
+                stopped = self.depth < s.max_depth * (1.0 - 1e-12);
+                break;
+            }
         }
         Ok(IndentationRun {
             angle,
@@ -436,6 +455,7 @@ impl WireSlab {
             nucleation,
             surface_profile: self.surface_profile(),
             field: self.stress_field(),
+            stopped,
         })
     }
 }

@@ -9,7 +9,9 @@ use super::slab::{IndentationRun, WireSlab, WireSlabError};
 /// Indentations at several kinematic angles.
 #[derive(Debug, Clone, PartialEq)]
 pub struct AngleSweep {
-    /// One run per angle, in the order of the angles given.
+    /// One run per angle, in the order of the angles given; of a stopped
+    /// sweep, one per angle started, the last of each thread
+    /// [`IndentationRun::stopped`] if it had not ended.
     pub runs: Vec<IndentationRun>,
 }
 
@@ -19,6 +21,23 @@ pub fn sweep_angles(
     settings: &WireSlabSettings,
     angles_deg: &[f64],
     threads: usize,
+) -> Result<AngleSweep, WireSlabError> {
+    sweep_angles_until(settings, angles_deg, threads, &|| false, &|_, _| {})
+}
+
+/// [`sweep_angles`], each thread asking `stop` after each load step
+/// ([`WireSlab::indent_until`]): once it answers `true`, the runs in
+/// progress end there and no further angle is started (each thread's
+/// first angle is, so a stopped sweep holds a run per thread). `stop` must keep answering
+/// `true` once it has. Each run that ends (stopped or not) is handed to
+/// `ended` on its thread with the index of its angle in `angles_deg`, as it
+/// ends.
+pub fn sweep_angles_until(
+    settings: &WireSlabSettings,
+    angles_deg: &[f64],
+    threads: usize,
+    stop: &(dyn Fn() -> bool + Sync),
+    ended: &(dyn Fn(usize, &IndentationRun) + Sync),
 ) -> Result<AngleSweep, WireSlabError> {
     settings.validate()?;
     let threads = threads.clamp(1, angles_deg.len().max(1));
@@ -34,7 +53,16 @@ pub fn sweep_angles(
                         Err(e) => return vec![(t, Err(e))],
                     };
                     for (i, &a) in angles_deg.iter().enumerate().skip(t).step_by(threads) {
-                        out.push((i, slab.indent(a.to_radians()).map_err(WireSlabError::from)));
+                        // A thread's first angle always starts (a stopped
+                        // sweep has a run, of one state at least, per thread).
+                        if !out.is_empty() && stop() {
+                            break;
+                        }
+                        let run = slab.indent_until(a.to_radians(), stop);
+                        if let Ok(run) = &run {
+                            ended(i, run);
+                        }
+                        out.push((i, run.map_err(WireSlabError::from)));
                     }
                     out
                 })
