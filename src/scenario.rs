@@ -35,6 +35,7 @@ use shearcut_sim::{
 use crate::controller_choice::ControllerChoice;
 use crate::controller_settings::ControllerSettings;
 use crate::error::ConfigError;
+use shearcut_controllers::planner::LatencyMode;
 
 /// A scenario as written in a file, before presets are resolved.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -163,13 +164,15 @@ pub struct LoopSettings {
     /// How long a controller process waits for its plant (or an arm
     /// bridge) to serve the run before it gives up, s (default 10).
     pub connect_timeout: f64,
-    /// Real-time priority of the controller process's servo thread: 0
-    /// (default) leaves it to the normal scheduler; 1–99 runs it under
-    /// `SCHED_FIFO` at that priority, as a real arm's servo loop runs,
-    /// once the MPC's planner thread has started at normal priority.
-    /// Needs `CAP_SYS_NICE` (or root); `shearcut controller` fails with
-    /// one line when it cannot be set. Only the separate controller
-    /// process (`--transport iceoryx2`) applies it.
+    /// Real-time priority of the servo threads: 0 (default) leaves them to
+    /// the normal scheduler; 1–99 runs the controller process's servo
+    /// thread and the plant process's stepping thread under `SCHED_FIFO`
+    /// at that priority, as a real arm's servo loop runs, once the MPC's
+    /// planner thread and the plant's successor workers have started at
+    /// normal priority. Needs `CAP_SYS_NICE` (or root); `shearcut
+    /// controller` and `shearcut plant` fail with one line when it cannot
+    /// be set. Only the separate processes (`--transport iceoryx2`) apply
+    /// it.
     pub servo_priority: u8,
 }
 
@@ -469,6 +472,9 @@ impl ScenarioFile {
             .validate()
             .map_err(|e| e.prefixed("controller"))?;
         check_controller_ranges(&self.controller).map_err(|e| e.prefixed("controller"))?;
+        if self.controller.kind == ControllerChoice::Mpc {
+            check_planner_keeps_the_clock(&self.control_loop, &self.controller)?;
+        }
         let name = self.name.unwrap_or_else(|| default_name.to_string());
         if name.is_empty() || name.contains(['/', '\\']) {
             return Err(InvalidSetting::new(
@@ -717,6 +723,34 @@ pub fn check_plant_ranges(p: &PlantSettings) -> Result<(), InvalidSetting> {
     FORCE_NOISE.check("sensor.force_noise", p.sensor.force_noise)?;
     TORQUE_NOISE.check("sensor.torque_noise", p.sensor.torque_noise)?;
     SENSOR_BIAS.check_each("sensor.bias", &p.sensor.bias)
+}
+
+/// Under `[loop] clock = "realtime"` the MPC's plans must reach the servo
+/// tick as the planner finishes them (`[controller.mpc.planner] latency =
+/// "realtime"`): a `"lockstep"` planner makes the tick at which a plan is
+/// due wait for its solve, and an `"inline"` one solves on the tick, so
+/// either would stall a servo loop paced by the wall clock.
+///
+/// Checked on load when `[controller] kind = "mpc"`, and again by a run
+/// whose controller is chosen on the command line.
+pub fn check_planner_keeps_the_clock(
+    control_loop: &LoopSettings,
+    controller: &ControllerSettings,
+) -> Result<(), InvalidSetting> {
+    let latency = controller.mpc.planner.latency;
+    if control_loop.clock == ClockMode::Realtime && latency != LatencyMode::Realtime {
+        let name = match latency {
+            LatencyMode::Lockstep => "\"lockstep\"",
+            LatencyMode::Inline => "\"inline\"",
+            LatencyMode::Realtime => "\"realtime\"",
+        };
+        return Err(InvalidSetting::new(
+            "controller.mpc.planner.latency",
+            name,
+            "must be \"realtime\" under [loop] clock = \"realtime\" (a lockstep or inline planner makes the servo tick wait for its solve)",
+        ));
+    }
+    Ok(())
 }
 
 /// The physical ranges of the controller's settings (speeds, duration,

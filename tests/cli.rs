@@ -205,3 +205,49 @@ fn info_logs_tell_the_story_of_a_cut_and_the_default_is_quiet() {
     assert!(quiet.stderr.is_empty(), "{}", stderr(&quiet));
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A realtime clock with the MPC needs the realtime planner: a lockstep or
+/// inline one would make the servo tick wait for a solve. Refused on load
+/// when the scenario's controller is the MPC, and by a run that chooses the
+/// MPC on the command line; with `latency = "realtime"` the scenario checks.
+#[test]
+fn a_realtime_clock_with_a_waiting_planner_is_refused_in_one_line() {
+    let dir = std::env::temp_dir().join(format!("shearcut-cli-rt-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let write = |name: &str, kind: &str, extra: &str| {
+        let path = dir.join(name);
+        let text = include_str!("../config/scenarios/loop-potato-cuboid.toml")
+            .replace("kind = \"mpc\"", &format!("kind = \"{kind}\""))
+            + "\n[loop]\nclock = \"realtime\"\n"
+            + extra;
+        std::fs::write(&path, text).unwrap();
+        path.to_str().unwrap().to_string()
+    };
+    let key = "`controller.mpc.planner.latency` = \"lockstep\": must be \"realtime\" under [loop] clock = \"realtime\"";
+    let refused = |o: &std::process::Output| {
+        assert_eq!(o.status.code(), Some(2));
+        let err = stderr(o);
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.contains(key), "{err}");
+    };
+    let mpc = write("mpc.toml", "mpc", "");
+    refused(&shearcut(&["check", &mpc]));
+    let slice = write("slice.toml", "slice:0.5", "");
+    assert_eq!(shearcut(&["check", &slice]).status.code(), Some(0));
+    let out = dir.join("out");
+    refused(&shearcut(&[
+        "run",
+        &slice,
+        "--controller",
+        "mpc",
+        "--out",
+        out.to_str().unwrap(),
+    ]));
+    let ok = write(
+        "ok.toml",
+        "mpc",
+        "\n[controller.mpc.planner]\nlatency = \"realtime\"\n",
+    );
+    assert_eq!(shearcut(&["check", &ok]).status.code(), Some(0));
+    std::fs::remove_dir_all(dir).ok();
+}

@@ -21,7 +21,7 @@ use crate::controller_choice::ControllerChoice;
 use crate::error::{ConfigError, RunError};
 use crate::object_profile::surrogate_profile;
 use crate::run_replica::RunReplica;
-use crate::scenario::Scenario;
+use crate::scenario::{Scenario, check_planner_keeps_the_clock};
 use crate::surrogates::surrogate_for;
 
 /// Margin on the arm's acceleration and jerk limits for the controllers'
@@ -277,6 +277,10 @@ impl LoopSetup {
             .mesh()
             .map_err(|e| invalid(s, InvalidSetting::new("object", "mesh", e.to_string())))?;
         let task = cut_task(s, &knife, &mesh).map_err(|e| invalid(s, e))?;
+        if choice == ControllerChoice::Mpc {
+            check_planner_keeps_the_clock(&s.control_loop, &s.controller)
+                .map_err(|e| invalid(s, e))?;
+        }
         let profile = match choice {
             ControllerChoice::Mpc => Some(mpc_profile(s, &task, &mesh)?),
             _ => None,

@@ -14,6 +14,7 @@ use crate::transport::loop_services::{node_name, prefix};
 use crate::transport::peer_watch::{
     ENDED_PEER_SIGNAL_WAIT, PeerFate, gone_before_loop, gone_in_loop,
 };
+use crate::transport::servo_priority::raise_servo_thread;
 use crate::transport::{
     LoopServices, PlantEnd, PlantServerSettings, Role, RunNode, ServiceError, WaitMode, serve_plant,
 };
@@ -60,6 +61,12 @@ pub fn run(
         return Err(RunError::service(&name, ServiceError::Stopped(signal)));
     }
     let services = LoopServices::on(node).map_err(|e| RunError::service(&name, e))?;
+    // The thread that steps and answers runs at the servo priority, as an
+    // arm's servo loop does; the successor workers and the services'
+    // watch threads have started at normal priority (a thread inherits its
+    // creator's scheduling only when it is created).
+    raise_servo_thread(s.control_loop.servo_priority)
+        .map_err(|e| RunError::Loop(format!("{name}: {e}")))?;
     let mut settings =
         PlantServerSettings::new(s.control_loop.clock, s.control_loop.missed_command_limit);
     settings.wait = wait;
