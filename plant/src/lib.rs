@@ -20,6 +20,7 @@ pub mod plant;
 mod plant_error;
 mod plant_settings;
 mod plant_step;
+mod section_stepper;
 mod successor;
 mod successor_policy;
 pub mod wrench;

@@ -12,7 +12,7 @@ use shearcut_sim::geometry::{Polygon, SectionPlane, TriangleMesh};
 use shearcut_sim::invalid_setting::InvalidSetting;
 use shearcut_sim::knife::Knife;
 use shearcut_sim::material::Material;
-use shearcut_sim::section::{SectionError, SectionSettings};
+use shearcut_sim::section::{SectionError, SectionSettings, SectionStep};
 
 use super::crack_front::CrackFront;
 use super::ft_sensor::FtSensor;
@@ -27,6 +27,8 @@ use crate::plant_step::{PlantStep, PlantTruth};
 use crate::successor_policy::SuccessorPolicy;
 use placement::{DormantSegment, Lookahead};
 use segment_section::{SegmentSection, tip_of};
+
+use crate::section_stepper::{Advance, SectionStepper};
 
 pub use crate::plant_error::PlantError;
 pub use crate::plant_settings::{MAX_SEGMENTS, PlantSettings};
@@ -148,6 +150,13 @@ pub use crate::plant_settings::{MAX_SEGMENTS, PlantSettings};
 #[derive(Debug, Clone)]
 pub struct Plant {
     sections: Vec<SegmentSection>,
+    /// Threads that advance the sections within a tick.
+    stepper: SectionStepper,
+    /// Per section (the index into `sections`): its normal and tangential
+    /// travel this tick, m, if it advances. Preallocated.
+    travel: Vec<Option<(f64, f64)>>,
+    /// Per section: the outcome of its advance this tick. Preallocated.
+    advanced: Vec<Option<Result<SectionStep, SectionError>>>,
     /// The object, material, blade and section settings, shared with the
     /// worker that builds successor sections.
     factory: Arc<SectionFactory>,
@@ -269,6 +278,9 @@ impl Plant {
         });
         let worker = SuccessorWorker::new(Arc::clone(&factory), grid.len(), settings.workers);
         let mut plant = Self {
+            stepper: SectionStepper::new(settings.stepping_threads, grid.len()),
+            travel: vec![None; grid.len()],
+            advanced: vec![None; grid.len()],
             loads: Vec::with_capacity(grid.len()),
             tips: Vec::with_capacity(grid.len()),
             sections: Vec::with_capacity(grid.len()),
@@ -369,7 +381,7 @@ impl Plant {
     pub fn crack_tips(&self) -> impl Iterator<Item = Vector2<f64>> + '_ {
         self.sections
             .iter()
-            .filter(|s| s.active && s.section.state().knife_displacement > 0.0)
+            .filter(|s| s.active && s.section().state().knife_displacement > 0.0)
             .map(tip_of)
     }
 
@@ -432,6 +444,20 @@ impl Plant {
         self.worker.waits()
     }
 
+    /// Threads that advance the sections within a tick, this plant's
+    /// stepping thread included ([`PlantSettings::stepping_threads`]).
+    pub fn stepping_threads(&self) -> usize {
+        self.stepper.threads()
+    }
+
+    /// Starts the plant's section-stepping helper threads anew from the
+    /// calling thread, as many, so that they run under its scheduling (a
+    /// thread inherits its creator's): call it from the thread that steps,
+    /// after raising that thread's priority. Results do not change.
+    pub fn restart_stepping_threads(&mut self) {
+        self.stepper = SectionStepper::new(self.stepper.threads(), self.edge_segments.len());
+    }
+
     /// Sets what a tick does with a successor the worker has not finished
     /// when it is due ([`SuccessorPolicy::Wait`] unless set).
     /// [`SuccessorPolicy::KeepCurrent`] also puts the worker's threads in
@@ -485,12 +511,54 @@ impl Plant {
     ///
     /// [`CrossSection::solves`]: shearcut_sim::section::CrossSection::solves
     pub fn section_solves(&self) -> u64 {
-        self.sections.iter().map(|s| s.section.solves()).sum()
+        self.sections.iter().map(|s| s.section().solves()).sum()
     }
 
     /// The sections' current states, heel to tip.
     pub fn section_states(&self) -> impl Iterator<Item = &shearcut_sim::section::SectionStep> {
-        self.sections.iter().map(|s| s.section.state())
+        self.sections.iter().map(|s| s.section().state())
+    }
+
+    /// Advances every section with a travel this tick (`travel`), on the
+    /// stepper's helper threads and this one, sections dealt out in turn;
+    /// the outcomes land in `advanced`. Each section's arithmetic is the
+    /// same on any thread: the results do not depend on the threads.
+    fn advance_sections(&mut self) {
+        let lanes = self.stepper.threads();
+        let mut dealt = 0usize;
+        // The helpers' sections first, so that they work while this thread
+        // advances its own.
+        for (i, s) in self.sections.iter_mut().enumerate() {
+            self.advanced[i] = None;
+            if let Some((normal, tangential)) = self.travel[i] {
+                let lane = dealt % lanes;
+                dealt += 1;
+                if lane > 0
+                    && let Some(section) = s.lend()
+                {
+                    self.stepper.send(
+                        lane - 1,
+                        Advance {
+                            index: i,
+                            section,
+                            normal,
+                            tangential,
+                        },
+                    );
+                    self.travel[i] = None;
+                }
+            }
+        }
+        for (i, s) in self.sections.iter_mut().enumerate() {
+            if let Some((normal, tangential)) = self.travel[i] {
+                self.advanced[i] = Some(s.section_mut().advance(normal, tangential));
+            }
+        }
+        let (sections, advanced) = (&mut self.sections, &mut self.advanced);
+        self.stepper.receive_all(|a| {
+            sections[a.index].put_back(a.section);
+            advanced[a.index] = Some(a.step);
+        });
     }
 
     /// Executes `command` for `dt` seconds and returns the measurement.
@@ -527,23 +595,18 @@ impl Plant {
         let mut deformation: f64 = 0.0;
         let mut work = 0.0;
         let mut active = 0usize;
-        for s in &mut self.sections {
+        // Each active segment's travel into its section: the gap to the
+        // surface first, then any lift, then the section.
+        for (i, s) in self.sections.iter_mut().enumerate() {
+            self.travel[i] = None;
             if !s.active {
-                // No material under the segment: no force, not advanced.
-                let state = s.section.state();
-                work += (s.work_offset + state.work.knife) * s.segment.length;
-                if state.fractured {
-                    fractured += 1;
-                }
                 continue;
             }
-            active += 1;
             let dn = dp2.dot(&s.segment.normal);
             let dt_seg = dp2.dot(&s.segment.tangent);
             if dt_seg != 0.0 {
                 s.tangential_sign = dt_seg.signum();
             }
-            // Normal travel eats first the gap to the surface, then any lift.
             let mut advance = 0.0;
             if dn > 0.0 {
                 let mut rest = dn;
@@ -561,10 +624,25 @@ impl Plant {
                     s.lift -= dn;
                 }
             }
-            let state = if advance > 0.0 {
-                s.section.advance(advance, dt_seg * advance / dn)?
-            } else {
-                *s.section.state()
+            if advance > 0.0 {
+                self.travel[i] = Some((advance, dt_seg * advance / dn));
+            }
+        }
+        self.advance_sections();
+        for (i, s) in self.sections.iter_mut().enumerate() {
+            if !s.active {
+                // No material under the segment: no force, not advanced.
+                let state = s.section().state();
+                work += (s.work_offset + state.work.knife) * s.segment.length;
+                if state.fractured {
+                    fractured += 1;
+                }
+                continue;
+            }
+            active += 1;
+            let state = match self.advanced[i].take() {
+                Some(step) => step?,
+                None => *s.section().state(),
             };
             let touching = s.gap <= 0.0 && s.lift <= 0.0 && state.knife_displacement > 0.0;
             work += (s.work_offset + state.work.knife) * s.segment.length;

@@ -39,6 +39,14 @@ pub struct PlantSettings {
     /// (default 2). The results do not depend on it, only how often a tick
     /// waits for a section: give them cores of their own in real time.
     pub workers: usize,
+    /// Threads that advance the sections within a tick, the stepping
+    /// thread included (default 1, in [1, 16]). The results do not depend
+    /// on it (the sections of a tick are independent); more threads make a
+    /// tick with many sections in contact shorter on free cores, for a
+    /// plant that must keep a wall-clock period. The helpers run under the
+    /// scheduling of the thread that builds the plant (or that calls
+    /// [`Plant::restart_stepping_threads`](crate::Plant::restart_stepping_threads)).
+    pub stepping_threads: usize,
 }
 
 /// Largest number of edge segments (and cross sections) of a plant.
@@ -54,6 +62,7 @@ impl Default for PlantSettings {
             update_distance: 1e-3,
             sensor: FtSensorSettings::default(),
             workers: 2,
+            stepping_threads: 1,
         }
     }
 }
@@ -93,6 +102,13 @@ impl PlantSettings {
             return Err(InvalidSetting::new(
                 "workers",
                 self.workers,
+                "must be in [1, 16]",
+            ));
+        }
+        if !(1..=16).contains(&self.stepping_threads) {
+            return Err(InvalidSetting::new(
+                "stepping_threads",
+                self.stepping_threads,
                 "must be in [1, 16]",
             ));
         }

@@ -807,17 +807,21 @@ fn sections_go_where_the_edge_arrives_whatever_the_planned_direction() {
 /// A chef's knife over the half potato, planned to slice along (z, y) =
 /// (−0.5, −1), 6 segments, a noise-free sensor, `workers` worker threads.
 fn half_potato_slice(workers: usize) -> Plant {
-    let s = PlantSettings {
+    half_potato_slice_with(&PlantSettings {
         workers,
         ..noise_free(6)
-    };
+    })
+}
+
+/// The chef's knife over the half potato, the plant's settings `s`.
+fn half_potato_slice_with(s: &PlantSettings) -> Plant {
     plant(
         &MaterialPreset::PotatoWhole.material(),
         &Knife::new(&KnifePreset::Chef.settings()).unwrap(),
         &half_potato(),
         0.05,
         Vector2::new(-0.5, -1.0),
-        &s,
+        s,
         &LOOSE,
         1,
     )
@@ -846,6 +850,46 @@ fn the_number_of_worker_threads_changes_nothing_but_the_waits() {
     };
     let e = bad.validate().unwrap_err().to_string();
     assert!(e.contains("workers") && e.contains('0'), "{e}");
+}
+
+#[test]
+fn the_number_of_stepping_threads_changes_nothing() {
+    // A tick's sections advance independently, so advancing them on one,
+    // two or three threads (and after a restart of the helpers) steps to
+    // the same bits, sawing included; zero threads are refused.
+    let run = |threads: usize, restart: bool| {
+        let mut plant = half_potato_slice_with(&PlantSettings {
+            stepping_threads: threads,
+            ..noise_free(6)
+        });
+        assert_eq!(plant.stepping_threads(), threads);
+        if restart {
+            plant.restart_stepping_threads();
+            assert_eq!(plant.stepping_threads(), threads);
+        }
+        let stroke = |sign: f64| KnifeCommand {
+            velocity: Vector3::new(0.0, -SPEED, -0.5 * sign * SPEED),
+        };
+        let out: Vec<_> = (0..1600)
+            .map(|k| {
+                plant
+                    .step(&stroke(if k < 1200 { 1.0 } else { -1.0 }), DT)
+                    .unwrap()
+            })
+            .collect();
+        (out, plant.rebuilds())
+    };
+    let (one, rebuilds) = run(1, false);
+    assert!(rebuilds > 0);
+    assert!(one.last().unwrap().truth.crack_depth > 0.0);
+    assert_eq!(one, run(2, false).0);
+    assert_eq!(one, run(3, true).0);
+    let bad = PlantSettings {
+        stepping_threads: 0,
+        ..PlantSettings::default()
+    };
+    let e = bad.validate().unwrap_err().to_string();
+    assert!(e.contains("stepping_threads") && e.contains('0'), "{e}");
 }
 
 #[test]
@@ -941,17 +985,19 @@ fn keep_current_never_waits_for_a_successor_and_takes_it_later() {
     assert_eq!(keeping.successor_waits(), 0);
     assert!(keeping.successor_deferrals() > 0);
     // Hold still until a tick defers nothing: every due successor is taken
-    // (the worker finishes them; the loop's bound only guards a hang).
+    // (the worker finishes them; the loop's bound, 100 s, only guards a
+    // hang). The workers build in the background (SCHED_IDLE): a sleep
+    // between ticks leaves them the core.
     let still = KnifeCommand::default();
     let mut settled = false;
-    for _ in 0..10_000_000 {
+    for _ in 0..500_000 {
         let before = keeping.successor_deferrals();
         keeping.step(&still, DT).unwrap();
         if keeping.successor_deferrals() == before {
             settled = true;
             break;
         }
-        std::thread::yield_now();
+        std::thread::sleep(std::time::Duration::from_micros(200));
     }
     assert!(settled);
     assert_eq!(keeping.successor_waits(), 0);

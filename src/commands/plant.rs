@@ -48,6 +48,16 @@ pub fn run(
         // A tick that waited for a section build would miss its period.
         plant.set_successor_policy(SuccessorPolicy::KeepCurrent);
     }
+    // The thread that steps and answers runs at the servo priority, as an
+    // arm's servo loop does; the successor workers and the node's watch
+    // thread have started at normal priority (a thread inherits its
+    // creator's scheduling only when it is created). The section-stepping
+    // helpers start again from here, to step at the same priority.
+    raise_servo_thread(s.control_loop.servo_priority)
+        .map_err(|e| RunError::Loop(format!("{name}: {e}")))?;
+    if s.control_loop.servo_priority > 0 && plant.stepping_threads() > 1 {
+        plant.restart_stepping_threads();
+    }
     let mut link = InProcessPlant::new(plant, task.period);
     // A stop asked while it built: it never serves (its controller sees
     // its node go before serving). A controller that exited meanwhile may
@@ -61,12 +71,6 @@ pub fn run(
         return Err(RunError::service(&name, ServiceError::Stopped(signal)));
     }
     let services = LoopServices::on(node).map_err(|e| RunError::service(&name, e))?;
-    // The thread that steps and answers runs at the servo priority, as an
-    // arm's servo loop does; the successor workers and the services'
-    // watch threads have started at normal priority (a thread inherits its
-    // creator's scheduling only when it is created).
-    raise_servo_thread(s.control_loop.servo_priority)
-        .map_err(|e| RunError::Loop(format!("{name}: {e}")))?;
     let mut settings =
         PlantServerSettings::new(s.control_loop.clock, s.control_loop.missed_command_limit);
     settings.wait = wait;

@@ -218,7 +218,7 @@ impl Plant {
                 SegmentSection {
                     slot,
                     segment,
-                    section,
+                    home: Some(section),
                     plane,
                     geometry,
                     active: true,

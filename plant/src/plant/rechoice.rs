@@ -141,7 +141,7 @@ impl Plant {
                         // advanced), the midpoint's own height, less any
                         // lift.
                         let edge = if was_active {
-                            s.section.state().edge_height
+                            s.section().state().edge_height
                                 + (old_origin - plane.origin).dot(&plane.v_axis)
                         } else {
                             (m - plane.origin).dot(&plane.v_axis) - s.lift
@@ -150,12 +150,12 @@ impl Plant {
                         // predecessor's first-fracture flag, and the knife
                         // where it is (see `CrossSection::take_over`).
                         let mut section = section;
-                        section.take_over(neighbour.unwrap_or(&s.section), depth, edge);
+                        section.take_over(neighbour.unwrap_or(s.section()), depth, edge);
                         // An edge above the new section's top (a lower shape
                         // towards the flank) has that gap to travel first.
                         s.gap = (edge - geometry.height_at_cut()).max(0.0);
-                        let old = *s.section.state();
-                        s.section = section;
+                        let old = *s.section().state();
+                        *s.section_mut() = section;
                         s.work_offset += old.work.knife;
                         s.geometry = geometry;
                         s.active = true;

@@ -20,7 +20,9 @@ pub(super) struct SegmentSection {
     /// Index of the segment on the contact arc (heel 0); the worker's slot.
     pub(super) slot: usize,
     pub(super) segment: EdgeSegment,
-    pub(super) section: Box<CrossSection>,
+    /// The section: always here between ticks; away only while a stepping
+    /// thread advances it inside a tick ([`crate::section_stepper`]).
+    pub(super) home: Option<Box<CrossSection>>,
     /// The section's plane in the world.
     pub(super) plane: SectionPlane,
     /// The section's shape, to tell whether a re-chosen plane cuts the same
@@ -54,6 +56,32 @@ pub(super) struct SegmentSection {
     pub(super) successor: bool,
 }
 
+impl SegmentSection {
+    /// The section.
+    pub(super) fn section(&self) -> &CrossSection {
+        self.home
+            .as_deref()
+            .expect("a section is home between the steps of a tick")
+    }
+
+    /// The section, to advance or replace.
+    pub(super) fn section_mut(&mut self) -> &mut Box<CrossSection> {
+        self.home
+            .as_mut()
+            .expect("a section is home between the steps of a tick")
+    }
+
+    /// Lends the section to a stepping thread (see [`Self::put_back`]).
+    pub(super) fn lend(&mut self) -> Option<Box<CrossSection>> {
+        self.home.take()
+    }
+
+    /// Takes back the section lent by [`Self::lend`].
+    pub(super) fn put_back(&mut self, section: Box<CrossSection>) {
+        self.home = Some(section);
+    }
+}
+
 /// The crack front over the tips of the active started sections (`tips` is
 /// the preallocated buffer). Allocates nothing.
 pub(super) fn fit_front(
@@ -83,12 +111,12 @@ pub(super) fn nearest_started_of<'a>(
     sections
         .filter(|s| s.active && started(s))
         .min_by_key(|s| s.slot.abs_diff(slot))
-        .map(|s| &*s.section)
+        .map(SegmentSection::section)
 }
 
 /// Whether a section has started cutting (its edge reached the material).
 pub(super) fn started(s: &SegmentSection) -> bool {
-    s.section.state().knife_displacement > 0.0
+    s.section().state().knife_displacement > 0.0
 }
 
 /// Whether a section's plane follows its segment: it has started cutting or
@@ -117,6 +145,6 @@ pub(super) fn signed_offset(plane: &SectionPlane, p: &Vector3<f64>) -> f64 {
 pub(super) fn tip_of(s: &SegmentSection) -> Vector2<f64> {
     let w = s
         .plane
-        .to_world(&Vector2::new(0.0, s.section.state().crack_tip_height));
+        .to_world(&Vector2::new(0.0, s.section().state().crack_tip_height));
     Vector2::new(w.z, w.y)
 }
