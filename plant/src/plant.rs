@@ -152,6 +152,9 @@ pub struct Plant {
     sections: Vec<SegmentSection>,
     /// Threads that advance the sections within a tick.
     stepper: SectionStepper,
+    /// Whether the re-choices and placements after the last step are done
+    /// ([`Plant::settle`]).
+    settled: bool,
     /// Per section (the index into `sections`): its normal and tangential
     /// travel this tick, m, if it advances. Preallocated.
     travel: Vec<Option<(f64, f64)>>,
@@ -279,6 +282,7 @@ impl Plant {
         let worker = SuccessorWorker::new(Arc::clone(&factory), grid.len(), settings.workers);
         let mut plant = Self {
             stepper: SectionStepper::new(settings.stepping_threads, grid.len()),
+            settled: true,
             travel: vec![None; grid.len()],
             advanced: vec![None; grid.len()],
             loads: Vec::with_capacity(grid.len()),
@@ -561,16 +565,53 @@ impl Plant {
         });
     }
 
+    /// Re-chooses the sections that slid `update_distance` off their planes
+    /// and orders the next successors (see the type's docs), after a
+    /// [`Self::step_measured`]; does nothing if that is done. Allocates
+    /// nothing.
+    ///
+    /// # Errors
+    /// A re-chosen section cannot be built.
+    pub fn settle(&mut self) -> Result<(), SectionError> {
+        if !self.settled {
+            self.rechoose()?;
+            self.place(Lookahead::Lead).map_err(|(_, e)| e)?;
+            self.settled = true;
+        }
+        Ok(())
+    }
+
     /// Executes `command` for `dt` seconds and returns the measurement.
     /// A command that breaks an arm limit is refused: the knife holds still
     /// and the status says why. After the sections advance, those that slid
     /// `update_distance` off their planes are re-chosen, and the next
-    /// successors are ordered from the worker (see the type's docs).
+    /// successors are ordered from the worker (see the type's docs): that
+    /// is [`Self::step_measured`] followed by [`Self::settle`].
     /// Allocates nothing.
     ///
     /// # Errors
     /// A section's step fails, or a re-chosen section cannot be built.
     pub fn step(&mut self, command: &KnifeCommand, dt: f64) -> Result<PlantStep, SectionError> {
+        let measured = self.step_measured(command, dt)?;
+        self.settle()?;
+        Ok(measured)
+    }
+
+    /// [`Self::step`] up to its measurement: the re-choices and placements
+    /// that follow it wait for [`Self::settle`], which the next step calls
+    /// first if nobody did. The measurement does not depend on them, so a
+    /// realtime plant answers with it at once and settles in the time left
+    /// before its next tick; results are bit-identical to [`Self::step`]'s.
+    /// Allocates nothing.
+    ///
+    /// # Errors
+    /// As [`Self::step`].
+    pub fn step_measured(
+        &mut self,
+        command: &KnifeCommand,
+        dt: f64,
+    ) -> Result<PlantStep, SectionError> {
+        self.settle()?;
         let mut v = command.velocity;
         let status = match self.monitor.check(v, dt) {
             Ok(()) => ArmStatus::Moving,
@@ -667,8 +708,7 @@ impl Plant {
             }
         }
         self.work = work;
-        self.rechoose()?;
-        self.place(Lookahead::Lead).map_err(|(_, e)| e)?;
+        self.settled = false;
         let sensor_origin = self.position + self.sensor_offset;
         let true_wrench = wrench_at(&sensor_origin, &self.loads);
         let wrench = self.sensor.read(self.time, &true_wrench.to_array());

@@ -893,6 +893,36 @@ fn the_number_of_stepping_threads_changes_nothing() {
 }
 
 #[test]
+fn a_step_measured_then_settled_is_the_step() {
+    // The measurement does not depend on the re-choices after it, so
+    // answering first and settling later (or at the next step) steps to the
+    // same bits as `step`, re-choices and rebuilds included.
+    let run = |how: u8| {
+        let mut plant = half_potato_slice(1);
+        let cmd = KnifeCommand {
+            velocity: Vector3::new(0.0, -SPEED, -0.5 * SPEED),
+        };
+        let out: Vec<_> = (0..1200)
+            .map(|_| match how {
+                0 => plant.step(&cmd, DT).unwrap(),
+                1 => {
+                    let m = plant.step_measured(&cmd, DT).unwrap();
+                    plant.settle().unwrap();
+                    m
+                }
+                _ => plant.step_measured(&cmd, DT).unwrap(),
+            })
+            .collect();
+        plant.settle().unwrap();
+        (out, plant.rechoices(), plant.rebuilds())
+    };
+    let stepped = run(0);
+    assert!(stepped.2 > 0);
+    assert_eq!(stepped, run(1));
+    assert_eq!(stepped, run(2));
+}
+
+#[test]
 fn sawing_back_over_a_side_face_re_enters_behind_the_current_front() {
     // A straight edge slices a cuboid towards its tip (ξ = 0.5), so the
     // segments at the far face slide off the piece, then saws back: they

@@ -46,6 +46,18 @@ pub trait PlantLink {
     /// The plant failed or is gone.
     fn exchange(&mut self, command: &KnifeCommand) -> Result<LinkAnswer, LinkError>;
 
+    /// Work after an answer that the next [`Self::exchange`] needs done and
+    /// the answer did not (a simulated plant's re-choices, when it answers
+    /// first: [`InProcessPlant::answer_first`](super::InProcessPlant::answer_first));
+    /// a realtime server calls it in the time left before its next tick.
+    /// Nothing by default.
+    ///
+    /// # Errors
+    /// The plant failed.
+    fn settle(&mut self) -> Result<(), LinkError> {
+        Ok(())
+    }
+
     /// The simulated plant's successor counts so far; `None` for a plant
     /// without them (an arm, or a remote plant that has not published them).
     fn successor_counts(&self) -> Option<WirePlantCounts> {

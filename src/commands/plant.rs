@@ -59,6 +59,10 @@ pub fn run(
         plant.restart_stepping_threads();
     }
     let mut link = InProcessPlant::new(plant, task.period);
+    if s.control_loop.clock == ClockMode::Realtime {
+        // Answer first, re-choose in the time before the next tick.
+        link.answer_first();
+    }
     // A stop asked while it built: it never serves (its controller sees
     // its node go before serving). A controller that exited meanwhile may
     // have been stopped by the same signal (a supervisor's stop).

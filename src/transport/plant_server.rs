@@ -174,6 +174,10 @@ impl PlantPorts<'_> {
 /// stop is too abrupt), answers the next command number in advance with
 /// [`WireStatus::Braked`], and stops.
 ///
+/// Each answer goes out as soon as the plant's measurement is known; the
+/// plant's work after it ([`PlantLink::settle`]) follows, before the next
+/// command is looked for.
+///
 /// Answering a command allocates nothing after the ports are built (the
 /// plant's own step aside).
 ///
@@ -232,6 +236,9 @@ pub fn serve_plant(
     // tick (realtime); None until the first command.
     let mut window_start: Option<Instant> = None;
     let mut signals = SignalCheck::new();
+    // A failure of the plant's work after its last answer
+    // ([`PlantLink::settle`]), reported at the next exchange.
+    let mut unsettled = None;
     loop {
         if realtime && let Some(tick) = window_start {
             // Sleep to the tick, looking for SIGINT/SIGTERM meanwhile.
@@ -273,7 +280,10 @@ pub fn serve_plant(
                 return Ok(report);
             }
             last_command = command.knife_command();
-            match plant.exchange(&last_command) {
+            match unsettled
+                .take()
+                .map_or_else(|| plant.exchange(&last_command), Err)
+            {
                 Ok(answer) => {
                     if let Some(truth) = &answer.truth {
                         ports.record(command.sequence, truth);
@@ -287,6 +297,8 @@ pub fn serve_plant(
                         plant.successor_counts(),
                     );
                     last = Some(answer.reading);
+                    // After the answer, in the time before the next tick.
+                    unsettled = plant.settle().err();
                 }
                 Err(e) => {
                     let m = last.unwrap_or_else(rest_measurement);
@@ -401,8 +413,14 @@ pub fn serve_plant(
             return Ok(report);
         }
         if realtime {
-            match plant.exchange(&last_command) {
-                Ok(answer) => last = Some(answer.reading),
+            match unsettled
+                .take()
+                .map_or_else(|| plant.exchange(&last_command), Err)
+            {
+                Ok(answer) => {
+                    last = Some(answer.reading);
+                    unsettled = plant.settle().err();
+                }
                 Err(e) => {
                     report.end = PlantEnd::ModelFailed(e.to_string());
                     return Ok(report);
