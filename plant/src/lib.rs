@@ -12,7 +12,6 @@
 //! (noise, bias and sample rate of the F/T signal), `successor` (successor
 //! sections built ahead of their re-choices on a worker thread).
 
-mod build_scheduling;
 pub mod crack_front;
 pub mod ft_sensor;
 #[allow(clippy::module_inception)]

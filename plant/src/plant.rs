@@ -464,16 +464,8 @@ impl Plant {
 
     /// Sets what a tick does with a successor the worker has not finished
     /// when it is due ([`SuccessorPolicy::Wait`] unless set).
-    /// [`SuccessorPolicy::KeepCurrent`] also puts the worker's threads in
-    /// the background (Linux `SCHED_IDLE`) for the plant's life: they take
-    /// only CPU that no other thread wants, so a build never delays a tick
-    /// here or in the controller's process.
     pub fn set_successor_policy(&mut self, policy: SuccessorPolicy) {
         self.policy = policy;
-        if policy == SuccessorPolicy::KeepCurrent {
-            // No tick waits for a build: builds yield to every other thread.
-            self.worker.build_in_background();
-        }
     }
 
     /// What a tick does with a successor the worker has not finished.

@@ -120,8 +120,6 @@ struct Slot {
 struct Slots {
     slots: Vec<Slot>,
     shutdown: bool,
-    /// Build in the background ([`SuccessorWorker::build_in_background`]).
-    background: bool,
     /// Sections built for a job that was superseded or cancelled before its
     /// result was taken (see [`SuccessorWorker::wasted_builds`]).
     wasted: usize,
@@ -182,7 +180,6 @@ impl SuccessorWorker {
             slots: Mutex::new(Slots {
                 slots: (0..segments).map(|_| Slot::default()).collect(),
                 shutdown: false,
-                background: false,
                 wasted: 0,
             }),
             job_ready: Condvar::new(),
@@ -269,17 +266,6 @@ impl SuccessorWorker {
         slots.wasted += usize::from(wasted);
         drop(slots);
         self.shared.job_ready.notify_one();
-    }
-
-    /// Builds in the background from now on: each worker thread, from its
-    /// next job on and for the worker's life, runs at the operating
-    /// system's lowest priority ([`crate::build_scheduling`]), taking only
-    /// CPU that no other thread wants. For a plant whose tick does not wait
-    /// for its successors ([`crate::SuccessorPolicy::KeepCurrent`]): a
-    /// build then never delays the tick's thread or its controller's, it
-    /// only defers a successor. What is built does not change.
-    pub fn build_in_background(&mut self) {
-        self.shared.lock().background = true;
     }
 
     /// Drops the pending job of segment `index`, if any.
@@ -375,14 +361,7 @@ impl Clone for SuccessorWorker {
             w.submit(i, j);
         }
         w.waits = self.waits;
-        let (wasted, background) = {
-            let slots = self.shared.lock();
-            (slots.wasted, slots.background)
-        };
-        let mut slots = w.shared.lock();
-        slots.wasted = wasted;
-        slots.background = background;
-        drop(slots);
+        w.shared.lock().wasted = self.wasted_builds();
         w
     }
 }
@@ -400,8 +379,6 @@ impl Drop for SuccessorWorker {
 /// The worker's loop: the oldest submitted job first.
 fn run(shared: &Shared, factory: &SectionFactory) {
     let mut slots = shared.lock();
-    // Whether this thread runs in the background already.
-    let mut background = false;
     loop {
         if slots.shutdown {
             return;
@@ -422,12 +399,7 @@ fn run(shared: &Shared, factory: &SectionFactory) {
         let Some((generation, job)) = slots.slots[index].job.take() else {
             continue;
         };
-        let wanted_background = slots.background;
         drop(slots);
-        if wanted_background && !background {
-            background = true;
-            crate::build_scheduling::run_this_thread_in_background();
-        }
         let prepared = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
             factory.prepare(&job.plane, job.current.as_deref())
         }))
@@ -491,45 +463,6 @@ mod tests {
             plane: SectionPlane::normal_to_segment(Vector3::new(0.0, 0.01, z), Vector3::y()),
             current: None,
         }
-    }
-
-    #[cfg(target_os = "linux")]
-    #[test]
-    fn a_worker_in_the_background_builds_under_sched_idle_and_builds_the_same() {
-        use std::os::unix::thread::JoinHandleExt;
-        use thread_priority::unix::thread_schedule_policy_param;
-        use thread_priority::{NormalThreadSchedulePolicy, ThreadSchedulePolicy};
-        let policy = |w: &SuccessorWorker| {
-            thread_schedule_policy_param(w.handles[0].as_pthread_t())
-                .unwrap()
-                .0
-        };
-        let section_of = |w: &mut SuccessorWorker| match w.take(0) {
-            Some((_, Preparation::New { section, .. })) => section,
-            other => panic!("{other:?}"),
-        };
-        let mut normal = worker(1);
-        normal.submit(0, job(0.01));
-        normal.wait_idle();
-        assert_eq!(
-            policy(&normal),
-            ThreadSchedulePolicy::Normal(NormalThreadSchedulePolicy::Other)
-        );
-        let mut background = worker(1);
-        background.build_in_background();
-        background.submit(0, job(0.01));
-        background.wait_idle();
-        assert_eq!(
-            policy(&background),
-            ThreadSchedulePolicy::Normal(NormalThreadSchedulePolicy::Idle)
-        );
-        // Scheduling changes when a section is built, not what is built.
-        let (mut a, mut b) = (section_of(&mut normal), section_of(&mut background));
-        assert_eq!(a.state(), b.state());
-        assert_eq!(
-            a.advance(2e-3, 1e-3).unwrap(),
-            b.advance(2e-3, 1e-3).unwrap()
-        );
     }
 
     #[test]

@@ -1016,8 +1016,7 @@ fn keep_current_never_waits_for_a_successor_and_takes_it_later() {
     assert!(keeping.successor_deferrals() > 0);
     // Hold still until a tick defers nothing: every due successor is taken
     // (the worker finishes them; the loop's bound, 100 s, only guards a
-    // hang). The workers build in the background (SCHED_IDLE): a sleep
-    // between ticks leaves them the core.
+    // hang). A sleep between ticks leaves the workers a core.
     let still = KnifeCommand::default();
     let mut settled = false;
     for _ in 0..500_000 {

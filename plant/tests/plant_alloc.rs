@@ -109,9 +109,9 @@ fn slice_allocates_nothing(policy: SuccessorPolicy, threads: usize) {
     for k in 0..1500 {
         plant.step(&cmd, 1e-3).unwrap();
         if policy == SuccessorPolicy::KeepCurrent && k % 10 == 0 {
-            // Its workers build in the background (SCHED_IDLE): leave them
-            // idle CPU now and then, as a realtime loop's wait for its
-            // period does, or the other tests' threads starve them.
+            // Leave the workers a core now and then, as a realtime loop's
+            // wait for its period does, or the other tests' threads may
+            // keep every successor deferred.
             std::thread::sleep(std::time::Duration::from_millis(2));
         }
     }
