@@ -1,6 +1,8 @@
 //! The local executor: runs a batch of jobs on N threads with a progress
-//! bar, in a fixed order of taking ([`execute`]); for a sweep, skipping the
-//! jobs whose row files are already there (resumption, [`run_pending`]).
+//! bar, in a fixed order of taking, on several threads the longest
+//! expected first ([`execute`], [`dispatch_order`](crate::tune::dispatch_order)); for a
+//! sweep, skipping the jobs whose row files are already there (resumption,
+//! [`run_pending`]).
 //!
 //! Each thread takes the next job, runs it in process and hands its result
 //! back in its slot of the job order. Runs share nothing, so the order in
@@ -16,6 +18,7 @@ use crate::closed_loop::{LoopEnd, run_closed_loop_recorded};
 use crate::error::RunError;
 use crate::progress::run_bar;
 use crate::transport::StopSignal;
+use crate::tune::dispatch_order::{expected_ticks, longest_first};
 use crate::tune::job_list::Job;
 use crate::tune::job_outcome::{JobOutcome, JobRow, JobTiming};
 use crate::tune::stop_request::{StopAtTick, StopRequest};
@@ -41,17 +44,23 @@ pub struct Executed<T> {
     pub stopped: Option<StopSignal>,
 }
 
-/// How often the watcher thread looks for a signal, ms.
-const SIGNAL_POLL_MS: u64 = 5;
+/// How often the watcher thread looks for a signal, ms: the longest a
+/// signal waits before the runs in flight are asked to stop. The watcher
+/// sleeps in between (each look wakes a core), and is woken at once when
+/// the batch ends.
+const SIGNAL_POLL_MS: u64 = 50;
 
 /// The machine's cores: the default of `--jobs`.
 pub fn default_threads() -> usize {
     std::thread::available_parallelism().map_or(1, |n| n.get())
 }
 
-/// Runs `jobs`, `threads` at a time, each thread taking the next job in
-/// order, under a progress bar labelled `label` (on a terminal; elsewhere
-/// one line per finished job, `[k/n] line`). `run` gives a job's result, or
+/// Runs `jobs`, `threads` at a time, each thread taking the next job: with
+/// more than one thread in the order of `expected` (a job's expected cost:
+/// the largest first, ties in job order, [`longest_first`]), with one in
+/// job order. Under a progress bar labelled `label`
+/// (on a terminal; elsewhere one line per finished job, `[k/n] line`, k
+/// counting the finished jobs). `run` gives a job's result, or
 /// `None` when the job was stopped mid-run; `describe` its progress line.
 /// The first error from `run` (or from printing a line) lets no thread
 /// take another job and is returned. A stop request lets no thread take
@@ -61,6 +70,7 @@ pub fn execute<J: Sync, T: Send>(
     threads: usize,
     label: &str,
     stop: &StopRequest,
+    expected: impl Fn(&J) -> f64,
     run: impl Fn(&J) -> Result<Option<T>, RunError> + Sync,
     describe: impl Fn(&J, &T) -> Option<String> + Sync,
 ) -> Result<Executed<T>, RunError> {
@@ -73,30 +83,40 @@ pub fn execute<J: Sync, T: Send>(
     }
     let bar = run_bar(jobs.len(), label);
     let next = AtomicUsize::new(0);
+    let printed_lines = AtomicUsize::new(0);
     let finished = AtomicBool::new(false);
     let first_error: Mutex<Option<RunError>> = Mutex::new(None);
     let threads = threads.clamp(1, jobs.len());
+    // One thread ends when its last job does, whatever the order.
+    let order = if threads > 1 {
+        longest_first(&jobs.iter().map(expected).collect::<Vec<_>>())
+    } else {
+        (0..jobs.len()).collect()
+    };
     std::thread::scope(|scope| {
-        if stop.is_watching() {
+        let watcher = stop.is_watching().then(|| {
             scope.spawn(|| {
                 while !finished.load(Ordering::Acquire) && stop.poll().is_none() {
-                    std::thread::sleep(std::time::Duration::from_millis(SIGNAL_POLL_MS));
+                    std::thread::park_timeout(std::time::Duration::from_millis(SIGNAL_POLL_MS));
                 }
-            });
-        }
+            })
+        });
         let workers: Vec<_> = (0..threads)
             .map(|_| {
                 scope.spawn(|| {
                     while stop.signal().is_none() {
-                        let i = next.fetch_add(1, Ordering::Relaxed);
-                        let Some(job) = jobs.get(i) else { break };
+                        let Some(&i) = order.get(next.fetch_add(1, Ordering::Relaxed)) else {
+                            break;
+                        };
+                        let job = &jobs[i];
                         let result = run(job);
                         // A closed or full stdout stops the batch like a
                         // failed run (the results so far stay).
                         let printed = match result.as_ref().map(|r| r.as_ref()) {
                             Ok(Some(done)) => match describe(job, done) {
                                 Some(line) if bar.is_hidden() => {
-                                    crate::outln!("[{}/{}] {line}", i + 1, jobs.len())
+                                    let k = printed_lines.fetch_add(1, Ordering::Relaxed) + 1;
+                                    crate::outln!("[{k}/{}] {line}", jobs.len())
                                 }
                                 Some(line) => {
                                     bar.println(line);
@@ -128,6 +148,9 @@ pub fn execute<J: Sync, T: Send>(
             let _ = worker.join();
         }
         finished.store(true, Ordering::Release);
+        if let Some(watcher) = watcher {
+            watcher.thread().unpark();
+        }
     });
     bar.finish_and_clear();
     match first_error.into_inner().unwrap_or_else(|p| p.into_inner()) {
@@ -162,6 +185,7 @@ pub fn run_pending(
         threads,
         "",
         stop,
+        |job| expected_ticks(job),
         |job| run_job(job, dir, stop),
         |job, row| Some(describe(job, row, names)),
     )?;
@@ -239,4 +263,40 @@ fn describe(job: &Job, row: &JobRow, names: &[String]) -> String {
         o.end,
         row.timing.job_s
     )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn results_stay_in_job_order_whatever_the_order_of_taking() {
+        // Expected costs rising with the index: two threads take the jobs
+        // from the last to the first; one thread in job order.
+        let jobs: Vec<usize> = (0..7).collect();
+        for threads in [1, 2] {
+            let taken = Mutex::new(Vec::new());
+            let done = execute(
+                &jobs,
+                threads,
+                "",
+                &StopRequest::never(),
+                |&j| j as f64,
+                |&j| {
+                    taken.lock().unwrap().push(j);
+                    Ok(Some(10 * j))
+                },
+                |_, _| None,
+            )
+            .unwrap();
+            let want: Vec<Option<usize>> = jobs.iter().map(|j| Some(10 * j)).collect();
+            assert_eq!(done.results, want);
+            let mut taken = taken.into_inner().unwrap();
+            if threads == 1 {
+                assert_eq!(taken, jobs);
+            }
+            taken.sort_unstable();
+            assert_eq!(taken, jobs);
+        }
+    }
 }

@@ -246,6 +246,13 @@ pub fn job_id(resolved: &str, replica: u32) -> String {
     h.digest().to_string()[..16].to_string()
 }
 
+/// The job list of the sweep file text `text` (named `s.toml`), for tests.
+#[cfg(test)]
+pub(crate) fn list_of(text: &str) -> JobList {
+    let sweep = Sweep::parse(text, "s.toml", "s", None).unwrap();
+    JobList::new(&sweep, "s.toml").unwrap()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -266,7 +273,7 @@ mod tests {
     fn a_grid_point_runs_its_share_of_each_variants_cap() {
         // The half potato (25 mm deep): 15 and 5 mm of blade, caps 0.6 and
         // 0.2; point 1 of 0..=2 is half of each.
-        let sweep = Sweep::parse(
+        let list = list_of(
             r#"
             scenarios = ["loop-potato-whole-realtime"]
             [variants]
@@ -275,12 +282,7 @@ mod tests {
             kind = "best-constant"
             points = 3
             "#,
-            "s.toml",
-            "s",
-            None,
-        )
-        .unwrap();
-        let list = JobList::new(&sweep, "s.toml").unwrap();
+        );
         let ratios: Vec<(String, String)> = list
             .jobs
             .iter()
@@ -352,16 +354,11 @@ mod tests {
         );
         assert_eq!(j.record.cells[col("variant.youngs_modulus_scale")], "0.8");
         // A job's id does not depend on what else the sweep holds.
-        let alone = Sweep::parse(
+        let alone = list_of(
             &SWEEP
                 .replace("\"loop-potato-cuboid\", ", "")
                 .replace("[0.8, 1.25]", "0.8"),
-            "s.toml",
-            "s",
-            None,
-        )
-        .unwrap();
-        let alone = JobList::new(&alone, "s.toml").unwrap();
+        );
         let whole_first = &a.jobs[12];
         assert_eq!(alone.jobs[0].record.id, whole_first.record.id);
         let mut ids: Vec<&str> = a.jobs.iter().map(|j| j.record.id.as_str()).collect();

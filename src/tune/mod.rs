@@ -8,6 +8,7 @@ pub mod analysis;
 pub mod best_constant_pairing;
 pub mod constant_grid;
 pub mod controller_setting;
+pub mod dispatch_order;
 pub mod effect_plot;
 pub mod executor;
 pub mod front_plot;

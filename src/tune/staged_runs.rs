@@ -14,6 +14,7 @@ use crate::error::RunError;
 use crate::scenario::Scenario;
 use crate::transport::StopSignal;
 use crate::tune::controller_setting::ControllerSetting;
+use crate::tune::dispatch_order::expected_ticks;
 use crate::tune::executor::execute;
 use crate::tune::job_list::{Job, JobList};
 use crate::tune::perturbation::Perturbation;
@@ -101,6 +102,7 @@ impl<'a> StagedRuns<'a> {
             self.threads,
             &self.label,
             stop,
+            expected_ticks,
             |job| {
                 let run = run_closed_loop_recorded(
                     &job.scenario,
