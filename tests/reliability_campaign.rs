@@ -1410,3 +1410,78 @@ fn issue_27_a_wire_slab_sweep_killed_mid_way_leaves_its_finished_angles() {
     );
     assert!(!out.join("summary.json").exists());
 }
+
+/// `loop-potato-cuboid-short-stroke` 6 mm deep with 1.2 mm of blade on a
+/// coarse plant (as `tests/compare_cli.rs`): each run takes a tenth of a
+/// second, a compare on 21 replicas one at a time about 90 runs.
+fn small_short_stroke(d: &Dir) -> String {
+    d.file(
+        "small.toml",
+        &(include_str!("../config/scenarios/loop-potato-cuboid-short-stroke.toml")
+            .replace("depth = 0.02", "depth = 0.006")
+            .replace("blade_budget = 0.004", "blade_budget = 0.0012")
+            .replace("segments = 20", "segments = 4")
+            + "\n[section]\nrow_spacing = 0.0005\n"),
+    )
+}
+
+/// `compare` killed (SIGKILL) once `runs.csv` holds its header and two
+/// rows: the file parses, each whole row names its run (a 16-digit job
+/// id, unique, the controller it ran, its replica) and how it ended; no
+/// table (the comparison never finished).
+#[test]
+fn issue_27_a_compare_killed_mid_way_leaves_its_finished_runs() {
+    let d = Dir::new("compare-sigkill");
+    let scenario = small_short_stroke(&d);
+    let out = d.0.join("killed");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_shearcut"))
+        .args([
+            "compare",
+            &scenario,
+            "--replicas",
+            "21",
+            "--jobs",
+            "1",
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .env("RUST_LOG", "error")
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let log = out.join("runs.csv");
+    wait_for_lines(&log, 3, &mut child);
+    child.kill().unwrap();
+    child.wait().unwrap();
+    let rows = whole_rows(&log);
+    assert!(rows >= 2, "{rows}");
+    let text = std::fs::read_to_string(&log).unwrap();
+    let whole = &text[..text.rfind('\n').unwrap() + 1];
+    let mut r = csv::Reader::from_reader(whole.as_bytes());
+    let header: Vec<String> = r.headers().unwrap().iter().map(String::from).collect();
+    let at = |name: &str| header.iter().position(|h| h == name).unwrap();
+    let (id, controller, replica, end) = (at("id"), at("controller"), at("replica"), at("end"));
+    let mut ids = Vec::new();
+    for record in r.records() {
+        let record = record.unwrap();
+        assert_eq!(record[id].len(), 16, "{record:?}");
+        assert!(
+            record[id].chars().all(|c| c.is_ascii_hexdigit()),
+            "{record:?}"
+        );
+        let c = &record[controller];
+        assert!(
+            c == "press" || c == "mpc" || c.starts_with("slice:") || c.starts_with("force:"),
+            "{record:?}"
+        );
+        record[replica].parse::<u32>().unwrap();
+        assert_eq!(&record[end], "completed", "{record:?}");
+        ids.push(record[id].to_string());
+    }
+    let count = ids.len();
+    ids.sort();
+    ids.dedup();
+    assert_eq!(ids.len(), count, "one row per run");
+    assert!(!out.join("comparison.json").exists());
+}
