@@ -714,7 +714,12 @@ fn assert_start_up_fault(child: std::process::Child, needle: &str) {
 /// `scenario` with the plant's build made slow (16 segments of a fine
 /// mesh: about a second on the 2-core machine), for faults while it builds.
 fn slow_plant(sb: &sandbox::Sandbox, name: &str) -> String {
-    let s = sb.scenario(name, 0.02, REALTIME_SLOW);
+    slow_build(sb.scenario(name, 0.02, REALTIME_SLOW))
+}
+
+/// The scenario at path `s` with the plant's build made slow (16 segments
+/// of a fine mesh: about a second on the 2-core machine).
+fn slow_build(s: String) -> String {
     let s_text = std::fs::read_to_string(&s)
         .unwrap()
         .replace("segments = 2", "segments = 16")
@@ -947,16 +952,75 @@ fn issue_27_a_lockstep_plant_whose_controller_dies_mid_run_says_so_at_its_first_
 /// controller's directory holds the whole run: a summary that parses and
 /// whole rows, one per tick.
 #[test]
-#[allow(clippy::disallowed_methods)] // A watchdog on orphaned processes.
 fn issue_27_an_iceoryx2_run_whose_supervisor_is_killed_mid_run_is_finished_by_its_children() {
     let sb = sandbox::Sandbox::new("supervisor-killed");
     let s = sb.scenario("long", 0.02, "");
     let out = sb.dir.join("orphans");
     let mut run = sb.spawn_run(&s, "iceoryx2", &out);
-    let series = out.join("controller.csv");
-    wait_for_lines(&series, 101, &mut run);
+    wait_for_lines(&out.join("controller.csv"), 101, &mut run);
     run.kill().unwrap();
     run.wait().unwrap();
+    assert_finished_by_orphans(&out);
+}
+
+/// `run --transport iceoryx2` killed (SIGKILL) during its children's
+/// start-up, its plant building: the orphaned children go on, serve and
+/// finish the run as after a kill mid-run (neither runs on: each ends with
+/// the run), and the directory holds that one run whole.
+#[test]
+fn issue_27_an_iceoryx2_run_whose_supervisor_is_killed_while_its_plant_builds_is_finished_by_its_children()
+ {
+    let sb = sandbox::Sandbox::new("supervisor-killed-start-up");
+    let s = slow_build(sb.scenario("slow-lockstep", 0.006, ""));
+    let out = sb.dir.join("orphans");
+    let mut run = sb.spawn_run(&s, "iceoryx2", &out);
+    // The controller past its start-up (its series files exist), the plant
+    // building for about a second.
+    let series = out.join("controller.csv");
+    wait_until("the controller's series files", &mut run, || {
+        series.exists()
+    });
+    assert_eq!(lines_in(&series), 0, "the loop had started");
+    let supervisor = run.id();
+    run.kill().unwrap();
+    run.wait().unwrap();
+    assert_finished_by_orphans(&out);
+    // Both children end with the run: no process of its run id is left.
+    let run_id = format!("--run-id slow-lockstep-{supervisor}-");
+    #[allow(clippy::disallowed_methods)] // A watchdog on orphaned processes.
+    let started = std::time::Instant::now();
+    while !processes_with(&run_id).is_empty() {
+        assert!(
+            started.elapsed() < sandbox::WATCHDOG,
+            "watchdog: the orphans {:?} run on",
+            processes_with(&run_id)
+        );
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
+}
+
+/// The processes whose command line (arguments joined by spaces) holds
+/// `needle`.
+fn processes_with(needle: &str) -> Vec<u32> {
+    std::fs::read_dir("/proc")
+        .unwrap()
+        .filter_map(|e| e.ok()?.file_name().to_str()?.parse::<u32>().ok())
+        .filter(|pid| {
+            std::fs::read(format!("/proc/{pid}/cmdline")).is_ok_and(|b| {
+                String::from_utf8_lossy(&b)
+                    .replace('\0', " ")
+                    .contains(needle)
+            })
+        })
+        .collect()
+}
+
+/// The orphaned children of a killed supervisor finish the run into
+/// `out` (watchdog: [`sandbox::WATCHDOG`]): its summary parses, its ticks
+/// equal the controller's whole rows, and the run was not stopped.
+#[allow(clippy::disallowed_methods)] // A watchdog on orphaned processes.
+fn assert_finished_by_orphans(out: &std::path::Path) {
+    let series = out.join("controller.csv");
     let summary = out.join("summary.json");
     let started = std::time::Instant::now();
     while !summary.is_file() {
