@@ -947,6 +947,36 @@ fn issue_27_a_lockstep_plant_whose_controller_dies_mid_run_says_so_at_its_first_
     whole_rows(&out.join("timeseries.csv"));
 }
 
+/// A realtime plant whose controller is killed (SIGKILL) mid-run: it
+/// steps on with the last command to its missed-command limit (1000 ticks
+/// here), brakes, then looks once at the controller's node and says it
+/// died (not only "braked"); the controller's series hold whole rows.
+#[test]
+fn issue_27_a_realtime_plant_whose_controller_dies_mid_run_says_so_once_braked() {
+    let sb = sandbox::Sandbox::new("rt-controller-dies-mid-run");
+    let s = sb.scenario("long", 0.02, REALTIME_SLOW);
+    let out = sb.dir.join("killed");
+    let (plant, mut controller) = sb.spawn_pair(&s, "rtmid", &out);
+    let series = out.join("controller.csv");
+    wait_for_lines(&series, 101, &mut controller);
+    controller.kill().unwrap();
+    controller.wait().unwrap();
+    let (o, elapsed) = timed(plant);
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{e}");
+    assert_eq!(e.lines().count(), 1, "one line: {e}");
+    assert!(
+        e.contains(
+            "plant/rtmid: lost the controller: the controller 'controller/rtmid' died after"
+        ),
+        "{e}"
+    );
+    assert!(e.contains("; braked;"), "{e}");
+    // The limit's 1000 ticks take 1 s; the look after them, milliseconds.
+    assert!(elapsed < STARTUP_FAULT_BOUND, "{elapsed:?}");
+    assert!(whole_rows(&series) >= 100);
+}
+
 /// `run --transport iceoryx2` killed (SIGKILL) mid-run: its children,
 /// orphaned, finish the run by themselves (their stderr closed), and the
 /// controller's directory holds the whole run: a summary that parses and
