@@ -925,38 +925,32 @@ fn issue_27_a_peer_killed_before_the_other_starts_is_reported_at_once() {
 /// series hold whole rows.
 #[test]
 fn issue_27_a_lockstep_plant_whose_controller_dies_mid_run_says_so_at_its_first_miss() {
-    let sb = sandbox::Sandbox::new("controller-dies-mid-run");
-    let s = sb.scenario("long", 0.02, "");
-    let out = sb.dir.join("killed");
-    let (plant, mut controller) = sb.spawn_pair(&s, "mid", &out);
-    let series = out.join("controller.csv");
-    wait_for_lines(&series, 101, &mut controller);
-    controller.kill().unwrap();
-    controller.wait().unwrap();
-    let (o, elapsed) = timed(plant);
-    let e = stderr(&o);
-    assert_eq!(o.status.code(), Some(1), "{e}");
-    assert_eq!(e.lines().count(), 1, "one line: {e}");
-    assert!(
-        e.contains("plant/mid: lost the controller: the controller 'controller/mid' died after"),
-        "{e}"
-    );
-    assert!(e.contains("; braked;"), "{e}");
-    assert!(elapsed < STARTUP_FAULT_BOUND, "{elapsed:?}");
-    assert!(whole_rows(&series) >= 100);
-    whole_rows(&out.join("timeseries.csv"));
+    assert_plant_says_its_controller_died_mid_run("controller-dies-mid-run", "", "mid");
 }
 
 /// A realtime plant whose controller is killed (SIGKILL) mid-run: it
 /// steps on with the last command to its missed-command limit (1000 ticks
-/// here), brakes, then looks once at the controller's node and says it
-/// died (not only "braked"); the controller's series hold whole rows.
+/// here: 1 s), brakes, then looks once at the controller's node and says
+/// it died (not only "braked"); the controller's series hold whole rows.
 #[test]
 fn issue_27_a_realtime_plant_whose_controller_dies_mid_run_says_so_once_braked() {
-    let sb = sandbox::Sandbox::new("rt-controller-dies-mid-run");
-    let s = sb.scenario("long", 0.02, REALTIME_SLOW);
+    assert_plant_says_its_controller_died_mid_run(
+        "rt-controller-dies-mid-run",
+        REALTIME_SLOW,
+        "rtmid",
+    );
+}
+
+/// The small potato cut 2 cm deep with `extra` TOML, run as plant and
+/// controller of run `id`; the controller killed (SIGKILL) after its first
+/// flush. The plant exits 1 with one line naming the controller's death
+/// after its first commands, braked, within [`STARTUP_FAULT_BOUND`]; the
+/// controller's series hold whole rows.
+fn assert_plant_says_its_controller_died_mid_run(tag: &str, extra: &str, id: &str) {
+    let sb = sandbox::Sandbox::new(tag);
+    let s = sb.scenario("long", 0.02, extra);
     let out = sb.dir.join("killed");
-    let (plant, mut controller) = sb.spawn_pair(&s, "rtmid", &out);
+    let (plant, mut controller) = sb.spawn_pair(&s, id, &out);
     let series = out.join("controller.csv");
     wait_for_lines(&series, 101, &mut controller);
     controller.kill().unwrap();
@@ -965,16 +959,13 @@ fn issue_27_a_realtime_plant_whose_controller_dies_mid_run_says_so_once_braked()
     let e = stderr(&o);
     assert_eq!(o.status.code(), Some(1), "{e}");
     assert_eq!(e.lines().count(), 1, "one line: {e}");
-    assert!(
-        e.contains(
-            "plant/rtmid: lost the controller: the controller 'controller/rtmid' died after"
-        ),
-        "{e}"
-    );
+    let cause =
+        format!("plant/{id}: lost the controller: the controller 'controller/{id}' died after");
+    assert!(e.contains(&cause), "{e}");
     assert!(e.contains("; braked;"), "{e}");
-    // The limit's 1000 ticks take 1 s; the look after them, milliseconds.
     assert!(elapsed < STARTUP_FAULT_BOUND, "{elapsed:?}");
     assert!(whole_rows(&series) >= 100);
+    whole_rows(&out.join("timeseries.csv"));
 }
 
 /// `run --transport iceoryx2` killed (SIGKILL) mid-run: its children,
