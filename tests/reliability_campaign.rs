@@ -714,7 +714,12 @@ fn assert_start_up_fault(child: std::process::Child, needle: &str) {
 /// `scenario` with the plant's build made slow (16 segments of a fine
 /// mesh: about a second on the 2-core machine), for faults while it builds.
 fn slow_plant(sb: &sandbox::Sandbox, name: &str) -> String {
-    let s = sb.scenario(name, 0.02, REALTIME_SLOW);
+    slow_build(sb.scenario(name, 0.02, REALTIME_SLOW))
+}
+
+/// The scenario at path `s` with the plant's build made slow (16 segments
+/// of a fine mesh: about a second on the 2-core machine).
+fn slow_build(s: String) -> String {
     let s_text = std::fs::read_to_string(&s)
         .unwrap()
         .replace("segments = 2", "segments = 16")
@@ -920,10 +925,32 @@ fn issue_27_a_peer_killed_before_the_other_starts_is_reported_at_once() {
 /// series hold whole rows.
 #[test]
 fn issue_27_a_lockstep_plant_whose_controller_dies_mid_run_says_so_at_its_first_miss() {
-    let sb = sandbox::Sandbox::new("controller-dies-mid-run");
-    let s = sb.scenario("long", 0.02, "");
+    assert_plant_says_its_controller_died_mid_run("controller-dies-mid-run", "", "mid");
+}
+
+/// A realtime plant whose controller is killed (SIGKILL) mid-run: it
+/// steps on with the last command to its missed-command limit (1000 ticks
+/// here: 1 s), brakes, then looks once at the controller's node and says
+/// it died (not only "braked"); the controller's series hold whole rows.
+#[test]
+fn issue_27_a_realtime_plant_whose_controller_dies_mid_run_says_so_once_braked() {
+    assert_plant_says_its_controller_died_mid_run(
+        "rt-controller-dies-mid-run",
+        REALTIME_SLOW,
+        "rtmid",
+    );
+}
+
+/// The small potato cut 2 cm deep with `extra` TOML, run as plant and
+/// controller of run `id`; the controller killed (SIGKILL) after its first
+/// flush. The plant exits 1 with one line naming the controller's death
+/// after its first commands, braked, within [`STARTUP_FAULT_BOUND`]; the
+/// controller's series hold whole rows.
+fn assert_plant_says_its_controller_died_mid_run(tag: &str, extra: &str, id: &str) {
+    let sb = sandbox::Sandbox::new(tag);
+    let s = sb.scenario("long", 0.02, extra);
     let out = sb.dir.join("killed");
-    let (plant, mut controller) = sb.spawn_pair(&s, "mid", &out);
+    let (plant, mut controller) = sb.spawn_pair(&s, id, &out);
     let series = out.join("controller.csv");
     wait_for_lines(&series, 101, &mut controller);
     controller.kill().unwrap();
@@ -932,10 +959,9 @@ fn issue_27_a_lockstep_plant_whose_controller_dies_mid_run_says_so_at_its_first_
     let e = stderr(&o);
     assert_eq!(o.status.code(), Some(1), "{e}");
     assert_eq!(e.lines().count(), 1, "one line: {e}");
-    assert!(
-        e.contains("plant/mid: lost the controller: the controller 'controller/mid' died after"),
-        "{e}"
-    );
+    let cause =
+        format!("plant/{id}: lost the controller: the controller 'controller/{id}' died after");
+    assert!(e.contains(&cause), "{e}");
     assert!(e.contains("; braked;"), "{e}");
     assert!(elapsed < STARTUP_FAULT_BOUND, "{elapsed:?}");
     assert!(whole_rows(&series) >= 100);
@@ -947,16 +973,75 @@ fn issue_27_a_lockstep_plant_whose_controller_dies_mid_run_says_so_at_its_first_
 /// controller's directory holds the whole run: a summary that parses and
 /// whole rows, one per tick.
 #[test]
-#[allow(clippy::disallowed_methods)] // A watchdog on orphaned processes.
 fn issue_27_an_iceoryx2_run_whose_supervisor_is_killed_mid_run_is_finished_by_its_children() {
     let sb = sandbox::Sandbox::new("supervisor-killed");
     let s = sb.scenario("long", 0.02, "");
     let out = sb.dir.join("orphans");
     let mut run = sb.spawn_run(&s, "iceoryx2", &out);
-    let series = out.join("controller.csv");
-    wait_for_lines(&series, 101, &mut run);
+    wait_for_lines(&out.join("controller.csv"), 101, &mut run);
     run.kill().unwrap();
     run.wait().unwrap();
+    assert_finished_by_orphans(&out);
+}
+
+/// `run --transport iceoryx2` killed (SIGKILL) during its children's
+/// start-up, its plant building: the orphaned children go on, serve and
+/// finish the run as after a kill mid-run (neither runs on: each ends with
+/// the run), and the directory holds that one run whole.
+#[test]
+fn issue_27_an_iceoryx2_run_whose_supervisor_is_killed_while_its_plant_builds_is_finished_by_its_children()
+ {
+    let sb = sandbox::Sandbox::new("supervisor-killed-start-up");
+    let s = slow_build(sb.scenario("slow-lockstep", 0.006, ""));
+    let out = sb.dir.join("orphans");
+    let mut run = sb.spawn_run(&s, "iceoryx2", &out);
+    // The controller past its start-up (its series files exist), the plant
+    // building for about a second.
+    let series = out.join("controller.csv");
+    wait_until("the controller's series files", &mut run, || {
+        series.exists()
+    });
+    assert_eq!(lines_in(&series), 0, "the loop had started");
+    let supervisor = run.id();
+    run.kill().unwrap();
+    run.wait().unwrap();
+    assert_finished_by_orphans(&out);
+    // Both children end with the run: no process of its run id is left.
+    let run_id = format!("--run-id slow-lockstep-{supervisor}-");
+    #[allow(clippy::disallowed_methods)] // A watchdog on orphaned processes.
+    let started = std::time::Instant::now();
+    while !processes_with(&run_id).is_empty() {
+        assert!(
+            started.elapsed() < sandbox::WATCHDOG,
+            "watchdog: the orphans {:?} run on",
+            processes_with(&run_id)
+        );
+        std::thread::sleep(std::time::Duration::from_millis(10));
+    }
+}
+
+/// The processes whose command line (arguments joined by spaces) holds
+/// `needle`.
+fn processes_with(needle: &str) -> Vec<u32> {
+    std::fs::read_dir("/proc")
+        .unwrap()
+        .filter_map(|e| e.ok()?.file_name().to_str()?.parse::<u32>().ok())
+        .filter(|pid| {
+            std::fs::read(format!("/proc/{pid}/cmdline")).is_ok_and(|b| {
+                String::from_utf8_lossy(&b)
+                    .replace('\0', " ")
+                    .contains(needle)
+            })
+        })
+        .collect()
+}
+
+/// The orphaned children of a killed supervisor finish the run into
+/// `out` (watchdog: [`sandbox::WATCHDOG`]): its summary parses, its ticks
+/// equal the controller's whole rows, and the run was not stopped.
+#[allow(clippy::disallowed_methods)] // A watchdog on orphaned processes.
+fn assert_finished_by_orphans(out: &std::path::Path) {
+    let series = out.join("controller.csv");
     let summary = out.join("summary.json");
     let started = std::time::Instant::now();
     while !summary.is_file() {
@@ -1409,4 +1494,79 @@ fn issue_27_a_wire_slab_sweep_killed_mid_way_leaves_its_finished_angles() {
             .ends_with('\n')
     );
     assert!(!out.join("summary.json").exists());
+}
+
+/// `loop-potato-cuboid-short-stroke` 6 mm deep with 1.2 mm of blade on a
+/// coarse plant (as `tests/compare_cli.rs`): each run takes a tenth of a
+/// second, a compare on 21 replicas one at a time about 90 runs.
+fn small_short_stroke(d: &Dir) -> String {
+    d.file(
+        "small.toml",
+        &(include_str!("../config/scenarios/loop-potato-cuboid-short-stroke.toml")
+            .replace("depth = 0.02", "depth = 0.006")
+            .replace("blade_budget = 0.004", "blade_budget = 0.0012")
+            .replace("segments = 20", "segments = 4")
+            + "\n[section]\nrow_spacing = 0.0005\n"),
+    )
+}
+
+/// `compare` killed (SIGKILL) once `runs.csv` holds its header and two
+/// rows: the file parses, each whole row names its run (a 16-digit job
+/// id, unique, the controller it ran, its replica) and how it ended; no
+/// table (the comparison never finished).
+#[test]
+fn issue_27_a_compare_killed_mid_way_leaves_its_finished_runs() {
+    let d = Dir::new("compare-sigkill");
+    let scenario = small_short_stroke(&d);
+    let out = d.0.join("killed");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_shearcut"))
+        .args([
+            "compare",
+            &scenario,
+            "--replicas",
+            "21",
+            "--jobs",
+            "1",
+            "--out",
+            out.to_str().unwrap(),
+        ])
+        .env("RUST_LOG", "error")
+        .stdout(Stdio::null())
+        .stderr(Stdio::null())
+        .spawn()
+        .unwrap();
+    let log = out.join("runs.csv");
+    wait_for_lines(&log, 3, &mut child);
+    child.kill().unwrap();
+    child.wait().unwrap();
+    let rows = whole_rows(&log);
+    assert!(rows >= 2, "{rows}");
+    let text = std::fs::read_to_string(&log).unwrap();
+    let whole = &text[..text.rfind('\n').unwrap() + 1];
+    let mut r = csv::Reader::from_reader(whole.as_bytes());
+    let header: Vec<String> = r.headers().unwrap().iter().map(String::from).collect();
+    let at = |name: &str| header.iter().position(|h| h == name).unwrap();
+    let (id, controller, replica, end) = (at("id"), at("controller"), at("replica"), at("end"));
+    let mut ids = Vec::new();
+    for record in r.records() {
+        let record = record.unwrap();
+        assert_eq!(record[id].len(), 16, "{record:?}");
+        assert!(
+            record[id].chars().all(|c| c.is_ascii_hexdigit()),
+            "{record:?}"
+        );
+        let c = &record[controller];
+        assert!(
+            c == "press" || c == "mpc" || c.starts_with("slice:") || c.starts_with("force:"),
+            "{record:?}"
+        );
+        record[replica].parse::<u32>().unwrap();
+        assert_eq!(&record[end], "completed", "{record:?}");
+        ids.push(record[id].to_string());
+    }
+    let count = ids.len();
+    ids.sort();
+    ids.dedup();
+    assert_eq!(ids.len(), count, "one row per run");
+    assert!(!out.join("comparison.json").exists());
 }

@@ -34,6 +34,7 @@ use crate::scenario::Scenario;
 use crate::transport::{StopSignal, TerminationWatch};
 use crate::tune::constant_grid::ConstantGridPoint;
 use crate::tune::controller_setting::ControllerSetting;
+use crate::tune::run_log::{RUN_LOG, RunLog};
 use crate::tune::staged_runs::{StageEnd, StagedRuns};
 use crate::tune::stop_request::StopRequest;
 
@@ -263,7 +264,8 @@ impl Comparison {
 /// The comparison for a loaded scenario, each contestant on `replicas`
 /// replicas of the run (1: the nominal replica only), `threads` runs at a
 /// time; a stop request ends it with the rows of the runs finished
-/// ([`Comparison::stopped`]).
+/// ([`Comparison::stopped`]). Each finished run's row is appended to `log`
+/// as it ends.
 ///
 /// Its runs are small sweeps on the scenario ([`StagedRuns`]), one batch
 /// each: the coarse grid (a `best-constant` grid of [`SEARCH_POINTS`]
@@ -276,6 +278,7 @@ pub fn compare(
     replicas: u64,
     threads: usize,
     stop: &StopRequest,
+    log: Option<&RunLog>,
 ) -> Result<Comparison, RunError> {
     let replicas = replicas.clamp(1, MAX_REPLICAS) as usize;
     let task = LoopSetup::new(s, ControllerChoice::Press)?.task;
@@ -288,7 +291,7 @@ pub fn compare(
         task.blade_budget * 1e3,
         target * 1e3
     )?;
-    let mut runs = StagedRuns::new(s, threads, stop, &format!("compare {}", s.name));
+    let mut runs = StagedRuns::new(s, threads, stop, &format!("compare {}", s.name), log);
     // Coarse search over constant ratios (ξ = 0 is pressing).
     crate::outln!("searching the best constant ratio:")?;
     let grid: Vec<ControllerSetting> = (0..SEARCH_POINTS)
@@ -485,7 +488,8 @@ pub fn markdown_table(rows: &[ComparisonRow]) -> String {
 
 /// Runs the subcommand: compare (the MPC and the constant candidates on
 /// `replicas` replicas of the run, `threads` runs at a time), print the
-/// table, write table, CSV, JSON and the bar plot. SIGINT/SIGTERM end the
+/// table, write table, CSV, JSON and the bar plot; `runs.csv` receives each
+/// run's row as the run ends ([`RunLog`]). SIGINT/SIGTERM end the
 /// runs in flight at their next tick: the rows of the finished runs are
 /// written, marked stopped, and the exit is 130/143.
 pub fn run(
@@ -501,8 +505,9 @@ pub fn run(
         out,
         &crate::commands::check::resolved_toml(&s),
     )?;
-    let comparison =
-        compare(&s, replicas, threads, &stop).inspect_err(|_| run_dir::abandon(&dir))?;
+    let comparison = RunLog::create(dir.join(RUN_LOG))
+        .and_then(|log| compare(&s, replicas, threads, &stop, Some(&log)))
+        .inspect_err(|_| run_dir::abandon(&dir))?;
     let rows = &comparison.rows;
     let shown = comparison.shown_rows();
     let mut table = markdown_table(&shown);
@@ -527,7 +532,7 @@ pub fn run(
         }
     }
     crate::outln!(
-        "results: {}/ (comparison.md, comparison.csv, comparison.json, comparison.svg/.png)",
+        "results: {}/ (comparison.md, comparison.csv, comparison.json, comparison.svg/.png, runs.csv)",
         dir.display()
     )?;
     match comparison.stopped {

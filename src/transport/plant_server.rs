@@ -71,13 +71,14 @@ pub enum PlantEnd {
     /// The run's controller, seen alive, ended before its first command
     /// (its iceoryx2 node gone).
     ControllerEnded,
-    /// Lockstep: the run's controller died after its first command (its
-    /// iceoryx2 node dead at a look after a missed command); the plant
+    /// The run's controller died after its first command (its iceoryx2
+    /// node dead at a look: lockstep, after a missed command; realtime,
+    /// once the plant braked at its missed-command limit); the plant
     /// braked.
     ControllerDiedInLoop,
-    /// Lockstep: the run's controller ended after its first command
-    /// without ending the run (its iceoryx2 node gone at a look after a
-    /// missed command); the plant braked.
+    /// The run's controller ended after its first command without ending
+    /// the run (its iceoryx2 node gone at a look, as for
+    /// [`PlantEnd::ControllerDiedInLoop`]); the plant braked.
     ControllerEndedInLoop,
     /// SIGINT or SIGTERM.
     Terminated(StopSignal),
@@ -161,9 +162,10 @@ impl PlantPorts<'_> {
 /// until the controller ends the run, the plant brakes or fails, the
 /// controller is gone before its first command ([`PlantEnd::ControllerDied`],
 /// [`PlantEnd::ControllerEnded`]: seen by the services' peer watch within a
-/// look) or, lockstep, after it ([`PlantEnd::ControllerDiedInLoop`],
-/// [`PlantEnd::ControllerEndedInLoop`]: a look at each missed command), or
-/// a termination request arrives.
+/// look) or after it ([`PlantEnd::ControllerDiedInLoop`],
+/// [`PlantEnd::ControllerEndedInLoop`]: lockstep, a look at each missed
+/// command; realtime, one look once braked at the missed-command limit, so
+/// that no look falls on a tick), or a termination request arrives.
 ///
 /// Lockstep: each command is stepped as soon as it arrives; silence longer
 /// than the patience counts as a missed command. Realtime: the plant steps
@@ -172,7 +174,8 @@ impl PlantPorts<'_> {
 /// motion). After `missed_command_limit` consecutive misses the plant
 /// commands zero velocity (the arm-limit monitor holds the knife if that
 /// stop is too abrupt), answers the next command number in advance with
-/// [`WireStatus::Braked`], and stops.
+/// [`WireStatus::Braked`], and stops (realtime: then looks once at the
+/// controller's node, and a dead or gone one is the end's cause).
 ///
 /// Each answer goes out as soon as the plant's measurement is known; the
 /// plant's work after it ([`PlantLink::settle`]) follows, before the next
@@ -410,6 +413,16 @@ pub fn serve_plant(
                 ),
                 plant.successor_counts(),
             );
+            if realtime {
+                // Braked and answered: one look at the controller's node
+                // (it allocates; the plant steps no more) tells a dead
+                // controller from a slow one.
+                report.end = match services.look_at_peer() {
+                    PeerFate::Died => PlantEnd::ControllerDiedInLoop,
+                    PeerFate::Ended => PlantEnd::ControllerEndedInLoop,
+                    _ => PlantEnd::Braked(consecutive),
+                };
+            }
             return Ok(report);
         }
         if realtime {

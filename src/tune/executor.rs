@@ -20,7 +20,7 @@ use crate::progress::run_bar;
 use crate::transport::StopSignal;
 use crate::tune::dispatch_order::{expected_ticks, longest_first};
 use crate::tune::job_list::Job;
-use crate::tune::job_outcome::{JobOutcome, JobRow, JobTiming};
+use crate::tune::job_outcome::JobRow;
 use crate::tune::stop_request::{StopAtTick, StopRequest};
 
 /// What an execution of a sweep did.
@@ -213,31 +213,7 @@ fn run_job(job: &Job, dir: &Path, stop: &StopRequest) -> Result<Option<JobRow>, 
     if matches!(&run, Ok(r) if matches!(r.output.end, LoopEnd::Stopped(_))) {
         return Ok(None);
     }
-    let (outcome, loop_s, ticks, plans) = match &run {
-        Ok(r) => (
-            JobOutcome::from_run(r),
-            r.output.wall_s,
-            r.output.tick_times,
-            r.output.plan_times,
-        ),
-        Err(e) => {
-            let none = crate::closed_loop::TickTimes::from_durations(&mut []);
-            (JobOutcome::from_error(e), 0.0, none, none)
-        }
-    };
-    let mut row = JobRow {
-        id: job.record.id.clone(),
-        outcome,
-        timing: JobTiming {
-            tick_median_us: ticks.median_us,
-            tick_p99_us: ticks.p99_us,
-            tick_max_us: ticks.max_us,
-            plan_p99_us: plans.p99_us,
-            loop_s,
-            run_s,
-            job_s: 0.0,
-        },
-    };
+    let mut row = JobRow::of_run(&job.record.id, &run, run_s);
     drop(run);
     row.timing.job_s = started.elapsed().as_secs_f64();
     row.write(dir)?;

@@ -208,6 +208,37 @@ pub struct JobRow {
 }
 
 impl JobRow {
+    /// The row of job `id` from its run, or from its set-up's failure (an
+    /// `error: …` outcome, [`JobOutcome::from_error`]); `run_s` is the
+    /// run's wall time, s, which the row's `job_s` starts equal to.
+    pub fn of_run(id: &str, run: &Result<RunOutput, RunError>, run_s: f64) -> Self {
+        let (outcome, loop_s, ticks, plans) = match run {
+            Ok(r) => (
+                JobOutcome::from_run(r),
+                r.output.wall_s,
+                r.output.tick_times,
+                r.output.plan_times,
+            ),
+            Err(e) => {
+                let none = crate::closed_loop::TickTimes::from_durations(&mut []);
+                (JobOutcome::from_error(e), 0.0, none, none)
+            }
+        };
+        Self {
+            id: id.to_string(),
+            outcome,
+            timing: JobTiming {
+                tick_median_us: ticks.median_us,
+                tick_p99_us: ticks.p99_us,
+                tick_max_us: ticks.max_us,
+                plan_p99_us: plans.p99_us,
+                loop_s,
+                run_s,
+                job_s: run_s,
+            },
+        }
+    }
+
     /// The row file of job `id` under `dir`: `dir/rows/<id>.json`.
     pub fn path(dir: &Path, id: &str) -> PathBuf {
         dir.join("rows").join(format!("{id}.json"))

@@ -22,6 +22,7 @@ pub mod recommendation;
 pub mod result_dir;
 pub mod result_table;
 pub mod robust_stats;
+pub mod run_log;
 pub mod setting_effect;
 pub mod shard;
 pub mod staged_runs;

@@ -4,7 +4,8 @@
 //! job list, [`JobList`]), run as one batch on the executor
 //! ([`execute`]); a job whose id was run in an earlier stage is not run
 //! again, as a re-run sweep skips its finished jobs. Results stay in
-//! memory: nothing is written.
+//! memory; with a [`RunLog`], each finished run's row is also appended to
+//! it as the run ends.
 
 use std::collections::BTreeMap;
 
@@ -17,7 +18,9 @@ use crate::tune::controller_setting::ControllerSetting;
 use crate::tune::dispatch_order::expected_ticks;
 use crate::tune::executor::execute;
 use crate::tune::job_list::{Job, JobList};
+use crate::tune::job_outcome::JobRow;
 use crate::tune::perturbation::Perturbation;
+use crate::tune::run_log::RunLog;
 use crate::tune::stop_request::{StopAtTick, StopRequest};
 use crate::tune::sweep_file::Sweep;
 
@@ -49,18 +52,28 @@ pub struct StagedRuns<'a> {
     threads: usize,
     stop: &'a StopRequest,
     label: String,
+    log: Option<&'a RunLog>,
     done: Vec<StagedRun>,
 }
 
 impl<'a> StagedRuns<'a> {
     /// No runs yet of `scenario`; stages run `threads` at a time under a
-    /// progress bar labelled `label`, stopped by `stop`.
-    pub fn new(scenario: &'a Scenario, threads: usize, stop: &'a StopRequest, label: &str) -> Self {
+    /// progress bar labelled `label`, stopped by `stop`; each finished
+    /// run's row (a run that could not be set up included) is appended to
+    /// `log` as it ends.
+    pub fn new(
+        scenario: &'a Scenario,
+        threads: usize,
+        stop: &'a StopRequest,
+        label: &str,
+        log: Option<&'a RunLog>,
+    ) -> Self {
         Self {
             scenario,
             threads,
             stop,
             label: label.to_string(),
+            log,
             done: Vec::new(),
         }
     }
@@ -96,7 +109,7 @@ impl<'a> StagedRuns<'a> {
                 fresh.push(job);
             }
         }
-        let stop = self.stop;
+        let (stop, log) = (self.stop, self.log);
         let executed = execute(
             &fresh,
             self.threads,
@@ -104,6 +117,9 @@ impl<'a> StagedRuns<'a> {
             stop,
             expected_ticks,
             |job| {
+                #[allow(clippy::disallowed_methods)]
+                // A run's wall time is a statistic, not a model input.
+                let started = std::time::Instant::now();
                 let run = run_closed_loop_recorded(
                     &job.scenario,
                     job.choice,
@@ -111,6 +127,10 @@ impl<'a> StagedRuns<'a> {
                     &mut StopAtTick(stop),
                 );
                 let stopped = matches!(&run, Ok(r) if matches!(r.output.end, LoopEnd::Stopped(_)));
+                if let (Some(log), false) = (log, stopped) {
+                    let run_s = started.elapsed().as_secs_f64();
+                    log.append(job, &JobRow::of_run(&job.record.id, &run, run_s))?;
+                }
                 Ok((!stopped).then_some(run))
             },
             |job, run| run.as_ref().ok().map(|r| describe(job, r)),
