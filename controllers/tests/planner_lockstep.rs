@@ -159,3 +159,46 @@ fn lockstep_holds_one_request_in_flight_and_delivers_it_on_time() {
         assert_eq!((stats.submitted, stats.refused, stats.delivered), (2, 3, 1));
     });
 }
+
+#[test]
+fn each_plan_s_time_on_the_planner_thread_is_recorded_in_order() {
+    // The job sleeps a seeded 0..=2000 µs before each plan: each recorded
+    // time is at least that plan's sleep (a sleep never returns early),
+    // one per plan delivered, in the order made. Inline plans on the tick
+    // and records none.
+    within_watchdog(|| {
+        let (seed, max_us) = (11, 2000);
+        let mut planner = Planner::new(
+            StageJob::with_sleeps(seed, max_us),
+            StagePlan::default(),
+            LatencyPolicy::Lockstep { ticks: 1 },
+        )
+        .unwrap();
+        let request = CutRequest {
+            depth: 1e-3,
+            speed: 0.02,
+        };
+        for _ in 0..20 {
+            planner.poll();
+            assert_eq!(planner.submit(&request), SubmitStatus::Accepted);
+        }
+        planner.poll();
+        let times = planner.solve_times_us();
+        assert_eq!(times.len() as u64, planner.stats().delivered);
+        assert_eq!(times.len(), 20);
+        let mut rng = ChaCha8Rng::seed_from_u64(seed);
+        for (k, t) in times.iter().enumerate() {
+            let slept = rng.random_range(0..=max_us) as f64;
+            assert!(*t >= slept, "plan {k}: {t} us recorded, {slept} us slept");
+        }
+        let mut inline = Planner::new(
+            StageJob::default(),
+            StagePlan::default(),
+            LatencyPolicy::Inline,
+        )
+        .unwrap();
+        inline.poll();
+        assert_eq!(inline.submit(&request), SubmitStatus::Accepted);
+        assert!(inline.solve_times_us().is_empty());
+    });
+}

@@ -79,6 +79,9 @@ pub struct LoopOutput {
     pub tick_times: TickTimes,
     /// Wall-clock duration of the ticks that planned (MPC solves).
     pub plan_times: TickTimes,
+    /// Wall-clock duration of the plans themselves, on the planner thread
+    /// ([`Controller::solve_times_us`]; zeros without a planner thread).
+    pub solve_times: TickTimes,
     /// Plans that fell back to the previous plan.
     pub fallbacks: u64,
     /// Wall-clock time of the loop, s: from the first command to the last
@@ -213,6 +216,7 @@ pub fn run_loop_recorded(
         ticks,
         tick_times: TickTimes::from_durations(&mut durations),
         plan_times: TickTimes::from_durations(&mut plan_durations),
+        solve_times: TickTimes::from_durations(&mut controller.solve_times_us()),
         fallbacks: controller.telemetry().fallbacks,
         wall_s: loop_started.elapsed().as_secs_f64(),
         simulated_s: answer.reading.time,
@@ -246,6 +250,7 @@ fn failed(e: LinkError, wall_s: f64) -> LoopOutput {
         ticks: 0,
         tick_times: TickTimes::from_durations(&mut []),
         plan_times: TickTimes::from_durations(&mut []),
+        solve_times: TickTimes::from_durations(&mut []),
         fallbacks: 0,
         wall_s,
         simulated_s: 0.0,

@@ -50,6 +50,8 @@ struct SummaryFile<'a> {
     limit_faults: usize,
     controller_tick: TickTimes,
     plan_tick: TickTimes,
+    /// The plans themselves on the planner thread (zeros without one).
+    plan_solve: TickTimes,
     plan_fallbacks: u64,
     /// Wall-clock time of the loop (first command to last answer), s.
     wall_s: f64,
@@ -141,6 +143,7 @@ pub(crate) fn write_results(
             limit_faults: o.limit_faults,
             controller_tick: o.tick_times,
             plan_tick: o.plan_times,
+            plan_solve: o.solve_times,
             plan_fallbacks: o.fallbacks,
             wall_s: o.wall_s,
             simulated_s: o.simulated_s,
@@ -213,6 +216,14 @@ pub(crate) fn print_summary(s: &Scenario, run: &RunOutput) -> Result<(), RunErro
             o.plan_times.p99_us,
             o.plan_times.max_us,
             o.fallbacks
+        )?;
+    }
+    if o.solve_times.max_us > 0.0 {
+        crate::outln!(
+            "plans on the planner thread: median {:.1} us, p99 {:.1} us, max {:.1} us",
+            o.solve_times.median_us,
+            o.solve_times.p99_us,
+            o.solve_times.max_us
         )?;
     }
     Ok(())

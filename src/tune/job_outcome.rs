@@ -90,6 +90,9 @@ pub struct JobTiming {
     pub tick_max_us: f64,
     /// 99th percentile of the planning ticks, µs (0 without plans).
     pub plan_p99_us: f64,
+    /// 99th percentile of the plans themselves on the planner thread, µs
+    /// (0 without a planner thread).
+    pub solve_p99_us: f64,
     /// The loop itself, first command to last answer, s.
     pub loop_s: f64,
     /// The whole run: set-up (knife, object, surrogate, controller,
@@ -101,11 +104,12 @@ pub struct JobTiming {
 }
 
 /// Result columns of a [`JobTiming`], in its field order.
-pub const TIMING_COLUMNS: [&str; 7] = [
+pub const TIMING_COLUMNS: [&str; 8] = [
     "tick_median_us",
     "tick_p99_us",
     "tick_max_us",
     "plan_p99_us",
+    "solve_p99_us",
     "loop_s",
     "run_s",
     "job_s",
@@ -186,6 +190,7 @@ impl JobTiming {
             self.tick_p99_us,
             self.tick_max_us,
             self.plan_p99_us,
+            self.solve_p99_us,
             self.loop_s,
             self.run_s,
             self.job_s,
@@ -212,16 +217,17 @@ impl JobRow {
     /// `error: …` outcome, [`JobOutcome::from_error`]); `run_s` is the
     /// run's wall time, s, which the row's `job_s` starts equal to.
     pub fn of_run(id: &str, run: &Result<RunOutput, RunError>, run_s: f64) -> Self {
-        let (outcome, loop_s, ticks, plans) = match run {
+        let (outcome, loop_s, ticks, plans, solves) = match run {
             Ok(r) => (
                 JobOutcome::from_run(r),
                 r.output.wall_s,
                 r.output.tick_times,
                 r.output.plan_times,
+                r.output.solve_times,
             ),
             Err(e) => {
                 let none = crate::closed_loop::TickTimes::from_durations(&mut []);
-                (JobOutcome::from_error(e), 0.0, none, none)
+                (JobOutcome::from_error(e), 0.0, none, none, none)
             }
         };
         Self {
@@ -232,6 +238,7 @@ impl JobRow {
                 tick_p99_us: ticks.p99_us,
                 tick_max_us: ticks.max_us,
                 plan_p99_us: plans.p99_us,
+                solve_p99_us: solves.p99_us,
                 loop_s,
                 run_s,
                 job_s: run_s,
@@ -317,6 +324,7 @@ mod tests {
                 tick_p99_us: 2.0,
                 tick_max_us: 3.0,
                 plan_p99_us: 0.0,
+                solve_p99_us: 0.0,
                 loop_s: 1e-7,
                 run_s: 2.5,
                 job_s: 2.6,

@@ -546,4 +546,8 @@ impl<M: SliceModel + Clone + Send + 'static> Controller for Mpc<M> {
     fn telemetry(&self) -> ControllerTelemetry {
         self.telemetry
     }
+
+    fn solve_times_us(&self) -> Vec<f64> {
+        self.planner.solve_times_us()
+    }
 }

@@ -33,6 +33,11 @@ pub(super) struct Signals {
     pub panicked_tick: AtomicU64,
     /// Number of the newest plan published (0: none).
     pub published: AtomicU64,
+    /// How long each plan took on the planner thread, µs (wall clock), in
+    /// the order made. Written by the planner thread after each plan, read
+    /// by the tick side's owner after the run ([`super::Planner::solve_times_us`]),
+    /// never by a tick.
+    pub solve_times_us: Mutex<Vec<f64>>,
     /// Guards the lockstep wait's condition against lost wake-ups.
     lock: Mutex<()>,
     /// Rung after each plan or panic when a lockstep tick side may wait.

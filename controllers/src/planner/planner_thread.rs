@@ -37,8 +37,16 @@ pub(super) fn run<J: PlanJob>(
             continue;
         };
         let slot = plans.input_buffer_mut();
+        #[allow(clippy::disallowed_methods)] // Planning latency statistics, not model time.
+        let started = std::time::Instant::now();
         let planned = catch_unwind(AssertUnwindSafe(|| job.plan(&request, &mut slot.value)));
+        let took_us = started.elapsed().as_secs_f64() * 1e6;
         if planned.is_ok() {
+            signals
+                .solve_times_us
+                .lock()
+                .unwrap_or_else(std::sync::PoisonError::into_inner)
+                .push(took_us);
             slot.seq = seq;
             slot.tick = tick;
             plans.publish();

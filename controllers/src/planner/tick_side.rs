@@ -265,6 +265,21 @@ impl<J: PlanJob> Planner<J> {
     pub fn stats(&self) -> PlannerStats {
         self.stats
     }
+
+    /// How long each plan took on the planner thread so far, µs of wall
+    /// clock, in the order made (`Lockstep` and `Realtime`; empty under
+    /// `Inline`, whose plans are made on the tick). Locks and copies: for
+    /// after a run, never on a tick.
+    pub fn solve_times_us(&self) -> Vec<f64> {
+        match &self.engine {
+            Engine::Threaded { signals, .. } => signals
+                .solve_times_us
+                .lock()
+                .unwrap_or_else(std::sync::PoisonError::into_inner)
+                .clone(),
+            Engine::Inline { .. } => Vec::new(),
+        }
+    }
 }
 
 fn panicked(signals: &Signals) -> PlannerStatus {
