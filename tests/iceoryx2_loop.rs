@@ -76,7 +76,7 @@ fn killing_the_plant_stops_the_controller_with_a_named_error_and_readable_result
 }
 
 #[test]
-fn killing_the_controller_brakes_the_plant_after_the_missed_command_limit() {
+fn killing_the_controller_brakes_the_plant_after_the_missed_command_limit_and_names_the_cause() {
     let sb = Sandbox::new("killctl");
     // 100 Hz: 20 missed commands are 200 ms, longer than a loaded
     // machine's stalls (at 1 kHz those alone could brake the plant).
@@ -90,8 +90,14 @@ fn killing_the_controller_brakes_the_plant_after_the_missed_command_limit() {
     let o = watchdog(plant, Duration::from_secs(30));
     let err = stderr(&o);
     assert!(!o.status.success(), "{err}");
+    // Braked at the limit, then one look at the controller's node names
+    // the cause.
     assert!(
-        err.contains("plant/kc: braked after 20 consecutive missed commands"),
+        err.contains("plant/kc: lost the controller: the controller 'controller/kc' died after"),
+        "{err}"
+    );
+    assert!(
+        err.contains("; braked; ") && err.contains("20 missed commands (longest run 20)"),
         "{err}"
     );
     sb.assert_next_run_starts_cleanly("kc");
