@@ -254,20 +254,17 @@ pub fn serve_plant(
             }
         }
         if let Some(command) = ports.poll()? {
-            if window_start.is_none() {
-                // The loop starts: the controller is there. A lockstep
-                // plant looks at it again at a missed command, from the
-                // node the watch saw (a look now if it saw none).
+            // The loop starts: the controller is there. The plant looks at
+            // it again at a missed command (lockstep) or once braked
+            // (realtime), from the node the watch saw; if the watch saw
+            // none, one look after the first answer finds it alive.
+            let look_after_answer = window_start.is_none() && {
                 services.stop_peer_watch();
-                if !realtime
-                    && matches!(
-                        services.peer_fate(),
-                        PeerFate::NotSeen | PeerFate::DiedUnseen
-                    )
-                {
-                    services.look_at_peer();
-                }
-            }
+                matches!(
+                    services.peer_fate(),
+                    PeerFate::NotSeen | PeerFate::DiedUnseen
+                )
+            };
             consecutive = 0;
             if command.is_end_of_run() {
                 let m = last.unwrap_or_else(rest_measurement);
@@ -302,6 +299,10 @@ pub fn serve_plant(
                     last = Some(answer.reading);
                     // After the answer, in the time before the next tick.
                     unsettled = plant.settle().err();
+                    if look_after_answer {
+                        // Once, before the first tick's window is set.
+                        services.look_at_peer();
+                    }
                 }
                 Err(e) => {
                     let m = last.unwrap_or_else(rest_measurement);
