@@ -160,6 +160,13 @@ pub struct Plant {
     travel: Vec<Option<(f64, f64)>>,
     /// Per section: the outcome of its advance this tick. Preallocated.
     advanced: Vec<Option<Result<SectionStep, SectionError>>>,
+    /// Per section: the condensed-line solves of its last advance (its
+    /// cost, for dealing the next tick's sections to the stepping threads).
+    /// Preallocated.
+    solves_last_advance: Vec<u64>,
+    /// The sections dealt to the stepping threads this tick, in dealing
+    /// order. Preallocated.
+    dealing: Vec<usize>,
     /// The object, material, blade and section settings, shared with the
     /// worker that builds successor sections.
     factory: Arc<SectionFactory>,
@@ -285,6 +292,8 @@ impl Plant {
             settled: true,
             travel: vec![None; grid.len()],
             advanced: vec![None; grid.len()],
+            solves_last_advance: vec![0; grid.len()],
+            dealing: Vec::with_capacity(grid.len()),
             loads: Vec::with_capacity(grid.len()),
             tips: Vec::with_capacity(grid.len()),
             sections: Vec::with_capacity(grid.len()),
@@ -516,24 +525,30 @@ impl Plant {
     }
 
     /// Advances every section with a travel this tick (`travel`), on the
-    /// stepper's helper threads and this one, sections dealt out in turn;
-    /// the outcomes land in `advanced`. Each section's arithmetic is the
-    /// same on any thread: the results do not depend on the threads.
+    /// stepper's helper threads and this one; the outcomes land in
+    /// `advanced`. With helpers, every section is queued for them, costliest
+    /// first by its last advance's condensed-line solves, and this thread
+    /// takes back and advances queued sections until none is left: a helper
+    /// that wakes late, or a section that costs more than its neighbours,
+    /// leaves the other thread the rest (dynamic sharing). Each section's
+    /// arithmetic is the same on any thread: the results do not depend on
+    /// the threads or on the order. Allocates nothing.
     fn advance_sections(&mut self) {
-        let lanes = self.stepper.threads();
-        let mut dealt = 0usize;
-        // The helpers' sections first, so that they work while this thread
-        // advances its own.
-        for (i, s) in self.sections.iter_mut().enumerate() {
-            self.advanced[i] = None;
-            if let Some((normal, tangential)) = self.travel[i] {
-                let lane = dealt % lanes;
-                dealt += 1;
-                if lane > 0
-                    && let Some(section) = s.lend()
+        let helpers = self.stepper.threads() - 1;
+        if helpers > 0 {
+            self.dealing.clear();
+            self.dealing
+                .extend((0..self.sections.len()).filter(|&i| self.travel[i].is_some()));
+            // Each helper takes from the end of its queue: the costliest
+            // last in the list. (An unstable sort allocates nothing.)
+            let cost = &self.solves_last_advance;
+            self.dealing.sort_unstable_by_key(|&i| (cost[i], i));
+            for (n, &i) in self.dealing.iter().enumerate() {
+                if let (Some((normal, tangential)), Some(section)) =
+                    (self.travel[i], self.sections[i].lend())
                 {
                     self.stepper.send(
-                        lane - 1,
+                        n % helpers,
                         Advance {
                             index: i,
                             section,
@@ -545,13 +560,28 @@ impl Plant {
                 }
             }
         }
-        for (i, s) in self.sections.iter_mut().enumerate() {
+        for i in 0..self.sections.len() {
+            self.advanced[i] = None;
             if let Some((normal, tangential)) = self.travel[i] {
-                self.advanced[i] = Some(s.section_mut().advance(normal, tangential));
+                let section = self.sections[i].section_mut();
+                let before = section.solves();
+                self.advanced[i] = Some(section.advance(normal, tangential));
+                self.solves_last_advance[i] = section.solves().saturating_sub(before);
             }
         }
-        let (sections, advanced) = (&mut self.sections, &mut self.advanced);
+        let (sections, advanced, cost) = (
+            &mut self.sections,
+            &mut self.advanced,
+            &mut self.solves_last_advance,
+        );
+        while let Some(mut job) = self.stepper.take_back() {
+            let before = job.section.solves();
+            advanced[job.index] = Some(job.section.advance(job.normal, job.tangential));
+            cost[job.index] = job.section.solves().saturating_sub(before);
+            sections[job.index].put_back(job.section);
+        }
         self.stepper.receive_all(|a| {
+            cost[a.index] = a.solves;
             sections[a.index].put_back(a.section);
             advanced[a.index] = Some(a.step);
         });

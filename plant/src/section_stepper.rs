@@ -12,7 +12,10 @@
 //! A section crosses to a helper thread by moving its box into the helper's
 //! preallocated queue and comes back the same way: no section is shared,
 //! and nothing is allocated after construction (a mutex and two condition
-//! variables per helper, held only to move boxes).
+//! variables per helper, held only to move boxes). The plant's own thread
+//! takes back from the queues the sections no helper has started
+//! ([`SectionStepper::take_back`]), so the threads share a tick's sections
+//! as they become free rather than by a fixed deal.
 
 use std::sync::{Arc, Condvar, Mutex, MutexGuard};
 use std::thread::JoinHandle;
@@ -28,12 +31,13 @@ pub(crate) struct Advance {
     pub tangential: f64,
 }
 
-/// A section advanced: the same index and section, and the outcome of
-/// [`CrossSection::advance`].
+/// A section advanced: the same index and section, the outcome of
+/// [`CrossSection::advance`] and the condensed-line solves it took.
 pub(crate) struct Advanced {
     pub index: usize,
     pub section: Box<CrossSection>,
     pub step: Result<SectionStep, SectionError>,
+    pub solves: u64,
 }
 
 /// What the plant and one helper hand each other.
@@ -144,6 +148,22 @@ impl SectionStepper {
         self.in_flight[k] += 1;
     }
 
+    /// Takes back a section sent to a helper that no helper has started
+    /// (the last queued of the first helper that has one), for the calling
+    /// thread to advance. Allocates nothing.
+    pub fn take_back(&mut self) -> Option<Advance> {
+        for (helper, n) in self.helpers.iter().zip(&mut self.in_flight) {
+            if *n == 0 {
+                continue;
+            }
+            if let Some(job) = helper.lane.lock().jobs.pop() {
+                *n -= 1;
+                return Some(job);
+            }
+        }
+        None
+    }
+
     /// Receives every section sent and not yet received, calling `back` on
     /// each. Allocates nothing.
     ///
@@ -200,12 +220,15 @@ fn advance_until_closed(lane: &Lane) {
     loop {
         if let Some(mut job) = queue.jobs.pop() {
             drop(queue);
+            let before = job.section.solves();
             let step = job.section.advance(job.normal, job.tangential);
+            let solves = job.section.solves().saturating_sub(before);
             queue = lane.lock();
             queue.done.push(Advanced {
                 index: job.index,
                 section: job.section,
                 step,
+                solves,
             });
             lane.done_ready.notify_one();
         } else if queue.closed {
