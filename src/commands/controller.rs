@@ -148,12 +148,15 @@ fn serve(
         e => RunError::Loop(e.to_string()),
     })?;
     let output = run_loop_recorded(&mut link, ctl.as_mut(), &cut, &mut stream);
-    let dropped = stream.finish()?;
+    // The end of the run goes to the plant at once: a realtime plant that
+    // waited for it through the series' last flush would step on without a
+    // command and count a miss.
     if !matches!(output.end, LoopEnd::Failed(_))
         && let Err(e) = link.finish()
     {
         tracing::warn!("{e}");
     }
+    let dropped = stream.finish()?;
     let summary = CutSummary::from_samples(&output.samples, task.target_depth);
     let run = RunOutput {
         controller: ctl.name().to_string(),
