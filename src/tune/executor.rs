@@ -14,7 +14,7 @@ use std::path::Path;
 use std::sync::Mutex;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
-use crate::closed_loop::{LoopEnd, run_closed_loop_recorded};
+use crate::closed_loop::{LoopEnd, RunOutput, run_closed_loop_recorded};
 use crate::error::RunError;
 use crate::progress::run_bar;
 use crate::transport::StopSignal;
@@ -203,6 +203,25 @@ pub fn run_pending(
 #[allow(clippy::disallowed_methods)] // Wall time of a job is a statistic, not a model input.
 fn run_job(job: &Job, dir: &Path, stop: &StopRequest) -> Result<Option<JobRow>, RunError> {
     let started = std::time::Instant::now();
+    let Some((run, run_s)) = timed_run(job, stop) else {
+        return Ok(None);
+    };
+    let mut row = JobRow::of_run(&job.record.id, &run, run_s);
+    drop(run);
+    row.timing.job_s = started.elapsed().as_secs_f64();
+    row.write(dir)?;
+    Ok(Some(row))
+}
+
+/// Runs `job` in process, ending at its next tick when `stop` is asked:
+/// the run and its wall time, s; `None` if it was stopped (a stopped run is
+/// not a result).
+#[allow(clippy::disallowed_methods)] // A run's wall time is a statistic, not a model input.
+pub(crate) fn timed_run(
+    job: &Job,
+    stop: &StopRequest,
+) -> Option<(Result<RunOutput, RunError>, f64)> {
+    let started = std::time::Instant::now();
     let run = run_closed_loop_recorded(
         &job.scenario,
         job.choice,
@@ -210,14 +229,8 @@ fn run_job(job: &Job, dir: &Path, stop: &StopRequest) -> Result<Option<JobRow>, 
         &mut StopAtTick(stop),
     );
     let run_s = started.elapsed().as_secs_f64();
-    if matches!(&run, Ok(r) if matches!(r.output.end, LoopEnd::Stopped(_))) {
-        return Ok(None);
-    }
-    let mut row = JobRow::of_run(&job.record.id, &run, run_s);
-    drop(run);
-    row.timing.job_s = started.elapsed().as_secs_f64();
-    row.write(dir)?;
-    Ok(Some(row))
+    let stopped = matches!(&run, Ok(r) if matches!(r.output.end, LoopEnd::Stopped(_)));
+    (!stopped).then_some((run, run_s))
 }
 
 /// One progress line for a finished job.

@@ -9,19 +9,19 @@
 
 use std::collections::BTreeMap;
 
-use crate::closed_loop::{LoopEnd, RunOutput, run_closed_loop_recorded};
+use crate::closed_loop::RunOutput;
 use crate::controller_choice::ControllerChoice;
 use crate::error::RunError;
 use crate::scenario::Scenario;
 use crate::transport::StopSignal;
 use crate::tune::controller_setting::ControllerSetting;
 use crate::tune::dispatch_order::expected_ticks;
-use crate::tune::executor::execute;
+use crate::tune::executor::{execute, timed_run};
 use crate::tune::job_list::{Job, JobList};
 use crate::tune::job_outcome::JobRow;
 use crate::tune::perturbation::Perturbation;
 use crate::tune::run_log::RunLog;
-use crate::tune::stop_request::{StopAtTick, StopRequest};
+use crate::tune::stop_request::StopRequest;
 use crate::tune::sweep_file::Sweep;
 
 /// One finished run of a stage.
@@ -117,21 +117,13 @@ impl<'a> StagedRuns<'a> {
             stop,
             expected_ticks,
             |job| {
-                #[allow(clippy::disallowed_methods)]
-                // A run's wall time is a statistic, not a model input.
-                let started = std::time::Instant::now();
-                let run = run_closed_loop_recorded(
-                    &job.scenario,
-                    job.choice,
-                    job.replica,
-                    &mut StopAtTick(stop),
-                );
-                let stopped = matches!(&run, Ok(r) if matches!(r.output.end, LoopEnd::Stopped(_)));
-                if let (Some(log), false) = (log, stopped) {
-                    let run_s = started.elapsed().as_secs_f64();
+                let Some((run, run_s)) = timed_run(job, stop) else {
+                    return Ok(None);
+                };
+                if let Some(log) = log {
                     log.append(job, &JobRow::of_run(&job.record.id, &run, run_s))?;
                 }
-                Ok((!stopped).then_some(run))
+                Ok(Some(run))
             },
             |job, run| run.as_ref().ok().map(|r| describe(job, r)),
         )?;
