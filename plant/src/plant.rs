@@ -160,10 +160,6 @@ pub struct Plant {
     travel: Vec<Option<(f64, f64)>>,
     /// Per section: the outcome of its advance this tick. Preallocated.
     advanced: Vec<Option<Result<SectionStep, SectionError>>>,
-    /// Per section: the condensed-line solves of its last advance (its
-    /// cost, for dealing the next tick's sections to the stepping threads).
-    /// Preallocated.
-    solves_last_advance: Vec<u64>,
     /// The sections dealt to the stepping threads this tick, in dealing
     /// order. Preallocated.
     dealing: Vec<usize>,
@@ -292,7 +288,6 @@ impl Plant {
             settled: true,
             travel: vec![None; grid.len()],
             advanced: vec![None; grid.len()],
-            solves_last_advance: vec![0; grid.len()],
             dealing: Vec::with_capacity(grid.len()),
             loads: Vec::with_capacity(grid.len()),
             tips: Vec::with_capacity(grid.len()),
@@ -541,8 +536,9 @@ impl Plant {
                 .extend((0..self.sections.len()).filter(|&i| self.travel[i].is_some()));
             // Each helper takes from the end of its queue: the costliest
             // last in the list. (An unstable sort allocates nothing.)
-            let cost = &self.solves_last_advance;
-            self.dealing.sort_unstable_by_key(|&i| (cost[i], i));
+            let sections = &self.sections;
+            self.dealing
+                .sort_unstable_by_key(|&i| (sections[i].solves_last_advance, i));
             for (n, &i) in self.dealing.iter().enumerate() {
                 if let (Some((normal, tangential)), Some(section)) =
                     (self.travel[i], self.sections[i].lend())
@@ -563,25 +559,22 @@ impl Plant {
         for i in 0..self.sections.len() {
             self.advanced[i] = None;
             if let Some((normal, tangential)) = self.travel[i] {
-                let section = self.sections[i].section_mut();
-                let before = section.solves();
-                self.advanced[i] = Some(section.advance(normal, tangential));
-                self.solves_last_advance[i] = section.solves().saturating_sub(before);
+                let s = &mut self.sections[i];
+                let before = s.section().solves();
+                self.advanced[i] = Some(s.section_mut().advance(normal, tangential));
+                s.solves_last_advance = s.section().solves().saturating_sub(before);
             }
         }
-        let (sections, advanced, cost) = (
-            &mut self.sections,
-            &mut self.advanced,
-            &mut self.solves_last_advance,
-        );
+        let (sections, advanced) = (&mut self.sections, &mut self.advanced);
         while let Some(mut job) = self.stepper.take_back() {
             let before = job.section.solves();
             advanced[job.index] = Some(job.section.advance(job.normal, job.tangential));
-            cost[job.index] = job.section.solves().saturating_sub(before);
-            sections[job.index].put_back(job.section);
+            let s = &mut sections[job.index];
+            s.solves_last_advance = job.section.solves().saturating_sub(before);
+            s.put_back(job.section);
         }
         self.stepper.receive_all(|a| {
-            cost[a.index] = a.solves;
+            sections[a.index].solves_last_advance = a.solves;
             sections[a.index].put_back(a.section);
             advanced[a.index] = Some(a.step);
         });

@@ -22,6 +22,10 @@ use std::thread::JoinHandle;
 
 use shearcut_sim::section::{CrossSection, SectionError, SectionStep};
 
+/// How often a plant waiting for a helper's sections looks whether the
+/// helper is still alive.
+const HELPER_LOOK: std::time::Duration = std::time::Duration::from_millis(100);
+
 /// A section to advance: its segment's index in the plant's list, the
 /// section, and its normal and tangential travel, m.
 pub(crate) struct Advance {
@@ -76,7 +80,8 @@ struct Helper {
 /// advances every section itself).
 pub(crate) struct SectionStepper {
     helpers: Vec<Helper>,
-    /// Sections sent to each helper and not yet received back.
+    /// Sections sent to each helper and neither received back nor taken
+    /// back.
     in_flight: Vec<usize>,
     /// Room of each queue: the most sections one tick can send.
     capacity: usize,
@@ -181,10 +186,12 @@ impl SectionStepper {
                     helper.handle.as_ref().is_some_and(|h| !h.is_finished()),
                     "a section stepper thread died"
                 );
+                // A helper that panics mid-section never signals: look
+                // again at whether it is alive every `HELPER_LOOK`.
                 queue = lane
                     .done_ready
-                    .wait(queue)
-                    .unwrap_or_else(|e| e.into_inner());
+                    .wait_timeout(queue, HELPER_LOOK)
+                    .map_or_else(|e| e.into_inner().0, |(q, _)| q);
             }
             for advanced in queue.done.drain(..) {
                 back(advanced);

@@ -165,7 +165,9 @@ impl PlantPorts<'_> {
 /// look) or after it ([`PlantEnd::ControllerDiedInLoop`],
 /// [`PlantEnd::ControllerEndedInLoop`]: lockstep, a look at each missed
 /// command; realtime, one look once braked at the missed-command limit, so
-/// that no look falls on a tick), or a termination request arrives.
+/// that no look falls on a tick; either, one look at the first command if
+/// the peer watch never saw the controller alive, so that its node is
+/// known), or a termination request arrives.
 ///
 /// Lockstep: each command is stepped as soon as it arrives; silence longer
 /// than the patience counts as a missed command. Realtime: the plant steps
@@ -182,7 +184,8 @@ impl PlantPorts<'_> {
 /// command is looked for.
 ///
 /// Answering a command allocates nothing after the ports are built (the
-/// plant's own step aside).
+/// plant's own step aside; the look at the first command, if any,
+/// allocates).
 ///
 /// # Errors
 /// iceoryx2 refused to create or open a port.
@@ -257,14 +260,21 @@ pub fn serve_plant(
             // The loop starts: the controller is there. The plant looks at
             // it again at a missed command (lockstep) or once braked
             // (realtime), from the node the watch saw; if the watch saw
-            // none, one look after the first answer finds it alive.
-            let look_after_answer = window_start.is_none() && {
+            // none, one look now finds it alive: lockstep before the first
+            // answer, realtime after it (off the answer's path; a
+            // controller that dies between its first answer and that look
+            // is then reported only as a braked plant).
+            let look_now = window_start.is_none() && {
                 services.stop_peer_watch();
                 matches!(
                     services.peer_fate(),
                     PeerFate::NotSeen | PeerFate::DiedUnseen
                 )
             };
+            if look_now && !realtime {
+                services.look_at_peer();
+            }
+            let look_after_answer = look_now && realtime;
             consecutive = 0;
             if command.is_end_of_run() {
                 let m = last.unwrap_or_else(rest_measurement);
@@ -300,7 +310,8 @@ pub fn serve_plant(
                     // After the answer, in the time before the next tick.
                     unsettled = plant.settle().err();
                     if look_after_answer {
-                        // Once, before the first tick's window is set.
+                        // Once, before the first tick's window is set (the
+                        // window starts after it: no miss).
                         services.look_at_peer();
                     }
                 }

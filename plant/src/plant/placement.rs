@@ -229,6 +229,7 @@ impl Plant {
                     tangential_sign: 0.0,
                     predicted_sign: 0.0,
                     successor,
+                    solves_last_advance: 0,
                 },
             );
             self.dormant.remove(k);

@@ -54,6 +54,10 @@ pub(super) struct SegmentSection {
     /// even before its edge advances (a successor restarted at the top of
     /// its section has not advanced yet).
     pub(super) successor: bool,
+    /// Condensed-line solves of the section's last advance: its cost, for
+    /// dealing a tick's sections to the stepping threads (0 before its
+    /// first advance).
+    pub(super) solves_last_advance: u64,
 }
 
 impl SegmentSection {
