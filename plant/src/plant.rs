@@ -28,7 +28,7 @@ use crate::successor_policy::SuccessorPolicy;
 use placement::{DormantSegment, Lookahead};
 use segment_section::{SegmentSection, tip_of};
 
-use crate::section_stepper::{Advance, SectionStepper};
+use crate::section_stepper::{Advance, SectionStepper, advance_counted};
 
 pub use crate::plant_error::PlantError;
 pub use crate::plant_settings::{MAX_SEGMENTS, PlantSettings};
@@ -560,17 +560,17 @@ impl Plant {
             self.advanced[i] = None;
             if let Some((normal, tangential)) = self.travel[i] {
                 let s = &mut self.sections[i];
-                let before = s.section().solves();
-                self.advanced[i] = Some(s.section_mut().advance(normal, tangential));
-                s.solves_last_advance = s.section().solves().saturating_sub(before);
+                let (step, solves) = advance_counted(s.section_mut(), normal, tangential);
+                self.advanced[i] = Some(step);
+                s.solves_last_advance = solves;
             }
         }
         let (sections, advanced) = (&mut self.sections, &mut self.advanced);
         while let Some(mut job) = self.stepper.take_back() {
-            let before = job.section.solves();
-            advanced[job.index] = Some(job.section.advance(job.normal, job.tangential));
+            let (step, solves) = advance_counted(&mut job.section, job.normal, job.tangential);
+            advanced[job.index] = Some(step);
             let s = &mut sections[job.index];
-            s.solves_last_advance = job.section.solves().saturating_sub(before);
+            s.solves_last_advance = solves;
             s.put_back(job.section);
         }
         self.stepper.receive_all(|a| {

@@ -227,9 +227,7 @@ fn advance_until_closed(lane: &Lane) {
     loop {
         if let Some(mut job) = queue.jobs.pop() {
             drop(queue);
-            let before = job.section.solves();
-            let step = job.section.advance(job.normal, job.tangential);
-            let solves = job.section.solves().saturating_sub(before);
+            let (step, solves) = advance_counted(&mut job.section, job.normal, job.tangential);
             queue = lane.lock();
             queue.done.push(Advanced {
                 index: job.index,
@@ -247,4 +245,16 @@ fn advance_until_closed(lane: &Lane) {
                 .unwrap_or_else(|e| e.into_inner());
         }
     }
+}
+
+/// [`CrossSection::advance`] by `normal` and `tangential` travel (m), with
+/// the condensed-line solves it took (the section's cost for dealing).
+pub(crate) fn advance_counted(
+    section: &mut CrossSection,
+    normal: f64,
+    tangential: f64,
+) -> (Result<SectionStep, SectionError>, u64) {
+    let before = section.solves();
+    let step = section.advance(normal, tangential);
+    (step, section.solves().saturating_sub(before))
 }
