@@ -70,6 +70,7 @@ fn run(section: &SectionSettings, alpha: f64, z0: f64) {
         0,
     )
     .unwrap();
+    plant.build_ordered_sections();
     let build = t0.elapsed();
     let dt = 1e-3;
     let speed = 0.00625;

@@ -173,6 +173,9 @@ pub struct Plant {
     /// Successors due but not finished, skipped by a tick (see
     /// [`Plant::successor_deferrals`]).
     deferrals: usize,
+    /// Whether the knife has moved since construction (the worker holds
+    /// the first orders until it has: [`Plant::new`]).
+    moved: bool,
     update_distance: f64,
     /// Direction of motion in the knife plane (z, y), unit: the planned one
     /// until the knife moves, then that of the last nonzero executed velocity.
@@ -301,6 +304,7 @@ impl Plant {
             worker,
             policy: SuccessorPolicy::Wait,
             deferrals: 0,
+            moved: false,
             factory,
             update_distance: settings.update_distance,
             motion: d,
@@ -319,10 +323,11 @@ impl Plant {
             time: 0.0,
             work: 0.0,
         };
-        // Prepare the first sections for the planned direction, so that a
-        // knife moving along it finds them built (a real-time loop must not
-        // wait for them), and place those whose midpoints are already at
-        // the surface.
+        // Order the first sections for the planned direction and place
+        // those whose midpoints are already at the surface. The orders are
+        // held until the knife first moves (a start along another direction
+        // renews them before anything is built) or a real-time loop asks
+        // for them to be built now (`build_ordered_sections`).
         let hits = plant
             .edge_segments
             .iter()
@@ -332,8 +337,8 @@ impl Plant {
             return Err(PlantError::NoContact);
         }
         let section_error = |(index, source)| PlantError::Section { index, source };
+        plant.worker.hold();
         plant.place(Lookahead::Everywhere).map_err(section_error)?;
-        plant.worker.wait_idle();
         plant.place(Lookahead::Lead).map_err(section_error)?;
         Ok(plant)
     }
@@ -472,6 +477,17 @@ impl Plant {
         self.policy = policy;
     }
 
+    /// Builds the sections ordered so far now, waiting for the worker: the
+    /// first sections [`Plant::new`] ordered for the planned direction,
+    /// which are otherwise built once the knife first moves (a start along
+    /// another direction renews those orders before anything is built). A
+    /// real-time loop calls it before its first tick, so that a knife
+    /// moving along the planned direction finds them ready. Results do not
+    /// change.
+    pub fn build_ordered_sections(&mut self) {
+        self.worker.wait_idle();
+    }
+
     /// What a tick does with a successor the worker has not finished.
     pub fn successor_policy(&self) -> SuccessorPolicy {
         self.policy
@@ -592,6 +608,10 @@ impl Plant {
             self.rechoose()?;
             self.place(Lookahead::Lead).map_err(|(_, e)| e)?;
             self.settled = true;
+            if self.moved {
+                // The orders now follow the knife's own direction.
+                self.worker.release();
+            }
         }
         Ok(())
     }
@@ -643,6 +663,7 @@ impl Plant {
         let dp2 = Vector2::new(dp.z, dp.y);
         if let Some(u) = dp2.try_normalize(0.0) {
             self.motion = u;
+            self.moved = true;
         }
         self.loads.clear();
         let mut contact_length = 0.0;

@@ -120,6 +120,9 @@ struct Slot {
 struct Slots {
     slots: Vec<Slot>,
     shutdown: bool,
+    /// Whether the workers leave the submitted jobs alone (see
+    /// [`SuccessorWorker::hold`]).
+    held: bool,
     /// Sections built for a job that was superseded or cancelled before its
     /// result was taken (see [`SuccessorWorker::wasted_builds`]).
     wasted: usize,
@@ -160,6 +163,9 @@ pub(crate) struct SuccessorWorker {
     pending: Vec<Option<(u64, SuccessorJob)>>,
     /// Results that were not ready when taken (diagnostic, timing-dependent).
     waits: usize,
+    /// The workers' hold, as last set from this side (read without the
+    /// lock).
+    held: bool,
 }
 
 impl std::fmt::Debug for SuccessorWorker {
@@ -180,6 +186,7 @@ impl SuccessorWorker {
             slots: Mutex::new(Slots {
                 slots: (0..segments).map(|_| Slot::default()).collect(),
                 shutdown: false,
+                held: false,
                 wasted: 0,
             }),
             job_ready: Condvar::new(),
@@ -202,7 +209,29 @@ impl SuccessorWorker {
             next_generation: 1,
             pending: (0..segments).map(|_| None).collect(),
             waits: 0,
+            held: false,
         }
+    }
+
+    /// Keeps the workers from starting the jobs submitted from now on until
+    /// [`Self::release`] (or a [`Self::take`] or [`Self::wait_idle`], which
+    /// release first): orders placed before their plane is certain are
+    /// renewed for free instead of built and dropped. Results do not
+    /// change: a result is a function of its job alone.
+    pub fn hold(&mut self) {
+        self.held = true;
+        self.shared.lock().held = true;
+    }
+
+    /// Lets the workers start the held jobs (oldest first). Without a hold
+    /// it only reads a flag: allocates nothing and takes no lock.
+    pub fn release(&mut self) {
+        if !self.held {
+            return;
+        }
+        self.held = false;
+        self.shared.lock().held = false;
+        self.shared.job_ready.notify_all();
     }
 
     /// Whether a job for segment `index` is pending.
@@ -214,13 +243,17 @@ impl SuccessorWorker {
     /// waiting: its pending job is finished, or there is none (`take`
     /// returns `None`), or there is no worker thread (`take` prepares it
     /// itself). Never blocks: a worker holding the slots' lock at that
-    /// moment counts as not finished. Allocates nothing.
+    /// moment counts as not finished, and so does a held job. Allocates
+    /// nothing.
     pub fn is_ready(&self, index: usize) -> bool {
         let Some((generation, _)) = &self.pending[index] else {
             return true;
         };
         if self.handles.is_empty() {
             return true;
+        }
+        if self.held {
+            return false;
         }
         let slots = match self.shared.slots.try_lock() {
             Ok(slots) => slots,
@@ -283,11 +316,13 @@ impl SuccessorWorker {
     }
 
     /// Waits until the worker has finished every pending job (their results
-    /// wait in their slots for [`SuccessorWorker::take`]).
-    pub fn wait_idle(&self) {
+    /// wait in their slots for [`SuccessorWorker::take`]), releasing a
+    /// [`Self::hold`] first.
+    pub fn wait_idle(&mut self) {
         if self.handles.is_empty() {
             return;
         }
+        self.release();
         let mut slots = self.shared.lock();
         loop {
             let busy = self.pending.iter().zip(&slots.slots).any(|(p, s)| {
@@ -306,15 +341,17 @@ impl SuccessorWorker {
     }
 
     /// Takes the result of segment `index`'s pending job, waiting for the
-    /// worker if it is not ready; `None` without a pending job. Allocates
-    /// nothing. (Without a worker thread, which only happens when the OS
-    /// refused to start one, the job is prepared here.)
+    /// worker if it is not ready (releasing a [`Self::hold`] first); `None`
+    /// without a pending job. Allocates nothing. (Without a worker thread,
+    /// which only happens when the OS refused to start one, the job is
+    /// prepared here.)
     pub fn take(&mut self, index: usize) -> Option<(SectionPlane, Preparation)> {
         let (generation, job) = self.pending[index].take()?;
         if self.handles.is_empty() {
             let p = self.factory.prepare(&job.plane, job.current.as_deref());
             return Some((job.plane, p));
         }
+        self.release();
         let mut slots = self.shared.lock();
         let mut waited = false;
         loop {
@@ -342,14 +379,17 @@ impl SuccessorWorker {
 }
 
 impl Clone for SuccessorWorker {
-    /// A new worker with the same pending jobs: their results are functions
-    /// of the jobs, so the clone adopts the same successors.
+    /// A new worker with the same pending jobs and hold: their results are
+    /// functions of the jobs, so the clone adopts the same successors.
     fn clone(&self) -> Self {
         let mut w = Self::new(
             Arc::clone(&self.factory),
             self.pending.len(),
             self.handles.len(),
         );
+        if self.held {
+            w.hold();
+        }
         let mut jobs: Vec<_> = self
             .pending
             .iter()
@@ -376,7 +416,7 @@ impl Drop for SuccessorWorker {
     }
 }
 
-/// The worker's loop: the oldest submitted job first.
+/// The worker's loop: the oldest submitted job first; none while held.
 fn run(shared: &Shared, factory: &SectionFactory) {
     let mut slots = shared.lock();
     loop {
@@ -387,6 +427,7 @@ fn run(shared: &Shared, factory: &SectionFactory) {
             .slots
             .iter()
             .enumerate()
+            .filter(|_| !slots.held)
             .filter_map(|(i, s)| s.job.as_ref().map(|(g, _)| (*g, i)))
             .min();
         let Some((_, index)) = next else {
@@ -492,5 +533,28 @@ mod tests {
         assert_eq!(w.wasted_builds(), 2);
         // A clone keeps the count.
         assert_eq!(w.clone().wasted_builds(), 2);
+    }
+
+    #[test]
+    fn held_orders_are_not_built_and_renewing_them_costs_nothing() {
+        let mut w = worker(2);
+        w.hold();
+        w.submit(0, job(0.01));
+        // Held: not started, so not ready however long the worker idles.
+        std::thread::sleep(std::time::Duration::from_millis(50));
+        assert!(!w.is_ready(0));
+        w.submit(0, job(0.012));
+        w.release();
+        let (plane, p) = w.take(0).unwrap();
+        assert!(matches!(p, Preparation::New { .. }));
+        assert_eq!(plane.origin.z, 0.012);
+        assert_eq!(w.wasted_builds(), 0);
+        // A take releases a hold itself (it would wait forever otherwise),
+        // and so does a clone's.
+        w.hold();
+        w.submit(1, job(0.02));
+        let mut c = w.clone();
+        assert!(matches!(w.take(1), Some((_, Preparation::New { .. }))));
+        assert!(matches!(c.take(1), Some((_, Preparation::New { .. }))));
     }
 }

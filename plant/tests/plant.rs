@@ -757,8 +757,6 @@ fn sections_go_where_the_edge_arrives_whatever_the_planned_direction() {
     // tip: the sections are placed where each segment's midpoint really
     // reaches the material, so the three plants agree to rounding (their
     // first planes are computed from different points of the same line).
-    // Before, sections were fixed for the planned direction and the work
-    // moved by 7 % with it.
     let material = MaterialPreset::PotatoWhole.material();
     let knife = Knife::new(&KnifePreset::Chef.settings()).unwrap();
     let object = half_potato();
@@ -802,6 +800,33 @@ fn sections_go_where_the_edge_arrives_whatever_the_planned_direction() {
         );
         assert!(close(a.truth.crack_depth, b.truth.crack_depth));
     }
+}
+
+#[test]
+fn first_orders_for_a_direction_the_knife_does_not_take_are_never_built() {
+    // A plant planned for pressing whose knife slices at ξ = 0.582: every
+    // first order is renewed on the first tick (the edge meets the top
+    // 0.6 mm further along), before the worker has started any of them, so
+    // no section is built for nothing; a plant asked to build its orders
+    // before the first tick (as a real-time loop does) builds them, and the
+    // renewals drop them.
+    let material = MaterialPreset::PotatoWhole.material();
+    let knife = Knife::new(&KnifePreset::Chef.settings()).unwrap();
+    let object = half_potato();
+    let u = Vector2::new(-0.582, -1.0).normalize();
+    let s = noise_free(8);
+    let cmd = KnifeCommand {
+        velocity: Vector3::new(0.0, u.y, u.x) * SPEED,
+    };
+    let down = Vector2::new(0.0, -1.0);
+    let mut lazy = plant(&material, &knife, &object, 0.05, down, &s, &LOOSE, 3);
+    let mut eager = plant(&material, &knife, &object, 0.05, down, &s, &LOOSE, 3);
+    eager.build_ordered_sections();
+    let a = lazy.step(&cmd, DT).unwrap();
+    let b = eager.step(&cmd, DT).unwrap();
+    assert_eq!(lazy.wasted_builds(), 0);
+    assert!(eager.wasted_builds() > 0, "{}", eager.wasted_builds());
+    assert_eq!(a.truth.work.to_bits(), b.truth.work.to_bits());
 }
 
 /// A chef's knife over the half potato, planned to slice along (z, y) =
@@ -998,7 +1023,9 @@ fn keep_current_never_waits_for_a_successor_and_takes_it_later() {
     let run = |policy: Option<SuccessorPolicy>| {
         let mut plant = half_potato_slice(1);
         if let Some(p) = policy {
+            // As a real-time plant starts: its first sections built.
             plant.set_successor_policy(p);
+            plant.build_ordered_sections();
         }
         let mut prev = 0.0;
         for k in 0..250 {

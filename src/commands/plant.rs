@@ -45,8 +45,10 @@ pub fn run(
     let task = setup.task.clone();
     let mut plant = setup.plant(&s)?;
     if s.control_loop.clock == ClockMode::Realtime {
-        // A tick that waited for a section build would miss its period.
+        // A tick that waited for a section build would miss its period;
+        // the first sections are built before the first tick.
         plant.set_successor_policy(SuccessorPolicy::KeepCurrent);
+        plant.build_ordered_sections();
     }
     // The thread that steps and answers runs at the servo priority, as an
     // arm's servo loop does; the successor workers and the node's watch
