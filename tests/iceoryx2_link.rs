@@ -2,7 +2,8 @@
 //! this process: answers are matched to their commands by sequence number,
 //! a late answer to a command given up on is discarded, and the run still
 //! ends cleanly; the end of the run is acknowledged even when the plant
-//! leaves right after answering; a second plant for a served run is refused.
+//! leaves right after answering; a second plant for a served run is refused;
+//! a realtime plant counts the answers it gave after its next tick was due.
 
 #[path = "support/echo_plant.rs"]
 mod echo_plant;
@@ -14,8 +15,8 @@ use nalgebra::Vector3;
 use shearcut::closed_loop::{LinkAnswer, LinkError, PlantLink};
 use shearcut::scenario::ClockMode;
 use shearcut::transport::{
-    Iceoryx2PlantLink, LinkTimeouts, LoopServices, PlantEnd, PlantServerSettings, Role, WaitMode,
-    serve_plant,
+    Iceoryx2PlantLink, LinkTimeouts, LoopServices, PlantEnd, PlantReport, PlantServerSettings,
+    Role, WaitMode, serve_plant,
 };
 use shearcut_sim::arm::KnifeCommand;
 
@@ -41,23 +42,35 @@ impl PlantLink for Stalling {
     }
 }
 
+/// Serves run `run` under `prefix` from a new thread with the echo plant
+/// stalling `stall` on its command number `slow`.
+fn serve_stalling(
+    prefix: &str,
+    run: &'static str,
+    settings: PlantServerSettings,
+    slow: usize,
+    stall: Duration,
+) -> std::thread::JoinHandle<PlantReport> {
+    let prefix = prefix.to_string();
+    std::thread::spawn(move || {
+        let services = LoopServices::open(Role::Plant, run, &prefix).unwrap();
+        let mut plant = Stalling {
+            echo: EchoPlant::new(),
+            count: 0,
+            slow,
+            stall,
+        };
+        serve_plant(&services, &mut plant, &settings).unwrap()
+    })
+}
+
 #[test]
 fn a_late_answer_is_discarded_and_the_run_still_ends_cleanly() {
     for wait in [WaitMode::Blocking, WaitMode::BusyPoll] {
         let prefix = format!("scl{}{wait:?}_", std::process::id());
-        let plant_prefix = prefix.clone();
-        let server = std::thread::spawn(move || {
-            let services = LoopServices::open(Role::Plant, "late", &plant_prefix).unwrap();
-            let mut settings = PlantServerSettings::new(ClockMode::Lockstep, 20);
-            settings.wait = wait;
-            let mut plant = Stalling {
-                echo: EchoPlant::new(),
-                count: 0,
-                slow: 2,
-                stall: Duration::from_millis(300),
-            };
-            serve_plant(&services, &mut plant, &settings).unwrap()
-        });
+        let mut settings = PlantServerSettings::new(ClockMode::Lockstep, 20);
+        settings.wait = wait;
+        let server = serve_stalling(&prefix, "late", settings, 2, Duration::from_millis(300));
         let services = LoopServices::open(Role::Controller, "late", &prefix).unwrap();
         let timeouts = LinkTimeouts {
             response: Duration::from_millis(50),
@@ -93,6 +106,49 @@ fn a_late_answer_is_discarded_and_the_run_still_ends_cleanly() {
         remove_shm_files(&prefix);
         assert_eq!(report.end, PlantEnd::Ended, "{wait:?}");
         assert_eq!(report.commands, 3, "{wait:?}");
+    }
+}
+
+#[test]
+fn a_realtime_plant_counts_its_own_overruns() {
+    // A realtime plant whose fourth step takes 5 ms answers after its next
+    // tick was due: one overrun at least (steps of the echo plant take
+    // microseconds; a stalled machine could add more), none under the
+    // lockstep clock, which has no ticks to overrun. A miss counted after
+    // an overrun is one of the misses.
+    for clock in [ClockMode::Realtime, ClockMode::Lockstep] {
+        let prefix = format!("sco{}{clock:?}_", std::process::id());
+        let settings = PlantServerSettings::new(clock, 1000);
+        let server = serve_stalling(&prefix, "overrun", settings, 3, Duration::from_millis(5));
+        let services = LoopServices::open(Role::Controller, "overrun", &prefix).unwrap();
+        let mut link = Iceoryx2PlantLink::new(
+            services,
+            1e-3,
+            LinkTimeouts::default(),
+            WaitMode::Blocking,
+            64,
+        )
+        .unwrap();
+        link.wait_for_plant().unwrap();
+        let command = KnifeCommand {
+            velocity: Vector3::new(0.0, -0.005, 0.0),
+        };
+        for _ in 0..8 {
+            link.exchange(&command).unwrap();
+        }
+        link.finish().unwrap();
+        let report = server.join().unwrap();
+        remove_shm_files(&prefix);
+        assert_eq!(report.end, PlantEnd::Ended, "{clock:?}");
+        match clock {
+            ClockMode::Realtime => assert!(report.overruns >= 1, "{report:?}"),
+            ClockMode::Lockstep => assert_eq!(report.overruns, 0, "{report:?}"),
+        }
+        assert!(
+            report.missed_after_overrun <= report.missed_commands,
+            "{report:?}"
+        );
+        assert!(report.overruns <= report.commands, "{report:?}");
     }
 }
 

@@ -97,7 +97,7 @@ fn killing_the_controller_brakes_the_plant_after_the_missed_command_limit_and_na
         "{err}"
     );
     assert!(
-        err.contains("; braked; ") && err.contains("missed commands (longest run 20)"),
+        err.contains("; braked; ") && err.contains("missed commands (longest run 20"),
         "{err}"
     );
     sb.assert_next_run_starts_cleanly("kc");

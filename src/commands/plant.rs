@@ -86,8 +86,18 @@ pub fn run(
         "the plant re-chose its moving sections {} times over the cut",
         link.plant().rechoices()
     );
+    // A realtime plant's own lateness: answers that ended after the next
+    // tick was due, and the misses right after them.
+    let overruns = if s.control_loop.clock == ClockMode::Realtime {
+        format!(
+            "; {} right after one of the plant's {} overruns",
+            report.missed_after_overrun, report.overruns
+        )
+    } else {
+        String::new()
+    };
     let counts = format!(
-        "{} commands answered, {} steps, {} missed commands (longest run {}), {} successor deferrals, {} successor waits",
+        "{} commands answered, {} steps, {} missed commands (longest run {}{overruns}), {} successor deferrals, {} successor waits",
         report.commands,
         report.steps,
         report.missed_commands,

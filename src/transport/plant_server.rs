@@ -98,6 +98,13 @@ pub struct PlantReport {
     pub missed_commands: u32,
     /// Longest run of consecutive missed commands.
     pub max_consecutive_missed: u32,
+    /// Realtime: answers whose step and settling ended after the next tick
+    /// was due (the plant itself late, whatever the controller did).
+    pub overruns: u64,
+    /// Realtime: missed commands at the tick right after an overrun (the
+    /// controller had less than its period between the late answer and
+    /// the tick).
+    pub missed_after_overrun: u32,
 }
 
 fn iceoryx(context: &str, e: impl std::fmt::Debug) -> ServiceError {
@@ -233,7 +240,12 @@ pub fn serve_plant(
         steps: 0,
         missed_commands: 0,
         max_consecutive_missed: 0,
+        overruns: 0,
+        missed_after_overrun: 0,
     };
+    // Whether the last answer's step and settling ended after the next
+    // tick was due (realtime).
+    let mut overran = false;
     let mut consecutive = 0u32;
     let mut last_command = KnifeCommand::default();
     let mut last: Option<ArmReading> = None;
@@ -331,10 +343,13 @@ pub fn serve_plant(
             }
             report.commands += 1;
             report.steps += 1;
-            window_start = Some(match window_start {
+            let next = match window_start {
                 Some(t) if realtime => t + window,
                 _ => Instant::now() + if realtime { window } else { Duration::ZERO },
-            });
+            };
+            overran = realtime && Instant::now() > next;
+            report.overruns += u64::from(overran);
+            window_start = Some(next);
             continue;
         }
         // No command waiting.
@@ -393,6 +408,7 @@ pub fn serve_plant(
         }
         consecutive += 1;
         report.missed_commands += 1;
+        report.missed_after_overrun += u32::from(std::mem::take(&mut overran));
         report.max_consecutive_missed = report.max_consecutive_missed.max(consecutive);
         window_start = Some(start + window);
         if !realtime {
