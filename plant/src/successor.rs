@@ -423,13 +423,16 @@ fn run(shared: &Shared, factory: &SectionFactory) {
         if slots.shutdown {
             return;
         }
-        let next = slots
-            .slots
-            .iter()
-            .enumerate()
-            .filter(|_| !slots.held)
-            .filter_map(|(i, s)| s.job.as_ref().map(|(g, _)| (*g, i)))
-            .min();
+        let next = if slots.held {
+            None
+        } else {
+            slots
+                .slots
+                .iter()
+                .enumerate()
+                .filter_map(|(i, s)| s.job.as_ref().map(|(g, _)| (*g, i)))
+                .min()
+        };
         let Some((_, index)) = next else {
             slots = shared
                 .job_ready
