@@ -281,12 +281,18 @@ pub const BUILT_IN_SCENARIOS: [(&str, &str); 14] = [
 impl Scenario {
     /// Loads a scenario from a path, or by the name of a built-in scenario.
     /// A file is read with a cap of [`CONFIG_FILE_BYTES`] and must be UTF-8.
+    /// A file wins over a built-in scenario of the same name, with a warning
+    /// that says so.
     pub fn load(path_or_name: &str) -> Result<Self, ConfigError> {
         let path = Path::new(path_or_name);
-        if !path.exists()
-            && let Some((name, text)) = BUILT_IN_SCENARIOS.iter().find(|(n, _)| *n == path_or_name)
-        {
-            return Self::parse(text, name, name);
+        let built_in = BUILT_IN_SCENARIOS.iter().find(|(n, _)| *n == path_or_name);
+        match built_in {
+            Some((name, text)) if !path.exists() => return Self::parse(text, name, name),
+            Some((name, _)) => tracing::warn!(
+                "`{name}` is read from the file of that name in the working directory, \
+                 not the built-in scenario of that name"
+            ),
+            None => {}
         }
         let text =
             read_capped_text(path, CONFIG_FILE_BYTES).map_err(|source| ConfigError::Read {

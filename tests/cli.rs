@@ -251,3 +251,29 @@ fn a_realtime_clock_with_a_waiting_planner_is_refused_in_one_line() {
     assert_eq!(shearcut(&["check", &ok]).status.code(), Some(0));
     std::fs::remove_dir_all(dir).ok();
 }
+
+#[test]
+fn a_file_named_like_a_built_in_scenario_is_read_and_said_to_be() {
+    let dir = binary_run::scratch("shadow");
+    let text = include_str!("../config/scenarios/fig7-potato.toml")
+        .replace("depth = 0.02", "depth = 0.006");
+    std::fs::write(dir.join("fig7-potato"), text).unwrap();
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_shearcut"))
+        .args(["check", "fig7-potato"])
+        .current_dir(&dir)
+        .output()
+        .expect("the shearcut binary runs");
+    binary_run::assert_success(&o);
+    assert!(
+        stderr(&o).contains("`fig7-potato` is read from the file of that name"),
+        "{}",
+        stderr(&o)
+    );
+    // The file's values, not the built-in's.
+    assert!(stdout(&o).contains("depth = 0.006"), "{}", stdout(&o));
+    // Elsewhere the name is the built-in scenario, without a word.
+    let o = shearcut(&["check", "fig7-potato"]);
+    binary_run::assert_success(&o);
+    assert!(!stderr(&o).contains("read from the file"), "{}", stderr(&o));
+    assert!(stdout(&o).contains("depth = 0.02"), "{}", stdout(&o));
+}

@@ -6,6 +6,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use crate::plot::CURVE_COLORS;
+use crate::plot::legend::draw_legend;
 use crate::tune::pareto_front::front;
 use crate::tune::robust_stats::SettingStats;
 
@@ -38,6 +39,9 @@ pub fn draw_front<DB: DrawingBackend>(
     };
     let xr = span(&mut points.iter().map(|p| p.0));
     let yr = span(&mut points.iter().map(|p| p.1));
+    // Room above the highest point for the legend (three lines, about a
+    // seventh of the chart's height), so that it covers no setting.
+    let yr = yr.start..yr.end + 0.3 * (yr.end - yr.start);
     let mut chart = ChartBuilder::on(root)
         .caption(title, ("sans-serif", 20))
         .margin(12)
@@ -90,11 +94,6 @@ pub fn draw_front<DB: DrawingBackend>(
             ("sans-serif", 12).into_font(),
         )
     }))?;
-    chart
-        .configure_series_labels()
-        .background_style(WHITE.mix(0.8))
-        .border_style(BLACK)
-        .position(SeriesLabelPosition::LowerRight)
-        .draw()?;
+    draw_legend(&mut chart, SeriesLabelPosition::UpperRight)?;
     Ok(())
 }
