@@ -10,7 +10,8 @@
 //! crack tips), `wrench` (section forces summed into force and torque at the
 //! sensor), `ft_sensor`
 //! (noise, bias and sample rate of the F/T signal), `successor` (successor
-//! sections built ahead of their re-choices on a worker thread).
+//! sections built ahead of their re-choices on a worker thread), `tick_list`
+//! (the lists a tick fills, allocated once for their most entries).
 
 pub mod crack_front;
 pub mod ft_sensor;
@@ -22,6 +23,7 @@ mod plant_step;
 mod section_stepper;
 mod successor;
 mod successor_policy;
+mod tick_list;
 pub mod wrench;
 
 pub use crack_front::CrackFront;

@@ -17,6 +17,7 @@ use shearcut_sim::section::{SectionError, SectionSettings, SectionStep};
 use super::crack_front::CrackFront;
 use super::ft_sensor::FtSensor;
 use super::successor::{SectionFactory, SuccessorWorker};
+use super::tick_list::TickList;
 use super::wrench::{SegmentLoad, wrench_at};
 use shearcut_sim::arm::{ArmLimitMonitor, ArmLimits, ArmReading, ArmStatus, KnifeCommand};
 use shearcut_sim::knife_plane::contact_arc::{
@@ -143,13 +144,14 @@ pub use crate::plant_settings::{MAX_SEGMENTS, PlantSettings};
 /// [`Plant::new`] allocates everything a tick needs and starts the worker;
 /// [`Plant::step`] allocates nothing on the caller's thread, re-choices
 /// included: the worker allocates the successors, the tick only moves them
-/// in (and frees superseded ones).
+/// in (and frees superseded ones). A clone's ticks allocate nothing either
+/// (its lists keep their capacity: `tick_list`).
 ///
 /// [`CrossSection`]: shearcut_sim::section::CrossSection
 /// [`CrossSection::take_over`]: shearcut_sim::section::CrossSection::take_over
 #[derive(Debug, Clone)]
 pub struct Plant {
-    sections: Vec<SegmentSection>,
+    sections: TickList<SegmentSection>,
     /// Threads that advance the sections within a tick.
     stepper: SectionStepper,
     /// Whether the re-choices and placements after the last step are done
@@ -162,7 +164,7 @@ pub struct Plant {
     advanced: Vec<Option<Result<SectionStep, SectionError>>>,
     /// The sections dealt to the stepping threads this tick, in dealing
     /// order. Preallocated.
-    dealing: Vec<usize>,
+    dealing: TickList<usize>,
     /// The object, material, blade and section settings, shared with the
     /// worker that builds successor sections.
     factory: Arc<SectionFactory>,
@@ -190,7 +192,7 @@ pub struct Plant {
     /// get theirs.
     dormant: Vec<DormantSegment>,
     /// Crack tips of the started sections (knife plane (z, y)), preallocated.
-    tips: Vec<Vector2<f64>>,
+    tips: TickList<Vector2<f64>>,
     /// The last crack front fitted for a re-choice.
     front: Option<CrackFront>,
     rechoices: usize,
@@ -198,7 +200,7 @@ pub struct Plant {
     unforeseen: usize,
     first_contacts: usize,
     wakes: usize,
-    loads: Vec<SegmentLoad>,
+    loads: TickList<SegmentLoad>,
     monitor: ArmLimitMonitor,
     sensor: FtSensor,
     sensor_offset: Vector3<f64>,
@@ -291,10 +293,10 @@ impl Plant {
             settled: true,
             travel: vec![None; grid.len()],
             advanced: vec![None; grid.len()],
-            dealing: Vec::with_capacity(grid.len()),
-            loads: Vec::with_capacity(grid.len()),
-            tips: Vec::with_capacity(grid.len()),
-            sections: Vec::with_capacity(grid.len()),
+            dealing: TickList::with_capacity(grid.len()),
+            loads: TickList::with_capacity(grid.len()),
+            tips: TickList::with_capacity(grid.len()),
+            sections: TickList::with_capacity(grid.len()),
             dormant: grid
                 .iter()
                 .enumerate()

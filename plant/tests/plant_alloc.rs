@@ -3,7 +3,7 @@
 //! edge pressing a cuboid (no re-choice), and a chef's knife slicing a half
 //! potato, whose sections are re-chosen and rebuilt, under either
 //! successor policy (the successors are built on the plant's worker thread,
-//! whose allocations are not the tick's).
+//! whose allocations are not the tick's), and a plant cloned mid-cut.
 
 use nalgebra::{Vector2, Vector3};
 use shearcut_plant::{ArmLimits, KnifeCommand, Plant, PlantSettings, SuccessorPolicy};
@@ -79,28 +79,7 @@ fn plant_step_allocates_nothing_through_rechoices_and_rebuilds() {
 /// advanced on `threads` threads: the sections are rebuilt and no tick
 /// allocates on the stepping thread (a helper's are its own).
 fn slice_allocates_nothing(policy: SuccessorPolicy, threads: usize) {
-    let material = MaterialPreset::PotatoWhole.material();
-    let knife = Knife::new(&KnifePreset::Chef.settings()).unwrap();
-    let object = half_potato();
-    let section = coarse_section();
-    let limits = LOOSE;
-    let settings = PlantSettings {
-        segments: 4,
-        stepping_threads: threads,
-        ..PlantSettings::default()
-    };
-    let mut plant = Plant::new(
-        &material,
-        &knife,
-        &object,
-        0.05,
-        Vector2::new(-0.5, -1.0),
-        &settings,
-        &section,
-        &limits,
-        7,
-    )
-    .unwrap();
+    let mut plant = half_potato_under_the_chef(threads);
     plant.set_successor_policy(policy);
     let cmd = KnifeCommand {
         velocity: Vector3::new(0.0, -0.00625, -0.003125),
@@ -125,4 +104,53 @@ fn slice_allocates_nothing(policy: SuccessorPolicy, threads: usize) {
         0,
         "{policy:?}, {threads} threads: Plant::step allocated"
     );
+}
+
+/// A clone of a plant mid-cut steps without allocating, as the plant it
+/// was cloned from does.
+#[test]
+fn a_cloned_plant_steps_without_allocating() {
+    let mut plant = half_potato_under_the_chef(1);
+    // Pressing first: few sections cut, so the per-tick lists are short
+    // when the plant is cloned.
+    let press = KnifeCommand {
+        velocity: Vector3::new(0.0, -0.00625, 0.0),
+    };
+    for _ in 0..200 {
+        plant.step(&press, 1e-3).unwrap();
+    }
+    let mut clone = plant.clone();
+    let slice = KnifeCommand {
+        velocity: Vector3::new(0.0, -0.00625, -0.003125),
+    };
+    let before = thread_allocations();
+    for _ in 0..1300 {
+        clone.step(&slice, 1e-3).unwrap();
+    }
+    let after = thread_allocations();
+    assert!(clone.rebuilds() > 0, "the clone rebuilt sections");
+    assert_eq!(after - before, 0, "the clone's Plant::step allocated");
+}
+
+/// The half potato under the chef's knife, 4 segments, the sections
+/// advanced on `threads` threads, planned to slice down and towards the
+/// heel.
+fn half_potato_under_the_chef(threads: usize) -> Plant {
+    let settings = PlantSettings {
+        segments: 4,
+        stepping_threads: threads,
+        ..PlantSettings::default()
+    };
+    Plant::new(
+        &MaterialPreset::PotatoWhole.material(),
+        &Knife::new(&KnifePreset::Chef.settings()).unwrap(),
+        &half_potato(),
+        0.05,
+        Vector2::new(-0.5, -1.0),
+        &settings,
+        &coarse_section(),
+        &LOOSE,
+        7,
+    )
+    .unwrap()
 }
