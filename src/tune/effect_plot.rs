@@ -61,13 +61,17 @@ pub fn draw_effects<DB: DrawingBackend>(
             .filter(|x| x.is_finite())
             .fold((1.0f64, 1.0f64), |(a, b), &x| (a.min(x), b.max(x)));
         let pad = 0.1 * (hi - lo).max(0.01);
+        // Room above the highest point for the legend (four lines, about a
+        // quarter of the panel's height), so that it covers no line.
+        let (bottom, top) = (lo - pad, hi + pad);
+        let top = top + 0.35 * (top - bottom);
         let short = column.rsplit('.').next().unwrap_or(column);
         let mut chart = ChartBuilder::on(area)
             .caption(caption, ("sans-serif", 14))
             .margin(8)
             .x_label_area_size(35)
             .y_label_area_size(50)
-            .build_cartesian_2d(-0.5..(of.len() as f64 - 0.5), (lo - pad)..(hi + pad))?;
+            .build_cartesian_2d(-0.5..(of.len() as f64 - 0.5), bottom..top)?;
         let labels: Vec<String> = of.iter().map(|l| l.value.clone()).collect();
         chart
             .configure_mesh()
@@ -98,6 +102,7 @@ pub fn draw_effects<DB: DrawingBackend>(
         }
         chart
             .configure_series_labels()
+            .position(SeriesLabelPosition::UpperRight)
             .background_style(WHITE.mix(0.8))
             .border_style(BLACK)
             .label_font(("sans-serif", 11))
