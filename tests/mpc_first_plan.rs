@@ -1,6 +1,7 @@
 //! What the MPC plans from the intact object, before any plant is built:
 //! the catch-up after the first fracture priced into the onset's cost, and
-//! the direction the plant's first sections are built for.
+//! the direction the plant's first sections are built for, and the contact
+//! it reads under the knife's edge.
 
 use shearcut::closed_loop::{LoopSetup, mpc_cutting_ratio, mpc_start};
 use shearcut::controller_choice::ControllerChoice;
@@ -182,5 +183,37 @@ fn a_plant_reach_setting_is_validated_on_load() {
     assert!(
         message.contains("reach") && message.contains("-0.5") && message.contains(">= 0"),
         "{message}"
+    );
+}
+
+/// `[controller.mpc] edge_contact` reads the contact under the chef's own
+/// edge. The half potato (90 mm along the edge) at z0 = 0 lies on the flat
+/// heel but for its last 30 mm (slopes up to 0.11): its contact is the
+/// outline's chord within 2 %. At z0 95 mm it lies wholly on the rise
+/// (slopes 0.13 to 0.45): the edge meets it off its top and takes in at
+/// least 5 % less of it at every depth.
+#[test]
+fn edge_contact_reads_the_contact_under_the_knife_edge() {
+    let profile = |z0: f64, edge_contact: bool| {
+        let mut s = Scenario::load("loop-potato-whole-realtime").expect("a built-in scenario");
+        s.motion.z0 = vec![z0];
+        s.controller.mpc.edge_contact = edge_contact;
+        LoopSetup::new(&s, ControllerChoice::Mpc)
+            .expect("a valid scenario")
+            .profile
+            .expect("the MPC's profile")
+    };
+    let chord = profile(0.095, false);
+    let (heel, rise) = (profile(0.0, true), profile(0.095, true));
+    for d in [1e-3, 5e-3, 10e-3, 20e-3] {
+        let l = chord.contact_length(d);
+        let (h, r) = (heel.contact_length(d), rise.contact_length(d));
+        assert!((h / l - 1.0).abs() < 0.02, "{d}: heel {h} vs chord {l}");
+        assert!(r < 0.95 * l, "{d}: rise {r} vs chord {l}");
+    }
+    assert_eq!(
+        chord,
+        profile(0.0, false),
+        "the chord does not depend on z0"
     );
 }

@@ -126,7 +126,9 @@ fn make_mpc(
 }
 
 /// The object as `s`'s MPC sees it ([`surrogate_profile`]; built once per
-/// setup: finding the equivalent rectangle runs the section model). Logs a
+/// setup: finding the equivalent rectangle runs the section model), with
+/// the contact under the knife's own edge at its start pose when
+/// `[controller.mpc] edge_contact` is set ([`DepthProfile::under_edge`]). Logs a
 /// warning when that section lies beyond the sizes the surrogate was fitted
 /// on (`FitRange::covers_section`): the MPC's model then extrapolates.
 pub fn mpc_profile(
@@ -135,8 +137,16 @@ pub fn mpc_profile(
     mesh: &TriangleMesh,
 ) -> Result<DepthProfile, RunError> {
     let surrogate = surrogate_for(s).map_err(|e| invalid(s, e))?;
-    let profile =
+    let mut profile =
         surrogate_profile(s, &surrogate, mesh, task.target_depth).map_err(|e| invalid(s, e))?;
+    if s.controller.mpc.edge_contact {
+        let knife = Knife::new(&s.knife).map_err(|e| invalid(s, e.prefixed("knife")))?;
+        let z0 = s.motion.z0.first().copied().unwrap_or(0.0);
+        let start_z = Plant::start_position(&knife, mesh, z0, s.plant.start_gap).z;
+        profile = profile
+            .under_edge(&task.outline, start_z)
+            .map_err(|e| invalid(s, e.prefixed("controller.mpc.edge_contact")))?;
+    }
     let range = &surrogate.range;
     // Once per process (`compare` sets up every replica).
     static WARNED: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);

@@ -7,6 +7,8 @@ use shearcut_sim::knife_plane::section_shape::crest_section;
 use shearcut_sim::section::{SectionError, SectionSettings};
 use shearcut_sim::surrogate::{Surrogate, equivalent_half_width};
 
+use crate::observer::EdgeOutline;
+
 /// Depth samples of [`DepthProfile::of_object`].
 const OBJECT_SAMPLES: usize = 41;
 
@@ -173,6 +175,36 @@ impl DepthProfile {
         profile.with_half_width(half_width)
     }
 
+    /// The same profile with the contact lengths of the knife's own edge
+    /// (`outline`, the task's [`EdgeOutline`]) with its frame origin at world
+    /// z = `knife_z` (m): at each sampled depth h, the length of edge inside
+    /// the outline with the edge's deepest penetration h, the knife lowered
+    /// h below its touch height there ([`EdgeOutline::touch_height`],
+    /// [`EdgeOutline::contact_length`]). [`of_object`](Self::of_object)'s
+    /// chord is what a straight horizontal edge presses; a chef's edge whose
+    /// rise lies over the object meets it at one point and takes in its
+    /// length more slowly (docs/heldout.md, "The contact under the knife's
+    /// own edge"). The sampled depths, the height and the half width are
+    /// kept.
+    ///
+    /// # Errors
+    /// No edge point lies over the outline with the origin at `knife_z`.
+    pub fn under_edge(self, outline: &EdgeOutline, knife_z: f64) -> Result<Self, InvalidSetting> {
+        let touch = outline.touch_height(knife_z).ok_or_else(|| {
+            InvalidSetting::new(
+                "knife_z",
+                knife_z,
+                "a knife position with some edge over the object's outline",
+            )
+        })?;
+        let lengths = self
+            .depths
+            .iter()
+            .map(|h| outline.contact_length(knife_z, touch - h))
+            .collect();
+        Self::new(self.depths, lengths, self.height, self.half_width)
+    }
+
     /// The same profile with the section's half width `half_width` (m; e.g.
     /// the equivalent rectangle's of a section of another shape).
     ///
@@ -277,7 +309,80 @@ impl DepthProfile {
 
 #[cfg(test)]
 mod tests {
+    use nalgebra::Vector2;
+    use shearcut_sim::geometry::Polygon;
+    use shearcut_sim::{BladeSection, EdgeShape, Knife, KnifePreset, KnifeSettings, SensorMount};
+
     use super::DepthProfile;
+    use crate::observer::EdgeOutline;
+
+    /// A half disc of radius `r` on the board (y = 0), centred at world
+    /// z = `zc`: its knife-plane outline.
+    fn half_disc(r: f64, zc: f64) -> Polygon {
+        Polygon::new(
+            (0..=360)
+                .map(|k| {
+                    let a = std::f64::consts::PI * k as f64 / 360.0;
+                    Vector2::new(zc + r * a.cos(), r * a.sin())
+                })
+                .collect(),
+        )
+    }
+
+    #[test]
+    fn a_straight_edge_takes_in_the_chord_and_a_rising_edge_less() {
+        let r = 0.03;
+        let disc = half_disc(r, 0.1);
+        let depths: Vec<f64> = (1..=20).map(|k| k as f64 * 1e-3).collect();
+        let chord = |h: f64| 2.0 * (2.0 * r * h - h * h).sqrt();
+        let lengths = depths.iter().map(|&h| chord(h)).collect();
+        let profile = DepthProfile::new(depths.clone(), lengths, r, r).unwrap();
+        let edge_of = |k: KnifePreset| Knife::new(&k.settings()).unwrap().edge().clone();
+        // The straight edge over the whole disc (knife frame origin at
+        // z = 0: its edge spans world z 0 to 0.2 m) presses the chord. Each
+        // end of the contact is placed within half of the edge's sampling
+        // (0.5 mm, `EdgeOutline`) where the outline is steep: 0.25 mm.
+        let tolerance = 2.5e-4;
+        let straight = EdgeOutline::new(&edge_of(KnifePreset::Straight), &disc);
+        let under = profile.clone().under_edge(&straight, 0.0).unwrap();
+        for &h in &depths {
+            let (a, b) = (under.contact_length(h), chord(h));
+            assert!((a - b).abs() < tolerance, "{h}: {a} vs {b}");
+        }
+        // The chef's edge rises over the disc (z 0.07 to 0.13 m: slopes
+        // 0.04 to 0.25): it meets the disc on its heel side, below the top,
+        // and takes in less of it at every depth until it presses through.
+        let chef = EdgeOutline::new(&edge_of(KnifePreset::Chef), &disc);
+        let under = profile.clone().under_edge(&chef, 0.0).unwrap();
+        for &h in &depths {
+            assert!(under.contact_length(h) < chord(h), "{h}");
+        }
+        // An edge inclined at slope κ meets the disc where its tangent has
+        // that slope: h deep below the outline (vertically) it is h·cos φ
+        // deep along the normal (tan φ = κ), and its chord is that of a
+        // horizontal edge that deep.
+        let kappa: f64 = 0.25;
+        let inclined = Knife::new(&KnifeSettings {
+            edge: EdgeShape::Polyline {
+                points: vec![[0.0, 0.0], [0.2, 0.2 * kappa]],
+            },
+            blade: BladeSection::default(),
+            sensor: SensorMount::default(),
+        })
+        .unwrap();
+        let tilted = EdgeOutline::new(inclined.edge(), &disc);
+        let under = profile.clone().under_edge(&tilted, 0.0).unwrap();
+        let cos_phi = 1.0 / (1.0 + kappa * kappa).sqrt();
+        for &h in &depths {
+            let (a, b) = (under.contact_length(h), chord(h * cos_phi));
+            assert!((a - b).abs() < tolerance, "{h}: {a} vs {b}");
+        }
+        // Its mean depth in the sections in contact follows its own profile.
+        assert!(under.section_depth(0.01) != profile.section_depth(0.01));
+        assert_eq!((under.height(), under.half_width()), (r, r));
+        // A knife whose edge is nowhere over the object is refused.
+        assert!(profile.under_edge(&chef, 1.0).is_err());
+    }
 
     #[test]
     fn constant_contact_keeps_the_edge_depth() {

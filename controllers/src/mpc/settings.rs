@@ -81,6 +81,14 @@ pub struct MpcSettings {
     /// stage included. With false every point is cut at ξ, as under a
     /// straight horizontal edge. Measured in docs/heldout.md.
     pub edge_inclination: bool,
+    /// Read the object's contact length under the knife's own edge at the
+    /// knife's start pose (default false;
+    /// [`DepthProfile::under_edge`](super::DepthProfile::under_edge)): the
+    /// edge's length inside the object's outline at each depth of the edge,
+    /// from the task's edge and outline. With false it is the chord of the
+    /// outline, as a straight horizontal edge presses it. Measured in
+    /// docs/heldout.md.
+    pub edge_contact: bool,
     /// How plans reach the servo tick (`[controller.mpc.planner]`; default
     /// lockstep, one tick after their request).
     pub planner: PlannerSettings,
@@ -104,6 +112,7 @@ impl Default for MpcSettings {
             touch_speed: 0.005,
             max_reversals: 16,
             edge_inclination: false,
+            edge_contact: false,
             planner: PlannerSettings::default(),
         }
     }
