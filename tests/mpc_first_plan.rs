@@ -1,7 +1,7 @@
 //! What the MPC plans from the intact object, before any plant is built:
-//! the catch-up after the first fracture priced into the onset's cost, and
-//! the direction the plant's first sections are built for, and the contact
-//! it reads under the knife's edge.
+//! the catch-up after the first fracture priced into the onset's cost, the
+//! direction the plant's first sections are built for, and the contact it
+//! reads under the knife's edge.
 
 use shearcut::closed_loop::{LoopSetup, mpc_cutting_ratio, mpc_start};
 use shearcut::controller_choice::ControllerChoice;
