@@ -868,6 +868,41 @@ fn issue_27_a_plant_whose_controller_dies_before_its_first_command_says_so_at_on
     }
 }
 
+/// A plant started after its controller and killed before any look of the
+/// controller's saw it alive (the controller is stopped, SIGSTOP, from
+/// before the plant's start to after its death): its dead node, younger
+/// than the controller's own, is this run's plant, and the controller
+/// reports its death instead of waiting for its connect timeout.
+#[test]
+fn issue_27_a_plant_killed_between_two_looks_is_reported_at_once() {
+    let sb = sandbox::Sandbox::new("plant-dies-unseen");
+    let s = slow_plant(&sb, "slow-plant");
+    let out = sb.dir.join("never");
+    let mut controller = sb.spawn_controller(&s, "unseen", &out);
+    let series = out.join("controller.csv");
+    wait_until("the controller's series files", &mut controller, || {
+        series.exists()
+    });
+    let signal = |sig: &str, pid: u32| {
+        let sent = Command::new("kill")
+            .args([sig, &pid.to_string()])
+            .status()
+            .unwrap();
+        assert!(sent.success(), "kill {sig}");
+    };
+    signal("-STOP", controller.id());
+    let mut plant = sb.spawn_plant(&s, "unseen");
+    wait_for_node(sb.prefix(), "plant/unseen", &mut plant);
+    plant.kill().unwrap(); // SIGKILL while it builds.
+    plant.wait().unwrap();
+    signal("-CONT", controller.id());
+    assert_start_up_fault(
+        controller,
+        "the plant 'plant/unseen' died before serving run 'unseen'",
+    );
+    assert!(!out.exists());
+}
+
 /// A plant killed while its controller starts (its node just created, its
 /// dead-node cleanup running or just done): the controller saw the plant
 /// alive before its cleanup and reports its death, instead of taking it

@@ -100,12 +100,15 @@ struct PeerTarget {
     config: Config,
     peer: String,
     seen: Option<UniqueNodeId>,
+    /// When this process's own node was created: a dead peer node created
+    /// later is this run's peer, killed before a look saw it alive.
+    own_created: Option<Duration>,
 }
 
 impl PeerTarget {
     /// Looks at the peer's node; the fate that follows `fate`.
     fn look(&mut self, fate: &AtomicU8) -> PeerFate {
-        let (state, id) = look(&self.config, &self.peer, self.seen);
+        let (state, id) = look(&self.config, &self.peer, self.seen, self.own_created);
         self.seen = id;
         let now = PeerFate::from_code(fate.load(Ordering::Acquire)).after(state);
         fate.store(now as u8, Ordering::Release);
@@ -116,17 +119,26 @@ impl PeerTarget {
 impl PeerWatch {
     /// Starts watching the node named `peer` under `config`, from what was
     /// known at the start (`initial`; `seen`, the id of the peer's node seen
-    /// alive). Only the node seen alive can die or end: a dead node of the
-    /// same name never seen alive is an earlier run's.
+    /// alive; `own_created`, when this process's node was created, on the
+    /// clock of [`creation_time`](super::run_node::creation_time)). Only the
+    /// node seen alive can die or end, or one created after this process's
+    /// own node (a peer killed between two looks): a dead node of the same
+    /// name created earlier and never seen alive is an earlier run's.
     pub fn start(
         config: Config,
         peer: String,
         initial: PeerFate,
         seen: Option<UniqueNodeId>,
+        own_created: Option<Duration>,
     ) -> Self {
         let fate = Arc::new(AtomicU8::new(initial as u8));
         let stop = Arc::new(AtomicBool::new(false));
-        let target = Arc::new(Mutex::new(PeerTarget { config, peer, seen }));
+        let target = Arc::new(Mutex::new(PeerTarget {
+            config,
+            peer,
+            seen,
+            own_created,
+        }));
         let thread = if initial.is_gone() {
             None
         } else {

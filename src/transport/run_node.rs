@@ -73,7 +73,7 @@ impl RunNode {
         let watch = TerminationWatch::new();
         let own = node_name(role, run_id);
         let peer = node_name(role.peer(), run_id);
-        let (_, peer_before) = look(&config, &peer, None);
+        let (_, peer_before) = look(&config, &peer, None, None);
         let name =
             NodeName::new(&own).map_err(|e| ServiceError::Iceoryx(format!("node name: {e:?}")))?;
         let node = NodeBuilder::new()
@@ -97,7 +97,13 @@ impl RunNode {
             None if dead_peers.iter().any(is_recent) => PeerFate::DiedUnseen,
             None => PeerFate::NotSeen,
         };
-        let peer = PeerWatch::start(config.clone(), peer, initial, peer_before);
+        let peer = PeerWatch::start(
+            config.clone(),
+            peer,
+            initial,
+            peer_before,
+            creation_time(node.id()),
+        );
         Ok(Self {
             node,
             run_id: run_id.to_string(),
@@ -107,6 +113,14 @@ impl RunNode {
             peer,
         })
     }
+}
+
+/// When the node `id` was created, on the host's monotonic clock its id was
+/// stamped with (nanosecond resolution); `None` if the id does not say.
+pub fn creation_time(id: &UniqueNodeId) -> Option<Duration> {
+    id.creation_time::<ipc::Service>()
+        .ok()
+        .map(|t| t.as_duration())
 }
 
 /// Whether the node `id` was created at most [`RECENT_PEER`] ago (the
@@ -141,13 +155,16 @@ fn cleanup_dead_nodes(config: &Config, peer: &str) -> Vec<UniqueNodeId> {
 
 /// A look at the nodes named `name` under `config`: with `seen`, the state
 /// of that node (alive, dead, or absent: gone); without, alive and its id
-/// if one of them is alive, else absent (a dead one never seen alive is an
-/// earlier run's, or died unseen). Lists every node of the prefix (it
-/// allocates): keep it off the tick path.
+/// if one of them is alive, else dead and its id if one of them died that
+/// was created after `born_after` (a peer started after the looking
+/// process's node, and killed before any look saw it alive), else absent
+/// (a dead one created earlier is an earlier run's, or died unseen). Lists
+/// every node of the prefix (it allocates): keep it off the tick path.
 pub fn look(
     config: &Config,
     name: &str,
     seen: Option<UniqueNodeId>,
+    born_after: Option<Duration>,
 ) -> (PeerState, Option<UniqueNodeId>) {
     let mut found = (PeerState::Absent, seen);
     let _ = Node::<ipc::Service>::list(config, |n| {
@@ -171,6 +188,14 @@ pub fn look(
             None if alive => {
                 found = (PeerState::Alive, Some(id));
                 CallbackProgression::Stop
+            }
+            None if born_after
+                .zip(creation_time(&id))
+                .is_some_and(|(after, created)| created > after) =>
+            {
+                // Keep listing: a live node of the name wins.
+                found = (PeerState::Dead, Some(id));
+                CallbackProgression::Continue
             }
             _ => CallbackProgression::Continue,
         }
