@@ -7,10 +7,10 @@
 #[path = "support/sandbox.rs"]
 mod sandbox;
 
-use std::process::{Child, Command};
+use std::process::Child;
 use std::time::Duration;
 
-use sandbox::{Sandbox, WATCHDOG, assert_running, read, read_json, stderr, watchdog};
+use sandbox::{Sandbox, WATCHDOG, assert_running, read, read_json, send_signal, stderr, watchdog};
 
 #[test]
 fn lockstep_over_iceoryx2_is_bit_identical_to_the_in_process_loop() {
@@ -141,11 +141,7 @@ fn sigterm_stops_plant_and_controller_cleanly_with_partial_results() {
     let mut run = sb.spawn_run(&s, "iceoryx2", &out);
     std::thread::sleep(Duration::from_millis(1500));
     assert_running(&mut run, "run");
-    let sent = Command::new("kill")
-        .args(["-TERM", &run.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(sent.success());
+    send_signal(&run, "TERM");
     let o = watchdog(run, Duration::from_secs(30));
     let err = stderr(&o);
     assert_eq!(o.status.code(), Some(143), "{err}");

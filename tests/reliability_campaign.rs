@@ -632,11 +632,7 @@ fn issue_27_sigint_and_sigterm_stop_a_run_with_a_partial_summary() {
     for (signal, number, code, name) in [("INT", 2, 130, "sigint"), ("TERM", 15, 143, "sigterm")] {
         let out = d.0.join(name);
         let child = long_run_after_first_flush(&d, &out);
-        let sent = Command::new("kill")
-            .args([&format!("-{signal}"), &child.id().to_string()])
-            .status()
-            .unwrap();
-        assert!(sent.success());
+        sandbox::send_signal(&child, signal);
         let o = child.wait_with_output().unwrap();
         assert_eq!(
             o.status.code(),
@@ -811,11 +807,7 @@ fn issue_27_sigint_and_sigterm_stop_an_iceoryx2_run_with_130_and_143() {
         let out = sb.dir.join(name);
         let mut run = sb.spawn_run(&s, "iceoryx2", &out);
         wait_for_lines(&out.join("controller.csv"), 101, &mut run);
-        let sent = Command::new("kill")
-            .args([&format!("-{signal}"), &run.id().to_string()])
-            .status()
-            .unwrap();
-        assert!(sent.success());
+        sandbox::send_signal(&run, signal);
         let o = sandbox::watchdog(run, sandbox::WATCHDOG);
         let e = stderr(&o);
         assert_eq!(o.status.code(), Some(code), "{name}: {e}");
@@ -853,11 +845,7 @@ fn issue_27_a_plant_whose_controller_dies_before_its_first_command_says_so_at_on
         let mut plant = sb.spawn_plant(&s, id);
         wait_for_node(sb.prefix(), &format!("plant/{id}"), &mut plant);
         // The plant builds for about a second from here.
-        let sent = Command::new("kill")
-            .args([&format!("-{signal}"), &controller.id().to_string()])
-            .status()
-            .unwrap();
-        assert!(sent.success());
+        sandbox::send_signal(&controller, signal);
         controller.wait().unwrap();
         assert_start_up_fault(
             plant,
@@ -883,19 +871,12 @@ fn issue_27_a_plant_killed_between_two_looks_is_reported_at_once() {
     wait_until("the controller's series files", &mut controller, || {
         series.exists()
     });
-    let signal = |sig: &str, pid: u32| {
-        let sent = Command::new("kill")
-            .args([sig, &pid.to_string()])
-            .status()
-            .unwrap();
-        assert!(sent.success(), "kill {sig}");
-    };
-    signal("-STOP", controller.id());
+    sandbox::send_signal(&controller, "STOP");
     let mut plant = sb.spawn_plant(&s, "unseen");
     wait_for_node(sb.prefix(), "plant/unseen", &mut plant);
     plant.kill().unwrap(); // SIGKILL while it builds.
     plant.wait().unwrap();
-    signal("-CONT", controller.id());
+    sandbox::send_signal(&controller, "CONT");
     assert_start_up_fault(
         controller,
         "the plant 'plant/unseen' died before serving run 'unseen'",
@@ -1113,11 +1094,7 @@ fn issue_27_a_plant_stopped_while_it_builds_exits_cleanly_and_its_controller_say
         wait_for_node(sb.prefix(), &format!("controller/{id}"), &mut controller);
         let mut plant = sb.spawn_plant(&s, id);
         wait_for_node(sb.prefix(), &format!("plant/{id}"), &mut plant);
-        let sent = Command::new("kill")
-            .args([&format!("-{signal}"), &plant.id().to_string()])
-            .status()
-            .unwrap();
-        assert!(sent.success());
+        sandbox::send_signal(&plant, signal);
         let (o, _) = timed(plant);
         let e = stderr(&o);
         assert_eq!(o.status.code(), Some(code), "{e}");
@@ -1151,11 +1128,7 @@ fn issue_27_a_signal_to_an_iceoryx2_run_while_its_plant_builds_stops_both_cleanl
         wait_until("the controller's series files", &mut run, || {
             series.exists()
         });
-        let sent = Command::new("kill")
-            .args([&format!("-{signal}"), &run.id().to_string()])
-            .status()
-            .unwrap();
-        assert!(sent.success());
+        sandbox::send_signal(&run, signal);
         let (o, _) = timed(run);
         let e = stderr(&o);
         assert_eq!(o.status.code(), Some(code), "{e}");
@@ -1236,11 +1209,7 @@ fn issue_27_a_signal_during_the_board_retries_stops_the_controller_with_130_or_1
         wait_until("the controller's series files", &mut controller, || {
             series.exists()
         });
-        let sent = Command::new("kill")
-            .args([&format!("-{signal}"), &controller.id().to_string()])
-            .status()
-            .unwrap();
-        assert!(sent.success());
+        sandbox::send_signal(&controller, signal);
         let (o, _) = timed(controller);
         let e = stderr(&o);
         assert_eq!(o.status.code(), Some(code), "{name}: {e}");
@@ -1418,11 +1387,7 @@ fn simulation_stopped_by(
     wait_until("the run's directory", &mut child, || {
         out.join("scenario.toml").is_file()
     });
-    let sent = Command::new("kill")
-        .args([&format!("-{signal}"), &child.id().to_string()])
-        .status()
-        .unwrap();
-    assert!(sent.success());
+    sandbox::send_signal(&child, signal);
     let o = sandbox::watchdog(child, sandbox::WATCHDOG);
     assert_eq!(o.status.code(), Some(code), "{name}: {}", stderr(&o));
     assert_eq!(stderr(&o).lines().count(), 1, "{}", stderr(&o));

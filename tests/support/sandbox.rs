@@ -157,6 +157,16 @@ fn remove_prefixed(dir: &Path, prefix: &str) {
     }
 }
 
+/// Sends `signal` (a name `kill` knows: `INT`, `TERM`, `STOP`, `CONT`)
+/// to `child`.
+pub fn send_signal(child: &Child, signal: &str) {
+    let sent = Command::new("kill")
+        .args([&format!("-{signal}"), &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(sent.success(), "kill -{signal}");
+}
+
 /// Waits for `child` up to `limit`; kills it and fails the test after that.
 #[allow(clippy::disallowed_methods)] // A watchdog measures wall time.
 pub fn watchdog(mut child: Child, limit: Duration) -> Output {
