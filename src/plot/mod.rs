@@ -6,6 +6,7 @@ pub mod cut_curves;
 pub mod legend;
 pub mod surrogate_fit;
 pub mod toughness_ratio;
+pub mod typeface;
 pub mod wire_slab;
 
 use std::path::Path;
@@ -42,8 +43,9 @@ impl ImageFormat {
     }
 }
 
-/// Draws with `$draw(&root)` on an SVG or PNG backend for `$path`, then
-/// presents, under a temporary name renamed into place
+/// Draws with `$draw(&root)` on an SVG or PNG backend for `$path` in the
+/// built-in typeface ([`typeface`]), then presents, under a temporary name
+/// renamed into place
 /// ([`publish`](crate::result_file::publish)); evaluates to
 /// `Result<(), RunError>`.
 #[macro_export]
@@ -52,6 +54,7 @@ macro_rules! render_plot {
         use plotters::prelude::*;
         let path: &std::path::Path = $path;
         let fmt = $crate::plot::ImageFormat::from_path(path)?;
+        $crate::plot::typeface::register();
         $crate::result_file::publish(path, |partial| {
             let res: Result<(), String> = match fmt {
                 $crate::plot::ImageFormat::Svg => {
