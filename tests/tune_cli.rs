@@ -430,10 +430,60 @@ fn the_mpc_is_paired_with_each_variants_best_constant() {
         );
         assert_eq!(p[pcol("replicas")], "2");
     }
+    // Each grid point held over both variants: its excess over each
+    // variant's best from results.csv, and the tuned point the least mean
+    // excess (every point completes on this small potato).
+    let grid = read(&a.join("constant-grid.csv"));
+    let glines: Vec<&str> = grid.lines().collect();
+    assert_eq!(glines.len(), 1 + 2 * 3, "{grid}");
+    let gcol = |name: &str| glines[0].split(',').position(|c| c == name).unwrap();
+    let mean_work = |variant: usize, setting: usize| {
+        let works: Vec<f64> = rows
+            .iter()
+            .filter(|r| {
+                r[col("variant")] == variant.to_string() && r[col("setting")] == setting.to_string()
+            })
+            .map(|r| r[col("work_j")].parse().unwrap())
+            .collect();
+        works.iter().sum::<f64>() / works.len() as f64
+    };
+    let best_work = |v: usize| {
+        (1..=3)
+            .map(|k| mean_work(v, k))
+            .fold(f64::INFINITY, f64::min)
+    };
+    let excess = |v: usize, k: usize| 100.0 * (mean_work(v, k) / best_work(v) - 1.0);
+    for line in &glines[1..] {
+        let g: Vec<&str> = line.split(',').collect();
+        let variant: usize = g[gcol("variant")].parse().unwrap();
+        let point: usize = g[gcol("grid_point")]
+            .trim_start_matches("best-constant:")
+            .split('/')
+            .next()
+            .unwrap()
+            .parse()
+            .unwrap();
+        let written: f64 = g[gcol("excess_work_percent")].parse().unwrap();
+        assert!(
+            (written - excess(variant, point + 1)).abs() < 1e-9,
+            "{line}"
+        );
+    }
+    let tuned = (1..=3)
+        .min_by(|&a, &b| (excess(0, a) + excess(1, a)).total_cmp(&(excess(0, b) + excess(1, b))))
+        .unwrap();
     let summary = read(&a.join("summary.md"));
     assert!(
         summary.contains("## The MPC against the best constant ratio, per variant")
             && summary.contains("| small-potato | blade 6 mm | 0 (as given) |"),
+        "{summary}"
+    );
+    assert!(
+        summary.contains("## Each point of the grid held over the variants")
+            && summary.contains(&format!(
+                "small-potato (MPC setting 0): best-constant:{}/2 (",
+                tuned - 1
+            )),
         "{summary}"
     );
 }

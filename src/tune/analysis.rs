@@ -4,7 +4,9 @@
 //! recommended setting under each weighting
 //! (`recommended/<scenario>-<weighting>.toml`), with a best-constant grid
 //! the MPC against the best constant per variant (`best-constant.csv`,
-//! [`best_constant_pairing`]), and a summary (`summary.md`, also printed).
+//! [`best_constant_pairing`]) and against each point of the grid held over
+//! the variants (`constant-grid.csv`, [`uniform_constant`]), and a summary
+//! (`summary.md`, also printed).
 
 use std::path::Path;
 
@@ -20,6 +22,7 @@ use crate::tune::pareto_front::front;
 use crate::tune::recommendation::{recommend, settings_block};
 use crate::tune::robust_stats::{SettingStats, setting_stats};
 use crate::tune::setting_effect::{EffectLevel, effects};
+use crate::tune::uniform_constant;
 
 /// How far a controller's front reaches along deformation: the maximum
 /// deformation at its least-work end over that at its least-deformation
@@ -193,6 +196,8 @@ pub fn analyse(dir: &Path, catalog: &JobCatalog, rows: &[JobRow]) -> Result<Stri
     }
     let pairs = best_constant_pairing::pairs(catalog, &finished);
     summary += &best_constant_pairing::write_pairs(dir, catalog, &pairs)?;
+    let grid_pairs = uniform_constant::grid_point_pairs(catalog, &finished);
+    summary += &uniform_constant::write_grid(dir, catalog, &grid_pairs)?;
     front_rows
         .flush()
         .map_err(|e| RunError::write(dir.join("front.csv"), e))?;

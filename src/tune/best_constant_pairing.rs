@@ -30,25 +30,29 @@ pub const WORK_WIN_PERCENT: f64 = 3.0;
 /// Less maximum deformation that counts as a clear win, per cent.
 pub const DEFORMATION_WIN_PERCENT: f64 = 30.0;
 
-/// One MPC setting against the best constant on one variant of a scenario.
+/// One MPC setting against one constant of the grid (in `best-constant.csv`
+/// the best) on one variant of a scenario.
 #[derive(Debug, Clone, PartialEq)]
-pub struct BestConstantPair {
+pub struct ConstantPair {
     /// Index of the scenario in the sweep.
     pub scenario: usize,
     /// Index of the variant in the sweep.
     pub variant: usize,
     /// Index of the MPC's setting in the sweep.
     pub mpc_setting: usize,
-    /// The best constant's grid point (its setting index), `None` if no
-    /// point completed every run on the variant.
-    pub best_setting: Option<usize>,
-    /// The best constant's controller on the variant (e.g. `slice:0.48`;
-    /// empty without one).
-    pub best_controller: String,
+    /// The constant's grid point (its setting index); for the best
+    /// constant, `None` if no point completed every run on the variant.
+    pub constant_setting: Option<usize>,
+    /// The constant's controller on the variant (e.g. `slice:0.48`; empty
+    /// without one).
+    pub constant_controller: String,
     /// Replicas both ran on.
     pub replicas: usize,
     /// Whether every MPC run on the variant reached the target depth.
     pub mpc_completed: bool,
+    /// Whether every run of the constant on the variant reached the
+    /// target depth (false without one).
+    pub constant_completed: bool,
     /// Mean work of the MPC's runs, J.
     pub mpc_work_j: f64,
     /// Mean work of the best constant's runs, J (NaN without one).
@@ -67,7 +71,7 @@ pub struct BestConstantPair {
     pub mpc_plan_p99_us: f64,
 }
 
-impl BestConstantPair {
+impl ConstantPair {
     /// Whether the MPC meets the bar on this variant: mean paired work
     /// difference ≤ [`WORK_TIE_PERCENT`] and no more deformation than the
     /// best constant (mean paired difference ≤ 0).
@@ -107,43 +111,104 @@ fn runs_of<'a>(
     runs
 }
 
-/// The pairs of a finished sweep (every job with its row): one per
-/// scenario, variant and MPC setting, if the sweep has a best-constant
-/// grid (empty otherwise).
-pub fn pairs(catalog: &JobCatalog, finished: &[(&JobRecord, &JobRow)]) -> Vec<BestConstantPair> {
-    let kind_column = catalog
-        .setting_columns
-        .iter()
-        .position(|c| c == "controller.kind");
+/// One scenario, MPC setting and variant of a sweep with a best-constant
+/// grid, and the runs to pair.
+pub(crate) struct PairGroup<'a> {
+    /// Index of the scenario in the sweep.
+    pub scenario: usize,
+    /// Index of the MPC's setting in the sweep.
+    pub mpc_setting: usize,
+    /// Index of the variant in the sweep.
+    pub variant: usize,
+    /// The grid's settings (indices in the sweep), pressing first.
+    pub grid: Vec<usize>,
+    /// The MPC's runs on the variant, in replica order (not empty).
+    pub mpc_runs: Vec<(&'a JobRecord, &'a JobRow)>,
+}
+
+/// The groups of a finished sweep (every job with its row): one per
+/// scenario with a best-constant grid, MPC setting and variant the MPC
+/// ran on, in that order.
+pub(crate) fn groups<'a>(
+    catalog: &JobCatalog,
+    finished: &[(&'a JobRecord, &'a JobRow)],
+) -> Vec<PairGroup<'a>> {
     let mut out = Vec::new();
-    for (si, settings) in catalog.settings.iter().enumerate() {
+    for (scenario, settings) in catalog.settings.iter().enumerate() {
         let grid: Vec<usize> = (0..settings.len())
             .filter(|&k| settings[k].best_constant)
             .collect();
-        let mpcs = (0..settings.len()).filter(|&k| settings[k].controller == "mpc");
         if grid.is_empty() {
             continue;
         }
-        for mpc in mpcs {
+        let mpcs = (0..settings.len()).filter(|&k| settings[k].controller == "mpc");
+        for mpc_setting in mpcs {
             for variant in 0..catalog.variants.len().max(1) {
-                let mpc_runs = runs_of(finished, si, mpc, variant);
-                if mpc_runs.is_empty() {
-                    continue;
+                let mpc_runs = runs_of(finished, scenario, mpc_setting, variant);
+                if !mpc_runs.is_empty() {
+                    out.push(PairGroup {
+                        scenario,
+                        mpc_setting,
+                        variant,
+                        grid: grid.clone(),
+                        mpc_runs,
+                    });
                 }
-                let mean_work = |k: usize| {
-                    completed_mean_work(
-                        runs_of(finished, si, k, variant)
-                            .iter()
-                            .map(|(_, r)| (r.outcome.work_j, r.outcome.completed)),
-                    )
-                };
-                let best = least_mean_work(grid.iter().map(|&k| (k, mean_work(k))));
-                let of = |k| runs_of(finished, si, k, variant);
-                out.push(pair([si, variant, mpc], &mpc_runs, best, of, kind_column));
             }
         }
     }
     out
+}
+
+/// The mean work of grid setting `k`'s runs on the group's variant, if
+/// every one completed ([`completed_mean_work`]).
+pub(crate) fn grid_mean_work(
+    finished: &[(&JobRecord, &JobRow)],
+    g: &PairGroup,
+    k: usize,
+) -> Option<f64> {
+    completed_mean_work(
+        runs_of(finished, g.scenario, k, g.variant)
+            .iter()
+            .map(|(_, r)| (r.outcome.work_j, r.outcome.completed)),
+    )
+}
+
+/// The column of the controller's kind in the catalog's settings.
+pub(crate) fn kind_column(catalog: &JobCatalog) -> Option<usize> {
+    catalog
+        .setting_columns
+        .iter()
+        .position(|c| c == "controller.kind")
+}
+
+/// The MPC of group `g` paired with grid setting `k` (`None`: no constant).
+pub(crate) fn pair_in_group(
+    catalog: &JobCatalog,
+    finished: &[(&JobRecord, &JobRow)],
+    g: &PairGroup,
+    k: Option<usize>,
+) -> ConstantPair {
+    pair(
+        [g.scenario, g.variant, g.mpc_setting],
+        &g.mpc_runs,
+        k,
+        |k| runs_of(finished, g.scenario, k, g.variant),
+        kind_column(catalog),
+    )
+}
+
+/// The pairs of a finished sweep (every job with its row): one per
+/// scenario, variant and MPC setting, each with its variant's best
+/// constant, if the sweep has a best-constant grid (empty otherwise).
+pub fn pairs(catalog: &JobCatalog, finished: &[(&JobRecord, &JobRow)]) -> Vec<ConstantPair> {
+    groups(catalog, finished)
+        .iter()
+        .map(|g| {
+            let best = least_mean_work(g.grid.iter().map(|&k| (k, grid_mean_work(finished, g, k))));
+            pair_in_group(catalog, finished, g, best)
+        })
+        .collect()
 }
 
 /// The pair of the MPC's runs and the runs of grid point `best` (found by
@@ -155,7 +220,7 @@ fn pair<'a>(
     best: Option<usize>,
     runs: impl Fn(usize) -> Vec<(&'a JobRecord, &'a JobRow)>,
     kind_column: Option<usize>,
-) -> BestConstantPair {
+) -> ConstantPair {
     let constant_runs = best.map(&runs).unwrap_or_default();
     let on_both: Vec<(&JobRow, &JobRow)> = mpc_runs
         .iter()
@@ -174,27 +239,30 @@ fn pair<'a>(
         }
     };
     let mpc_completed = mpc_runs.iter().all(|(_, r)| r.outcome.completed);
+    let constant_completed =
+        !constant_runs.is_empty() && constant_runs.iter().all(|(_, c)| c.outcome.completed);
     let all_completed =
         mpc_completed && on_both.iter().all(|(_, c)| c.outcome.completed) && !on_both.is_empty();
-    let best_controller = constant_runs
+    let constant_controller = constant_runs
         .first()
         .and_then(|(j, _)| kind_column.and_then(|i| j.cells.get(i)).cloned())
         .unwrap_or_default();
     let paired = |of: fn(&JobRow) -> f64| {
         let (a, b): (Vec<f64>, Vec<f64>) = on_both.iter().map(|(m, c)| (of(m), of(c))).unzip();
         all_completed
-            .then(|| PairedDifference::from_values(&best_controller, &a, &b))
+            .then(|| PairedDifference::from_values(&constant_controller, &a, &b))
             .flatten()
     };
     let [scenario, variant, mpc_setting] = at;
-    BestConstantPair {
+    ConstantPair {
         scenario,
         variant,
         mpc_setting,
-        best_setting: best,
-        best_controller: best_controller.clone(),
+        constant_setting: best,
+        constant_controller: constant_controller.clone(),
         replicas: on_both.len(),
         mpc_completed,
+        constant_completed,
         mpc_work_j: mean(mpc_runs.iter().map(|(_, r)| r.outcome.work_j).collect()),
         constant_work_j: mean(
             constant_runs
@@ -223,14 +291,19 @@ fn pair<'a>(
     }
 }
 
-/// Columns of `best-constant.csv`.
-const COLUMNS: [&str; 22] = [
+/// The leading columns of a table of pairs: which scenario, variant and
+/// MPC setting ([`key_cells`]).
+pub(crate) const KEY_COLUMNS: [&str; 5] = [
     "scenario",
     "variant",
     "variant_name",
     "mpc_setting",
     "mpc_overrides",
-    "best_constant",
+];
+
+/// The closing columns of a table of pairs: the MPC against the constant
+/// ([`pair_cells`]).
+pub(crate) const PAIR_COLUMNS: [&str; 16] = [
     "replicas",
     "mpc_completed",
     "mpc_work_j",
@@ -264,54 +337,75 @@ fn difference_cells(d: &Option<PairedDifference>) -> Vec<String> {
     }
 }
 
+/// The [`KEY_COLUMNS`] cells of pair `p`.
+pub(crate) fn key_cells(catalog: &JobCatalog, p: &ConstantPair) -> Vec<String> {
+    vec![
+        catalog.scenarios[p.scenario].clone(),
+        p.variant.to_string(),
+        catalog.variants.get(p.variant).cloned().unwrap_or_default(),
+        p.mpc_setting.to_string(),
+        catalog.settings[p.scenario][p.mpc_setting]
+            .overrides
+            .join("; "),
+    ]
+}
+
+/// The [`PAIR_COLUMNS`] cells of pair `p`.
+pub(crate) fn pair_cells(p: &ConstantPair) -> Vec<String> {
+    let mut cells = vec![
+        p.replicas.to_string(),
+        p.mpc_completed.to_string(),
+        float_cell(p.mpc_work_j),
+        float_cell(p.constant_work_j),
+    ];
+    cells.extend(difference_cells(&p.work));
+    cells.push(float_cell(p.mpc_max_deformation_m));
+    cells.push(float_cell(p.constant_max_deformation_m));
+    cells.extend(difference_cells(&p.deformation));
+    cells
+}
+
+/// Writes the table `path`: `columns`, then `rows`.
+pub(crate) fn write_table(
+    path: &Path,
+    columns: &[&str],
+    rows: impl IntoIterator<Item = Vec<String>>,
+) -> Result<(), RunError> {
+    let mut w = csv::Writer::from_path(path).map_err(|e| RunError::write(path, e))?;
+    w.write_record(columns)
+        .map_err(|e| RunError::write(path, e))?;
+    for cells in rows {
+        w.write_record(cells)
+            .map_err(|e| RunError::write(path, e))?;
+    }
+    w.flush().map_err(|e| RunError::write(path, e))
+}
+
 /// Writes `best-constant.csv` under `dir` (deterministic: the timings are
 /// left to `timings.csv`) and returns the summary's section (markdown,
 /// with the MPC's planning p99, measured); nothing without pairs.
 pub fn write_pairs(
     dir: &Path,
     catalog: &JobCatalog,
-    pairs: &[BestConstantPair],
+    pairs: &[ConstantPair],
 ) -> Result<String, RunError> {
     if pairs.is_empty() {
         return Ok(String::new());
     }
-    let path = dir.join("best-constant.csv");
-    let mut w = csv::Writer::from_path(&path).map_err(|e| RunError::write(&path, e))?;
-    w.write_record(COLUMNS)
-        .map_err(|e| RunError::write(&path, e))?;
-    let variant_name = |v: usize| catalog.variants.get(v).cloned().unwrap_or_default();
-    let overrides = |p: &BestConstantPair| {
-        catalog.settings[p.scenario][p.mpc_setting]
-            .overrides
-            .join("; ")
-    };
-    for p in pairs {
-        let mut cells = vec![
-            catalog.scenarios[p.scenario].clone(),
-            p.variant.to_string(),
-            variant_name(p.variant),
-            p.mpc_setting.to_string(),
-            overrides(p),
-            p.best_controller.clone(),
-            p.replicas.to_string(),
-            p.mpc_completed.to_string(),
-            float_cell(p.mpc_work_j),
-            float_cell(p.constant_work_j),
-        ];
-        cells.extend(difference_cells(&p.work));
-        cells.push(float_cell(p.mpc_max_deformation_m));
-        cells.push(float_cell(p.constant_max_deformation_m));
-        cells.extend(difference_cells(&p.deformation));
-        w.write_record(cells)
-            .map_err(|e| RunError::write(&path, e))?;
-    }
-    w.flush().map_err(|e| RunError::write(&path, e))?;
+    let columns = [&KEY_COLUMNS[..], &["best_constant"], &PAIR_COLUMNS[..]].concat();
+    let rows = pairs.iter().map(|p| {
+        let mut cells = key_cells(catalog, p);
+        cells.push(p.constant_controller.clone());
+        cells.extend(pair_cells(p));
+        cells
+    });
+    write_table(&dir.join("best-constant.csv"), &columns, rows)?;
     Ok(markdown(catalog, pairs))
 }
 
 /// The summary's section: one row per pair, then the tallies against the
 /// bars.
-fn markdown(catalog: &JobCatalog, pairs: &[BestConstantPair]) -> String {
+fn markdown(catalog: &JobCatalog, pairs: &[ConstantPair]) -> String {
     let mut t = String::from(
         "\n## The MPC against the best constant ratio, per variant\n\n\
          Paired over the replicas: mean of (MPC − best constant) per cent of the constant's mean \
@@ -343,10 +437,10 @@ fn markdown(catalog: &JobCatalog, pairs: &[BestConstantPair]) -> String {
             catalog.scenarios[p.scenario],
             catalog.variants.get(p.variant).map_or("", String::as_str),
             name,
-            if p.best_controller.is_empty() {
+            if p.constant_controller.is_empty() {
                 "none completed"
             } else {
-                &p.best_controller
+                &p.constant_controller
             },
             p.replicas,
             p.mpc_work_j,
@@ -378,50 +472,13 @@ fn markdown(catalog: &JobCatalog, pairs: &[BestConstantPair]) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::tune::job_list::SettingRecord;
-    use crate::tune::job_outcome::{JobOutcome, JobTiming};
-
-    fn setting(controller: &str, best_constant: bool) -> SettingRecord {
-        SettingRecord {
-            controller: controller.into(),
-            best_constant,
-            overrides: Vec::new(),
-            controller_toml: String::new(),
-        }
-    }
-
-    fn row(work: f64, deformation: f64, completed: bool) -> JobRow {
-        let mut outcome = JobOutcome::from_error(&RunError::Loop("x".into()));
-        outcome.completed = completed;
-        outcome.work_j = work;
-        outcome.max_deformation_m = deformation;
-        JobRow {
-            id: String::new(),
-            outcome,
-            timing: JobTiming {
-                tick_median_us: 0.0,
-                tick_p99_us: 0.0,
-                tick_max_us: 0.0,
-                plan_p99_us: 700.0,
-                solve_p99_us: 0.0,
-                loop_s: 0.0,
-                run_s: 0.0,
-                job_s: 0.0,
-            },
-        }
-    }
+    use crate::tune::finished_sweep_fixture::{FinishedSweep, Run};
 
     #[test]
     fn the_mpc_meets_the_least_mean_work_of_the_completed_grid_points() {
         // Settings: the MPC, then three grid points; two replicas of one
         // variant. Point 1 has the least single run but did not complete
         // one replica; point 3's mean (1.00 J) beats point 2's (1.01 J).
-        let settings = vec![
-            setting("mpc", false),
-            setting("best-constant:0/2", true),
-            setting("best-constant:1/2", true),
-            setting("best-constant:2/2", true),
-        ];
         let table = [
             (0, 0, 0.98, 1.0e-4, true),
             (0, 1, 1.00, 1.2e-4, true),
@@ -432,36 +489,24 @@ mod tests {
             (3, 0, 0.99, 1.0e-4, true),
             (3, 1, 1.01, 1.0e-4, true),
         ];
-        let jobs: Vec<JobRecord> = table
+        let runs: Vec<Run> = table
             .iter()
-            .enumerate()
-            .map(|(index, &(setting, replica, ..))| JobRecord {
-                index,
-                id: index.to_string(),
-                scenario: 0,
+            .map(|&(setting, replica, work, deformation, completed)| Run {
                 setting,
                 variant: 0,
                 replica,
-                controller: String::new(),
-                cells: vec![format!("slice:0.{setting}")],
+                work,
+                deformation,
+                completed,
             })
             .collect();
-        let rows: Vec<JobRow> = table.iter().map(|&(_, _, w, d, c)| row(w, d, c)).collect();
-        let catalog = JobCatalog {
-            sweep: "s".into(),
-            scenarios: vec!["potato".into()],
-            variants: vec!["as given".into()],
-            settings: vec![settings],
-            setting_columns: vec!["controller.kind".into()],
-            jobs: jobs.clone(),
-            weightings: Default::default(),
-        };
-        let finished: Vec<(&JobRecord, &JobRow)> = jobs.iter().zip(&rows).collect();
-        let found = pairs(&catalog, &finished);
+        let sweep = FinishedSweep::new("potato", &["as given"], 3, &runs);
+        let catalog = &sweep.catalog;
+        let found = pairs(catalog, &sweep.finished());
         assert_eq!(found.len(), 1);
         let p = &found[0];
         assert_eq!(
-            (p.best_setting, p.best_controller.as_str()),
+            (p.constant_setting, p.constant_controller.as_str()),
             (Some(3), "slice:0.3")
         );
         // Differences −0.01 J on both replicas: −1 % of 1.00 J, no spread.
@@ -474,7 +519,7 @@ mod tests {
         assert!((d.mean_percent - 10.0).abs() < 1e-9, "{d:?}");
         assert!(!p.no_worse() && !p.clear_win());
         assert_eq!(p.mpc_plan_p99_us, 700.0);
-        let text = markdown(&catalog, &found);
+        let text = markdown(catalog, &found);
         assert!(
             text.contains("| potato | as given | 0 (as given) | slice:0.3 | 2 |"),
             "{text}"

@@ -11,6 +11,8 @@ pub mod controller_setting;
 pub mod dispatch_order;
 pub mod effect_plot;
 pub mod executor;
+#[cfg(test)]
+pub(crate) mod finished_sweep_fixture;
 pub mod front_plot;
 pub mod job_list;
 pub mod job_outcome;
@@ -28,4 +30,5 @@ pub mod shard;
 pub mod staged_runs;
 pub mod stop_request;
 pub mod sweep_file;
+pub mod uniform_constant;
 pub mod weighting;
