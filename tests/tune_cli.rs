@@ -591,14 +591,31 @@ fn the_heldout_set_is_whole_objects_none_of_them_in_the_tuning_set() {
         }
         out
     };
-    let held_out = variants("mpc-heldout.toml");
-    let tuning = variants("mpc-tuning-set.toml");
-    assert!(held_out.len() >= 12, "{} held-out variants", held_out.len());
-    for (i, v) in held_out.iter().enumerate() {
+    // The coarse sets of both objects, and the eggplants' reference sets.
+    for (held_out_file, tuning_file, at_least) in [
+        ("mpc-heldout.toml", "mpc-tuning-set.toml", 12),
+        (
+            "mpc-heldout-eggplant-reference.toml",
+            "mpc-tuning-eggplant-reference.toml",
+            8,
+        ),
+    ] {
+        let held_out = variants(held_out_file);
+        let tuning = variants(tuning_file);
         assert!(
-            !tuning.contains(v),
-            "held-out variant {i} is in the tuning set"
+            held_out.len() >= at_least,
+            "{held_out_file}: {} held-out variants",
+            held_out.len()
         );
-        assert!(!held_out[..i].contains(v), "held-out variant {i} twice");
+        for (i, v) in held_out.iter().enumerate() {
+            assert!(
+                !tuning.contains(v),
+                "{held_out_file}: variant {i} is in {tuning_file}"
+            );
+            assert!(
+                !held_out[..i].contains(v),
+                "{held_out_file}: variant {i} twice"
+            );
+        }
     }
 }
