@@ -11,7 +11,8 @@
 //! favour). The MPC's work and maximum deformation are then compared with
 //! that ratio's on the same replicas ([`PairedDifference`]: mean of the
 //! differences per cent of the constant's mean, its standard error, the
-//! range of the single differences).
+//! range of the single differences). The same pairing, with each point of
+//! the grid in turn, serves [`crate::tune::uniform_constant`].
 
 use std::path::Path;
 
@@ -55,11 +56,11 @@ pub struct ConstantPair {
     pub constant_completed: bool,
     /// Mean work of the MPC's runs, J.
     pub mpc_work_j: f64,
-    /// Mean work of the best constant's runs, J (NaN without one).
+    /// Mean work of the constant's runs, J (NaN without one).
     pub constant_work_j: f64,
     /// Mean maximum deformation of the MPC's runs, m.
     pub mpc_max_deformation_m: f64,
-    /// Mean maximum deformation of the best constant's runs, m.
+    /// Mean maximum deformation of the constant's runs, m.
     pub constant_max_deformation_m: f64,
     /// The MPC's work against the constant's (`None` unless both completed
     /// on the same replicas).
@@ -74,7 +75,7 @@ pub struct ConstantPair {
 impl ConstantPair {
     /// Whether the MPC meets the bar on this variant: mean paired work
     /// difference ≤ [`WORK_TIE_PERCENT`] and no more deformation than the
-    /// best constant (mean paired difference ≤ 0).
+    /// constant (mean paired difference ≤ 0).
     pub fn no_worse(&self) -> bool {
         matches!((&self.work, &self.deformation), (Some(w), Some(d))
             if w.mean_percent <= WORK_TIE_PERCENT && d.mean_percent <= 0.0)
