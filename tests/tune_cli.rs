@@ -359,7 +359,8 @@ fn the_mpc_is_paired_with_each_variants_best_constant() {
     let a = t.0.join("a");
     let out = ok(&tune(&[s(&sweep), "--jobs", "2", "--out", s(&a)], &[]));
     assert!(
-        out.contains("16 runs (1 scenarios × 4 settings × 2 variants × 2 replicas)"),
+        out.contains("16 runs (1 scenarios × 4 settings × 2 variants × 2 replicas)")
+            && out.contains("recommended/, best-constant.csv, constant-grid.csv)"),
         "{out}"
     );
     let results = read(&a.join("results.csv"));

@@ -162,9 +162,15 @@ pub fn run_sweep(
 fn report(dir: &Path, catalog: &JobCatalog, rows: &[JobRow]) -> Result<(), RunError> {
     let summary = analyse(dir, catalog, rows)?;
     crate::outln!("{summary}")?;
+    let has_grid = catalog.settings.iter().flatten().any(|s| s.best_constant);
     crate::outln!(
-        "analysis: {}/ (summary.md, front.csv, effects.csv, front-*.svg/.png, effects-*.svg/.png, recommended/)",
-        dir.display()
+        "analysis: {}/ (summary.md, front.csv, effects.csv, front-*.svg/.png, effects-*.svg/.png, recommended/{})",
+        dir.display(),
+        if has_grid {
+            ", best-constant.csv, constant-grid.csv"
+        } else {
+            ""
+        }
     )?;
     Ok(())
 }
