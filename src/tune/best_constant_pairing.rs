@@ -212,6 +212,15 @@ pub fn pairs(catalog: &JobCatalog, finished: &[(&JobRecord, &JobRow)]) -> Vec<Co
         .collect()
 }
 
+/// The mean of `xs`, NaN if empty.
+pub(crate) fn mean_or_nan(xs: &[f64]) -> f64 {
+    if xs.is_empty() {
+        f64::NAN
+    } else {
+        xs.iter().sum::<f64>() / xs.len() as f64
+    }
+}
+
 /// The pair of the MPC's runs and the runs of grid point `best` (found by
 /// `runs`), on the replicas both have, for [scenario, variant, MPC
 /// setting] `at`.
@@ -232,13 +241,7 @@ fn pair<'a>(
                 .map(|(_, c)| (*r, *c))
         })
         .collect();
-    let mean = |xs: Vec<f64>| {
-        if xs.is_empty() {
-            f64::NAN
-        } else {
-            xs.iter().sum::<f64>() / xs.len() as f64
-        }
-    };
+    let mean = |xs: Vec<f64>| mean_or_nan(&xs);
     let mpc_completed = mpc_runs.iter().all(|(_, r)| r.outcome.completed);
     let constant_completed =
         !constant_runs.is_empty() && constant_runs.iter().all(|(_, c)| c.outcome.completed);

@@ -25,8 +25,8 @@ use std::path::Path;
 use crate::constant_ratio::least_mean_work;
 use crate::error::RunError;
 use crate::tune::best_constant_pairing::{
-    ConstantPair, KEY_COLUMNS, PAIR_COLUMNS, grid_mean_work, groups, key_cells, pair_cells,
-    pair_in_group, write_table,
+    ConstantPair, KEY_COLUMNS, PAIR_COLUMNS, grid_mean_work, groups, key_cells, mean_or_nan,
+    pair_cells, pair_in_group, write_table,
 };
 use crate::tune::job_list::{JobCatalog, JobRecord};
 use crate::tune::job_outcome::JobRow;
@@ -151,24 +151,15 @@ pub fn tallies(pairs: &[GridPointPair]) -> Vec<GridPointTally> {
             .filter_map(|p| p.pair.work.as_ref().map(|w| w.mean_percent))
             .collect();
         t.completed = excesses.len();
-        t.mean_excess_percent = mean(&excesses);
+        t.mean_excess_percent = mean_or_nan(&excesses);
         t.max_excess_percent = excesses
             .iter()
             .copied()
             .reduce(f64::max)
             .unwrap_or(f64::NAN);
-        t.mean_work_difference_percent = mean(&differences);
+        t.mean_work_difference_percent = mean_or_nan(&differences);
     }
     out
-}
-
-/// The mean of `xs`, NaN if empty.
-fn mean(xs: &[f64]) -> f64 {
-    if xs.is_empty() {
-        f64::NAN
-    } else {
-        xs.iter().sum::<f64>() / xs.len() as f64
-    }
 }
 
 /// The point the variants of `scenario` tune against MPC setting
