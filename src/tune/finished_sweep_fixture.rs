@@ -104,7 +104,7 @@ fn row(r: &Run) -> JobRow {
             tick_p99_us: 0.0,
             tick_max_us: 0.0,
             plan_p99_us: 700.0,
-            solve_p99_us: 0.0,
+            solve_p99_us: 450.0,
             loop_s: 0.0,
             run_s: 0.0,
             job_s: 0.0,
