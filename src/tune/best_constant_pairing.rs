@@ -262,6 +262,8 @@ fn pair<'a>(
             .then(|| PairedDifference::from_values(&constant_controller, &a, &b))
             .flatten()
     };
+    let largest_mpc =
+        |of: fn(&JobRow) -> f64| mpc_runs.iter().map(|(_, r)| of(r)).fold(0.0, f64::max);
     let [scenario, variant, mpc_setting] = at;
     ConstantPair {
         scenario,
@@ -293,14 +295,8 @@ fn pair<'a>(
         ),
         work: paired(|r| r.outcome.work_j),
         deformation: paired(|r| r.outcome.max_deformation_m),
-        mpc_plan_p99_us: mpc_runs
-            .iter()
-            .map(|(_, r)| r.timing.plan_p99_us)
-            .fold(0.0, f64::max),
-        mpc_solve_p99_us: mpc_runs
-            .iter()
-            .map(|(_, r)| r.timing.solve_p99_us)
-            .fold(0.0, f64::max),
+        mpc_plan_p99_us: largest_mpc(|r| r.timing.plan_p99_us),
+        mpc_solve_p99_us: largest_mpc(|r| r.timing.solve_p99_us),
     }
 }
 
