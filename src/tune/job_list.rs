@@ -3,7 +3,8 @@
 //!
 //! Order: scenarios as listed; within one, the controller settings as the
 //! sweep expands them; within one setting, the variants; within one
-//! variant, the replicas. The order and every job's scenario depend only on
+//! variant, the replicas (each its own specimen of the variant when the
+//! sweep has `[specimens]`). The order and every job's scenario depend only on
 //! the sweep file and the scenarios it names, so every machine and every
 //! shard builds the same list.
 //!
@@ -144,23 +145,25 @@ impl JobList {
                 let nominal = setting.apply(base).map_err(at)?;
                 of_scenario.push(setting_record(setting, &nominal));
                 for (vi, variant) in sweep.variants.iter().enumerate() {
-                    let perturbed = variant.apply(base).map_err(at)?;
-                    let scenario = setting.apply(&perturbed).map_err(at)?;
-                    let mut cells: Vec<(String, String)> = VARIANT_COLUMNS
-                        .iter()
-                        .map(|c| c.to_string())
-                        .zip(variant.cells(&scenario))
-                        .collect();
-                    cells.extend(controller_cells(&scenario));
-                    for (key, _) in &cells {
-                        if !columns.contains(key) {
-                            columns.push(key.clone());
-                        }
-                    }
-                    let resolved = resolved_toml(&scenario);
                     for r in 0..sweep.replicas {
+                        // Replica r's specimen of the variant (the variant
+                        // itself unless the sweep spreads its specimens).
+                        let specimen = sweep.specimens.specimen_of(variant, r);
+                        let perturbed = specimen.apply(base).map_err(at)?;
+                        let scenario = setting.apply(&perturbed).map_err(at)?;
+                        let mut cells: Vec<(String, String)> = VARIANT_COLUMNS
+                            .iter()
+                            .map(|c| c.to_string())
+                            .zip(specimen.cells(&scenario))
+                            .collect();
+                        cells.extend(controller_cells(&scenario));
+                        for (key, _) in &cells {
+                            if !columns.contains(key) {
+                                columns.push(key.clone());
+                            }
+                        }
                         let index = jobs.len();
-                        let id = job_id(&resolved, r);
+                        let id = job_id(&resolved_toml(&scenario), r);
                         jobs.push(Job {
                             record: JobRecord {
                                 index,
@@ -172,11 +175,11 @@ impl JobList {
                                 controller: setting.label(),
                                 cells: Vec::new(),
                             },
-                            scenario: scenario.clone(),
                             choice: scenario.controller.kind,
+                            scenario,
                             replica: RunReplica { index: r },
                         });
-                        job_cells.push(cells.clone());
+                        job_cells.push(cells);
                     }
                 }
             }
@@ -365,5 +368,80 @@ mod tests {
         ids.sort_unstable();
         ids.dedup();
         assert_eq!(ids.len(), 24);
+    }
+
+    #[test]
+    fn specimens_make_each_replica_another_object_and_leave_replica_zero_as_it_was() {
+        let plain = list_of(SWEEP);
+        let spread = list_of(&SWEEP.replace(
+            "replicas = 2\n",
+            "replicas = 2\n[specimens]\nsize = 0.05\nmaterial = 0.1\n",
+        ));
+        assert_eq!(spread.jobs.len(), plain.jobs.len());
+        let f = crate::tune::specimen_spread::SpecimenSpread {
+            size: 0.05,
+            material: 0.1,
+        }
+        .factors(1);
+        for (p, s) in plain.jobs.iter().zip(&spread.jobs) {
+            if p.record.replica == 0 {
+                // The variant as given: the same run under the same id.
+                assert_eq!(p.record.id, s.record.id);
+                continue;
+            }
+            assert_ne!(p.record.id, s.record.id);
+            let (pm, sm) = (&p.scenario.material, &s.scenario.material);
+            // Products in another order: equal to rounding.
+            let near = |a: f64, b: f64| (a / b - 1.0).abs() < 1e-14;
+            assert!(near(
+                sm.youngs_modulus,
+                pm.youngs_modulus * f.youngs_modulus
+            ));
+            assert!(near(
+                sm.fracture_toughness,
+                pm.fracture_toughness * f.fracture_toughness
+            ));
+            // Every controller meets the same specimen; the MPC keeps the
+            // nominal material's surrogate.
+            assert_eq!(
+                s.scenario.controller.surrogate,
+                p.scenario.controller.surrogate
+            );
+        }
+        // The half potato's target scales with the specimen.
+        let whole = spread
+            .jobs
+            .iter()
+            .find(|j| j.record.scenario == 1 && j.record.replica == 1)
+            .unwrap();
+        let nominal = plain
+            .jobs
+            .iter()
+            .find(|j| j.record.scenario == 1 && j.record.replica == 1)
+            .unwrap();
+        let depth = |j: &Job| j.scenario.motion.depth.unwrap();
+        assert!((depth(whole) / depth(nominal) - f.size).abs() < 1e-12);
+        // The variant's cells show the specimen cut.
+        let col = spread
+            .catalog
+            .setting_columns
+            .iter()
+            .position(|c| c == "variant.size_scale")
+            .unwrap();
+        assert_eq!(
+            whole.record.cells[col],
+            crate::tune::perturbation::float_cell(f.size)
+        );
+        let e = Sweep::parse(
+            &SWEEP.replace("replicas = 2\n", "replicas = 2\n[specimens]\nsize = 0.5\n"),
+            "s.toml",
+            "s",
+            None,
+        )
+        .unwrap_err();
+        assert_eq!(
+            e.to_string(),
+            "s.toml: `specimens.size` = 0.5: must be in [0, 0.2]"
+        );
     }
 }

@@ -27,6 +27,7 @@ pub mod robust_stats;
 pub mod run_log;
 pub mod setting_effect;
 pub mod shard;
+pub mod specimen_spread;
 pub mod staged_runs;
 pub mod stop_request;
 pub mod sweep_file;

@@ -93,6 +93,7 @@ impl<'a> StagedRuns<'a> {
             variants: vec![Perturbation::default()],
             settings,
             replicas,
+            specimens: Default::default(),
             weightings: BTreeMap::new(),
         };
         Ok(JobList::new(&sweep, &self.scenario.name)?.jobs)

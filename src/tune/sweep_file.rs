@@ -8,6 +8,10 @@
 //! scenarios = ["loop-potato-whole"]    # built-in names or paths (relative to this file)
 //! replicas = 2                         # replica k starts the knife k·5 µm higher
 //!
+//! [specimens]                          # optional: replica k ≥ 1 cuts another specimen
+//! size = 0.05                          # its size ×(1 ± 0.05)
+//! material = 0.1                       # its E and R_c ×(1 ± 0.1) each
+//!
 //! [variants]                           # the cross product of these lists
 //! youngs_modulus_scale = [0.8, 1.0, 1.25]
 //!
@@ -36,6 +40,7 @@ use crate::scenario::Scenario;
 use crate::tune::constant_grid::{BEST_CONSTANT_KIND, ConstantGridPoint, MAX_POINTS};
 use crate::tune::controller_setting::ControllerSetting;
 use crate::tune::perturbation::Perturbation;
+use crate::tune::specimen_spread::SpecimenSpread;
 use crate::tune::weighting::{Weighting, default_weightings};
 
 /// Most replicas a sweep may ask for (as `compare`).
@@ -56,6 +61,11 @@ pub struct SweepFile {
     /// Replicas of every run, 1–21 (default 1): replica k starts the knife
     /// k·5 µm higher ([`crate::run_replica::RunReplica`]).
     pub replicas: Option<u32>,
+    /// How much the specimens of a variant differ: replica k ≥ 1 cuts
+    /// another object of the variant's kind
+    /// ([`crate::tune::specimen_spread`]; default: none, every replica
+    /// cuts the variant as given).
+    pub specimens: Option<SpecimenSpread>,
     /// Perturbed variants as a grid: each key a value or a list, the
     /// variants the cross product (default: the scenario as given).
     pub variants: Option<VariantGrid>,
@@ -165,6 +175,8 @@ pub struct Sweep {
     pub settings: Vec<ControllerSetting>,
     /// Replicas per run.
     pub replicas: u32,
+    /// How the replicas' specimens differ (none by default).
+    pub specimens: SpecimenSpread,
     /// Named weightings of the recommendation, by name.
     pub weightings: BTreeMap<String, Weighting>,
 }
@@ -219,6 +231,10 @@ impl Sweep {
                 format!("must be in 1..={MAX_REPLICAS}"),
             )));
         }
+        let specimens = file.specimens.unwrap_or_default();
+        specimens
+            .validate()
+            .map_err(|e| invalid(e.prefixed("specimens")))?;
         if file.scenarios.is_empty() {
             return Err(invalid(InvalidSetting::new(
                 "scenarios",
@@ -308,6 +324,7 @@ impl Sweep {
             variants,
             settings,
             replicas,
+            specimens,
             weightings,
         })
     }
