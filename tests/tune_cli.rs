@@ -596,6 +596,11 @@ fn the_heldout_set_is_whole_objects_none_of_them_in_the_tuning_set() {
     for (held_out_file, tuning_file, at_least) in [
         ("mpc-heldout.toml", "mpc-tuning-set.toml", 12),
         (
+            "mpc-heldout-specimens.toml",
+            "mpc-tuning-set-specimens.toml",
+            12,
+        ),
+        (
             "mpc-heldout-eggplant-reference.toml",
             "mpc-tuning-eggplant-reference.toml",
             8,

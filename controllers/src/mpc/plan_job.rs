@@ -5,7 +5,7 @@ use std::sync::Arc;
 
 use super::depth_profile::DepthProfile;
 use super::depth_qp::{DepthQp, EnteringEdge, QpLimits, QpStatus, StageData};
-use super::settings::MpcSettings;
+use super::settings::{MAX_STAGES, MpcSettings};
 use super::slice_model::{SliceModel, StageState};
 use crate::controller::{CutTask, MotionLimits, stopping_distance, stopping_duration};
 use crate::observer::{EdgeOutline, INCLINATION_BINS};
@@ -295,6 +295,9 @@ impl<M: SliceModel> MpcPlanJob<M> {
             self.stroke_tau.copy_from_slice(self.qp.tau());
         }
         let saw = r.reversals_left > 0 && self.sawing_pays(r, previous, blade, within);
+        if within && !saw && self.holding_pays(previous, blade) {
+            self.stroke_xi.fill(previous);
+        }
         if saw {
             status = QpStatus::Solved;
             self.stroke_xi.copy_from_slice(self.qp.xi());
@@ -329,6 +332,50 @@ impl<M: SliceModel> MpcPlanJob<M> {
                 (1.0 / plan.tau[0]).min(r.normal_limit)
             };
             plan.tangential_speed = (plan.xi[0] * plan.normal_speed).min(l.tangential_speed);
+        }
+    }
+
+    /// Whether holding the ratio `previous` over every stage, at the solved
+    /// plan's times (slowed where the tangential speed limit needs it),
+    /// costs less than [`MpcSettings::min_saving`] of the solved plan's
+    /// objective more than that plan, within the `blade` m left. True
+    /// leaves the hold's times in `stroke_tau`.
+    fn holding_pays(&mut self, previous: f64, blade: f64) -> bool {
+        let fraction = self.settings.min_saving;
+        if fraction <= 0.0 {
+            return false;
+        }
+        let demand: f64 = self.stages.iter().map(|s| s.depth_step * previous).sum();
+        if demand > blade {
+            return false;
+        }
+        let plan = DepthQp::objective(
+            &self.stages,
+            &self.limits,
+            previous,
+            &self.stroke_xi,
+            &self.stroke_tau,
+        );
+        let slowest = previous / self.limits.tangential_speed.max(f64::MIN_POSITIVE);
+        let n = self.stages.len();
+        let mut hold_tau = [0.0; MAX_STAGES];
+        let hold_tau = &mut hold_tau[..n];
+        for (t, s) in hold_tau.iter_mut().zip(&self.stroke_tau) {
+            *t = s.max(slowest);
+        }
+        let hold_xi = [previous; MAX_STAGES];
+        let hold = DepthQp::objective(
+            &self.stages,
+            &self.limits,
+            previous,
+            &hold_xi[..n],
+            hold_tau,
+        );
+        if hold - plan < fraction * plan.abs() {
+            self.stroke_tau.copy_from_slice(hold_tau);
+            true
+        } else {
+            false
         }
     }
 

@@ -5,6 +5,9 @@ use shearcut_sim::InvalidSetting;
 
 use crate::planner::PlannerSettings;
 
+/// Most depth stages a plan may have ([`MpcSettings::stages`]).
+pub const MAX_STAGES: usize = 200;
+
 /// Settings of the [`super::Mpc`].
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 #[serde(default, deny_unknown_fields)]
@@ -81,6 +84,13 @@ pub struct MpcSettings {
     /// stage included. With false every point is cut at ξ, as under a
     /// straight horizontal edge. Measured in docs/heldout.md.
     pub edge_inclination: bool,
+    /// Smallest predicted saving for which a plan changes the ratio, as a
+    /// fraction of the plan's predicted cost of the rest of the cut
+    /// (default 0: every plan is followed). A plan whose objective is
+    /// within this fraction of holding the last plan's first ratio over
+    /// every stage is replaced by that hold: a change the model prices
+    /// below its own resolution is not made. Measured in docs/heldout.md.
+    pub min_saving: f64,
     /// Read the object's contact length under the knife's own edge at the
     /// knife's start pose (default false;
     /// [`DepthProfile::under_edge`](super::DepthProfile::under_edge)): the
@@ -112,6 +122,7 @@ impl Default for MpcSettings {
             touch_speed: 0.005,
             max_reversals: 16,
             edge_inclination: false,
+            min_saving: 0.0,
             edge_contact: false,
             planner: PlannerSettings::default(),
         }
@@ -141,7 +152,14 @@ impl MpcSettings {
                 return Err(InvalidSetting::new(key, v, "a finite number >= 0"));
             }
         }
-        if !(1..=200).contains(&self.stages) {
+        if !(self.min_saving.is_finite() && (0.0..=0.5).contains(&self.min_saving)) {
+            return Err(InvalidSetting::new(
+                "min_saving",
+                self.min_saving,
+                "in [0, 0.5] (a fraction of the plan's cost)",
+            ));
+        }
+        if !(1..=MAX_STAGES).contains(&self.stages) {
             return Err(InvalidSetting::new("stages", self.stages, "in 1..=200"));
         }
         if !(self.forgetting > 0.0 && self.forgetting <= 1.0) {
