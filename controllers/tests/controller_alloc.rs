@@ -53,20 +53,19 @@ fn controller_ticks_allocate_nothing() {
     // exactly so that any new allocation shows. 4 mm of blade for 40 mm of
     // depth: the plans consider sawing and the knife reverses.
     use shearcut_controllers::mpc::{DepthProfile, Mpc, MpcSettings};
-    let profile = DepthProfile::new(vec![0.0, 0.02], vec![0.01, 0.05], 0.03, 0.015).unwrap();
-    let mut mpc = Mpc::new(
-        &task(0.04, 0.004),
-        &MpcSettings::default(),
-        synthetic_arm::QuadraticModel,
-        profile,
-        0.5,
-    )
-    .unwrap();
-    let mut arm = SyntheticArm::new(2000.0);
-    let mut m = arm.measure(ArmStatus::Moving);
-    // The first plan sets up clarabel's timer maps.
-    let command = mpc.tick(&m);
-    m = arm.step(&command);
+    // The MPC on a widening object, against a spring arm, after its first
+    // plan (which sets up clarabel's timer maps).
+    let started = |settings: &MpcSettings| {
+        let profile = DepthProfile::new(vec![0.0, 0.02], vec![0.01, 0.05], 0.03, 0.015).unwrap();
+        let q = synthetic_arm::QuadraticModel;
+        let mut mpc = Mpc::new(&task(0.04, 0.004), settings, q, profile, 0.5).unwrap();
+        let mut arm = SyntheticArm::new(2000.0);
+        let m = arm.measure(ArmStatus::Moving);
+        let command = mpc.tick(&m);
+        let m = arm.step(&command);
+        (mpc, arm, m)
+    };
+    let (mut mpc, mut arm, mut m) = started(&MpcSettings::default());
     let (mut plans, mut in_plans, mut between) = (0, 0, 0);
     let solves_before = mpc.stats().solves;
     for _ in 0..2000 {
@@ -94,4 +93,30 @@ fn controller_ticks_allocate_nothing() {
     // clarabel's one allocation per solve) run on the planner thread.
     assert_eq!(between, 0);
     assert_eq!(in_plans, 0, "{solves} solves off the tick");
+
+    // The plan itself, made on the tick (inline) with every check a plan
+    // makes (sawing, and holding the ratio, `min_saving`), and copied into
+    // the planner's slot (`MpcPlan::clone_from` reuses its buffers):
+    // nothing in our code, one block per solve inside clarabel.
+    use shearcut_controllers::planner::{LatencyMode, PlannerSettings};
+    let settings = MpcSettings {
+        min_saving: 0.005,
+        planner: PlannerSettings {
+            latency: LatencyMode::Inline,
+            ..PlannerSettings::default()
+        },
+        ..MpcSettings::default()
+    };
+    let (mut mpc, mut arm, mut m) = started(&settings);
+    let solves_before = mpc.stats().solves;
+    ALLOCATIONS.store(0, Ordering::SeqCst);
+    TRACK.with(|t| t.set(true));
+    for _ in 0..2000 {
+        let command = mpc.tick(&m);
+        m = arm.step(&command);
+    }
+    TRACK.with(|t| t.set(false));
+    let solves = mpc.stats().solves - solves_before;
+    assert!(solves > 50, "{solves} solves");
+    assert_eq!(ALLOCATIONS.load(Ordering::SeqCst) as u64, solves);
 }

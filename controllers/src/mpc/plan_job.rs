@@ -46,8 +46,10 @@ pub struct PlanRequest {
 }
 
 /// A plan: ξ and τ per stage from the edge's depth `origin`, and the
-/// velocity target of its first stage.
-#[derive(Debug, Clone, PartialEq)]
+/// velocity target of its first stage. `clone_from` reuses the target's
+/// buffers (a plan is copied into the planner's preallocated slots on every
+/// plan).
+#[derive(Debug, PartialEq)]
 pub struct MpcPlan {
     /// Slice-push ratio per stage.
     pub xi: Vec<f64>,
@@ -71,6 +73,43 @@ pub struct MpcPlan {
     pub solves: u32,
     /// Interior-point iterations of its last solve.
     pub iterations: u32,
+}
+
+impl Clone for MpcPlan {
+    fn clone(&self) -> Self {
+        Self {
+            xi: self.xi.clone(),
+            tau: self.tau.clone(),
+            ..*self
+        }
+    }
+
+    fn clone_from(&mut self, source: &Self) {
+        self.xi.clone_from(&source.xi);
+        self.tau.clone_from(&source.tau);
+        let Self {
+            xi: _,
+            tau: _,
+            origin,
+            step,
+            normal_speed,
+            tangential_speed,
+            saw,
+            status,
+            fallback,
+            solves,
+            iterations,
+        } = *source;
+        self.origin = origin;
+        self.step = step;
+        self.normal_speed = normal_speed;
+        self.tangential_speed = tangential_speed;
+        self.saw = saw;
+        self.status = status;
+        self.fallback = fallback;
+        self.solves = solves;
+        self.iterations = iterations;
+    }
 }
 
 impl MpcPlan {
