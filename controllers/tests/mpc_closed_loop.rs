@@ -63,54 +63,44 @@ impl SliceModel for ShallowModel {
     }
 }
 
+/// The MPC at `min_saving` on `model`, from pressing, cutting 20 mm of a
+/// 30 mm uniform object with blade to spare, to the end of the cut.
+fn cut_from_pressing<M: SliceModel + Clone + Send + 'static>(
+    model: M,
+    min_saving: f64,
+) -> (SyntheticArm, Vec<(f64, f64)>) {
+    let profile = DepthProfile::uniform(0.03, 0.03, 0.015).unwrap();
+    let settings = MpcSettings {
+        min_saving,
+        ..MpcSettings::default()
+    };
+    let mut mpc = Mpc::new(&task(0.02, 1.0), &settings, model, profile, 0.0).unwrap();
+    let (arm, trace) = run(&mut mpc, 20_000);
+    assert_eq!(mpc.telemetry().phase, CutPhase::Done);
+    (arm, trace)
+}
+
 /// `min_saving`: a plan that changes the ratio for less than that fraction
 /// of its predicted cost is not followed; the ratio held is the last one.
 /// A saving well above it is followed as before.
 #[test]
 fn the_mpc_holds_its_ratio_against_savings_below_min_saving() {
-    let profile = DepthProfile::uniform(0.03, 0.03, 0.015).unwrap();
-    let with = |min_saving: f64| MpcSettings {
-        min_saving,
-        ..MpcSettings::default()
-    };
-    let mid_and_max = |trace: &[(f64, f64)]| {
-        let max = trace.iter().map(|(_, xi)| *xi).fold(0.0, f64::max);
-        (trace[trace.len() / 2].1, max)
-    };
+    let mid = |trace: &[(f64, f64)]| trace[trace.len() / 2].1;
     // 0.27 % to gain: followed by default, held below a 0.5 % threshold.
-    let mut follows = Mpc::new(
-        &task(0.02, 1.0),
-        &with(0.0),
-        ShallowModel,
-        profile.clone(),
-        0.0,
-    )
-    .unwrap();
-    let (_, trace) = run(&mut follows, 20_000);
-    assert_eq!(follows.telemetry().phase, CutPhase::Done);
-    let (xi_mid, _) = mid_and_max(&trace);
+    let (_, trace) = cut_from_pressing(ShallowModel, 0.0);
+    let xi_mid = mid(&trace);
     // On so flat a law the objective's other terms keep it short of 4/3.
     assert!(
         xi_mid > 0.5,
         "ξ = {xi_mid}: leaves pressing for the optimum"
     );
-    let mut holds = Mpc::new(
-        &task(0.02, 1.0),
-        &with(0.005),
-        ShallowModel,
-        profile.clone(),
-        0.0,
-    )
-    .unwrap();
-    let (arm, trace) = run(&mut holds, 20_000);
-    assert_eq!(holds.telemetry().phase, CutPhase::Done);
+    let (arm, trace) = cut_from_pressing(ShallowModel, 0.005);
     assert_eq!(arm.refused, 0);
-    let (_, xi_max) = mid_and_max(&trace);
+    let xi_max = trace.iter().map(|(_, xi)| *xi).fold(0.0, f64::max);
     assert_eq!(xi_max, 0.0, "presses throughout");
     // 53 % to gain: followed through the same threshold.
-    let mut steep = Mpc::new(&task(0.02, 1.0), &with(0.005), QuadraticModel, profile, 0.0).unwrap();
-    let (_, trace) = run(&mut steep, 20_000);
-    let (xi_mid, _) = mid_and_max(&trace);
+    let (_, trace) = cut_from_pressing(QuadraticModel, 0.005);
+    let xi_mid = mid(&trace);
     assert!((xi_mid - 4.0 / 3.0).abs() < 0.02, "ξ = {xi_mid}");
 }
 

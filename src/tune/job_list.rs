@@ -409,16 +409,11 @@ mod tests {
             );
         }
         // The half potato's target scales with the specimen.
-        let whole = spread
-            .jobs
-            .iter()
-            .find(|j| j.record.scenario == 1 && j.record.replica == 1)
-            .unwrap();
-        let nominal = plain
-            .jobs
-            .iter()
-            .find(|j| j.record.scenario == 1 && j.record.replica == 1)
-            .unwrap();
+        fn replica_one(list: &JobList) -> &Job {
+            let of_whole = |j: &&Job| j.record.scenario == 1 && j.record.replica == 1;
+            list.jobs.iter().find(of_whole).unwrap()
+        }
+        let (whole, nominal) = (replica_one(&spread), replica_one(&plain));
         let depth = |j: &Job| j.scenario.motion.depth.unwrap();
         assert!((depth(whole) / depth(nominal) - f.size).abs() < 1e-12);
         // The variant's cells show the specimen cut.

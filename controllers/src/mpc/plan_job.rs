@@ -85,30 +85,10 @@ impl Clone for MpcPlan {
     }
 
     fn clone_from(&mut self, source: &Self) {
-        self.xi.clone_from(&source.xi);
-        self.tau.clone_from(&source.tau);
-        let Self {
-            xi: _,
-            tau: _,
-            origin,
-            step,
-            normal_speed,
-            tangential_speed,
-            saw,
-            status,
-            fallback,
-            solves,
-            iterations,
-        } = *source;
-        self.origin = origin;
-        self.step = step;
-        self.normal_speed = normal_speed;
-        self.tangential_speed = tangential_speed;
-        self.saw = saw;
-        self.status = status;
-        self.fallback = fallback;
-        self.solves = solves;
-        self.iterations = iterations;
+        let (mut xi, mut tau) = (std::mem::take(&mut self.xi), std::mem::take(&mut self.tau));
+        xi.clone_from(&source.xi);
+        tau.clone_from(&source.tau);
+        *self = Self { xi, tau, ..*source };
     }
 }
 
