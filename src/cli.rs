@@ -145,6 +145,16 @@ pub enum Command {
             allow_negative_numbers = true
         )]
         window_weight: f64,
+        /// Section sizes added to the fit's sweeps, HEIGHTxHALF_WIDTH in mm,
+        /// comma-separated (e.g. 65x95,50x60): for objects whose equivalent
+        /// section lies beyond the default 20–45 mm high, 10–30 mm half
+        /// width (docs/surrogates.md).
+        #[arg(long, value_name = "HxW", value_delimiter = ',')]
+        extra_sizes: Vec<String>,
+        /// Section sizes added to the held-out runs of the accuracy report
+        /// (as --extra-sizes; none of them a fitted size).
+        #[arg(long, value_name = "HxW", value_delimiter = ',')]
+        extra_held_out_sizes: Vec<String>,
     },
     /// The plant process of the arm-style loop: serve the scenario's plant
     /// over iceoryx2 to the controller of run ID (lockstep or realtime per

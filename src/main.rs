@@ -52,7 +52,16 @@ fn main() -> ExitCode {
             knife,
             out,
             window_weight,
-        }) => commands::fit::run(&material, &knife, window_weight, out.as_deref()),
+            extra_sizes,
+            extra_held_out_sizes,
+        }) => commands::fit::run(&commands::fit::FitRequest {
+            material: &material,
+            knife: &knife,
+            window_weight,
+            extra_sizes: &extra_sizes,
+            extra_held_out_sizes: &extra_held_out_sizes,
+            out: out.as_deref(),
+        }),
         Some(Command::Plant {
             scenario,
             run_id,

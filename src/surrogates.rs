@@ -71,11 +71,18 @@ pub fn surrogate_for(s: &Scenario) -> Result<Surrogate, InvalidSetting> {
             }
         }
     };
-    let bad = |why: String| InvalidSetting::new("controller.surrogate", &name, why);
+    surrogate_named(&name)
+}
+
+/// A surrogate by `[controller] surrogate`'s rule: a built-in name
+/// ([`BUILT_IN_SURROGATES`]) first, else a file written by `shearcut fit`.
+/// Errors name the key `controller.surrogate`.
+pub fn surrogate_named(name: &str) -> Result<Surrogate, InvalidSetting> {
+    let bad = |why: String| InvalidSetting::new("controller.surrogate", name, why);
     if let Some((_, text)) = BUILT_IN_SURROGATES.iter().find(|(n, _)| *n == name) {
         return Surrogate::from_toml_str(text).map_err(|e| bad(e.to_string()));
     }
-    let path = Path::new(&name);
+    let path = Path::new(name);
     if path.exists() {
         return Surrogate::from_path(path).map_err(|e| bad(e.to_string()));
     }

@@ -50,6 +50,42 @@ fn negative_window_weight_is_exit_2_in_one_line() {
 }
 
 #[test]
+fn a_malformed_or_unphysical_extra_size_is_exit_2_in_one_line() {
+    for (key, bad) in [
+        ("--extra-sizes", "65"),
+        ("--extra-sizes", "65xninety"),
+        ("--extra-sizes", "0.065x0.095"),
+        ("--extra-held-out-sizes", "60x900"),
+    ] {
+        let o = fit_potato_cuboid_straight(&[key, &format!("50x60,{bad}")]);
+        assert_eq!(o.status.code(), Some(2), "{key} {bad}");
+        let e = stderr(&o);
+        assert_eq!(e.trim_end().lines().count(), 1, "{e}");
+        assert!(
+            e.contains(key) && e.contains(bad) && e.contains("HEIGHTxHALF_WIDTH in mm"),
+            "{e}"
+        );
+    }
+}
+
+#[test]
+fn a_held_out_size_that_is_also_fitted_is_exit_2() {
+    // 30x15 mm is one of the default fit sizes.
+    let o = fit_potato_cuboid_straight(&["--extra-held-out-sizes", "30x15"]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = stderr(&o);
+    assert_eq!(e.trim_end().lines().count(), 1, "{e}");
+    assert!(
+        e.contains("--extra-held-out-sizes") && e.contains("30x15"),
+        "{e}"
+    );
+    let o =
+        fit_potato_cuboid_straight(&["--extra-sizes", "65x95", "--extra-held-out-sizes", "65x95"]);
+    assert_eq!(o.status.code(), Some(2));
+    assert!(stderr(&o).contains("65x95"), "{}", stderr(&o));
+}
+
+#[test]
 fn wire_is_refused_with_exit_2() {
     let o = shearcut(&["fit", "--material", "agar", "--knife", "wire"]);
     assert_eq!(o.status.code(), Some(2));

@@ -13,7 +13,8 @@ use std::path::PathBuf;
 use proptest::prelude::*;
 use shearcut_sim::surrogate::{CutState, ScaleFactors, Surrogate};
 
-/// Every shipped surrogate file.
+/// Every shipped surrogate file: the eight built into `shearcut` and the
+/// whole eggplant's fit over wider sections (`eggplant-whole-chef-wide`).
 fn shipped() -> Vec<Surrogate> {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("../config/surrogates");
     let mut files: Vec<PathBuf> = std::fs::read_dir(&dir)
@@ -25,7 +26,7 @@ fn shipped() -> Vec<Surrogate> {
         })
         .collect();
     files.sort();
-    assert_eq!(files.len(), 8, "{files:?}");
+    assert_eq!(files.len(), 9, "{files:?}");
     files
         .iter()
         .map(|p| Surrogate::from_path(p).unwrap())

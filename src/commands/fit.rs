@@ -4,15 +4,16 @@
 //!
 //! The sweeps cut rectangular sections of the material with the knife's
 //! blade section at constant ξ (`shearcut_sim::surrogate::FIT_SLICE_PUSH_RATIOS`
-//! × `FIT_SECTION_SIZES`), on both cores; the held-out runs use ξ values and
-//! section sizes that are not in the fit. Everything is deterministic, so the
-//! same command reproduces the shipped files under `config/surrogates/`.
+//! × `FIT_SECTION_SIZES`, plus `--extra-sizes`), on both cores; the held-out
+//! runs use ξ values and section sizes that are not in the fit. Everything is
+//! deterministic, so the same command reproduces the shipped files under
+//! `config/surrogates/`.
 
 use std::path::{Path, PathBuf};
 
 use crate::progress::run_bar;
 use shearcut_sim::surrogate::{
-    AccuracyReport, RunComparison, Surrogate, SweepSettings, fit_campaign, fit_run_count,
+    AccuracyReport, FitSizes, RunComparison, Surrogate, SweepSettings, fit_campaign, fit_run_count,
 };
 use shearcut_sim::{EdgeShape, InvalidSetting, KnifePreset, MaterialPreset};
 
@@ -25,6 +26,11 @@ use crate::render_plot;
 /// Threads of the sweeps (the machine's cores, at most 2 by default: DESIGN
 /// targets a 2-core development machine).
 const SWEEP_THREADS: usize = 2;
+
+/// The section sizes `--extra-sizes` and `--extra-held-out-sizes` accept
+/// (height and half width each, mm): from a few rows of the section's mesh
+/// (0.2 mm apart) to a melon.
+const EXTRA_SIZE_RANGE_MM: [f64; 2] = [5.0, 250.0];
 
 /// What `fit` produced.
 #[derive(Debug, Clone)]
@@ -79,6 +85,52 @@ pub fn resolve(material: &str, knife: &str) -> Result<(MaterialPreset, KnifePres
     Ok((m, k))
 }
 
+/// Section sizes given as `HEIGHTxHALF_WIDTH` in mm (`65x95`), in m. The
+/// option is named `key` in the error (exit 2).
+pub fn parse_section_sizes(key: &str, values: &[String]) -> Result<Vec<(f64, f64)>, ConfigError> {
+    let [low, high] = EXTRA_SIZE_RANGE_MM;
+    values
+        .iter()
+        .map(|v| {
+            let size = v.split_once(['x', 'X']).and_then(|(h, w)| {
+                let h: f64 = h.trim().parse().ok()?;
+                let w: f64 = w.trim().parse().ok()?;
+                let within = |x: f64| (low..=high).contains(&x);
+                (within(h) && within(w)).then_some((h / 1e3, w / 1e3))
+            });
+            size.ok_or_else(|| {
+                ConfigError::Argument(InvalidSetting::new(
+                    key,
+                    v,
+                    format!(
+                        "must be HEIGHTxHALF_WIDTH in mm, each in [{low}, {high}] (e.g. 65x95)"
+                    ),
+                ))
+            })
+        })
+        .collect()
+}
+
+/// The default sizes with `extra` added to the fit's sweeps and
+/// `extra_held_out` to its held-out runs. A size held out must not also be
+/// fitted (exit 2, naming `--extra-held-out-sizes`).
+pub fn fit_sizes(
+    extra: &[(f64, f64)],
+    extra_held_out: &[(f64, f64)],
+) -> Result<FitSizes, ConfigError> {
+    let mut sizes = FitSizes::default();
+    sizes.fit.extend_from_slice(extra);
+    sizes.held_out.extend_from_slice(extra_held_out);
+    if let Some(&(h, w)) = sizes.held_out.iter().find(|s| sizes.fit.contains(s)) {
+        return Err(ConfigError::Argument(InvalidSetting::new(
+            "--extra-held-out-sizes",
+            format!("{}x{}", mm(h), mm(w)),
+            "must not be one of the fit's sizes (a held-out run is not fitted)",
+        )));
+    }
+    Ok(sizes)
+}
+
 /// Runs the sweeps, fits and compares (no files written). `window_weight`
 /// is the weight of each run's settled-window row in the strain-energy
 /// fits (`shearcut fit --window-weight`; 0: none). `progress` is called
@@ -86,6 +138,7 @@ pub fn resolve(material: &str, knife: &str) -> Result<(MaterialPreset, KnifePres
 pub fn fit(
     material: MaterialPreset,
     knife: KnifePreset,
+    sizes: &FitSizes,
     window_weight: f64,
     progress: &(dyn Fn() + Sync),
 ) -> Result<FitOutput, RunError> {
@@ -98,6 +151,7 @@ pub fn fit(
         material.name(),
         knife.name(),
         &SweepSettings::default(),
+        sizes,
         window_weight,
         threads,
         progress,
@@ -110,38 +164,83 @@ pub fn fit(
     })
 }
 
-/// Number of full-model runs of a fit (sweeps, ratio sweeps, held-out runs
-/// nominal and at scaled materials).
-pub fn run_count() -> usize {
-    fit_run_count()
+/// Number of full-model runs of a fit over `sizes` (sweeps, ratio sweeps,
+/// held-out runs nominal and at scaled materials).
+pub fn run_count(sizes: &FitSizes) -> usize {
+    fit_run_count(sizes)
 }
 
-/// The surrogate file's text: a header comment, then the data.
-pub fn surrogate_file_text(s: &Surrogate) -> String {
-    let weight = if s.fit_window_weight > 0.0 {
-        format!(" --window-weight {}", s.fit_window_weight)
-    } else {
-        String::new()
-    };
+/// A length in m as mm, to the µm (as `--extra-sizes` writes it).
+fn mm(length: f64) -> f64 {
+    (length * 1e6).round() / 1e3
+}
+
+/// `sizes` as `--extra-sizes` takes them (mm), comma-separated.
+fn sizes_argument(sizes: &[(f64, f64)]) -> String {
+    sizes
+        .iter()
+        .map(|&(h, w)| format!("{}x{}", mm(h), mm(w)))
+        .collect::<Vec<_>>()
+        .join(",")
+}
+
+/// The surrogate file's text: a header comment with the command that wrote
+/// it (`extra` and `extra_held_out` the sizes given beyond the defaults),
+/// then the data.
+pub fn surrogate_file_text(
+    s: &Surrogate,
+    extra: &[(f64, f64)],
+    extra_held_out: &[(f64, f64)],
+) -> String {
+    let mut options = String::new();
+    if s.fit_window_weight > 0.0 {
+        options += &format!(" --window-weight {}", s.fit_window_weight);
+    }
+    if !extra.is_empty() {
+        options += &format!(" --extra-sizes {}", sizes_argument(extra));
+    }
+    if !extra_held_out.is_empty() {
+        options += &format!(" --extra-held-out-sizes {}", sizes_argument(extra_held_out));
+    }
     format!(
-        "# Surrogate of the cross-section model (docs/surrogates.md), written by\n# `shearcut fit --material {} --knife {}{weight}`. Do not edit: refit.\n{}",
+        "# Surrogate of the cross-section model (docs/surrogates.md), written by\n# `shearcut fit --material {} --knife {}{options}`. Do not edit: refit.\n{}",
         s.material_name,
         s.knife_name,
         s.to_toml_string()
     )
 }
 
+/// What `shearcut fit` was asked for, as given on the command line.
+#[derive(Debug, Clone, Copy)]
+pub struct FitRequest<'a> {
+    /// `--material`.
+    pub material: &'a str,
+    /// `--knife`.
+    pub knife: &'a str,
+    /// `--window-weight`.
+    pub window_weight: f64,
+    /// `--extra-sizes` (each `HEIGHTxHALF_WIDTH`, mm).
+    pub extra_sizes: &'a [String],
+    /// `--extra-held-out-sizes`.
+    pub extra_held_out_sizes: &'a [String],
+    /// `--out`.
+    pub out: Option<&'a Path>,
+}
+
 /// Runs the subcommand: sweeps with a progress bar, fit, report, files.
-/// `window_weight` as in [`fit`]; refused (exit 2) unless finite and ≥ 0.
+/// `window_weight` as in [`fit`]; refused (exit 2) unless finite and ≥ 0;
+/// the extra sizes as [`parse_section_sizes`] and [`fit_sizes`] check them.
 ///
 /// Writes `out` (default [`default_path`]), the report next to it
 /// (`<stem>.accuracy.toml`) and the plot (`<stem>.png`).
-pub fn run(
-    material: &str,
-    knife: &str,
-    window_weight: f64,
-    out: Option<&Path>,
-) -> Result<(), RunError> {
+pub fn run(request: &FitRequest<'_>) -> Result<(), RunError> {
+    let FitRequest {
+        material,
+        knife,
+        window_weight,
+        out,
+        ..
+    } = *request;
     let (m, k) = resolve(material, knife)?;
     if !(window_weight.is_finite() && window_weight >= 0.0) {
         return Err(ConfigError::Argument(InvalidSetting::new(
@@ -151,14 +250,24 @@ pub fn run(
         ))
         .into());
     }
+    let extra = parse_section_sizes("--extra-sizes", request.extra_sizes)?;
+    let extra_held_out =
+        parse_section_sizes("--extra-held-out-sizes", request.extra_held_out_sizes)?;
+    let sizes = fit_sizes(&extra, &extra_held_out)?;
     let path = out.map_or_else(|| default_path(m.name(), k.name()), Path::to_path_buf);
-    let bar = run_bar(run_count(), &format!("full-model sweeps of {}", m.name()));
-    let result = fit(m, k, window_weight, &|| bar.inc(1));
+    let bar = run_bar(
+        run_count(&sizes),
+        &format!("full-model sweeps of {}", m.name()),
+    );
+    let result = fit(m, k, &sizes, window_weight, &|| bar.inc(1));
     bar.finish_and_clear();
     let output = result?;
     ensure_parent(&path)?;
-    std::fs::write(&path, surrogate_file_text(&output.surrogate))
-        .map_err(|e| RunError::write(&path, e))?;
+    std::fs::write(
+        &path,
+        surrogate_file_text(&output.surrogate, &extra, &extra_held_out),
+    )
+    .map_err(|e| RunError::write(&path, e))?;
     let report_path = path.with_extension("accuracy.toml");
     let report_text = format!(
         "# Accuracy of {} against held-out full-model runs (forces: window means over {} mm after fracture).\n{}",

@@ -59,15 +59,38 @@ pub struct FitCampaign {
     pub comparisons: Vec<RunComparison>,
 }
 
-/// Number of full-model runs of [`fit_campaign`].
-pub fn fit_run_count() -> usize {
-    let fit = FIT_SLICE_PUSH_RATIOS.len() * FIT_SECTION_SIZES.len();
-    let held_out = HELD_OUT_SLICE_PUSH_RATIOS.len() * HELD_OUT_SECTION_SIZES.len();
+/// The section sizes (height, half width; m) a fit sweeps and holds out:
+/// by default [`FIT_SECTION_SIZES`] and [`HELD_OUT_SECTION_SIZES`], to
+/// which `shearcut fit --extra-sizes` and `--extra-held-out-sizes` add
+/// (objects larger than the default range, whose MPC would otherwise
+/// evaluate the surrogate beyond its `[range]`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct FitSizes {
+    /// Sizes of the fit's sweeps, nominal and at the ratio factors.
+    pub fit: Vec<(f64, f64)>,
+    /// Sizes of the held-out runs of the accuracy report.
+    pub held_out: Vec<(f64, f64)>,
+}
+
+impl Default for FitSizes {
+    fn default() -> Self {
+        Self {
+            fit: FIT_SECTION_SIZES.to_vec(),
+            held_out: HELD_OUT_SECTION_SIZES.to_vec(),
+        }
+    }
+}
+
+/// Number of full-model runs of [`fit_campaign`] over `sizes`.
+pub fn fit_run_count(sizes: &FitSizes) -> usize {
+    let fit = FIT_SLICE_PUSH_RATIOS.len() * sizes.fit.len();
+    let held_out = HELD_OUT_SLICE_PUSH_RATIOS.len() * sizes.held_out.len();
     fit * (1 + RATIO_STIFFNESS_FACTORS.len()) + held_out * (1 + HELD_OUT_SCALES.len())
 }
 
 /// The fit of `shearcut fit`: sweeps the fit's grid
-/// ([`FIT_SLICE_PUSH_RATIOS`] × [`FIT_SECTION_SIZES`]) and the held-out runs
+/// ([`FIT_SLICE_PUSH_RATIOS`] × `sizes.fit`) and the held-out runs
+/// ([`HELD_OUT_SLICE_PUSH_RATIOS`] × `sizes.held_out`)
 /// at the nominal material, fits the nominal surrogate from those alone
 /// ([`fit_surrogate`], so it is the same as without the ratio sweeps), sweeps
 /// the fit's grid again at E × [`RATIO_STIFFNESS_FACTORS`] and fits the
@@ -84,12 +107,13 @@ pub fn fit_campaign(
     material_name: &str,
     knife_name: &str,
     settings: &SweepSettings,
+    sizes: &FitSizes,
     window_weight: f64,
     threads: usize,
     progress: &(dyn Fn() + Sync),
 ) -> Result<FitCampaign, FitCampaignError> {
-    let fit_cases = grid(&FIT_SLICE_PUSH_RATIOS, &FIT_SECTION_SIZES);
-    let held_out_cases = grid(&HELD_OUT_SLICE_PUSH_RATIOS, &HELD_OUT_SECTION_SIZES);
+    let fit_cases = grid(&FIT_SLICE_PUSH_RATIOS, &sizes.fit);
+    let held_out_cases = grid(&HELD_OUT_SLICE_PUSH_RATIOS, &sizes.held_out);
     let mut cases = fit_cases.clone();
     cases.extend(&held_out_cases);
     let runs = run_sweep(material, blade, &cases, settings, threads, progress)?;

@@ -34,8 +34,8 @@ pub use accuracy::{
 };
 pub use basis::RAMP_LENGTHS;
 pub use campaign::{
-    FitCampaign, FitCampaignError, HELD_OUT_SCALES, RATIO_STIFFNESS_FACTORS, fit_campaign,
-    fit_run_count, scaled_material,
+    FitCampaign, FitCampaignError, FitSizes, HELD_OUT_SCALES, RATIO_STIFFNESS_FACTORS,
+    fit_campaign, fit_run_count, scaled_material,
 };
 pub use catch_up::CATCH_UP_TERMS;
 pub use equivalent_rectangle::equivalent_half_width;
