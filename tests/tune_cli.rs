@@ -592,7 +592,8 @@ fn the_heldout_set_is_whole_objects_none_of_them_in_the_tuning_set() {
         }
         out
     };
-    // The coarse sets of both objects, and the eggplants' reference sets.
+    // The coarse sets of both objects, the eggplants' reference sets and
+    // their sets for the wide surrogate.
     for (held_out_file, tuning_file, at_least) in [
         ("mpc-heldout.toml", "mpc-tuning-set.toml", 12),
         (
@@ -603,6 +604,11 @@ fn the_heldout_set_is_whole_objects_none_of_them_in_the_tuning_set() {
         (
             "mpc-heldout-eggplant-reference.toml",
             "mpc-tuning-eggplant-reference.toml",
+            8,
+        ),
+        (
+            "mpc-heldout-eggplant-wide-surrogate.toml",
+            "mpc-tuning-eggplant-wide-surrogate.toml",
             8,
         ),
     ] {
