@@ -153,14 +153,18 @@ pub fn mpc_profile(
     if !range.covers_section(profile.height(), profile.half_width())
         && !WARNED.swap(true, std::sync::atomic::Ordering::Relaxed)
     {
+        let name = s
+            .controller
+            .surrogate
+            .clone()
+            .unwrap_or_else(|| format!("{}-{}", surrogate.material_name, surrogate.knife_name));
         tracing::warn!(
             "the MPC's section ({:.1} mm high, {:.1} mm half width) lies beyond the sizes its \
-             surrogate {}-{} was fitted on ({:.0}-{:.0} mm high, {:.0}-{:.0} mm half width): \
-             it extrapolates (docs/surrogates.md)",
+             surrogate {name} was fitted on ({:.0}-{:.0} mm high, {:.0}-{:.0} mm half width): \
+             it extrapolates (`shearcut fit --extra-sizes` fits one over other sizes; \
+             docs/surrogates.md)",
             1e3 * profile.height(),
             1e3 * profile.half_width(),
-            surrogate.material_name,
-            surrogate.knife_name,
             1e3 * range.height[0],
             1e3 * range.height[1],
             1e3 * range.half_width[0],
