@@ -1,6 +1,6 @@
-//! The fitted surrogates shipped with shearcut (`config/surrogates/`,
-//! written by `shearcut fit`), built into the binary, and the choice of one
-//! for a scenario.
+//! The fitted surrogates built into shearcut (`config/surrogates/<material>-<knife>.toml`,
+//! written by `shearcut fit`; other files there, and any file `fit` writes,
+//! are named by path), and the choice of one for a scenario.
 
 use std::path::Path;
 
@@ -87,7 +87,7 @@ pub fn surrogate_named(name: &str) -> Result<Surrogate, InvalidSetting> {
         return Surrogate::from_path(path).map_err(|e| bad(e.to_string()));
     }
     Err(bad(format!(
-        "neither a built-in surrogate ({}) nor a file",
+        "neither a built-in surrogate ({}) nor a file (a path is relative to the working directory)",
         BUILT_IN_SURROGATES
             .iter()
             .map(|(n, _)| *n)

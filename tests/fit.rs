@@ -57,7 +57,10 @@ fn a_malformed_or_unphysical_extra_size_is_exit_2_in_one_line() {
         ("--extra-sizes", "0.065x0.095"),
         ("--extra-held-out-sizes", "60x900"),
     ] {
-        let o = fit_potato_cuboid_straight(&[key, &format!("50x60,{bad}")]);
+        let out =
+            std::env::temp_dir().join(format!("shearcut-fit-bad-{}.toml", std::process::id()));
+        let sizes = format!("50x60,{bad}");
+        let o = fit_potato_cuboid_straight(&[key, &sizes, "--out", out.to_str().unwrap()]);
         assert_eq!(o.status.code(), Some(2), "{key} {bad}");
         let e = stderr(&o);
         assert_eq!(e.trim_end().lines().count(), 1, "{e}");
@@ -69,20 +72,42 @@ fn a_malformed_or_unphysical_extra_size_is_exit_2_in_one_line() {
 }
 
 #[test]
-fn a_held_out_size_that_is_also_fitted_is_exit_2() {
-    // 30x15 mm is one of the default fit sizes.
-    let o = fit_potato_cuboid_straight(&["--extra-held-out-sizes", "30x15"]);
-    assert_eq!(o.status.code(), Some(2));
-    let e = stderr(&o);
-    assert_eq!(e.trim_end().lines().count(), 1, "{e}");
-    assert!(
-        e.contains("--extra-held-out-sizes") && e.contains("30x15"),
-        "{e}"
-    );
-    let o =
-        fit_potato_cuboid_straight(&["--extra-sizes", "65x95", "--extra-held-out-sizes", "65x95"]);
-    assert_eq!(o.status.code(), Some(2));
-    assert!(stderr(&o).contains("65x95"), "{}", stderr(&o));
+fn a_size_given_twice_is_exit_2_naming_its_option() {
+    // 30x15 mm is a default fit size, 25x20 mm a default held-out one.
+    for (args, key, value) in [
+        (
+            &["--extra-held-out-sizes", "30x15"][..],
+            "--extra-held-out-sizes",
+            "30x15",
+        ),
+        (&["--extra-sizes", "25x20"][..], "--extra-sizes", "25x20"),
+        (
+            &["--extra-sizes", "30.0001x15"][..],
+            "--extra-sizes",
+            "30x15",
+        ),
+        (
+            &["--extra-sizes", "65x95,65x95"][..],
+            "--extra-sizes",
+            "65x95",
+        ),
+        (
+            &["--extra-sizes", "65x95", "--extra-held-out-sizes", "65x95"][..],
+            "--extra-held-out-sizes",
+            "65x95",
+        ),
+    ] {
+        let dir = std::env::temp_dir().join(format!("shearcut-fit-twice-{}", std::process::id()));
+        let out = dir.join("never.toml");
+        let mut all = args.to_vec();
+        all.extend(["--out", out.to_str().unwrap()]);
+        let o = fit_potato_cuboid_straight(&all);
+        assert_eq!(o.status.code(), Some(2), "{args:?}");
+        let e = stderr(&o);
+        assert_eq!(e.trim_end().lines().count(), 1, "{e}");
+        assert!(e.contains(key) && e.contains(value), "{args:?}: {e}");
+        assert!(!out.exists(), "nothing is written for {args:?}");
+    }
 }
 
 #[test]

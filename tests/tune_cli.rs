@@ -535,6 +535,12 @@ fn bad_sweep_files_exit_2_with_one_line() {
     );
     refused(
         &t,
+        "grid = { \"mpc.deformation_weight\" = [0.0, 100.0] }",
+        "grid = { surrogate = \"elsewhere/potato-whole-chef.toml\" }",
+        "neither a built-in surrogate",
+    );
+    refused(
+        &t,
         "small-potato.toml",
         "missing.toml",
         "`scenarios[0]` = \"missing.toml\"",

@@ -85,18 +85,22 @@ pub fn resolve(material: &str, knife: &str) -> Result<(MaterialPreset, KnifePres
     Ok((m, k))
 }
 
-/// Section sizes given as `HEIGHTxHALF_WIDTH` in mm (`65x95`), in m. The
-/// option is named `key` in the error (exit 2).
+/// Section sizes given as `HEIGHTxHALF_WIDTH` in mm (`65x95`), in m,
+/// rounded to the µm (so that the command a file's header records
+/// reproduces it, and equal sizes compare equal). Empty values (a trailing
+/// comma) are skipped. The option is named `key` in the error (exit 2).
 pub fn parse_section_sizes(key: &str, values: &[String]) -> Result<Vec<(f64, f64)>, ConfigError> {
     let [low, high] = EXTRA_SIZE_RANGE_MM;
     values
         .iter()
+        .filter(|v| !v.trim().is_empty())
         .map(|v| {
             let size = v.split_once(['x', 'X']).and_then(|(h, w)| {
                 let h: f64 = h.trim().parse().ok()?;
                 let w: f64 = w.trim().parse().ok()?;
                 let within = |x: f64| (low..=high).contains(&x);
-                (within(h) && within(w)).then_some((h / 1e3, w / 1e3))
+                let metres = |mm: f64| (mm * 1e3).round() / 1e6;
+                (within(h) && within(w)).then_some((metres(h), metres(w)))
             });
             size.ok_or_else(|| {
                 ConfigError::Argument(InvalidSetting::new(
@@ -112,21 +116,40 @@ pub fn parse_section_sizes(key: &str, values: &[String]) -> Result<Vec<(f64, f64
 }
 
 /// The default sizes with `extra` added to the fit's sweeps and
-/// `extra_held_out` to its held-out runs. A size held out must not also be
-/// fitted (exit 2, naming `--extra-held-out-sizes`).
+/// `extra_held_out` to its held-out runs. Every size appears once: an extra
+/// size already fitted, or a held-out one fitted or already held out, is
+/// refused (exit 2, naming the option it came from).
 pub fn fit_sizes(
     extra: &[(f64, f64)],
     extra_held_out: &[(f64, f64)],
 ) -> Result<FitSizes, ConfigError> {
     let mut sizes = FitSizes::default();
-    sizes.fit.extend_from_slice(extra);
-    sizes.held_out.extend_from_slice(extra_held_out);
-    if let Some(&(h, w)) = sizes.held_out.iter().find(|s| sizes.fit.contains(s)) {
-        return Err(ConfigError::Argument(InvalidSetting::new(
-            "--extra-held-out-sizes",
+    let refuse = |key: &str, (h, w): (f64, f64), why: &str| {
+        ConfigError::Argument(InvalidSetting::new(
+            key,
             format!("{}x{}", mm(h), mm(w)),
-            "must not be one of the fit's sizes (a held-out run is not fitted)",
-        )));
+            why,
+        ))
+    };
+    for &size in extra {
+        if sizes.fit.contains(&size) || sizes.held_out.contains(&size) {
+            return Err(refuse(
+                "--extra-sizes",
+                size,
+                "is already one of the fit's or held-out sizes (each size once)",
+            ));
+        }
+        sizes.fit.push(size);
+    }
+    for &size in extra_held_out {
+        if sizes.fit.contains(&size) || sizes.held_out.contains(&size) {
+            return Err(refuse(
+                "--extra-held-out-sizes",
+                size,
+                "must not be fitted or held out twice (a held-out run is not fitted)",
+            ));
+        }
+        sizes.held_out.push(size);
     }
     Ok(sizes)
 }

@@ -22,6 +22,7 @@ use crate::controller_choice::ControllerChoice;
 use crate::error::ConfigError;
 use crate::run_replica::RunReplica;
 use crate::scenario::Scenario;
+use crate::surrogates::surrogate_named;
 use crate::tune::controller_setting::{ControllerSetting, controller_cells, value_cell};
 use crate::tune::perturbation::{Perturbation, VARIANT_COLUMNS};
 use crate::tune::sweep_file::Sweep;
@@ -143,6 +144,11 @@ impl JobList {
                     invalid(e.prefixed(&format!("setting {ki} on {}", base.name)))
                 };
                 let nominal = setting.apply(base).map_err(at)?;
+                // A surrogate the setting names must open here (a path is
+                // relative to the working directory), not fail every job.
+                if let Some(name) = &nominal.controller.surrogate {
+                    surrogate_named(name).map_err(at)?;
+                }
                 of_scenario.push(setting_record(setting, &nominal));
                 for (vi, variant) in sweep.variants.iter().enumerate() {
                     for r in 0..sweep.replicas {
