@@ -124,32 +124,25 @@ pub fn fit_sizes(
     extra_held_out: &[(f64, f64)],
 ) -> Result<FitSizes, ConfigError> {
     let mut sizes = FitSizes::default();
-    let refuse = |key: &str, (h, w): (f64, f64), why: &str| {
-        ConfigError::Argument(InvalidSetting::new(
-            key,
-            format!("{}x{}", mm(h), mm(w)),
-            why,
-        ))
-    };
-    for &size in extra {
-        if sizes.fit.contains(&size) || sizes.held_out.contains(&size) {
-            return Err(refuse(
-                "--extra-sizes",
-                size,
-                "is already one of the fit's or held-out sizes (each size once)",
-            ));
+    for (key, given, held_out) in [
+        ("--extra-sizes", extra, false),
+        ("--extra-held-out-sizes", extra_held_out, true),
+    ] {
+        for &(h, w) in given {
+            if sizes.fit.contains(&(h, w)) || sizes.held_out.contains(&(h, w)) {
+                return Err(ConfigError::Argument(InvalidSetting::new(
+                    key,
+                    format!("{}x{}", mm(h), mm(w)),
+                    "is already a fitted or held-out size (each size once; a held-out run is not fitted)",
+                )));
+            }
+            let list = if held_out {
+                &mut sizes.held_out
+            } else {
+                &mut sizes.fit
+            };
+            list.push((h, w));
         }
-        sizes.fit.push(size);
-    }
-    for &size in extra_held_out {
-        if sizes.fit.contains(&size) || sizes.held_out.contains(&size) {
-            return Err(refuse(
-                "--extra-held-out-sizes",
-                size,
-                "must not be fitted or held out twice (a held-out run is not fitted)",
-            ));
-        }
-        sizes.held_out.push(size);
     }
     Ok(sizes)
 }
