@@ -35,7 +35,7 @@ fn main() {
     let sizes = parse_section_sizes("HxW", std::slice::from_ref(size)).unwrap_or_else(|e| fail(&e));
     let surrogates: Vec<_> = files
         .iter()
-        .map(|f| surrogate_named(f).unwrap_or_else(|e| fail(&e)))
+        .map(|f| surrogate_named(f).unwrap_or_else(|e| fail(&format!("FILE {f}: {}", e.allowed))))
         .collect();
     let runs = run_sweep(
         &m.material(),
