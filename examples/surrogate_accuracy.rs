@@ -12,11 +12,12 @@
 //! ```
 //!
 //! HxW: the section's height and half width, mm. FILE: a surrogate file or
-//! a built-in name. Prints one markdown row per file and ratio.
+//! a built-in name. Prints, per file, the table `shearcut fit` prints for its
+//! held-out runs.
 
 use shearcut::commands::fit::{parse_section_sizes, resolve};
 use shearcut::surrogates::surrogate_named;
-use shearcut_sim::surrogate::{SweepSettings, compare_run, grid, run_sweep};
+use shearcut_sim::surrogate::{AccuracyReport, SweepSettings, compare_run, grid, run_sweep};
 
 /// The ratios compared: pressing and the fit's held-out ratios.
 const RATIOS: [f64; 4] = [0.0, 0.6, 1.2, 2.1];
@@ -46,20 +47,12 @@ fn main() {
         &|| {},
     )
     .unwrap_or_else(|e| fail(&e));
-    println!("| surrogate | ξ | F_n RMS % | F_t RMS % | work RMS % | peak F_n % | onset % |");
-    println!("|---|---|---|---|---|---|---|");
     for (file, surrogate) in files.iter().zip(&surrogates) {
-        for run in &runs {
-            let a = compare_run(surrogate, run).accuracy;
-            println!(
-                "| {file} | {} | {:.2} | {:.2} | {:.2} | {:+.2} | {:+.2} |",
-                a.xi,
-                a.force_normal_rms_pct,
-                a.force_tangential_rms_pct,
-                a.work_rms_pct,
-                a.peak_force_error_pct,
-                a.onset_depth_error_pct
-            );
-        }
+        let runs = runs
+            .iter()
+            .map(|r| compare_run(surrogate, r).accuracy)
+            .collect();
+        let report = AccuracyReport::new(m.name(), k.name(), runs);
+        print!("{file}: {}", report.table());
     }
 }

@@ -150,7 +150,7 @@ pub fn fit_sizes(
 /// Runs the sweeps, fits and compares (no files written). `window_weight`
 /// is the weight of each run's settled-window row in the strain-energy
 /// fits (`shearcut fit --window-weight`; 0: none). `progress` is called
-/// after each full-model run; the total is [`run_count`].
+/// after each full-model run; the total is [`fit_run_count`].
 pub fn fit(
     material: MaterialPreset,
     knife: KnifePreset,
@@ -178,12 +178,6 @@ pub fn fit(
         report: f.report,
         comparisons: f.comparisons,
     })
-}
-
-/// Number of full-model runs of a fit over `sizes` (sweeps, ratio sweeps,
-/// held-out runs nominal and at scaled materials).
-pub fn run_count(sizes: &FitSizes) -> usize {
-    fit_run_count(sizes)
 }
 
 /// A length in m as mm, to the µm (as `--extra-sizes` writes it).
@@ -254,8 +248,9 @@ pub fn run(request: &FitRequest<'_>) -> Result<(), RunError> {
         material,
         knife,
         window_weight,
+        extra_sizes,
+        extra_held_out_sizes,
         out,
-        ..
     } = *request;
     let (m, k) = resolve(material, knife)?;
     if !(window_weight.is_finite() && window_weight >= 0.0) {
@@ -266,13 +261,12 @@ pub fn run(request: &FitRequest<'_>) -> Result<(), RunError> {
         ))
         .into());
     }
-    let extra = parse_section_sizes("--extra-sizes", request.extra_sizes)?;
-    let extra_held_out =
-        parse_section_sizes("--extra-held-out-sizes", request.extra_held_out_sizes)?;
+    let extra = parse_section_sizes("--extra-sizes", extra_sizes)?;
+    let extra_held_out = parse_section_sizes("--extra-held-out-sizes", extra_held_out_sizes)?;
     let sizes = fit_sizes(&extra, &extra_held_out)?;
     let path = out.map_or_else(|| default_path(m.name(), k.name()), Path::to_path_buf);
     let bar = run_bar(
-        run_count(&sizes),
+        fit_run_count(&sizes),
         &format!("full-model sweeps of {}", m.name()),
     );
     let result = fit(m, k, &sizes, window_weight, &|| bar.inc(1));
