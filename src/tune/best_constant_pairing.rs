@@ -226,6 +226,34 @@ pub(crate) fn mean_or_nan(xs: &[f64]) -> f64 {
     }
 }
 
+/// The name of a grid point's constant over its runs: the controller, if
+/// every run has the same (`slice:0.48`), else the range of its ratios
+/// (`slice:0.46–0.51`): under `[specimens]` each specimen's point i/n is
+/// i/n of that specimen's own cap. Empty without runs.
+fn constant_name<'a>(controllers: impl Iterator<Item = &'a str>) -> String {
+    let names: Vec<&str> = controllers.collect();
+    let Some(&first) = names.first() else {
+        return String::new();
+    };
+    if names.iter().all(|n| *n == first) {
+        return first.to_string();
+    }
+    let ratio = |n: &str| n.strip_prefix("slice:").and_then(|x| x.parse::<f64>().ok());
+    if names.iter().any(|n| ratio(n).is_none()) {
+        let mut unique: Vec<&str> = names.clone();
+        unique.sort_unstable();
+        unique.dedup();
+        return unique.join("/");
+    }
+    let by_ratio = |a: &&&str, b: &&&str| {
+        let [a, b] = [a, b].map(|n| ratio(n).unwrap_or(f64::NAN));
+        a.total_cmp(&b)
+    };
+    let lo = names.iter().min_by(by_ratio).unwrap_or(&first);
+    let hi = names.iter().max_by(by_ratio).unwrap_or(&first);
+    format!("{lo}–{}", hi.trim_start_matches("slice:"))
+}
+
 /// The pair of the MPC's runs and the runs of grid point `best` (found by
 /// `runs`), on the replicas both have, for [scenario, variant, MPC
 /// setting] `at`.
@@ -252,10 +280,12 @@ fn pair<'a>(
         !constant_runs.is_empty() && constant_runs.iter().all(|(_, c)| c.outcome.completed);
     let all_completed =
         mpc_completed && on_both.iter().all(|(_, c)| c.outcome.completed) && !on_both.is_empty();
-    let constant_controller = constant_runs
-        .first()
-        .and_then(|(j, _)| kind_column.and_then(|i| j.cells.get(i)).cloned())
-        .unwrap_or_default();
+    let constant_controller = constant_name(
+        constant_runs
+            .iter()
+            .filter_map(|(j, _)| kind_column.and_then(|i| j.cells.get(i)))
+            .map(String::as_str),
+    );
     let paired = |of: fn(&JobRow) -> f64| {
         let (a, b): (Vec<f64>, Vec<f64>) = on_both.iter().map(|(m, c)| (of(m), of(c))).unzip();
         all_completed
@@ -485,6 +515,19 @@ fn markdown(catalog: &JobCatalog, pairs: &[ConstantPair]) -> String {
 mod tests {
     use super::*;
     use crate::tune::finished_sweep_fixture::{FinishedSweep, Run};
+
+    #[test]
+    fn a_constant_is_named_by_the_range_of_its_specimens_ratios() {
+        let name = |names: &[&str]| constant_name(names.iter().copied());
+        assert_eq!(name(&[]), "");
+        assert_eq!(name(&["press", "press"]), "press");
+        assert_eq!(name(&["slice:0.48", "slice:0.48"]), "slice:0.48");
+        assert_eq!(
+            name(&["slice:0.48", "slice:0.512", "slice:0.459"]),
+            "slice:0.459–0.512"
+        );
+        assert_eq!(name(&["slice:0.1", "force:5"]), "force:5/slice:0.1");
+    }
 
     #[test]
     fn the_mpc_meets_the_least_mean_work_of_the_completed_grid_points() {
