@@ -228,9 +228,50 @@ fn exit_on(e: clap::Error) -> ! {
         | ErrorKind::DisplayVersion
         | ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => e.exit(),
         _ => {
-            let text = e.render().to_string();
-            eprintln!("{}", text.lines().next().unwrap_or("error: bad arguments"));
+            eprintln!("{}", one_line(&e.render().to_string()));
             std::process::exit(2)
         }
+    }
+}
+
+/// Clap's message on one line: its first paragraph (the error and what it
+/// names on the lines below it: the missing arguments, the possible
+/// values), without the tips and usage after the first blank line.
+fn one_line(text: &str) -> String {
+    let line = text
+        .lines()
+        .take_while(|l| !l.trim().is_empty())
+        .map(str::trim)
+        .filter(|l| !l.starts_with("tip:"))
+        .collect::<Vec<_>>()
+        .join(" ");
+    if line.is_empty() {
+        "error: bad arguments".to_string()
+    } else {
+        line
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::one_line;
+
+    #[test]
+    fn clap_errors_keep_what_they_name_on_one_line() {
+        let missing = "error: the following required arguments were not provided:\n  \
+                       <SCENARIO>\n\nUsage: shearcut run <SCENARIO>\n\nFor more information, try '--help'.\n";
+        assert_eq!(
+            one_line(missing),
+            "error: the following required arguments were not provided: <SCENARIO>"
+        );
+        let choice = "error: invalid value 'foo' for '--transport <TRANSPORT>'\n  \
+                      [possible values: inproc, iceoryx2]\n\nFor more information, try '--help'.\n";
+        assert_eq!(
+            one_line(choice),
+            "error: invalid value 'foo' for '--transport <TRANSPORT>' \
+             [possible values: inproc, iceoryx2]"
+        );
+        let tip = "error: unexpected argument '-1' found\n\n  tip: to pass '-1' as a value, use '-- -1'\n";
+        assert_eq!(one_line(tip), "error: unexpected argument '-1' found");
     }
 }
