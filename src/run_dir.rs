@@ -115,7 +115,7 @@ fn holds_files(dir: &Path) -> Result<bool, RunError> {
 const HOLDS_FILES: &str = "a new or empty directory (it holds files; --overwrite replaces them)";
 
 /// A refusal of `--out` = `dir`.
-fn refused(dir: &Path, allowed: &str) -> RunError {
+fn refused(dir: &Path, allowed: impl Into<String>) -> RunError {
     RunError::Config(ConfigError::Argument(InvalidSetting::new(
         "--out",
         dir.display(),
@@ -129,12 +129,12 @@ fn claim_named(dir: &Path, overwrite: bool) -> Result<(), RunError> {
     if let Some(parent) = dir.parent()
         && !parent.as_os_str().is_empty()
     {
-        std::fs::create_dir_all(parent).map_err(|e| RunError::write(parent, e))?;
+        std::fs::create_dir_all(parent).map_err(|e| uncreatable(dir, parent, &e))?;
     }
     match std::fs::create_dir(dir) {
         Ok(()) => return Ok(()),
         Err(e) if e.kind() == ErrorKind::AlreadyExists => {}
-        Err(e) => return Err(RunError::write(dir, e)),
+        Err(e) => return Err(uncreatable(dir, dir, &e)),
     }
     if holds_files(dir)? {
         if !overwrite {
@@ -156,6 +156,41 @@ fn claim_named(dir: &Path, overwrite: bool) -> Result<(), RunError> {
         )),
         Err(e) => Err(RunError::write(dir, e)),
     }
+}
+
+/// A refusal of `--out` = `dir` that cannot be created: `at` (the
+/// directory or a parent) failed with `e`. The path is the user's input, so
+/// this is bad input (exit 2), not a failed write.
+pub fn uncreatable(dir: &Path, at: &Path, e: &std::io::Error) -> RunError {
+    unusable_output("--out", dir, at, e, "a directory this process can create")
+}
+
+/// A refusal of the output path `path` given as argument `key`, which
+/// cannot be created (`what` it must be): `at` (the path or a parent)
+/// failed with `e`. Bad input (exit 2): the error names the first
+/// component that is a file, else the system's reason.
+pub fn unusable_output(
+    key: &str,
+    path: &Path,
+    at: &Path,
+    e: &std::io::Error,
+    what: &str,
+) -> RunError {
+    let file = at
+        .ancestors()
+        .collect::<Vec<_>>()
+        .into_iter()
+        .rev()
+        .find(|a| !a.as_os_str().is_empty() && a.exists() && !a.is_dir());
+    let reason = match file {
+        Some(f) => format!("{} is a file", f.display()),
+        None => format!("{}: {e}", at.display()),
+    };
+    RunError::Config(ConfigError::Argument(InvalidSetting::new(
+        key,
+        path.display(),
+        format!("{what} ({reason})"),
+    )))
 }
 
 /// Creates `runs/<name>-<YYYYmmdd-HHMMSS>` (UTC), or with `-N` appended the

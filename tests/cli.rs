@@ -277,3 +277,52 @@ fn a_file_named_like_a_built_in_scenario_is_read_and_said_to_be() {
     assert!(!stderr(&o).contains("read from the file"), "{}", stderr(&o));
     assert!(stdout(&o).contains("depth = 0.02"), "{}", stdout(&o));
 }
+
+/// A missing argument and a bad choice are named on their one line.
+#[test]
+fn a_missing_argument_and_a_bad_choice_are_named_in_one_line() {
+    let o = shearcut(&["run"]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = stderr(&o);
+    assert_eq!(e.lines().count(), 1, "{e}");
+    assert!(e.contains("<SCENARIO>"), "{e}");
+    let o = shearcut(&["run", "loop-potato-cuboid", "--transport", "foo"]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = stderr(&o);
+    assert_eq!(e.lines().count(), 1, "{e}");
+    assert!(e.contains("inproc") && e.contains("iceoryx2"), "{e}");
+}
+
+/// An output path that cannot be created (under a file) is bad input:
+/// exit 2, one line naming the argument and the file in the way, before
+/// anything runs or is printed.
+#[test]
+fn output_paths_under_a_file_are_refused_in_one_line() {
+    let dir = std::env::temp_dir().join(format!("shearcut-cli-out-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = dir.join("a-file");
+    std::fs::write(&file, "x").unwrap();
+    let under = file.join("x");
+    let under = under.to_str().unwrap();
+    let svg = format!("{under}.svg");
+    let sweep = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/config/sweeps/mpc-heldout.toml"
+    );
+    for (args, key) in [
+        (vec!["run", "loop-potato-cuboid", "--out", under], "--out"),
+        (
+            vec!["toughness", "--nu", "0.3", "--xi", "1", "--plot", &svg],
+            "--plot",
+        ),
+        (vec!["tune", sweep, "--jobs", "1", "--out", under], "--out"),
+    ] {
+        let o = shearcut(&args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        let e = stderr(&o);
+        assert_eq!(e.lines().count(), 1, "{args:?}: {e}");
+        assert!(e.contains(key) && e.contains("a-file is a file"), "{e}");
+        assert!(stdout(&o).is_empty(), "{args:?}: {}", stdout(&o));
+    }
+    std::fs::remove_dir_all(dir).ok();
+}

@@ -8,9 +8,9 @@ use shearcut_sim::physical_range::SLICE_PUSH_RATIO;
 
 use crate::cli::print;
 use crate::error::{ConfigError, RunError};
-use crate::plot::ensure_parent;
 use crate::plot::toughness_ratio::{FIG3_SLICE_PUSH_RATIOS, draw_fig3, fig3_table};
 use crate::render_plot;
+use crate::run_dir::unusable_output;
 
 /// The law evaluated at one (ξ, ν).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -51,6 +51,9 @@ pub fn evaluate(nu: f64, xi: f64) -> Result<ToughnessReport, ConfigError> {
 /// Runs the subcommand: prints the law and, with `plot`, draws Fig. 3 and writes its CSV.
 pub fn run(nu: f64, xi: f64, plot: Option<&Path>) -> Result<(), RunError> {
     let r = evaluate(nu, xi)?;
+    if let Some(path) = plot {
+        claim_plot(path)?;
+    }
     print(&format!(
         "r(xi={}, nu={}) = {:.4}\nF_t/F_n         = {:.4}\nf_n^s/f_n^p     = {:.4}\n",
         r.xi, r.nu, r.toughness_ratio, r.force_ratio, r.normal_force_ratio
@@ -62,10 +65,25 @@ pub fn run(nu: f64, xi: f64, plot: Option<&Path>) -> Result<(), RunError> {
     Ok(())
 }
 
+/// Checks that `--plot` = `path` names an image this process can create,
+/// creating its directory and the file: the path is the user's, so one that
+/// cannot be created is bad input (exit 2), found before anything is
+/// printed.
+fn claim_plot(path: &Path) -> Result<(), RunError> {
+    crate::plot::ImageFormat::from_path(path)?;
+    let refused = |at: &Path, e: std::io::Error| {
+        unusable_output("--plot", path, at, &e, "a file this process can create")
+    };
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).map_err(|e| refused(dir, e))?;
+    }
+    std::fs::File::create(path).map_err(|e| refused(path, e))?;
+    Ok(())
+}
+
 /// Draws Fig. 3 to `path` and its table to the same path with extension `.csv`.
 pub fn write_fig3(path: &Path) -> Result<PathBuf, RunError> {
-    crate::plot::ImageFormat::from_path(path)?;
-    ensure_parent(path)?;
+    claim_plot(path)?;
     render_plot!(path, (800, 560), draw_fig3)?;
     let csv_path = path.with_extension("csv");
     let mut w = csv::Writer::from_path(&csv_path).map_err(|e| RunError::write(&csv_path, e))?;

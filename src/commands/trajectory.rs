@@ -4,12 +4,14 @@ use std::io::Write;
 use std::path::Path;
 
 use crate::error::{ConfigError, RunError};
+use crate::run_dir::unusable_output;
 use crate::trajectory_cases::{CasesError, CasesReport, run_cases};
 
 /// Reads one case per line from `cases` (ruckig's field names, see
 /// `docs/trajectory.md`) and writes one JSON result line per case to `out`
 /// (default stdout). Malformed lines get an error line; the rest still run.
-/// An unreadable `cases` file is bad input (exit 2); a failed write exits 1,
+/// An unreadable `cases` file or an `out` that cannot be created is bad
+/// input (exit 2); a failed write exits 1,
 /// a closed stdout quietly (141).
 pub fn run(cases: &Path, out: Option<&Path>) -> Result<(), RunError> {
     let read_error = |source| {
@@ -20,7 +22,9 @@ pub fn run(cases: &Path, out: Option<&Path>) -> Result<(), RunError> {
     };
     let report = match out {
         Some(path) => {
-            let file = std::fs::File::create(path).map_err(|e| RunError::write(path, e))?;
+            let file = std::fs::File::create(path).map_err(|e| {
+                unusable_output("--out", path, path, &e, "a file this process can create")
+            })?;
             let mut w = std::io::BufWriter::new(file);
             let r = run_cases(cases, &mut w).map_err(|e| match e {
                 CasesError::Read(e) => read_error(e),

@@ -18,7 +18,10 @@ use crate::tune::result_table::write_tables;
 
 /// Writes `sweep.toml` and `jobs.json` under `dir` (created if needed).
 pub fn write_catalog(dir: &Path, catalog: &JobCatalog, sweep_text: &str) -> Result<(), RunError> {
-    std::fs::create_dir_all(dir.join("rows")).map_err(|e| RunError::write(dir, e))?;
+    // The directory is the user's `--out`: one that cannot be created is
+    // bad input (exit 2).
+    let rows = dir.join("rows");
+    std::fs::create_dir_all(&rows).map_err(|e| crate::run_dir::uncreatable(dir, &rows, &e))?;
     let path = dir.join("sweep.toml");
     std::fs::write(&path, sweep_text).map_err(|e| RunError::write(&path, e))?;
     let path = dir.join("jobs.json");
