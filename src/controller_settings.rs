@@ -10,6 +10,11 @@ use crate::controller_choice::ControllerChoice;
 
 /// Allowed [`ControllerSettings::overtravel`]: up to 10 mm past the target.
 const OVERTRAVEL: PhysicalRange = PhysicalRange::new(0.0, 0.01, "m");
+/// The force loop's proportional gain: > 0, at most 1 m/s per newton of
+/// error (the knife's speed range per newton).
+const PROPORTIONAL_GAIN: PhysicalRange = PhysicalRange::new(1e-9, 1.0, "(m/s)/N");
+/// The force loop's integral gain.
+const INTEGRAL_GAIN: PhysicalRange = PhysicalRange::new(0.0, 100.0, "(m/s)/(N s)");
 
 /// `[controller]`: the closed loop's controller and its limits.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -100,20 +105,8 @@ impl ControllerSettings {
         }
         OVERTRAVEL.check("overtravel", self.overtravel)?;
         if let Some(g) = self.force_gains {
-            if !(g.proportional.is_finite() && g.proportional > 0.0) {
-                return Err(InvalidSetting::new(
-                    "force_gains.proportional",
-                    g.proportional,
-                    "a finite gain > 0 (m/s)/N",
-                ));
-            }
-            if !(g.integral.is_finite() && g.integral >= 0.0) {
-                return Err(InvalidSetting::new(
-                    "force_gains.integral",
-                    g.integral,
-                    "a finite gain >= 0 (m/s)/(N s)",
-                ));
-            }
+            PROPORTIONAL_GAIN.check("force_gains.proportional", g.proportional)?;
+            INTEGRAL_GAIN.check("force_gains.integral", g.integral)?;
         }
         self.mpc.validate().map_err(|e| e.prefixed("mpc"))
     }

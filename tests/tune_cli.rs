@@ -519,7 +519,13 @@ fn bad_sweep_files_exit_2_with_one_line() {
         &t,
         "\"mpc.deformation_weight\" = [0.0, 100.0]",
         "\"mpc.deformation_weight\" = [0.0, -1.0]",
-        "`controllers[0].controller.mpc.deformation_weight` = -1: a finite number >= 0",
+        "`controllers[0].controller.mpc.deformation_weight` = -1: must be in [0, 1e9] J/m²",
+    );
+    refused(
+        &t,
+        "\"mpc.deformation_weight\" = [0.0, 100.0]",
+        "\"mpc.planner.lockstep_ticks\" = [1, 0]",
+        "`controllers[0].controller.mpc.planner.lockstep_ticks` = 0: in 1..=10000",
     );
     refused(
         &t,

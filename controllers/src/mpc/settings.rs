@@ -2,11 +2,28 @@
 
 use serde::{Deserialize, Serialize};
 use shearcut_sim::InvalidSetting;
+use shearcut_sim::physical_range::{KNIFE_SPEED, PhysicalRange};
 
 use crate::planner::PlannerSettings;
 
 /// Most depth stages a plan may have ([`MpcSettings::stages`]).
 pub const MAX_STAGES: usize = 200;
+
+/// Planning rate, Hz: at most the servo rate of an arm's loop.
+const RATE: PhysicalRange = PhysicalRange::new(0.1, 1000.0, "Hz");
+/// Largest planned slice-push ratio and the trust region (> 0, at most the
+/// model's ratio range).
+const RATIO_BOUND: PhysicalRange = PhysicalRange::new(1e-3, 20.0, "");
+/// Weight of time, J/s.
+const TIME_WEIGHT: PhysicalRange = PhysicalRange::new(0.0, 1e3, "J/s");
+/// Weight of ξ changes, J.
+const SMOOTHNESS_WEIGHT: PhysicalRange = PhysicalRange::new(0.0, 1e6, "J");
+/// Weight of deflection × edge length, J/m².
+const DEFORMATION_WEIGHT: PhysicalRange = PhysicalRange::new(0.0, 1e9, "J/m²");
+/// Cost of a newton over the force limit, J/N.
+const FORCE_PENALTY: PhysicalRange = PhysicalRange::new(0.0, 1e6, "J/N");
+/// Vertical force limit, N.
+const MAX_FORCE: PhysicalRange = PhysicalRange::new(1e-3, 1e4, "N");
 
 /// Settings of the [`super::Mpc`].
 #[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
@@ -132,25 +149,29 @@ impl Default for MpcSettings {
 impl MpcSettings {
     /// Checks every value, naming the key.
     pub fn validate(&self) -> Result<(), InvalidSetting> {
-        for (key, v) in [
-            ("rate_hz", self.rate_hz),
-            ("max_slice_push_ratio", self.max_slice_push_ratio),
-            ("trust_region", self.trust_region),
-            ("touch_speed", self.touch_speed),
+        for (key, range, v) in [
+            ("rate_hz", RATE, self.rate_hz),
+            (
+                "max_slice_push_ratio",
+                RATIO_BOUND,
+                self.max_slice_push_ratio,
+            ),
+            ("trust_region", RATIO_BOUND, self.trust_region),
+            ("touch_speed", KNIFE_SPEED, self.touch_speed),
+            ("time_weight", TIME_WEIGHT, self.time_weight),
+            (
+                "smoothness_weight",
+                SMOOTHNESS_WEIGHT,
+                self.smoothness_weight,
+            ),
+            (
+                "deformation_weight",
+                DEFORMATION_WEIGHT,
+                self.deformation_weight,
+            ),
+            ("force_penalty", FORCE_PENALTY, self.force_penalty),
         ] {
-            if !(v.is_finite() && v > 0.0) {
-                return Err(InvalidSetting::new(key, v, "a finite number > 0"));
-            }
-        }
-        for (key, v) in [
-            ("time_weight", self.time_weight),
-            ("smoothness_weight", self.smoothness_weight),
-            ("deformation_weight", self.deformation_weight),
-            ("force_penalty", self.force_penalty),
-        ] {
-            if !(v.is_finite() && v >= 0.0) {
-                return Err(InvalidSetting::new(key, v, "a finite number >= 0"));
-            }
+            range.check(key, v)?;
         }
         if !(self.min_saving.is_finite() && (0.0..=0.5).contains(&self.min_saving)) {
             return Err(InvalidSetting::new(
@@ -172,11 +193,10 @@ impl MpcSettings {
         if self.max_iterations == 0 {
             return Err(InvalidSetting::new("max_iterations", 0, "at least 1"));
         }
-        if let Some(f) = self.max_force
-            && !(f.is_finite() && f > 0.0)
-        {
-            return Err(InvalidSetting::new("max_force", f, "a finite force > 0 N"));
+        if let Some(f) = self.max_force {
+            MAX_FORCE.check("max_force", f)?;
         }
+        self.planner.policy().map_err(|e| e.prefixed("planner"))?;
         Ok(())
     }
 }
