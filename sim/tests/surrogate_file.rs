@@ -138,6 +138,38 @@ fn invalid_material_constant_is_refused_and_named() {
 }
 
 #[test]
+fn a_range_or_exponent_out_of_bounds_is_refused_and_named() {
+    for (from, to, key) in [
+        ("xi_max = 2.4", "xi_max = -1.0", "range.xi_max"),
+        (
+            "height = [0.02, 0.045]",
+            "height = [-1.0, 0.045]",
+            "range.height[0]",
+        ),
+        (
+            "height = [0.02, 0.045]",
+            "height = [0.05, 0.045]",
+            "range.height[1]",
+        ),
+        (
+            "half_width = [0.01, 0.03]",
+            "half_width = [0.0, 0.03]",
+            "range.half_width[0]",
+        ),
+        (
+            "catch_up_exponent = 1.0",
+            "catch_up_exponent = -1.0",
+            "ratio.catch_up_exponent",
+        ),
+    ] {
+        let text = potato_text();
+        assert!(text.contains(from), "{from}");
+        let e = Surrogate::from_toml_str(&text.replace(from, to)).unwrap_err();
+        assert!(e.to_string().contains(key), "{to}: {e}");
+    }
+}
+
+#[test]
 fn unreadable_file_names_the_path() {
     let e = Surrogate::from_path(std::path::Path::new("/nonexistent/s.toml")).unwrap_err();
     assert!(e.to_string().contains("/nonexistent/s.toml"), "{e}");

@@ -220,6 +220,36 @@ impl Surrogate {
                 });
             }
         }
+        let r = &self.range;
+        let bad = |key: &str, value: f64, allowed: &'static str| {
+            Err(SurrogateFileError::BadValue {
+                key: key.to_string(),
+                value,
+                allowed,
+            })
+        };
+        if r.xi_max <= 0.0 {
+            return bad("range.xi_max", r.xi_max, "must be positive");
+        }
+        for (key, [lo, hi]) in [
+            ("range.height", r.height),
+            ("range.half_width", r.half_width),
+        ] {
+            if lo <= 0.0 {
+                return bad(&format!("{key}[0]"), lo, "must be a positive size, m");
+            }
+            if hi < lo {
+                return bad(&format!("{key}[1]"), hi, "must be at least [0]");
+            }
+        }
+        let k = self.ratio.catch_up_exponent;
+        if !(0.0..=4.0).contains(&k) {
+            return bad(
+                "ratio.catch_up_exponent",
+                k,
+                "must be in [0, 4] (fit writes 1)",
+            );
+        }
         let [kappa, beta] = self.post_fracture.knee_width;
         for (i, w) in [kappa, beta].into_iter().enumerate() {
             if w < 0.0 {
