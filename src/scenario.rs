@@ -294,11 +294,36 @@ impl Scenario {
             ),
             None => {}
         }
+        let wire_slab = || {
+            ConfigError::Argument(InvalidSetting::new(
+                "SCENARIO",
+                path_or_name,
+                format!(
+                    "a scenario of the cutting model (this one is of seed 001's \
+                     `model = \"{WIRE_SLAB_MODEL}\"`: `shearcut simulate` and `shearcut check` \
+                     run it)"
+                ),
+            ))
+        };
+        if !path.exists()
+            && BUILT_IN_WIRE_SLAB_SCENARIOS
+                .iter()
+                .any(|(n, _)| *n == path_or_name)
+        {
+            return Err(wire_slab());
+        }
         let text =
             read_capped_text(path, CONFIG_FILE_BYTES).map_err(|source| ConfigError::Read {
                 path: path.to_path_buf(),
                 source,
             })?;
+        if toml::from_str::<toml::Table>(&text)
+            .ok()
+            .and_then(|t| t.get("model").and_then(|m| m.as_str().map(str::to_owned)))
+            .is_some_and(|m| m == WIRE_SLAB_MODEL)
+        {
+            return Err(wire_slab());
+        }
         let stem = path
             .file_stem()
             .and_then(|s| s.to_str())

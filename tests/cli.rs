@@ -326,3 +326,20 @@ fn output_paths_under_a_file_are_refused_in_one_line() {
     }
     std::fs::remove_dir_all(dir).ok();
 }
+
+/// A finite-strain wire scenario given to the cutting model's commands is
+/// named as what it is, with the commands that run it.
+#[test]
+fn a_wire_slab_scenario_is_sent_to_simulate() {
+    let file = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/config/scenarios/seed001-agar-wire.toml"
+    );
+    for scenario in ["seed001-agar-wire", file] {
+        let o = shearcut(&["run", scenario]);
+        assert_eq!(o.status.code(), Some(2));
+        let e = stderr(&o);
+        assert_eq!(e.lines().count(), 1, "{e}");
+        assert!(e.contains("shearcut simulate"), "{e}");
+    }
+}
