@@ -305,6 +305,7 @@ fn output_paths_under_a_file_are_refused_in_one_line() {
     let under = file.join("x");
     let under = under.to_str().unwrap();
     let svg = format!("{under}.svg");
+    let toml = format!("{under}.toml");
     let sweep = concat!(
         env!("CARGO_MANIFEST_DIR"),
         "/config/sweeps/mpc-heldout.toml"
@@ -316,6 +317,18 @@ fn output_paths_under_a_file_are_refused_in_one_line() {
             "--plot",
         ),
         (vec!["tune", sweep, "--jobs", "1", "--out", under], "--out"),
+        (
+            vec![
+                "fit",
+                "--material",
+                "potato-cuboid",
+                "--knife",
+                "straight",
+                "--out",
+                &toml,
+            ],
+            "--out",
+        ),
     ] {
         let o = shearcut(&args);
         assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));

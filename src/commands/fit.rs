@@ -241,6 +241,43 @@ pub struct FitRequest<'a> {
 /// `window_weight` as in [`fit`]; refused (exit 2) unless finite and ≥ 0;
 /// the extra sizes as [`parse_section_sizes`] and [`fit_sizes`] check them.
 ///
+/// Checks, before minutes of sweeps, that `path` (`--out`) can be written:
+/// a `.toml` file name (the report and plot take its stem) whose directory
+/// exists or can be created and takes a new file, and not a directory. Bad
+/// input (exit 2). Creates the directory; leaves no file behind.
+fn claim_output(path: &Path) -> Result<(), RunError> {
+    let refused = |at: &Path, e: std::io::Error| {
+        crate::run_dir::unusable_output(
+            "--out",
+            path,
+            at,
+            &e,
+            "a surrogate file this process can write",
+        )
+    };
+    if path.extension().is_none_or(|e| e != "toml") || path.file_stem().is_none() {
+        return Err(RunError::Config(ConfigError::Argument(
+            InvalidSetting::new(
+                "--out",
+                path.display(),
+                "a file name ending in .toml (the report and the plot go next to it)",
+            ),
+        )));
+    }
+    if path.is_dir() {
+        return Err(refused(
+            path,
+            std::io::Error::new(std::io::ErrorKind::IsADirectory, "a directory"),
+        ));
+    }
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).map_err(|e| refused(dir, e))?;
+    }
+    let probe = path.with_extension("toml.probe");
+    std::fs::File::create(&probe).map_err(|e| refused(path, e))?;
+    std::fs::remove_file(&probe).map_err(|e| refused(path, e))
+}
+
 /// Writes `out` (default [`default_path`]), the report next to it
 /// (`<stem>.accuracy.toml`) and the plot (`<stem>.png`).
 pub fn run(request: &FitRequest<'_>) -> Result<(), RunError> {
@@ -265,6 +302,7 @@ pub fn run(request: &FitRequest<'_>) -> Result<(), RunError> {
     let extra_held_out = parse_section_sizes("--extra-held-out-sizes", extra_held_out_sizes)?;
     let sizes = fit_sizes(&extra, &extra_held_out)?;
     let path = out.map_or_else(|| default_path(m.name(), k.name()), Path::to_path_buf);
+    claim_output(&path)?;
     let bar = run_bar(
         fit_run_count(&sizes),
         &format!("full-model sweeps of {}", m.name()),
