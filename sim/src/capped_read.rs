@@ -2,7 +2,9 @@
 //!
 //! Every file a user names (scenario, surrogate, mesh, trajectory cases) is
 //! read through here: at most `cap` bytes are read, so a huge file or an
-//! endless one (`/dev/zero`, a FIFO) is refused instead of filling memory.
+//! endless one (`/dev/zero`) is refused instead of filling memory, and a
+//! named pipe or socket is refused before it is opened (opening a pipe
+//! with no writer would wait for one forever).
 //! Errors describe the file, never its contents.
 
 use std::io::Read;
@@ -17,6 +19,9 @@ pub enum CappedReadError {
     /// The file is a directory.
     #[error("is a directory, not a file")]
     Directory,
+    /// The file is a named pipe or a socket.
+    #[error("is a named pipe or a socket, not a file")]
+    Pipe,
     /// The file holds more than the cap.
     #[error("is larger than {cap} bytes, the most this kind of file may hold")]
     TooLarge {
@@ -30,6 +35,14 @@ pub enum CappedReadError {
 
 /// Reads at most `cap` bytes of `path`; more is an error.
 pub fn read_capped(path: &Path, cap: u64) -> Result<Vec<u8>, CappedReadError> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        let kind = std::fs::metadata(path)?.file_type();
+        if kind.is_fifo() || kind.is_socket() {
+            return Err(CappedReadError::Pipe);
+        }
+    }
     let file = std::fs::File::open(path)?;
     if file.metadata()?.is_dir() {
         return Err(CappedReadError::Directory);
@@ -68,6 +81,22 @@ mod tests {
         assert!(matches!(
             read_capped_text(&f, 3).unwrap_err(),
             CappedReadError::NotText
+        ));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    /// A named pipe with no writer is refused at once instead of waiting.
+    #[cfg(unix)]
+    #[test]
+    fn a_named_pipe_is_refused_without_opening_it() {
+        let dir = std::env::temp_dir().join(format!("shearcut-fifo-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let fifo = dir.join("pipe.toml");
+        let made = std::process::Command::new("mkfifo").arg(&fifo).status();
+        assert!(made.is_ok_and(|s| s.success()), "mkfifo (coreutils)");
+        assert!(matches!(
+            read_capped(&fifo, 10).unwrap_err(),
+            CappedReadError::Pipe
         ));
         std::fs::remove_dir_all(&dir).unwrap();
     }
