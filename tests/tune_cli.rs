@@ -523,6 +523,12 @@ fn bad_sweep_files_exit_2_with_one_line() {
     );
     refused(
         &t,
+        "youngs_modulus_scale = [0.9, 1.1]",
+        "youngs_modulus_scale = []",
+        "`variants.youngs_modulus_scale` = []: needs at least one value",
+    );
+    refused(
+        &t,
         "\"mpc.deformation_weight\" = [0.0, 100.0]",
         "\"mpc.planner.lockstep_ticks\" = [1, 0]",
         "`controllers[0].controller.mpc.planner.lockstep_ticks` = 0: in 1..=10000",

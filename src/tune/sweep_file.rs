@@ -211,6 +211,9 @@ impl Sweep {
             path: origin.to_string(),
             setting,
         };
+        if let Ok(table) = toml::from_str::<toml::Table>(text) {
+            refuse_empty_lists(&table).map_err(invalid)?;
+        }
         let name = file.name.clone().unwrap_or_else(|| stem.to_string());
         if name.is_empty()
             || !name
@@ -511,6 +514,37 @@ fn best_constant_grid(
             })
         })
         .collect())
+}
+
+/// An empty list where a sweep lists values (`[variants]`' keys, a
+/// controller entry's `kind` and `sets`) is refused, naming the key: left
+/// out, a key keeps the scenario's own value; written empty, it would
+/// silently do the same.
+fn refuse_empty_lists(table: &toml::Table) -> Result<(), InvalidSetting> {
+    let empty = |v: &toml::Value| v.as_array().is_some_and(Vec::is_empty);
+    let refuse = |key: String| {
+        Err(InvalidSetting::new(
+            key,
+            "[]",
+            "needs at least one value (leave the key out for the scenario's own)",
+        ))
+    };
+    if let Some(variants) = table.get("variants").and_then(toml::Value::as_table) {
+        for (k, v) in variants {
+            if empty(v) {
+                return refuse(format!("variants.{k}"));
+            }
+        }
+    }
+    let entries = table.get("controllers").and_then(toml::Value::as_array);
+    for (i, entry) in entries.into_iter().flatten().enumerate() {
+        for k in ["kind", "sets"] {
+            if entry.get(k).is_some_and(empty) {
+                return refuse(format!("controllers[{i}].{k}"));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// The sets of keys an entry (index `i`) lists: its grid's cross product,
