@@ -20,7 +20,7 @@ pub enum ControllerChoice {
 
 /// What the string forms allow, for error messages.
 const ALLOWED: &str =
-    "one of mpc, press, slice:XI (XI >= 0, e.g. slice:0.75), force:N (N > 0, e.g. force:20)";
+    "one of mpc, press, slice:XI (XI in [0, 20], e.g. slice:0.75), force:N (N > 0, e.g. force:20)";
 
 impl ControllerChoice {
     /// The slice-push ratio the controller starts with (the plant builds its

@@ -2,7 +2,8 @@
 
 use serde::{Deserialize, Serialize};
 
-use crate::invalid_setting::{InvalidSetting, positive};
+use crate::invalid_setting::InvalidSetting;
+use crate::physical_range::{PhysicalRange, WIRE_RADIUS};
 
 /// How the slab's sides (X = ±L/2) are held.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
@@ -123,16 +124,13 @@ impl Default for WireSlabSettings {
 }
 
 fn within(key: &str, value: f64, lo: f64, hi: f64) -> Result<(), InvalidSetting> {
-    if value.is_finite() && value >= lo && value <= hi {
-        Ok(())
-    } else {
-        Err(InvalidSetting::new(
-            key,
-            value,
-            format!("must be in [{lo}, {hi}]"),
-        ))
-    }
+    PhysicalRange::new(lo, hi, "").check(key, value)
 }
+
+/// The slab's shear modulus μ, Pa: a soft gel to a stiff vegetable.
+const SHEAR_MODULUS: PhysicalRange = PhysicalRange::new(100.0, 1e8, "Pa");
+/// The wire's length along its axis (the forces' out-of-plane length), m.
+const WIRE_LENGTH: PhysicalRange = PhysicalRange::new(1e-4, 1.0, "m");
 
 fn count_within(key: &str, value: usize, lo: usize, hi: usize) -> Result<(), InvalidSetting> {
     if (lo..=hi).contains(&value) {
@@ -149,10 +147,10 @@ fn count_within(key: &str, value: usize, lo: usize, hi: usize) -> Result<(), Inv
 impl WireSlabSettings {
     /// Checks every field; the error names the key, the value and the range.
     pub fn validate(&self) -> Result<(), InvalidSetting> {
-        positive("shear_modulus", self.shear_modulus)?;
+        SHEAR_MODULUS.check("shear_modulus", self.shear_modulus)?;
         within("bulk_modulus_ratio", self.bulk_modulus_ratio, 1.0, 1e4)?;
-        positive("wire_radius", self.wire_radius)?;
-        positive("wire_length", self.wire_length)?;
+        WIRE_RADIUS.check("wire_radius", self.wire_radius)?;
+        WIRE_LENGTH.check("wire_length", self.wire_length)?;
         let r = self.wire_radius;
         within("slab_width", self.slab_width, 20.0 * r, 1e4 * r)?;
         within("slab_depth", self.slab_depth, 20.0 * r, 1e4 * r)?;
