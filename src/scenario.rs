@@ -694,7 +694,7 @@ impl MotionSettings {
 /// Accepts `key = 0.02` as well as `key = [0.02, 0.05]`.
 fn one_or_many<'de, D: serde::Deserializer<'de>>(d: D) -> Result<Vec<f64>, D::Error> {
     #[derive(Deserialize)]
-    #[serde(untagged)]
+    #[serde(untagged, expecting = "a number or a list of numbers")]
     enum OneOrMany {
         One(f64),
         Many(Vec<f64>),

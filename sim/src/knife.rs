@@ -16,7 +16,12 @@ use crate::physical_range::{
 
 /// Shape of the edge, as written in a knife config (`edge = { kind = … }`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "kind", rename_all = "kebab-case", deny_unknown_fields)]
+#[serde(
+    tag = "kind",
+    rename_all = "kebab-case",
+    deny_unknown_fields,
+    expecting = "a table with kind = \"straight\", \"chef\", \"polyline\" or \"wire\""
+)]
 pub enum EdgeShape {
     /// A straight horizontal edge.
     Straight {

@@ -135,7 +135,7 @@ pub struct ControllerSweep {
 
 /// A value or a list of values.
 #[derive(Debug, Clone, Deserialize)]
-#[serde(untagged)]
+#[serde(untagged, expecting = "a value or a list of values of the key's type")]
 pub enum OneOrMany<T> {
     /// One value.
     One(T),
