@@ -30,6 +30,11 @@ pub fn position(text: &str, e: &toml::de::Error) -> (usize, usize) {
 /// is an assignment to a bare key of at most 64 characters: the one part of
 /// the text an error may repeat, since it names what to fix.
 fn key_at(text: &str, e: &toml::de::Error) -> Option<String> {
+    // A missing field's span is the table that lacks it, whose first line
+    // assigns some other key.
+    if e.message().starts_with("missing field") {
+        return None;
+    }
     let (line, _) = position(text, e);
     let source = text.lines().nth(line - 1)?;
     let (key, _) = source.split_once('=')?;
@@ -63,6 +68,20 @@ pub fn one_line(text: &str, e: &toml::de::Error) -> String {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn a_missing_table_is_not_blamed_on_the_first_key() {
+        #[derive(Debug, serde::Deserialize)]
+        #[allow(dead_code)]
+        struct File {
+            name: String,
+            knife: toml::Table,
+        }
+        let text = "name = \"x\"\n";
+        let e = toml::from_str::<File>(text).unwrap_err();
+        let m = message(text, &e);
+        assert!(m.starts_with("missing field `knife`"), "{m}");
+    }
 
     #[test]
     fn a_non_toml_file_is_described_not_quoted() {
