@@ -333,6 +333,26 @@ fn shards_merge_to_the_local_table_bit_for_bit() {
         read(&merged.join("summary.md")),
         read(&local.join("summary.md"))
     );
+    // A row cut short is named as unreadable, not as a shard to run.
+    let row = std::fs::read_dir(shards[2].join("rows"))
+        .unwrap()
+        .next()
+        .unwrap()
+        .unwrap()
+        .path();
+    std::fs::write(&row, "{\"id\": ").unwrap();
+    let mut args = vec!["merge"];
+    args.extend(shards.iter().map(|d| s(d)));
+    let again = t.0.join("again");
+    args.extend(["--out", s(&again)]);
+    let o = tune(&args, &[]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(e.trim_end().lines().count(), 1, "{e}");
+    assert!(
+        e.contains("is not a readable row of its job") && e.contains(&*row.to_string_lossy()),
+        "{e}"
+    );
 }
 
 /// The MPC and a three-point best-constant grid on two replicas of two

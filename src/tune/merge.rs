@@ -54,6 +54,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<Merged, RunError> {
     write_catalog(out, &catalog, &sweep_text)?;
     let mut rows = Vec::with_capacity(catalog.jobs.len());
     let mut missing = Vec::new();
+    let mut unreadable = None;
     for job in &catalog.jobs {
         let found = dirs
             .iter()
@@ -66,10 +67,27 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<Merged, RunError> {
                 }
                 rows.push(row);
             }
-            None => missing.push(job.index),
+            None => {
+                // A row file that is there but does not read as this job's
+                // row (cut short, edited) is named: it is not a shard yet to run.
+                if unreadable.is_none() {
+                    unreadable = dirs
+                        .iter()
+                        .map(|d| JobRow::path(d, &job.id))
+                        .find(|p| p.exists());
+                }
+                missing.push(job.index);
+            }
         }
     }
     if let Some(first_missing) = missing.first() {
+        let why = match &unreadable {
+            Some(path) => format!(
+                "; {} is not a readable row of its job: delete it and run its shard again",
+                path.display()
+            ),
+            None => ": run their shards, then merge again".to_string(),
+        };
         return Err(argument(
             "DIR",
             dirs.iter()
@@ -77,7 +95,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<Merged, RunError> {
                 .collect::<Vec<_>>()
                 .join(" "),
             format!(
-                "{} of {} jobs have no result (first: job {first_missing}): run their shards, then merge again",
+                "{} of {} jobs have no result (first: job {first_missing}){why}",
                 missing.len(),
                 catalog.jobs.len()
             ),

@@ -95,6 +95,14 @@ impl Shard {
             })?;
             return Self::new(index, count, "JOB_COMPLETION_INDEX/SHEARCUT_SHARDS");
         }
+        if var("SHEARCUT_SHARDS").is_some_and(|t| !t.trim().is_empty()) {
+            return Err(InvalidSetting::new(
+                "JOB_COMPLETION_INDEX",
+                "unset",
+                "set by an indexed Kubernetes Job beside SHEARCUT_SHARDS (which alone shards \
+                 nothing: the whole sweep would run); or pass --shard I/N",
+            ));
+        }
         Ok(Self::WHOLE)
     }
 }
@@ -173,6 +181,8 @@ mod tests {
         );
         let e = Shard::resolve(None, env(&[("JOB_COMPLETION_INDEX", "2")])).unwrap_err();
         assert_eq!(e.key, "SHEARCUT_SHARDS");
+        let e = Shard::resolve(None, env(&[("SHEARCUT_SHARDS", "8")])).unwrap_err();
+        assert_eq!(e.key, "JOB_COMPLETION_INDEX");
         assert_eq!(Shard::resolve(None, env(&[])).unwrap(), Shard::WHOLE);
     }
 }
