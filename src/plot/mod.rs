@@ -37,7 +37,7 @@ impl ImageFormat {
             _ => Err(ConfigError::Argument(InvalidSetting::new(
                 "--plot",
                 path.display(),
-                "must end in .svg or .png",
+                "must be a file name ending in .svg or .png (a name before the extension)",
             ))),
         }
     }
