@@ -26,7 +26,7 @@ impl InvalidSetting {
     ) -> Self {
         Self {
             key: key.into(),
-            value: value.to_string(),
+            value: short_number(value.to_string()),
             allowed: allowed.into(),
         }
     }
@@ -38,6 +38,20 @@ impl InvalidSetting {
             self.key = format!("{prefix}.{}", self.key);
         }
         self
+    }
+}
+
+/// A value that is a long plain number (`f64`'s `Display` writes 1e300
+/// with 300 digits) as [`number_text`](crate::physical_range::number_text)
+/// writes it; any other text, and any integer of up to 24 digits (u64 and
+/// i64 values stay exact), as it is.
+fn short_number(text: String) -> String {
+    if text.len() <= 24 {
+        return text;
+    }
+    match text.parse::<f64>() {
+        Ok(x) if x.is_finite() => crate::physical_range::number_text(x),
+        _ => text,
     }
 }
 
@@ -70,5 +84,23 @@ pub fn non_negative(key: &str, value: f64) -> Result<(), InvalidSetting> {
             value,
             "must be a finite number >= 0",
         ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::InvalidSetting;
+
+    #[test]
+    fn long_plain_numbers_are_written_short() {
+        assert_eq!(InvalidSetting::new("k", 1e300, "").value, "1e300");
+        assert_eq!(InvalidSetting::new("k", 1e-300, "").value, "1e-300");
+        assert_eq!(InvalidSetting::new("k", 0.25, "").value, "0.25");
+        assert_eq!(
+            InvalidSetting::new("k", u64::MAX, "").value,
+            "18446744073709551615"
+        );
+        let words = "a value that is not a number at all";
+        assert_eq!(InvalidSetting::new("k", words, "").value, words);
     }
 }
