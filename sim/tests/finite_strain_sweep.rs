@@ -106,7 +106,7 @@ fn bad_settings_are_refused() {
     let e = WireSlab::new(&s).err().unwrap();
     assert_eq!(
         e.to_string(),
-        "`wire_radius` = -1: must be a finite number > 0"
+        "`wire_radius` = -1: must be in [5e-5, 0.005] m"
     );
 }
 

@@ -232,7 +232,7 @@ mod tests {
         .unwrap_err();
         assert_eq!(
             e.to_string(),
-            "`controller.mpc.deformation_weight` = -1: a finite number >= 0"
+            "`controller.mpc.deformation_weight` = -1: must be in [0, 1e9] J/m²"
         );
     }
 }
