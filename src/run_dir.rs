@@ -176,12 +176,11 @@ pub fn unusable_output(
     e: &std::io::Error,
     what: &str,
 ) -> RunError {
+    // The component nearest the root that is a file blocks the rest.
     let file = at
         .ancestors()
-        .collect::<Vec<_>>()
-        .into_iter()
-        .rev()
-        .find(|a| !a.as_os_str().is_empty() && a.exists() && !a.is_dir());
+        .filter(|a| !a.as_os_str().is_empty() && a.exists() && !a.is_dir())
+        .last();
     let reason = match file {
         Some(f) => format!("{} is a file", f.display()),
         None => format!("{}: {e}", at.display()),
@@ -191,6 +190,28 @@ pub fn unusable_output(
         path.display(),
         format!("{what} ({reason})"),
     )))
+}
+
+/// Checks, before any work, that the output file `path` given as argument
+/// `key` can be written: not a directory, its directory exists or is
+/// created, and a new file can be made there (tried as `<path>.probe`, then
+/// removed: no file is left behind). Bad input (exit 2), naming `key`.
+pub fn claim_output_file(key: &str, path: &Path) -> Result<(), RunError> {
+    let what = "a file this process can create";
+    let refused = |at: &Path, e: std::io::Error| unusable_output(key, path, at, &e, what);
+    if path.is_dir() {
+        return Err(refused(
+            path,
+            std::io::Error::new(ErrorKind::IsADirectory, "a directory"),
+        ));
+    }
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir).map_err(|e| refused(dir, e))?;
+    }
+    let mut probe = path.as_os_str().to_owned();
+    probe.push(".probe");
+    std::fs::File::create(&probe).map_err(|e| refused(path, e))?;
+    std::fs::remove_file(&probe).map_err(|e| refused(path, e))
 }
 
 /// Creates `runs/<name>-<YYYYmmdd-HHMMSS>` (UTC), or with `-N` appended the

@@ -317,11 +317,7 @@ impl Scenario {
                 path: path.to_path_buf(),
                 source,
             })?;
-        if toml::from_str::<toml::Table>(&text)
-            .ok()
-            .and_then(|t| t.get("model").and_then(|m| m.as_str().map(str::to_owned)))
-            .is_some_and(|m| m == WIRE_SLAB_MODEL)
-        {
+        if is_wire_slab(&text) {
             return Err(wire_slab());
         }
         let stem = path
@@ -994,6 +990,15 @@ mod tests {
 /// finite-strain wire–slab model (run by `shearcut simulate`).
 pub const WIRE_SLAB_MODEL: &str = "finite-strain-wire";
 
+/// Whether scenario TOML `text` is of the finite-strain wire–slab model
+/// (its top-level `model` is [`WIRE_SLAB_MODEL`]).
+fn is_wire_slab(text: &str) -> bool {
+    toml::from_str::<toml::Table>(text)
+        .ok()
+        .and_then(|t| t.get("model").and_then(|m| m.as_str().map(str::to_owned)))
+        .is_some_and(|m| m == WIRE_SLAB_MODEL)
+}
+
 /// Built-in scenarios of the finite-strain wire–slab model.
 pub const BUILT_IN_WIRE_SLAB_SCENARIOS: [(&str, &str); 1] = [(
     "seed001-agar-wire",
@@ -1097,11 +1102,7 @@ impl WireSlabScenario {
         } else {
             return Ok(None);
         };
-        let is_slab = toml::from_str::<toml::Table>(&text)
-            .ok()
-            .and_then(|t| t.get("model").and_then(|m| m.as_str().map(str::to_string)))
-            .is_some_and(|m| m == WIRE_SLAB_MODEL);
-        if !is_slab {
+        if !is_wire_slab(&text) {
             return Ok(None);
         }
         let mut s: Self = toml::from_str(&text).map_err(|e| parse_error(&origin, &text, &e))?;

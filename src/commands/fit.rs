@@ -22,6 +22,7 @@ use crate::error::{ConfigError, RunError};
 use crate::plot::ensure_parent;
 use crate::plot::surrogate_fit::draw_surrogate_fit;
 use crate::render_plot;
+use crate::run_dir::claim_output_file;
 
 /// Threads of the sweeps (the machine's cores, at most 2 by default: DESIGN
 /// targets a 2-core development machine).
@@ -237,24 +238,10 @@ pub struct FitRequest<'a> {
     pub out: Option<&'a Path>,
 }
 
-/// Runs the subcommand: sweeps with a progress bar, fit, report, files.
-/// `window_weight` as in [`fit`]; refused (exit 2) unless finite and ≥ 0;
-/// the extra sizes as [`parse_section_sizes`] and [`fit_sizes`] check them.
-///
-/// Checks, before minutes of sweeps, that `path` (`--out`) can be written:
-/// a `.toml` file name (the report and plot take its stem) whose directory
-/// exists or can be created and takes a new file, and not a directory. Bad
-/// input (exit 2). Creates the directory; leaves no file behind.
+/// Checks, before minutes of sweeps, that `path` (`--out`) names a `.toml`
+/// file (the report and plot take its stem) this process can write
+/// ([`claim_output_file`]). Bad input (exit 2).
 fn claim_output(path: &Path) -> Result<(), RunError> {
-    let refused = |at: &Path, e: std::io::Error| {
-        crate::run_dir::unusable_output(
-            "--out",
-            path,
-            at,
-            &e,
-            "a surrogate file this process can write",
-        )
-    };
     if path.extension().is_none_or(|e| e != "toml") || path.file_stem().is_none() {
         return Err(RunError::Config(ConfigError::Argument(
             InvalidSetting::new(
@@ -264,20 +251,13 @@ fn claim_output(path: &Path) -> Result<(), RunError> {
             ),
         )));
     }
-    if path.is_dir() {
-        return Err(refused(
-            path,
-            std::io::Error::new(std::io::ErrorKind::IsADirectory, "a directory"),
-        ));
-    }
-    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).map_err(|e| refused(dir, e))?;
-    }
-    let probe = path.with_extension("toml.probe");
-    std::fs::File::create(&probe).map_err(|e| refused(path, e))?;
-    std::fs::remove_file(&probe).map_err(|e| refused(path, e))
+    claim_output_file("--out", path)
 }
 
+/// Runs the subcommand: sweeps with a progress bar, fit, report, files.
+/// `window_weight` as in [`fit`]; refused (exit 2) unless finite and ≥ 0;
+/// the extra sizes as [`parse_section_sizes`] and [`fit_sizes`] check them.
+///
 /// Writes `out` (default [`default_path`]), the report next to it
 /// (`<stem>.accuracy.toml`) and the plot (`<stem>.png`).
 pub fn run(request: &FitRequest<'_>) -> Result<(), RunError> {

@@ -10,7 +10,7 @@ use crate::cli::print;
 use crate::error::{ConfigError, RunError};
 use crate::plot::toughness_ratio::{FIG3_SLICE_PUSH_RATIOS, draw_fig3, fig3_table};
 use crate::render_plot;
-use crate::run_dir::unusable_output;
+use crate::run_dir::claim_output_file;
 
 /// The law evaluated at one (ξ, ν).
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -65,25 +65,17 @@ pub fn run(nu: f64, xi: f64, plot: Option<&Path>) -> Result<(), RunError> {
     Ok(())
 }
 
-/// Checks that `--plot` = `path` names an image this process can create,
-/// creating its directory and the file: the path is the user's, so one that
-/// cannot be created is bad input (exit 2), found before anything is
-/// printed.
+/// Checks that `--plot` = `path` names an image this process can write
+/// ([`claim_output_file`]), before anything is printed: the path is the
+/// user's, so one that cannot be created is bad input (exit 2).
 fn claim_plot(path: &Path) -> Result<(), RunError> {
     crate::plot::ImageFormat::from_path(path)?;
-    let refused = |at: &Path, e: std::io::Error| {
-        unusable_output("--plot", path, at, &e, "a file this process can create")
-    };
-    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
-        std::fs::create_dir_all(dir).map_err(|e| refused(dir, e))?;
-    }
-    std::fs::File::create(path).map_err(|e| refused(path, e))?;
-    Ok(())
+    claim_output_file("--plot", path)
 }
 
-/// Draws Fig. 3 to `path` and its table to the same path with extension `.csv`.
-pub fn write_fig3(path: &Path) -> Result<PathBuf, RunError> {
-    claim_plot(path)?;
+/// Draws Fig. 3 to `path` (claimed by [`claim_plot`]) and its table to the
+/// same path with extension `.csv`.
+fn write_fig3(path: &Path) -> Result<PathBuf, RunError> {
     render_plot!(path, (800, 560), draw_fig3)?;
     let csv_path = path.with_extension("csv");
     let mut w = csv::Writer::from_path(&csv_path).map_err(|e| RunError::write(&csv_path, e))?;

@@ -517,7 +517,7 @@ fn best_constant_grid(
 }
 
 /// An empty list where a sweep lists values (`[variants]`' keys, a
-/// controller entry's `kind` and `sets`) is refused, naming the key: left
+/// controller entry's `kind`, `sets` and `grid` keys) is refused, naming the key: left
 /// out, a key keeps the scenario's own value; written empty, it would
 /// silently do the same.
 fn refuse_empty_lists(table: &toml::Table) -> Result<(), InvalidSetting> {
@@ -543,6 +543,15 @@ fn refuse_empty_lists(table: &toml::Table) -> Result<(), InvalidSetting> {
                 return refuse(format!("controllers[{i}].{k}"));
             }
         }
+        let grid = entry.get("grid").and_then(toml::Value::as_table);
+        if let Some((k, _)) = grid
+            .map(grid_axes)
+            .unwrap_or_default()
+            .into_iter()
+            .find(|(_, vs)| vs.is_empty())
+        {
+            return refuse(format!("controllers[{i}].grid.{k}"));
+        }
     }
     Ok(())
 }
@@ -564,15 +573,8 @@ fn override_points(
     if !entry.sets.is_empty() {
         return Ok(entry.sets.iter().map(flat_keys).collect());
     }
-    let axes = grid_axes(&entry.grid);
-    if let Some((k, _)) = axes.iter().find(|(_, vs)| vs.is_empty()) {
-        return Err(InvalidSetting::new(
-            at(&format!("grid.{k}")),
-            "[]",
-            "needs at least one value",
-        ));
-    }
-    Ok(cross_product(&axes))
+    // Empty lists were refused with the file ([`refuse_empty_lists`]).
+    Ok(cross_product(&grid_axes(&entry.grid)))
 }
 
 /// The grid's axes: every leaf key (dotted below the grid table) with its
