@@ -195,7 +195,7 @@ pub enum Command {
         #[command(flatten)]
         out: crate::run_dir::Destination,
     },
-    /// Validate a scenario and print its resolved values.
+    /// Validate a scenario, say whether `simulate` and `run` take it, and print its resolved values.
     Check {
         /// Scenario TOML file, or the name of a built-in scenario (`shearcut scenarios`).
         scenario: String,

@@ -45,6 +45,17 @@ pub enum ConfigError {
         /// The key, value and allowed range.
         setting: InvalidSetting,
     },
+    /// A scenario that loads but that neither `simulate` nor `run` can
+    /// use (`shearcut check`).
+    #[error("{path}: neither simulate nor run can use it: simulate: {simulate}; run: {run}")]
+    Unusable {
+        /// The file (or a built-in name).
+        path: String,
+        /// Why `simulate` refuses it.
+        simulate: String,
+        /// Why `run` refuses it.
+        run: String,
+    },
     /// A command-line argument is out of its allowed range.
     #[error("{0}")]
     Argument(InvalidSetting),

@@ -77,6 +77,79 @@ fn with_table(base: &str, table: &str) -> String {
     format!("{base}\n{table}\n")
 }
 
+const AGAR_SECTION: &str = include_str!("../config/scenarios/seed001-agar-section.toml");
+
+/// The line of `check`'s output that starts with `# {command}: `, without
+/// that.
+fn readiness(o: &Output, command: &str) -> String {
+    let out = String::from_utf8_lossy(&o.stdout);
+    let head = format!("# {command}: ");
+    out.lines()
+        .find_map(|l| l.strip_prefix(&head))
+        .unwrap_or_else(|| panic!("no `{head}` line in: {out}"))
+        .to_string()
+}
+
+/// `check` says which command refuses a scenario and why, in the words
+/// that command refuses it with: a fig. 7 cut at ξ = 20 runs its blade off
+/// the edge (simulate), seed 001's agar section asks the loop's plant for
+/// more edge segments than it has (run).
+#[test]
+fn check_says_which_command_refuses_a_scenario_in_its_words() {
+    let d = Dir::new("readiness");
+    let xi20 = d.file(
+        "xi20.toml",
+        &FIG7.replace(
+            "slice_push_ratios = [0.0, 0.33, 0.75, 1.8]",
+            "slice_push_ratios = [0.0, 0.33, 0.75, 20.0]",
+        ),
+    );
+    for (scenario, refusing, ready, reason) in [
+        (
+            xi20.as_str(),
+            "simulate",
+            "run",
+            "`motion.slice_push_ratios[3]` = 20: the blade would travel 0.4000 m along the edge",
+        ),
+        (
+            "seed001-agar-section",
+            "run",
+            "simulate",
+            "gives 402 segments of the edge (segments = 20), at most 256 are allowed",
+        ),
+    ] {
+        let o = shearcut(&["check", scenario]);
+        assert!(o.status.success(), "{scenario}: {}", stderr(&o));
+        assert_eq!(readiness(&o, ready), "ready", "{scenario}");
+        let why = readiness(&o, refusing);
+        assert!(
+            why.starts_with("refuses it: ") && why.contains(reason),
+            "{why}"
+        );
+        // The command itself refuses it, before any output, with the
+        // same words.
+        let out = d.0.join(format!("{refusing}-out"));
+        let o = shearcut(&[refusing, scenario, "--out", out.to_str().unwrap()]);
+        assert_refused(&o, &[why.strip_prefix("refuses it: ").unwrap()]);
+        assert!(!out.exists(), "{}", out.display());
+    }
+}
+
+/// A scenario that neither command can use is refused by `check`, in one
+/// line naming both reasons.
+#[test]
+fn check_refuses_a_scenario_no_command_can_use() {
+    check_refuses(
+        "unusable",
+        &AGAR_SECTION.replace("z0 = 0.02 ", "z0 = 0.2 "),
+        &[
+            "neither simulate nor run can use it",
+            "simulate: `motion.slice_push_ratios[0]` = 0: the blade would travel 0.0000 m along the edge; z0 + piece length + travel = 0.2050 m exceeds the edge's 0.1000 m",
+            "run: `motion` = xi = 0.75, z0 = 0.2: the knife moving along the planned direction never touches the object",
+        ],
+    );
+}
+
 #[test]
 fn issue_27_huge_or_tiny_object_sizes_are_refused_not_a_panic() {
     for (key, value) in [

@@ -58,6 +58,17 @@ fn every_shipped_scenario_checks_by_name() {
         );
         let out = String::from_utf8_lossy(&o.stdout);
         assert!(out.contains(&format!("name = \"{name}\"")), "{name}: {out}");
+        // A loop scenario is ready to run, a figure's to simulate.
+        let ready = if name.starts_with("loop-") {
+            Some("# run: ready")
+        } else if name.starts_with("fig") {
+            Some("# simulate: ready")
+        } else {
+            None
+        };
+        if let Some(line) = ready {
+            assert!(out.lines().any(|l| l == line), "{name}: {out}");
+        }
     }
 }
 

@@ -237,49 +237,15 @@ impl Plant {
         arm_limits: &ArmLimits,
         seed: u64,
     ) -> Result<Self, PlantError> {
-        settings.validate()?;
-        section.validate().map_err(|e| e.prefixed("section"))?;
-        arm_limits
-            .validate()
-            .map_err(|e| e.prefixed("arm_limits"))?;
-        material.validate().map_err(|e| e.prefixed("material"))?;
-        let d = direction
-            .try_normalize(0.0)
-            .filter(|d| d.y < 0.0)
-            .ok_or_else(|| {
-                InvalidSetting::new(
-                    "direction",
-                    format!("{direction:?}"),
-                    "must point downwards (y < 0)",
-                )
-            })?;
-        let silhouette = knife_plane_silhouette(object).ok_or(PlantError::NoContact)?;
-        let start = Self::start_position(knife, object, z0, settings.start_gap);
-        let origin = Vector2::new(start.z, start.y);
-        let edge = knife.edge();
-        // m segments over the object's span (the arc a pressing knife
-        // touches), the grid continued over the edge within `reach` of the
-        // span and over the arc the planned direction touches.
-        let down = Vector2::new(0.0, -1.0);
-        let anchor = contact_arc(edge, origin, down, &silhouette).ok_or(PlantError::NoContact)?;
-        let (lo, hi) = silhouette.bounds();
-        let reach =
-            span_arc(edge, origin, lo.x - settings.reach, hi.x + settings.reach).unwrap_or(anchor);
-        let planned = contact_arc(edge, origin, d, &silhouette).unwrap_or(anchor);
-        let cover = (reach.0.min(planned.0), reach.1.max(planned.1));
-        let grid = segment_grid(edge, anchor, settings.segments, cover);
-        if grid.len() > MAX_SEGMENTS {
-            return Err(InvalidSetting::new(
-                "reach",
-                settings.reach,
-                format!(
-                    "gives {} segments of the edge (segments = {}), at most {MAX_SEGMENTS} are allowed",
-                    grid.len(),
-                    settings.segments
-                ),
-            )
-            .into());
-        }
+        let EdgeLayout {
+            direction: d,
+            silhouette,
+            origin,
+            grid,
+            top,
+        } = EdgeLayout::new(
+            material, knife, object, z0, direction, settings, section, arm_limits,
+        )?;
         let factory = Arc::new(SectionFactory {
             object: object.clone(),
             material: *material,
@@ -310,7 +276,7 @@ impl Plant {
             factory,
             update_distance: settings.update_distance,
             motion: d,
-            top: hi.y,
+            top,
             silhouette,
             front: None,
             rechoices: 0,
@@ -330,19 +296,36 @@ impl Plant {
         // held until the knife first moves (a start along another direction
         // renews them before anything is built) or a real-time loop asks
         // for them to be built now (`build_ordered_sections`).
-        let hits = plant
-            .edge_segments
-            .iter()
-            .filter(|s| ray_hit(&plant.silhouette, origin + s.midpoint, d).is_some())
-            .count();
-        if hits == 0 {
-            return Err(PlantError::NoContact);
-        }
         let section_error = |(index, source)| PlantError::Section { index, source };
         plant.worker.hold();
         plant.place(Lookahead::Everywhere).map_err(section_error)?;
         plant.place(Lookahead::Lead).map_err(section_error)?;
         Ok(plant)
+    }
+
+    /// Checks what [`Plant::new`] checks before it builds a section: every
+    /// setting in range, the planned direction pointing down, the edge
+    /// meeting the object, and the segment grid within [`MAX_SEGMENTS`].
+    /// Cheap (no section is built): `shearcut check` asks it of a scenario
+    /// so that a run refusing it is refused before the run.
+    ///
+    /// # Errors
+    /// Those of [`Plant::new`] but a first section's.
+    #[allow(clippy::too_many_arguments)]
+    pub fn check(
+        material: &Material,
+        knife: &Knife,
+        object: &TriangleMesh,
+        z0: f64,
+        direction: Vector2<f64>,
+        settings: &PlantSettings,
+        section: &SectionSettings,
+        arm_limits: &ArmLimits,
+    ) -> Result<(), PlantError> {
+        EdgeLayout::new(
+            material, knife, object, z0, direction, settings, section, arm_limits,
+        )
+        .map(|_| ())
     }
 
     /// Where [`Plant::new`] puts the knife frame's origin (world frame, m):
@@ -770,6 +753,95 @@ impl Plant {
                 work: self.work,
                 deformation,
             },
+        })
+    }
+}
+
+/// Where the plant's edge meets its object, before any section is built:
+/// the checked settings' geometry ([`Plant::new`], [`Plant::check`]).
+struct EdgeLayout {
+    /// The planned direction of motion, unit, pointing down.
+    direction: Vector2<f64>,
+    /// The object's silhouette in the knife plane (z, y), m.
+    silhouette: Polygon,
+    /// The knife frame's origin at the start, knife plane (z, y), m.
+    origin: Vector2<f64>,
+    /// The edge's segments, heel to tip.
+    grid: Vec<EdgeSegment>,
+    /// The object's top in the knife plane, m.
+    top: f64,
+}
+
+impl EdgeLayout {
+    #[allow(clippy::too_many_arguments)]
+    fn new(
+        material: &Material,
+        knife: &Knife,
+        object: &TriangleMesh,
+        z0: f64,
+        direction: Vector2<f64>,
+        settings: &PlantSettings,
+        section: &SectionSettings,
+        arm_limits: &ArmLimits,
+    ) -> Result<Self, PlantError> {
+        settings.validate()?;
+        section.validate().map_err(|e| e.prefixed("section"))?;
+        arm_limits
+            .validate()
+            .map_err(|e| e.prefixed("arm_limits"))?;
+        material.validate().map_err(|e| e.prefixed("material"))?;
+        let d = direction
+            .try_normalize(0.0)
+            .filter(|d| d.y < 0.0)
+            .ok_or_else(|| {
+                InvalidSetting::new(
+                    "direction",
+                    format!("{direction:?}"),
+                    "must point downwards (y < 0)",
+                )
+            })?;
+        let silhouette = knife_plane_silhouette(object).ok_or(PlantError::NoContact)?;
+        let start = Plant::start_position(knife, object, z0, settings.start_gap);
+        let origin = Vector2::new(start.z, start.y);
+        let edge = knife.edge();
+        // m segments over the object's span (the arc a pressing knife
+        // touches), the grid continued over the edge within `reach` of the
+        // span and over the arc the planned direction touches.
+        let down = Vector2::new(0.0, -1.0);
+        let anchor = contact_arc(edge, origin, down, &silhouette).ok_or(PlantError::NoContact)?;
+        let (lo, hi) = silhouette.bounds();
+        let reach =
+            span_arc(edge, origin, lo.x - settings.reach, hi.x + settings.reach).unwrap_or(anchor);
+        let planned = contact_arc(edge, origin, d, &silhouette).unwrap_or(anchor);
+        let cover = (reach.0.min(planned.0), reach.1.max(planned.1));
+        let grid = segment_grid(edge, anchor, settings.segments, cover);
+        if grid.len() > MAX_SEGMENTS {
+            return Err(InvalidSetting::new(
+                "reach",
+                settings.reach,
+                format!(
+                    "gives {} segments of the edge (segments = {}), at most {MAX_SEGMENTS} are allowed",
+                    grid.len(),
+                    settings.segments
+                ),
+            )
+            .into());
+        }
+        // At least one segment's path along the planned direction meets
+        // the object.
+        if !grid
+            .iter()
+            .any(|s| ray_hit(&silhouette, origin + s.midpoint, d).is_some())
+        {
+            return Err(PlantError::NoContact);
+        }
+        FtSensor::new(settings.sensor, 0).map_err(|e| e.prefixed("sensor"))?;
+        Ok(Self {
+            direction: d,
+            silhouette,
+            origin,
+            grid,
+            top: hi.y,
         })
     }
 }

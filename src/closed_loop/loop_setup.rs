@@ -12,7 +12,7 @@ use shearcut_controllers::controller::{
 };
 use shearcut_controllers::mpc::{DepthProfile, Mpc, SurrogateModel};
 use shearcut_controllers::observer::EdgeOutline;
-use shearcut_plant::{Plant, PlantSettings};
+use shearcut_plant::{Plant, PlantError, PlantSettings};
 use shearcut_sim::geometry::TriangleMesh;
 use shearcut_sim::{InvalidSetting, Knife};
 
@@ -224,6 +224,53 @@ pub fn make_plant(
     reach: f64,
     start_gap: f64,
 ) -> Result<Plant, RunError> {
+    let (z0, direction, settings) = plant_placement(s, xi, reach, start_gap);
+    Plant::new(
+        &s.material,
+        knife,
+        mesh,
+        z0,
+        direction,
+        &settings,
+        &s.section,
+        &s.control_loop.arm_limits,
+        s.seed,
+    )
+    .map_err(|e| plant_refused(s, xi, z0, e))
+}
+
+/// Checks what [`make_plant`] checks before it builds a section
+/// ([`Plant::check`]): cheap, for `shearcut check`.
+pub fn check_plant(
+    s: &Scenario,
+    knife: &Knife,
+    mesh: &TriangleMesh,
+    xi: f64,
+    reach: f64,
+    start_gap: f64,
+) -> Result<(), RunError> {
+    let (z0, direction, settings) = plant_placement(s, xi, reach, start_gap);
+    Plant::check(
+        &s.material,
+        knife,
+        mesh,
+        z0,
+        direction,
+        &settings,
+        &s.section,
+        &s.control_loop.arm_limits,
+    )
+    .map_err(|e| plant_refused(s, xi, z0, e))
+}
+
+/// The plant's z₀ (the scenario's first), its planned direction for the
+/// slice-push ratio `xi`, and its settings with `reach` and `start_gap`.
+fn plant_placement(
+    s: &Scenario,
+    xi: f64,
+    reach: f64,
+    start_gap: f64,
+) -> (f64, Vector2<f64>, PlantSettings) {
     let alpha = xi.atan();
     let z0 = s.motion.z0.first().copied().unwrap_or(0.0);
     let settings = PlantSettings {
@@ -231,23 +278,14 @@ pub fn make_plant(
         start_gap,
         ..s.plant
     };
-    Plant::new(
-        &s.material,
-        knife,
-        mesh,
-        z0,
-        Vector2::new(alpha.sin(), -alpha.cos()),
-        &settings,
-        &s.section,
-        &s.control_loop.arm_limits,
-        s.seed,
+    (z0, Vector2::new(alpha.sin(), -alpha.cos()), settings)
+}
+
+fn plant_refused(s: &Scenario, xi: f64, z0: f64, e: PlantError) -> RunError {
+    invalid(
+        s,
+        InvalidSetting::new("motion", format!("xi = {xi}, z0 = {z0}"), e.to_string()),
     )
-    .map_err(|e| {
-        invalid(
-            s,
-            InvalidSetting::new("motion", format!("xi = {xi}, z0 = {z0}"), e.to_string()),
-        )
-    })
 }
 
 /// What every closed loop of a scenario is built from, in one place so that
@@ -321,6 +359,19 @@ impl LoopSetup {
     /// A fresh plant.
     pub fn plant(&self, s: &Scenario) -> Result<Plant, RunError> {
         make_plant(
+            s,
+            &self.knife,
+            &self.mesh,
+            self.xi,
+            self.task.blade_budget,
+            self.start_gap,
+        )
+    }
+
+    /// Checks what [`LoopSetup::plant`] checks before it builds a section
+    /// ([`check_plant`]).
+    pub fn check_plant(&self, s: &Scenario) -> Result<(), RunError> {
+        check_plant(
             s,
             &self.knife,
             &self.mesh,

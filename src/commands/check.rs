@@ -2,12 +2,18 @@
 //!
 //! Checks everything a run would refuse before it starts: every value in
 //! its physical range, the object's mesh file (read and checked as a closed
-//! surface), the surrogate the MPC would plan with (read and checked), and
-//! the resource estimate against its budget (docs/reliability.md).
+//! surface), the surrogate the MPC would plan with (read and checked), the
+//! resource estimate against its budget, and the geometry each command
+//! builds before its first step: `simulate`'s cuts along the edge and
+//! `run`'s cut task, plant and controller (docs/reliability.md). A scenario
+//! that one of the two refuses is valid with a comment saying why; one that
+//! both refuse is not.
 
 use shearcut_sim::resource_budget::{PLANT_NODES_BUDGET, SECTION_NODES_BUDGET, SERIES_ROWS_BUDGET};
 
 use crate::cli::print;
+use crate::closed_loop::LoopSetup;
+use crate::commands::simulate;
 use crate::controller_choice::ControllerChoice;
 use crate::error::{ConfigError, RunError};
 use crate::scenario::{Scenario, WireSlabScenario};
@@ -15,8 +21,12 @@ use crate::surrogates::surrogate_for;
 
 /// Loads and validates `scenario` (a path or a built-in name), opens the
 /// surrogate its MPC would use (when the controller is the MPC or a
-/// surrogate is named) and prints the resolved values as TOML with the
-/// resource estimate as a comment.
+/// surrogate is named), checks what `simulate` and `run` would build, and
+/// prints the resolved values as TOML with the resource estimate and each
+/// command's readiness as comments.
+///
+/// # Errors
+/// The scenario does not load, or neither command can use it (exit 2).
 pub fn run(scenario: &str) -> Result<(), RunError> {
     if let Some(s) = WireSlabScenario::load(scenario)? {
         print(&format!(
@@ -37,14 +47,54 @@ pub fn run(scenario: &str) -> Result<(), RunError> {
         surrogate_for(&s).map_err(invalid)?;
     }
     let r = s.resources(s.object_extent().map_err(invalid)?);
+    let readiness = match (simulate::check(&s), check_run(&s)) {
+        (Err(a), Err(b)) => {
+            return Err(RunError::Config(ConfigError::Unusable {
+                path: scenario.to_string(),
+                simulate: reason(&s, &a),
+                run: reason(&s, &b),
+            }));
+        }
+        (a, b) => format!(
+            "# simulate: {}\n# run: {}",
+            readiness(&s, a),
+            readiness(&s, b)
+        ),
+    };
     print(&format!(
         "# {scenario}: valid. Resolved values (SI units):\n\
-         # resources: section mesh {:.0} nodes (budget {SECTION_NODES_BUDGET}), plant meshes {:.0} nodes (budget {PLANT_NODES_BUDGET}), series {:.0} rows (budget {SERIES_ROWS_BUDGET})\n{}",
+         # resources: section mesh {:.0} nodes (budget {SECTION_NODES_BUDGET}), plant meshes {:.0} nodes (budget {PLANT_NODES_BUDGET}), series {:.0} rows (budget {SERIES_ROWS_BUDGET})\n{readiness}\n{}",
         r.section_nodes,
         r.plant_nodes,
         r.series_rows,
         resolved_toml(&s)
     ))
+}
+
+/// What `run` checks before its first tick: the cut task and the object as
+/// its controller sees it ([`LoopSetup`]), the plant's edge over the object
+/// ([`LoopSetup::check_plant`]) and the controller.
+fn check_run(s: &Scenario) -> Result<(), RunError> {
+    let setup = LoopSetup::new(s, s.controller.kind)?;
+    setup.check_plant(s)?;
+    setup.controller(s, s.controller.kind).map(|_| ())
+}
+
+/// `ready`, or why the command refuses the scenario.
+fn readiness(s: &Scenario, check: Result<(), RunError>) -> String {
+    match check {
+        Ok(()) => "ready".to_string(),
+        Err(e) => format!("refuses it: {}", reason(s, &e)),
+    }
+}
+
+/// An error's message without the scenario's name in front.
+fn reason(s: &Scenario, e: &RunError) -> String {
+    let message = e.to_string();
+    match message.strip_prefix(&format!("{}: ", s.name)) {
+        Some(rest) => rest.to_string(),
+        None => message,
+    }
 }
 
 /// The resolved scenario as TOML text.

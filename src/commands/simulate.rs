@@ -11,8 +11,9 @@
 //!   linear velocity ramp so that the arm's jerk limit is respected.
 
 use nalgebra::{Vector2, Vector3};
-use shearcut_plant::{Plant, SegmentLoad, wrench_at};
+use shearcut_plant::{Plant, PlantError, SegmentLoad, wrench_at};
 use shearcut_sim::arm::{ArmStatus, KnifeCommand};
+use shearcut_sim::geometry::TriangleMesh;
 use shearcut_sim::section::{CrossSection, SectionGeometry, SectionStep};
 use shearcut_sim::{Cuboid, EdgeShape, InvalidSetting, Knife, ObjectShape};
 
@@ -106,6 +107,38 @@ pub fn simulate_until(
     }
 }
 
+/// Checks what [`simulate`] checks before its first cut (no section is
+/// built): the knife, the cuts' travel along the edge (single section) or
+/// each cut's plant ([`Plant::check`]). Cheap: for `shearcut check`.
+///
+/// # Errors
+/// The scenario cannot be simulated (exit 2).
+pub fn check(scenario: &Scenario) -> Result<(), RunError> {
+    let knife = Knife::new(&scenario.knife).map_err(|e| invalid(scenario, e.prefixed("knife")))?;
+    match (&scenario.object, &scenario.knife.edge) {
+        (ObjectShape::Cuboid(c), EdgeShape::Straight { .. } | EdgeShape::Wire { .. }) => {
+            section_geometry(scenario, &knife, c).map(|_| ())
+        }
+        _ => {
+            let mesh = object_mesh(scenario)?;
+            for (i, (xi, z0)) in scenario.motion.cuts().into_iter().enumerate() {
+                Plant::check(
+                    &scenario.material,
+                    &knife,
+                    &mesh,
+                    z0,
+                    cut_direction(xi),
+                    &scenario.plant,
+                    &scenario.section,
+                    &scenario.control_loop.arm_limits,
+                )
+                .map_err(|e| plant_refused(scenario, i, xi, z0, e))?;
+            }
+            Ok(())
+        }
+    }
+}
+
 fn invalid(scenario: &Scenario, setting: InvalidSetting) -> RunError {
     RunError::Config(ConfigError::Invalid {
         path: scenario.name.clone(),
@@ -113,18 +146,16 @@ fn invalid(scenario: &Scenario, setting: InvalidSetting) -> RunError {
     })
 }
 
-/// One uniform section × the cuboid's length.
-fn simulate_section(
+/// The cuboid's section, once every cut's blade travel is checked to stay
+/// on the edge: z0 + the piece's length + ξ·depth within its length.
+fn section_geometry(
     scenario: &Scenario,
     knife: &Knife,
     cuboid: &Cuboid,
-    stop: StopCheck,
-    recorder: &mut dyn CutRecorder,
-) -> Result<SimulationOutput, RunError> {
+) -> Result<SectionGeometry, RunError> {
     let depth = scenario.motion.depth.unwrap_or(0.8 * cuboid.height);
     let edge_length = knife.edge().length();
-    let cuts = scenario.motion.cuts();
-    for (i, &(xi, z0)) in cuts.iter().enumerate() {
+    for (i, (xi, z0)) in scenario.motion.cuts().into_iter().enumerate() {
         let travel = xi * depth;
         let needed = z0 + cuboid.length + travel;
         if needed > edge_length {
@@ -140,12 +171,54 @@ fn simulate_section(
             ));
         }
     }
-    let geometry = SectionGeometry::rectangle(cuboid.width, cuboid.height).map_err(|e| {
+    SectionGeometry::rectangle(cuboid.width, cuboid.height).map_err(|e| {
         invalid(
             scenario,
             InvalidSetting::new("object", "cuboid", e.to_string()),
         )
-    })?;
+    })
+}
+
+/// The object's mesh.
+fn object_mesh(scenario: &Scenario) -> Result<TriangleMesh, RunError> {
+    scenario.object.mesh().map_err(|e| {
+        invalid(
+            scenario,
+            InvalidSetting::new("object", "mesh", e.to_string()),
+        )
+    })
+}
+
+/// The knife's direction of motion in its plane (z, y) at slice-push ratio
+/// `xi`: unit, pointing down.
+fn cut_direction(xi: f64) -> Vector2<f64> {
+    let alpha = xi.atan();
+    Vector2::new(alpha.sin(), -alpha.cos())
+}
+
+/// Cut `i`'s plant refused.
+fn plant_refused(scenario: &Scenario, i: usize, xi: f64, z0: f64, e: PlantError) -> RunError {
+    invalid(
+        scenario,
+        InvalidSetting::new(
+            format!("motion (cut {i})"),
+            format!("xi = {xi}, z0 = {z0}"),
+            e.to_string(),
+        ),
+    )
+}
+
+/// One uniform section × the cuboid's length.
+fn simulate_section(
+    scenario: &Scenario,
+    knife: &Knife,
+    cuboid: &Cuboid,
+    stop: StopCheck,
+    recorder: &mut dyn CutRecorder,
+) -> Result<SimulationOutput, RunError> {
+    let geometry = section_geometry(scenario, knife, cuboid)?;
+    let depth = scenario.motion.depth.unwrap_or(0.8 * cuboid.height);
+    let cuts = scenario.motion.cuts();
     let mut section = CrossSection::new(
         &geometry,
         &scenario.material,
@@ -264,12 +337,7 @@ fn simulate_plant(
     stop: StopCheck,
     recorder: &mut dyn CutRecorder,
 ) -> Result<SimulationOutput, RunError> {
-    let mesh = scenario.object.mesh().map_err(|e| {
-        invalid(
-            scenario,
-            InvalidSetting::new("object", "mesh", e.to_string()),
-        )
-    })?;
+    let mesh = object_mesh(scenario)?;
     let (lo, hi) = mesh.bounds();
     let height = hi.y - lo.y;
     let depth = scenario.motion.depth.unwrap_or(0.8 * height);
@@ -283,7 +351,7 @@ fn simulate_plant(
     for (i, (xi, z0)) in cuts.into_iter().enumerate() {
         bar.inc(1);
         let alpha = xi.atan();
-        let direction = Vector2::new(alpha.sin(), -alpha.cos());
+        let direction = cut_direction(xi);
         let mut plant = Plant::new(
             &scenario.material,
             knife,
@@ -295,16 +363,7 @@ fn simulate_plant(
             &scenario.control_loop.arm_limits,
             scenario.seed,
         )
-        .map_err(|e| {
-            invalid(
-                scenario,
-                InvalidSetting::new(
-                    format!("motion (cut {i})"),
-                    format!("xi = {xi}, z0 = {z0}"),
-                    e.to_string(),
-                ),
-            )
-        })?;
+        .map_err(|e| plant_refused(scenario, i, xi, z0, e))?;
         let start = plant.position();
         let v_full = Vector3::new(0.0, -alpha.cos(), alpha.sin()) * scenario.motion.speed;
         let first = samples.len();
