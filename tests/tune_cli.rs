@@ -317,6 +317,44 @@ fn shards_merge_to_the_local_table_bit_for_bit() {
         e.contains("2 of 6 jobs have no result (first: job 2)"),
         "{e}"
     );
+    // A shard named twice (as given, or by another path to it) is refused
+    // before anything is written.
+    let twice = t.0.join("twice");
+    let other_path = sharded.join(".").join("shard-0-of-3");
+    for again in [&shards[0], &other_path] {
+        let o = tune(
+            &[
+                "merge",
+                s(&shards[0]),
+                s(&shards[1]),
+                s(again),
+                s(&shards[2]),
+                "--out",
+                s(&twice),
+            ],
+            &[],
+        );
+        assert_eq!(o.status.code(), Some(2));
+        let e = String::from_utf8_lossy(&o.stderr);
+        assert_eq!(e.trim_end().lines().count(), 1, "{e}");
+        assert!(e.contains("is named twice"), "{e}");
+        assert!(!twice.exists());
+    }
+    // A directory that holds another command's files is not written into.
+    let busy = t.0.join("busy");
+    std::fs::create_dir_all(&busy).unwrap();
+    std::fs::write(busy.join("notes.txt"), "mine").unwrap();
+    let mut args = vec!["merge"];
+    args.extend(shards.iter().map(|d| s(d)));
+    args.extend(["--out", s(&busy)]);
+    let o = tune(&args, &[]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert!(e.contains("it holds files and no jobs.json"), "{e}");
+    assert_eq!(std::fs::read_dir(&busy).unwrap().count(), 1);
+    let o = tune(&[s(&sweep), "--out", s(&busy)], &[]);
+    assert_eq!(o.status.code(), Some(2));
+    assert_eq!(std::fs::read_dir(&busy).unwrap().count(), 1);
     let mut args = vec!["merge"];
     args.extend(shards.iter().map(|d| s(d)));
     args.extend(["--out", s(&merged)]);

@@ -27,6 +27,14 @@ pub struct Merged {
     pub rows: Vec<JobRow>,
 }
 
+/// Whether `a` and `b` are one directory (by their canonical paths).
+fn same_directory(a: &Path, b: &Path) -> bool {
+    matches!(
+        (std::fs::canonicalize(a), std::fs::canonicalize(b)),
+        (Ok(a), Ok(b)) if a == b
+    )
+}
+
 /// Reads the shards in `dirs` and writes their union under `out` (catalogue
 /// and row files); the tables and analysis are the caller's.
 pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<Merged, RunError> {
@@ -40,6 +48,16 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<Merged, RunError> {
             "name at least one shard directory".into(),
         ));
     };
+    for (i, d) in dirs.iter().enumerate() {
+        let same = |e: &PathBuf| e == d || same_directory(e, d);
+        if dirs[..i].iter().any(same) {
+            return Err(argument(
+                "DIR",
+                d.display().to_string(),
+                "is named twice: name each shard's directory once".into(),
+            ));
+        }
+    }
     let (catalog, sweep_text) = read_catalog(first)?;
     for d in &dirs[1..] {
         let (other, _) = read_catalog(d)?;
