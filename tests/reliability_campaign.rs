@@ -853,6 +853,10 @@ fn issue_27_a_plant_that_dies_before_serving_is_reported_at_once() {
     let s = slow_plant(&sb, "slow-plant");
     let out = sb.dir.join("never");
     let (mut plant, mut controller) = sb.spawn_pair(&s, "dies", &out);
+    // Stopped (SIGSTOP) as soon as its node is there: it cannot finish its
+    // build however long the controller takes to start on a loaded machine.
+    wait_for_node(sb.prefix(), "plant/dies", &mut plant);
+    sandbox::send_signal(&plant, "STOP");
     // The controller past its start-up (its series files exist): its
     // node's cleanup of dead nodes is over, so a plant that dies from now
     // on stays listed dead (a plant that died before is, to the
@@ -861,7 +865,6 @@ fn issue_27_a_plant_that_dies_before_serving_is_reported_at_once() {
     wait_until("the controller's series files", &mut controller, || {
         series.exists()
     });
-    wait_for_node(sb.prefix(), "plant/dies", &mut plant);
     plant.kill().unwrap(); // SIGKILL while it builds.
     plant.wait().unwrap();
     assert_start_up_fault(
@@ -967,6 +970,8 @@ fn issue_27_a_plant_that_dies_as_its_controller_starts_is_reported_at_once() {
     let s = slow_plant(&sb, "slow-plant");
     let mut plant = sb.spawn_plant(&s, "early");
     wait_for_node(sb.prefix(), "plant/early", &mut plant);
+    // Held (SIGSTOP) in its build while the controller starts.
+    sandbox::send_signal(&plant, "STOP");
     let out = sb.dir.join("never");
     let mut controller = sb.spawn_controller(&s, "early", &out);
     wait_for_node(sb.prefix(), "controller/early", &mut controller);
