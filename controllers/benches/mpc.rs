@@ -2,7 +2,10 @@
 //! depth stages re-linearised and solved as in closed loop, many times.
 //!
 //! `cargo bench -p shearcut-controllers --bench mpc` prints median, p99 and
-//! max per solve, and the whole `Mpc::tick` on planning ticks.
+//! max per solve, the whole `Mpc::tick` on planning ticks, and the edge
+//! depth of a section depth on a dome (`DepthProfile::edge_depth_at`: each
+//! plan before the first fracture asks it for every depth of the onset's
+//! cost).
 #![allow(clippy::disallowed_methods)] // A benchmark reads the wall clock.
 
 use std::sync::Arc;
@@ -47,7 +50,32 @@ fn stats(mut v: Vec<f64>) -> (f64, f64, f64) {
     (at(0.5), at(0.99), v[v.len() - 1])
 }
 
+/// `DepthProfile::edge_depth_at` on a dome's profile (41 samples, contact
+/// ∝ √depth over 40 mm, as `DepthProfile::of_object` samples a half
+/// potato): the time per call, from batches of 1000 targets across the
+/// depth.
+fn edge_depth_at() {
+    let depths: Vec<f64> = (0..=40).map(|k| k as f64 * 1e-3).collect();
+    let lengths: Vec<f64> = depths.iter().map(|h| 0.5 * h.sqrt()).collect();
+    let profile = DepthProfile::new(depths, lengths, 0.035, 0.03).unwrap();
+    let batches = 2_000;
+    let mut per_call = Vec::with_capacity(batches);
+    for b in 0..batches {
+        let start = Instant::now();
+        for k in 0..1000 {
+            let target = 0.036 * ((k * 7 + b) % 1000) as f64 / 1000.0;
+            std::hint::black_box(profile.edge_depth_at(std::hint::black_box(target)));
+        }
+        per_call.push(start.elapsed().as_secs_f64() * 1e9 / 1000.0);
+    }
+    let (med, p99, max) = stats(per_call);
+    println!(
+        "DepthProfile::edge_depth_at, a dome of 41 samples, {batches} batches of 1000: median {med:.1} ns, p99 {p99:.1} ns, max {max:.1} ns per call"
+    );
+}
+
 fn main() {
+    edge_depth_at();
     let settings = MpcSettings::default();
     let n = settings.stages;
     let limits = QpLimits {

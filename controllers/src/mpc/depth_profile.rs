@@ -29,6 +29,9 @@ pub struct DepthProfile {
     contact_lengths: Vec<f64>,
     /// ∫₀^{depths[i]} L(h) dh, m².
     areas: Vec<f64>,
+    /// The largest sections' mean depth at the samples up to i, m
+    /// (non-decreasing: [`edge_depth_at`](Self::edge_depth_at)'s bracket).
+    reached: Vec<f64>,
     height: f64,
     half_width: f64,
 }
@@ -89,13 +92,66 @@ impl DepthProfile {
                 0.5 * (depths[i] - depths[i - 1]) * (contact_lengths[i] + contact_lengths[i - 1]);
             areas.push(area);
         }
-        Ok(Self {
+        let mut profile = Self {
             depths,
             contact_lengths,
             areas,
+            reached: Vec::new(),
             height,
             half_width,
-        })
+        };
+        let mut most = profile.section_depth(profile.depths[0]);
+        let mut reached = vec![most];
+        for i in 1..profile.depths.len() {
+            most = most
+                .max(profile.interior_peak(i))
+                .max(profile.section_depth(profile.depths[i]));
+            reached.push(most);
+        }
+        profile.reached = reached;
+        Ok(profile)
+    }
+
+    /// The sections' mean depth at edge depth `x` within the samples i − 1
+    /// and i (`x` in that interval), m: [`section_depth`](Self::section_depth)
+    /// with the interval known.
+    fn section_depth_within(&self, i: usize, x: f64) -> f64 {
+        let (d, l) = (&self.depths, &self.contact_lengths);
+        let t = (x - d[i - 1]) / (d[i] - d[i - 1]);
+        let length = l[i - 1] + t * (l[i] - l[i - 1]);
+        let area = self.areas[i - 1] + 0.5 * (x - d[i - 1]) * (l[i - 1] + length);
+        if length > 0.0 {
+            (area / length).min(x.max(0.0))
+        } else {
+            x.max(0.0)
+        }
+    }
+
+    /// The largest mean depth strictly inside the samples i − 1 and i, m
+    /// (0 if none is larger than at the ends). The mean depth is
+    /// min(A/L, x); with L linear in the interval, L² − A·L′ grows with x,
+    /// so A/L falls at most before it rises and has no maximum inside. A
+    /// maximum inside is where A/L, falling, meets x: a root in the
+    /// interval of A − x·L = c − d₀s·u − s·u²/2 (u = x − d₀, s = L′,
+    /// c = A(d₀) − d₀·L(d₀)), where the mean depth is x.
+    fn interior_peak(&self, i: usize) -> f64 {
+        let (d, l) = (&self.depths, &self.contact_lengths);
+        let (d0, span) = (d[i - 1], d[i] - d[i - 1]);
+        let slope = (l[i] - l[i - 1]) / span;
+        if slope == 0.0 {
+            return 0.0;
+        }
+        let c = self.areas[i - 1] - d0 * l[i - 1];
+        let disc = d0 * d0 + 2.0 * c / slope;
+        if disc < 0.0 {
+            return 0.0;
+        }
+        let root = disc.sqrt();
+        [-d0 + root, -d0 - root]
+            .into_iter()
+            .filter(|u| *u > 0.0 && *u < span)
+            .map(|u| d0 + u)
+            .fold(0.0, f64::max)
     }
 
     /// A uniform object: the same contact `length` at every depth.
@@ -273,15 +329,64 @@ impl DepthProfile {
 
     /// The edge's depth below the top at which the sections' mean depth
     /// ([`section_depth`](Self::section_depth)) is `section_depth`, m: the
-    /// least such depth, by bisection to 1 nm (the mean depth never exceeds
-    /// the edge's, and beyond the last sample it trails it by at most the
-    /// last sample's depth).
+    /// least such depth. Before the first sample the mean depth is the
+    /// edge's, and beyond the last it trails it by a constant, so there it
+    /// is exact; otherwise it lies in the first interval of samples whose
+    /// largest mean depth reaches `section_depth` (each interval's largest
+    /// is kept: at its ends or [`interior_peak`](Self::interior_peak)),
+    /// and there, from the larger of the interval's start and
+    /// `section_depth`, the mean depth is A/L, which reaches it once, at
+    /// the root of a quadratic (L linear, A its integral; by bisection to 1
+    /// nm should rounding put the root outside the interval). Allocates
+    /// nothing: the MPC's planner calls it for every depth of the onset's
+    /// cost.
     pub fn edge_depth_at(&self, section_depth: f64) -> f64 {
         let target = section_depth.max(0.0);
-        let (mut lo, mut hi) = (target, target + self.depths[self.depths.len() - 1].max(0.0));
+        let (d, l) = (&self.depths, &self.contact_lengths);
+        let last = d.len() - 1;
+        let i = self.reached.partition_point(|&m| m < target);
+        if i == 0 {
+            // At or before the first sample: L is constant, A/L = depth.
+            return target;
+        }
+        if i > last {
+            // Beyond the last sample: A/L = A_last/L_last + depth − d_last.
+            return if l[last] > 0.0 {
+                target.max(target - self.areas[last] / l[last] + d[last])
+            } else {
+                target
+            };
+        }
+        let mut lo = target.max(d[i - 1]);
+        if self.section_depth_within(i, lo) >= target {
+            return lo;
+        }
+        let mut hi = d[i];
+        // A(x) − target·L(x) = s·u²/2 + (L₀ − target·s)·u + A₀ − target·L₀
+        // (u = x − d[i − 1], s = L′): negative at `lo`, not at `hi`, one
+        // root between (the quadratic formula in the form that does not
+        // cancel); bisection if rounding puts it outside.
+        let slope = (l[i] - l[i - 1]) / (d[i] - d[i - 1]);
+        let (a, b, c) = (
+            0.5 * slope,
+            l[i - 1] - target * slope,
+            self.areas[i - 1] - target * l[i - 1],
+        );
+        let root = if a == 0.0 {
+            -c / b
+        } else {
+            let q = -0.5 * (b + b.signum() * (b * b - 4.0 * a * c).max(0.0).sqrt());
+            let (u1, u2) = (q / a, c / q);
+            let inside = |u: f64| (lo - 1e-12..=hi + 1e-12).contains(&(d[i - 1] + u));
+            if inside(u1) { u1 } else { u2 }
+        };
+        let x = d[i - 1] + root;
+        if x.is_finite() && (lo..=hi).contains(&x) {
+            return x;
+        }
         while hi - lo > 1e-9 {
             let mid = 0.5 * (lo + hi);
-            if self.section_depth(mid) < target {
+            if self.section_depth_within(i, mid) < target {
                 lo = mid;
             } else {
                 hi = mid;
@@ -419,6 +524,45 @@ mod tests {
         }
         let flat = DepthProfile::uniform(0.03, 0.025, 0.015).unwrap();
         assert!((flat.contact_at_section_depth(0.01) - flat.contact_length(0.01)).abs() < 1e-15);
+    }
+
+    /// On profiles whose contact grows, shrinks, and grows again (the mean
+    /// depth then falls and rises), the edge depth found is the least at
+    /// which the mean depth reaches the target, to 1 nm: checked against a
+    /// scan of every 0.5 µm below it.
+    #[test]
+    fn the_edge_depth_found_is_the_least_that_reaches_the_mean_depth() {
+        let profiles = [
+            // A dome: L ∝ √h.
+            (0..=40)
+                .map(|k| (k as f64 * 1e-3, 0.5 * (k as f64 * 1e-3).sqrt()))
+                .collect::<Vec<_>>(),
+            // Wide at the top, narrow below, wide again (a waist).
+            vec![
+                (0.0, 0.08),
+                (0.005, 0.08),
+                (0.01, 0.01),
+                (0.02, 0.005),
+                (0.03, 0.09),
+                (0.04, 0.09),
+            ],
+            // Nothing in contact at first, then a step.
+            vec![(0.002, 0.0), (0.004, 0.0), (0.0041, 0.05), (0.03, 0.06)],
+        ];
+        for samples in profiles {
+            let (depths, lengths): (Vec<f64>, Vec<f64>) = samples.into_iter().unzip();
+            let p = DepthProfile::new(depths, lengths, 0.04, 0.02).unwrap();
+            for k in 0..=120 {
+                let target = k as f64 * 0.5e-3;
+                let e = p.edge_depth_at(target);
+                assert!(p.section_depth(e) >= target - 1e-12, "{target}: {e}");
+                let mut x = 0.0;
+                while x < e - 1e-9 {
+                    assert!(p.section_depth(x) < target, "{target}: {x} < {e}");
+                    x += 0.5e-6;
+                }
+            }
+        }
     }
 
     #[test]
