@@ -18,7 +18,8 @@ fn one_line(message: &str) {
 }
 
 /// Scenario TOML: parsed, resolved and validated, or one line. A valid
-/// scenario's object builds as a closed mesh.
+/// scenario's object builds as a closed mesh, and what `check` builds of it
+/// for `simulate` and `run` (`command_checks`) builds or is one line.
 pub fn scenario_toml(data: &[u8]) {
     let Ok(text) = std::str::from_utf8(data) else {
         return;
@@ -31,6 +32,14 @@ pub fn scenario_toml(data: &[u8]) {
                 .expect("a validated object builds as a closed mesh");
             let (lo, hi) = mesh.bounds();
             assert!((hi - lo).iter().all(|d| d.is_finite() && *d > 0.0));
+            // What `check` builds of it for `simulate` and `run`: their
+            // geometry, plant and controller, or one line each.
+            let (simulate, run) = shearcut::commands::check::command_checks(&s);
+            for outcome in [simulate, run] {
+                if let Err(e) = outcome {
+                    one_line(&e.to_string());
+                }
+            }
         }
         Err(e) => one_line(&e.to_string()),
     }

@@ -47,7 +47,7 @@ pub fn run(scenario: &str) -> Result<(), RunError> {
         surrogate_for(&s).map_err(invalid)?;
     }
     let r = s.resources(s.object_extent().map_err(invalid)?);
-    let readiness = match (simulate::check(&s), check_run(&s)) {
+    let readiness = match command_checks(&s) {
         (Err(a), Err(b)) => {
             return Err(RunError::Config(ConfigError::Unusable {
                 path: scenario.to_string(),
@@ -69,6 +69,12 @@ pub fn run(scenario: &str) -> Result<(), RunError> {
         r.series_rows,
         resolved_toml(&s)
     ))
+}
+
+/// What `simulate` and what `run` check of `s` before their first step, in
+/// that order: `Ok` where the command takes it.
+pub fn command_checks(s: &Scenario) -> (Result<(), RunError>, Result<(), RunError>) {
+    (simulate::check(s), check_run(s))
 }
 
 /// What `run` checks before its first tick: the cut task and the object as
