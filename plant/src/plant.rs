@@ -773,6 +773,8 @@ struct EdgeLayout {
 }
 
 impl EdgeLayout {
+    /// Checks the settings and the planned direction, and lays the edge's
+    /// segments over the object ([`Plant::new`]'s arguments).
     #[allow(clippy::too_many_arguments)]
     fn new(
         material: &Material,
