@@ -116,15 +116,21 @@ impl DepthProfile {
     /// and i (`x` in that interval), m: [`section_depth`](Self::section_depth)
     /// with the interval known.
     fn section_depth_within(&self, i: usize, x: f64) -> f64 {
+        let length = self.length_within(i - 1, x);
+        mean_depth(self.area_within(i - 1, x, length), length, x)
+    }
+
+    /// L(x) for `x` between the samples j and j + 1, m.
+    fn length_within(&self, j: usize, x: f64) -> f64 {
         let (d, l) = (&self.depths, &self.contact_lengths);
-        let t = (x - d[i - 1]) / (d[i] - d[i - 1]);
-        let length = l[i - 1] + t * (l[i] - l[i - 1]);
-        let area = self.areas[i - 1] + 0.5 * (x - d[i - 1]) * (l[i - 1] + length);
-        if length > 0.0 {
-            (area / length).min(x.max(0.0))
-        } else {
-            x.max(0.0)
-        }
+        let t = (x - d[j]) / (d[j + 1] - d[j]);
+        l[j] + t * (l[j + 1] - l[j])
+    }
+
+    /// ∫₀^x L(h) dh for `x` between the samples j and j + 1, with
+    /// `length` = L(x), m².
+    fn area_within(&self, j: usize, x: f64, length: f64) -> f64 {
+        self.areas[j] + 0.5 * (x - self.depths[j]) * (self.contact_lengths[j] + length)
     }
 
     /// The largest mean depth strictly inside the samples i − 1 and i, m
@@ -288,9 +294,7 @@ impl DepthProfile {
         if depth >= d[last] {
             return l[last];
         }
-        let i = d.partition_point(|x| *x <= depth) - 1;
-        let t = (depth - d[i]) / (d[i + 1] - d[i]);
-        l[i] + t * (l[i + 1] - l[i])
+        self.length_within(d.partition_point(|x| *x <= depth) - 1, depth)
     }
 
     /// ∫₀^depth L(h) dh, m²: the area of the cut face the edge has swept.
@@ -305,7 +309,7 @@ impl DepthProfile {
             return self.areas[last] + (depth - d[last]) * l[last];
         }
         let i = d.partition_point(|x| *x <= depth) - 1;
-        self.areas[i] + 0.5 * (depth - d[i]) * (l[i] + self.contact_length(depth))
+        self.area_within(i, depth, self.length_within(i, depth))
     }
 
     /// The edge's mean depth in the sections in contact when it is `depth`
@@ -319,12 +323,7 @@ impl DepthProfile {
     /// model evaluates, while work per unit of the knife's depth is L·w.
     /// `depth` where nothing is in contact.
     pub fn section_depth(&self, depth: f64) -> f64 {
-        let l = self.contact_length(depth);
-        if l > 0.0 {
-            (self.swept_area(depth) / l).min(depth.max(0.0))
-        } else {
-            depth.max(0.0)
-        }
+        mean_depth(self.swept_area(depth), self.contact_length(depth), depth)
     }
 
     /// The edge's depth below the top at which the sections' mean depth
@@ -409,6 +408,17 @@ impl DepthProfile {
     /// Section half width, m.
     pub fn half_width(&self) -> f64 {
         self.half_width
+    }
+}
+
+/// The mean depth A/L of the sections in contact at edge depth `depth`
+/// (swept area `area`, contact `length`), at most `depth`; `depth` where
+/// nothing is in contact.
+fn mean_depth(area: f64, length: f64, depth: f64) -> f64 {
+    if length > 0.0 {
+        (area / length).min(depth.max(0.0))
+    } else {
+        depth.max(0.0)
     }
 }
 
