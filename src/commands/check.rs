@@ -51,15 +51,11 @@ pub fn run(scenario: &str) -> Result<(), RunError> {
         (Err(a), Err(b)) => {
             return Err(RunError::Config(ConfigError::Unusable {
                 path: scenario.to_string(),
-                simulate: reason(&s, &a),
-                run: reason(&s, &b),
+                simulate: reason(&a),
+                run: reason(&b),
             }));
         }
-        (a, b) => format!(
-            "# simulate: {}\n# run: {}",
-            readiness(&s, a),
-            readiness(&s, b)
-        ),
+        (a, b) => format!("# simulate: {}\n# run: {}", readiness(a), readiness(b)),
     };
     print(&format!(
         "# {scenario}: valid. Resolved values (SI units):\n\
@@ -87,19 +83,19 @@ fn check_run(s: &Scenario) -> Result<(), RunError> {
 }
 
 /// `ready`, or why the command refuses the scenario.
-fn readiness(s: &Scenario, check: Result<(), RunError>) -> String {
+fn readiness(check: Result<(), RunError>) -> String {
     match check {
         Ok(()) => "ready".to_string(),
-        Err(e) => format!("refuses it: {}", reason(s, &e)),
+        Err(e) => format!("refuses it: {}", reason(&e)),
     }
 }
 
-/// An error's message without the scenario's name in front.
-fn reason(s: &Scenario, e: &RunError) -> String {
-    let message = e.to_string();
-    match message.strip_prefix(&format!("{}: ", s.name)) {
-        Some(rest) => rest.to_string(),
-        None => message,
+/// Why a command refuses the scenario: the setting of a refusal (the
+/// scenario is named once, on `check`'s own line), else the whole message.
+fn reason(e: &RunError) -> String {
+    match e {
+        RunError::Config(ConfigError::Invalid { setting, .. }) => setting.to_string(),
+        other => other.to_string(),
     }
 }
 
