@@ -328,6 +328,14 @@ impl Plant {
         .map(|_| ())
     }
 
+    /// The direction of motion at slice-push ratio `xi` in the knife plane
+    /// (z, y), the `direction` [`Plant::new`] takes: unit, pointing down,
+    /// at α = atan ξ from the vertical towards the tip.
+    pub fn direction_at(xi: f64) -> Vector2<f64> {
+        let alpha = xi.atan();
+        Vector2::new(alpha.sin(), -alpha.cos())
+    }
+
     /// Where [`Plant::new`] puts the knife frame's origin (world frame, m):
     /// z so that the piece is `z0` from the heel along the edge, y so that
     /// the lowest point of the edge over the object is `start_gap` above its

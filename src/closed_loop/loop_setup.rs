@@ -271,14 +271,13 @@ fn plant_placement(
     reach: f64,
     start_gap: f64,
 ) -> (f64, Vector2<f64>, PlantSettings) {
-    let alpha = xi.atan();
     let z0 = s.motion.z0.first().copied().unwrap_or(0.0);
     let settings = PlantSettings {
         reach: s.plant.reach.max(reach),
         start_gap,
         ..s.plant
     };
-    (z0, Vector2::new(alpha.sin(), -alpha.cos()), settings)
+    (z0, Plant::direction_at(xi), settings)
 }
 
 fn plant_refused(s: &Scenario, xi: f64, z0: f64, e: PlantError) -> RunError {

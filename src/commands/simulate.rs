@@ -10,7 +10,7 @@
 //!   multi-section plant at the loop rate (seed 000 §IV, §V.B–C), with a short
 //!   linear velocity ramp so that the arm's jerk limit is respected.
 
-use nalgebra::{Vector2, Vector3};
+use nalgebra::Vector3;
 use shearcut_plant::{Plant, PlantError, SegmentLoad, wrench_at};
 use shearcut_sim::arm::{ArmStatus, KnifeCommand};
 use shearcut_sim::geometry::TriangleMesh;
@@ -127,7 +127,7 @@ pub fn check(scenario: &Scenario) -> Result<(), RunError> {
                     &knife,
                     &mesh,
                     z0,
-                    cut_direction(xi),
+                    Plant::direction_at(xi),
                     &scenario.plant,
                     &scenario.section,
                     &scenario.control_loop.arm_limits,
@@ -187,13 +187,6 @@ fn object_mesh(scenario: &Scenario) -> Result<TriangleMesh, RunError> {
             InvalidSetting::new("object", "mesh", e.to_string()),
         )
     })
-}
-
-/// The knife's direction of motion in its plane (z, y) at slice-push ratio
-/// `xi`: unit, pointing down.
-fn cut_direction(xi: f64) -> Vector2<f64> {
-    let alpha = xi.atan();
-    Vector2::new(alpha.sin(), -alpha.cos())
 }
 
 /// Cut `i`'s plant refused.
@@ -351,7 +344,7 @@ fn simulate_plant(
     for (i, (xi, z0)) in cuts.into_iter().enumerate() {
         bar.inc(1);
         let alpha = xi.atan();
-        let direction = cut_direction(xi);
+        let direction = Plant::direction_at(xi);
         let mut plant = Plant::new(
             &scenario.material,
             knife,
