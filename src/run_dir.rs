@@ -101,7 +101,7 @@ pub fn check(to: &Destination) -> Result<(), RunError> {
 
 /// Whether the existing `dir` holds any file; refused if it is not a
 /// directory.
-fn holds_files(dir: &Path) -> Result<bool, RunError> {
+pub(crate) fn holds_files(dir: &Path) -> Result<bool, RunError> {
     if !dir.is_dir() {
         return Err(refused(dir, "a directory (this is a file)"));
     }
@@ -115,7 +115,7 @@ fn holds_files(dir: &Path) -> Result<bool, RunError> {
 const HOLDS_FILES: &str = "a new or empty directory (it holds files; --overwrite replaces them)";
 
 /// A refusal of `--out` = `dir`.
-fn refused(dir: &Path, allowed: impl Into<String>) -> RunError {
+pub(crate) fn refused(dir: &Path, allowed: impl Into<String>) -> RunError {
     RunError::Config(ConfigError::Argument(InvalidSetting::new(
         "--out",
         dir.display(),

@@ -23,17 +23,11 @@ use crate::tune::result_table::write_tables;
 /// `jobs.json`: a sweep's tables would be written among another command's
 /// files), or cannot be created (exit 2).
 pub fn write_catalog(dir: &Path, catalog: &JobCatalog, sweep_text: &str) -> Result<(), RunError> {
-    if dir.is_dir()
-        && !dir.join("jobs.json").is_file()
-        && std::fs::read_dir(dir).is_ok_and(|mut entries| entries.next().is_some())
-    {
-        return Err(RunError::Config(ConfigError::Argument(
-            InvalidSetting::new(
-                "--out",
-                dir.display(),
-                "a new or empty directory, or a `shearcut tune` result directory to resume (it holds files and no jobs.json)",
-            ),
-        )));
+    if dir.is_dir() && !dir.join("jobs.json").is_file() && crate::run_dir::holds_files(dir)? {
+        return Err(crate::run_dir::refused(
+            dir,
+            "a new or empty directory, or a `shearcut tune` result directory to resume (it holds files and no jobs.json)",
+        ));
     }
     // The directory is the user's `--out`: one that cannot be created is
     // bad input (exit 2).
