@@ -23,8 +23,8 @@
 //! cargo run --release --example 02_plant_open_loop
 //! ```
 
-use nalgebra::{Vector2, Vector3};
-use shearcut_plant::{Plant, PlantSettings, PlantStep};
+use nalgebra::Vector3;
+use shearcut_plant::{Plant, PlantSettings, PlantSpec, PlantStep};
 use shearcut_sim::arm::{ArmLimits, KnifeCommand};
 use shearcut_sim::{Knife, KnifePreset, MaterialPreset, ObjectShape, SectionSettings};
 
@@ -101,16 +101,18 @@ fn cut() -> Result<Cut, Box<dyn std::error::Error>> {
     .mesh()?;
     // Direction of motion in the knife plane (z along the edge, y up):
     // down, and towards the tip by ξ per unit depth.
-    let direction = Vector2::new(XI, -1.0).normalize();
+    let direction = Plant::direction_at(XI);
     let mut plant = Plant::new(
-        &material,
-        &knife,
-        &potato,
-        0.02,
-        direction,
-        &PlantSettings::default(),
-        &SectionSettings::default(),
-        &ArmLimits::default(),
+        PlantSpec {
+            material: &material,
+            knife: &knife,
+            object: &potato,
+            z0: 0.02,
+            direction,
+            settings: &PlantSettings::default(),
+            section: &SectionSettings::default(),
+            arm_limits: &ArmLimits::default(),
+        },
         0,
     )?;
     let start_height = plant.position().y;

@@ -15,11 +15,11 @@
 //! the MPC's estimator approaches) is closed on an observer reading the
 //! plant's own sensor (noise 0.01 N, bias +0.5 N on fy).
 
-use nalgebra::{Vector2, Vector3};
+use nalgebra::Vector3;
 use shearcut_controllers::controller::{MotionLimits, VelocityShaper, stopping_distance};
 use shearcut_controllers::mpc::DepthProfile;
 use shearcut_controllers::observer::{CutEstimate, CutObserver, CutObserverSettings, CutTarget};
-use shearcut_plant::{FtSensor, FtSensorSettings, Plant, PlantSettings};
+use shearcut_plant::{FtSensor, FtSensorSettings, Plant, PlantSettings, PlantSpec};
 use shearcut_sim::arm::ArmLimits;
 use shearcut_sim::arm::{ArmReading, ArmStatus};
 use shearcut_sim::geometry::{Polygon, TriangleMesh};
@@ -252,7 +252,6 @@ fn record(
     let xi = motion
         .xi
         .unwrap_or_else(|| (s.blade_budget / s.depth).min(1.0));
-    let alpha = xi.atan();
     let in_loop = FtSensorSettings {
         bias: [0.0, 0.5, 0.0, 0.0, 0.0, 0.0],
         ..FtSensorSettings::default()
@@ -265,14 +264,16 @@ fn record(
         ..PlantSettings::default()
     };
     let mut plant = Plant::new(
-        material,
-        &task.knife,
-        mesh,
-        s.z0,
-        Vector2::new(alpha.sin(), -alpha.cos()),
-        &settings,
-        &s.section,
-        &arm,
+        PlantSpec {
+            material,
+            knife: &task.knife,
+            object: mesh,
+            z0: s.z0,
+            direction: Plant::direction_at(xi),
+            settings: &settings,
+            section: &s.section,
+            arm_limits: &arm,
+        },
         0,
     )
     .expect("the shipped scenarios build");

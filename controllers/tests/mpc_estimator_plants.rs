@@ -15,7 +15,6 @@
 use std::path::Path;
 use std::sync::Arc;
 
-use nalgebra::Vector2;
 use shearcut_controllers::controller::{Controller, CutTask, MotionLimits};
 use shearcut_controllers::mpc::{
     DepthProfile, Mpc, MpcSettings, SliceModel, StageState, SurrogateModel,
@@ -24,7 +23,7 @@ use shearcut_controllers::observer::{
     CutObserver, CutObserverSettings, CutTarget, EdgeOutline, FractureDetector, FractureSettings,
     WrenchTare, WrenchTareSettings,
 };
-use shearcut_plant::{Plant, PlantSettings, PlantStep};
+use shearcut_plant::{Plant, PlantSettings, PlantSpec, PlantStep};
 use shearcut_sim::arm::ArmLimits;
 use shearcut_sim::geometry::TriangleMesh;
 use shearcut_sim::knife_plane::knife_plane_silhouette;
@@ -216,21 +215,22 @@ fn end_of_cut(
         modelled: [0.0; 2],
     };
     let mut mpc = Mpc::new(&task, settings, model.clone(), profile.clone(), xi).unwrap();
-    let alpha = xi.atan();
     let plant_settings = PlantSettings {
         segments: setup.segments,
         reach: task.blade_budget,
         ..PlantSettings::default()
     };
     let mut plant = Plant::new(
-        &material,
-        &knife,
-        &mesh,
-        setup.z0,
-        Vector2::new(alpha.sin(), -alpha.cos()),
-        &plant_settings,
-        &SectionSettings::default(),
-        &arm,
+        PlantSpec {
+            material: &material,
+            knife: &knife,
+            object: &mesh,
+            z0: setup.z0,
+            direction: Plant::direction_at(xi),
+            settings: &plant_settings,
+            section: &SectionSettings::default(),
+            arm_limits: &arm,
+        },
         0,
     )
     .unwrap();

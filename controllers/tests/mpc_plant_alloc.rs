@@ -16,7 +16,7 @@ use nalgebra::Vector2;
 use shearcut_controllers::controller::{Controller, CutTask, MotionLimits};
 use shearcut_controllers::mpc::{DepthProfile, Mpc, MpcSettings, SurrogateModel};
 use shearcut_controllers::observer::EdgeOutline;
-use shearcut_plant::{Plant, PlantSettings};
+use shearcut_plant::{Plant, PlantSettings, PlantSpec};
 use shearcut_sim::arm::ArmLimits;
 use shearcut_sim::section::SectionSettings;
 use shearcut_sim::surrogate::Surrogate;
@@ -78,18 +78,20 @@ fn mpc_ticks_on_the_plant_allocate_only_inside_clarabel() {
     .unwrap();
     let alpha = f64::atan(xi);
     let mut plant = Plant::new(
-        &material,
-        &knife,
-        &mesh,
-        0.02,
-        Vector2::new(alpha.sin(), -alpha.cos()),
-        &PlantSettings {
-            segments: 8,
-            reach: task.blade_budget,
-            ..PlantSettings::default()
+        PlantSpec {
+            material: &material,
+            knife: &knife,
+            object: &mesh,
+            z0: 0.02,
+            direction: Vector2::new(alpha.sin(), -alpha.cos()),
+            settings: &PlantSettings {
+                segments: 8,
+                reach: task.blade_budget,
+                ..PlantSettings::default()
+            },
+            section: &SectionSettings::default(),
+            arm_limits: &arm,
         },
-        &SectionSettings::default(),
-        &arm,
         0,
     )
     .unwrap();

@@ -19,7 +19,7 @@ use std::hint::black_box;
 use std::time::Instant;
 
 use nalgebra::{Vector2, Vector3};
-use shearcut_plant::{ArmLimits, KnifeCommand, Plant, PlantSettings};
+use shearcut_plant::{ArmLimits, KnifeCommand, Plant, PlantSettings, PlantSpec};
 use shearcut_sim::{Knife, KnifePreset, MaterialPreset, ObjectShape, SectionSettings};
 
 fn main() {
@@ -59,14 +59,16 @@ fn run(section: &SectionSettings, alpha: f64, z0: f64) {
     let settings = PlantSettings::default();
     let t0 = Instant::now();
     let mut plant = Plant::new(
-        &material,
-        &knife,
-        &object,
-        z0,
-        direction,
-        &settings,
-        section,
-        &ArmLimits::default(),
+        PlantSpec {
+            material: &material,
+            knife: &knife,
+            object: &object,
+            z0,
+            direction,
+            settings: &settings,
+            section,
+            arm_limits: &ArmLimits::default(),
+        },
         0,
     )
     .unwrap();

@@ -18,7 +18,7 @@
 //! [T S]` (scale factors of R_c, R'_c and E, default 1 1; friction nominal).
 
 use nalgebra::{Vector2, Vector3};
-use shearcut_plant::{ArmLimits, KnifeCommand, Plant, PlantSettings};
+use shearcut_plant::{ArmLimits, KnifeCommand, Plant, PlantSettings, PlantSpec};
 use shearcut_sim::section::SectionSettings;
 use shearcut_sim::surrogate::{
     CutState, ScaleFactors, Surrogate, SweepCase, SweepSettings, run_sweep, scaled_material,
@@ -124,14 +124,16 @@ fn plant_work(
         ..PlantSettings::default()
     };
     let mut plant = Plant::new(
-        &material.clone(),
-        &knife,
-        &mesh,
-        0.02,
-        direction,
-        &settings,
-        &SectionSettings::default(),
-        &arm,
+        PlantSpec {
+            material: &material.clone(),
+            knife: &knife,
+            object: &mesh,
+            z0: 0.02,
+            direction,
+            settings: &settings,
+            section: &SectionSettings::default(),
+            arm_limits: &arm,
+        },
         0,
     )
     .expect("plant");

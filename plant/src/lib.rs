@@ -5,7 +5,7 @@
 //! segment of the edge with its section and plane), `plant/placement` (the
 //! first sections placed where the edge arrives) and `plant/rechoice` (the
 //! moving sections re-chosen as their segments slide off their planes);
-//! `plant_settings`, `plant_error`,
+//! `plant_settings`, `plant_spec` (what a plant is built from), `plant_error`,
 //! `plant_step` (what a tick returns), `crack_front` (the quadratic crack front fitted over the sections'
 //! crack tips), `wrench` (section forces summed into force and torque at the
 //! sensor), `ft_sensor`
@@ -19,6 +19,7 @@ pub mod ft_sensor;
 pub mod plant;
 mod plant_error;
 mod plant_settings;
+mod plant_spec;
 mod plant_step;
 mod section_stepper;
 mod successor;
@@ -31,6 +32,7 @@ pub use ft_sensor::{FtSensor, FtSensorSettings};
 pub use plant::Plant;
 pub use plant_error::PlantError;
 pub use plant_settings::{MAX_SEGMENTS, PlantSettings};
+pub use plant_spec::PlantSpec;
 pub use plant_step::{PlantStep, PlantTruth};
 pub use shearcut_sim::arm::{ArmLimitMonitor, ArmLimits, KnifeCommand, LimitViolation};
 pub use shearcut_sim::arm::{ArmReading, ArmStatus};

@@ -11,15 +11,14 @@ use nalgebra::{Vector2, Vector3};
 use shearcut_sim::geometry::{Polygon, SectionPlane, TriangleMesh};
 use shearcut_sim::invalid_setting::InvalidSetting;
 use shearcut_sim::knife::Knife;
-use shearcut_sim::material::Material;
-use shearcut_sim::section::{SectionError, SectionSettings, SectionStep};
+use shearcut_sim::section::{SectionError, SectionStep};
 
 use super::crack_front::CrackFront;
 use super::ft_sensor::FtSensor;
 use super::successor::{SectionFactory, SuccessorWorker};
 use super::tick_list::TickList;
 use super::wrench::{SegmentLoad, wrench_at};
-use shearcut_sim::arm::{ArmLimitMonitor, ArmLimits, ArmReading, ArmStatus, KnifeCommand};
+use shearcut_sim::arm::{ArmLimitMonitor, ArmReading, ArmStatus, KnifeCommand};
 use shearcut_sim::knife_plane::contact_arc::{
     EdgeSegment, contact_arc, knife_plane_silhouette, ray_hit, segment_grid, span_arc,
 };
@@ -33,6 +32,7 @@ use crate::section_stepper::{Advance, SectionStepper, advance_counted};
 
 pub use crate::plant_error::PlantError;
 pub use crate::plant_settings::{MAX_SEGMENTS, PlantSettings};
+pub use crate::plant_spec::PlantSpec;
 
 /// The plant: a knife (any edge) cutting an object (any closed mesh) through
 /// moving cross sections, with an arm's limit reflexes and an F/T sensor.
@@ -210,42 +210,30 @@ pub struct Plant {
 }
 
 impl Plant {
-    /// Builds the plant.
-    ///
-    /// `object` is placed with its near face (min z) at `object_z`; the knife's
-    /// origin starts at z = `object_z − z0` (so the piece is z₀ from the heel
-    /// along z, seed 000 Fig. 6(b)), with the lowest point of its edge over
-    /// the object `start_gap` above it. `direction` is the planned direction
-    /// of motion (knife plane (z, y), pointing down into the object): the
-    /// first sections are built for it here (see the type's docs), and the
-    /// sections follow it until the knife first moves. `section` configures
-    /// every cross section; `arm_limits` are the reflexes checked on every
-    /// command.
+    /// Builds the plant from `spec` (where the knife starts, the first
+    /// sections for its planned direction: [`PlantSpec`]); `seed` seeds the
+    /// F/T sensor's noise.
     ///
     /// # Errors
-    /// A setting is out of range, no edge point's path along `direction`
-    /// meets the object, or a first section cannot be built.
-    #[allow(clippy::too_many_arguments)]
-    pub fn new(
-        material: &Material,
-        knife: &Knife,
-        object: &TriangleMesh,
-        z0: f64,
-        direction: Vector2<f64>,
-        settings: &PlantSettings,
-        section: &SectionSettings,
-        arm_limits: &ArmLimits,
-        seed: u64,
-    ) -> Result<Self, PlantError> {
+    /// A setting is out of range, no edge point's path along the planned
+    /// direction meets the object, or a first section cannot be built.
+    pub fn new(spec: PlantSpec<'_>, seed: u64) -> Result<Self, PlantError> {
+        let PlantSpec {
+            material,
+            knife,
+            object,
+            settings,
+            section,
+            arm_limits,
+            ..
+        } = spec;
         let EdgeLayout {
             direction: d,
             silhouette,
             origin,
             grid,
             top,
-        } = EdgeLayout::new(
-            material, knife, object, z0, direction, settings, section, arm_limits,
-        )?;
+        } = EdgeLayout::new(&spec)?;
         let factory = Arc::new(SectionFactory {
             object: object.clone(),
             material: *material,
@@ -311,21 +299,8 @@ impl Plant {
     ///
     /// # Errors
     /// Those of [`Plant::new`] but a first section's.
-    #[allow(clippy::too_many_arguments)]
-    pub fn check(
-        material: &Material,
-        knife: &Knife,
-        object: &TriangleMesh,
-        z0: f64,
-        direction: Vector2<f64>,
-        settings: &PlantSettings,
-        section: &SectionSettings,
-        arm_limits: &ArmLimits,
-    ) -> Result<(), PlantError> {
-        EdgeLayout::new(
-            material, knife, object, z0, direction, settings, section, arm_limits,
-        )
-        .map(|_| ())
+    pub fn check(spec: PlantSpec<'_>) -> Result<(), PlantError> {
+        EdgeLayout::new(&spec).map(|_| ())
     }
 
     /// The direction of motion at slice-push ratio `xi` in the knife plane
@@ -782,18 +757,18 @@ struct EdgeLayout {
 
 impl EdgeLayout {
     /// Checks the settings and the planned direction, and lays the edge's
-    /// segments over the object ([`Plant::new`]'s arguments).
-    #[allow(clippy::too_many_arguments)]
-    fn new(
-        material: &Material,
-        knife: &Knife,
-        object: &TriangleMesh,
-        z0: f64,
-        direction: Vector2<f64>,
-        settings: &PlantSettings,
-        section: &SectionSettings,
-        arm_limits: &ArmLimits,
-    ) -> Result<Self, PlantError> {
+    /// segments over the object.
+    fn new(spec: &PlantSpec<'_>) -> Result<Self, PlantError> {
+        let &PlantSpec {
+            material,
+            knife,
+            object,
+            z0,
+            direction,
+            settings,
+            section,
+            arm_limits,
+        } = spec;
         settings.validate()?;
         section.validate().map_err(|e| e.prefixed("section"))?;
         arm_limits

@@ -3,7 +3,8 @@
 
 use nalgebra::{Vector2, Vector3};
 use shearcut_plant::{
-    ArmLimits, ArmStatus, KnifeCommand, LimitViolation, Plant, PlantSettings, SuccessorPolicy,
+    ArmLimits, ArmStatus, KnifeCommand, LimitViolation, Plant, PlantSettings, PlantSpec,
+    SuccessorPolicy,
 };
 use shearcut_sim::geometry::TriangleMesh;
 use shearcut_sim::{CrossSection, Knife, KnifePreset, MaterialPreset, SectionGeometry};
@@ -25,14 +26,16 @@ fn plant(
     seed: u64,
 ) -> Plant {
     Plant::new(
-        material,
-        knife,
-        object,
-        z0,
-        direction,
-        s,
-        &coarse_section(),
-        limits,
+        PlantSpec {
+            material,
+            knife,
+            object,
+            z0,
+            direction,
+            settings: s,
+            section: &coarse_section(),
+            arm_limits: limits,
+        },
         seed,
     )
     .unwrap()

@@ -6,7 +6,7 @@
 //! whose allocations are not the tick's), and a plant cloned mid-cut.
 
 use nalgebra::{Vector2, Vector3};
-use shearcut_plant::{ArmLimits, KnifeCommand, Plant, PlantSettings, SuccessorPolicy};
+use shearcut_plant::{ArmLimits, KnifeCommand, Plant, PlantSettings, PlantSpec, SuccessorPolicy};
 use shearcut_sim::{Knife, KnifePreset, MaterialPreset};
 
 #[path = "../../controllers/tests/support/counting_allocator.rs"]
@@ -36,14 +36,16 @@ fn plant_step_allocates_nothing() {
         ..PlantSettings::default()
     };
     let mut plant = Plant::new(
-        &material,
-        &knife,
-        &object,
-        0.02,
-        Vector2::new(0.0, -1.0),
-        &settings,
-        &section,
-        &limits,
+        PlantSpec {
+            material: &material,
+            knife: &knife,
+            object: &object,
+            z0: 0.02,
+            direction: Vector2::new(0.0, -1.0),
+            settings: &settings,
+            section: &section,
+            arm_limits: &limits,
+        },
         1,
     )
     .unwrap();
@@ -142,14 +144,16 @@ fn half_potato_under_the_chef(threads: usize) -> Plant {
         ..PlantSettings::default()
     };
     Plant::new(
-        &MaterialPreset::PotatoWhole.material(),
-        &Knife::new(&KnifePreset::Chef.settings()).unwrap(),
-        &half_potato(),
-        0.05,
-        Vector2::new(-0.5, -1.0),
-        &settings,
-        &coarse_section(),
-        &LOOSE,
+        PlantSpec {
+            material: &MaterialPreset::PotatoWhole.material(),
+            knife: &Knife::new(&KnifePreset::Chef.settings()).unwrap(),
+            object: &half_potato(),
+            z0: 0.05,
+            direction: Vector2::new(-0.5, -1.0),
+            settings: &settings,
+            section: &coarse_section(),
+            arm_limits: &LOOSE,
+        },
         7,
     )
     .unwrap()

@@ -2,7 +2,7 @@
 //! ([`FirstFracture::SurfaceStress`]): a wire pressed into an agar block.
 
 use nalgebra::{Vector2, Vector3};
-use shearcut_plant::{FtSensorSettings, KnifeCommand, Plant, PlantSettings};
+use shearcut_plant::{FtSensorSettings, KnifeCommand, Plant, PlantSettings, PlantSpec};
 use shearcut_sim::finite_strain::NucleationEnvelope;
 use shearcut_sim::{FirstFracture, Knife, KnifePreset, MaterialPreset, SectionSettings};
 
@@ -40,14 +40,16 @@ fn force_before_first_fracture(first_fracture: FirstFracture) -> f64 {
     };
     let limits = LOOSE;
     let mut plant = Plant::new(
-        &material,
-        &knife,
-        &block,
-        0.02,
-        Vector2::new(0.0, -1.0),
-        &settings,
-        &section,
-        &limits,
+        PlantSpec {
+            material: &material,
+            knife: &knife,
+            object: &block,
+            z0: 0.02,
+            direction: Vector2::new(0.0, -1.0),
+            settings: &settings,
+            section: &section,
+            arm_limits: &limits,
+        },
         0,
     )
     .unwrap();

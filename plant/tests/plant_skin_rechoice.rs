@@ -10,8 +10,8 @@
 //! needs, flank sections never fractured while the knife went on through
 //! them, and the mean crack depth lagged the knife by tens of millimetres.
 
-use nalgebra::{Vector2, Vector3};
-use shearcut_plant::{KnifeCommand, Plant, PlantSettings};
+use nalgebra::Vector3;
+use shearcut_plant::{KnifeCommand, Plant, PlantSettings, PlantSpec};
 use shearcut_sim::{
     BladeSection, CrossSection, Knife, KnifePreset, MaterialPreset, ObjectShape, SectionGeometry,
 };
@@ -63,22 +63,23 @@ fn sections_under_a_tough_skin_fracture_across_rechoices() {
     let material = MaterialPreset::EggplantWhole.material();
     let knife = Knife::new(&KnifePreset::Chef.settings()).unwrap();
     let xi: f64 = 0.5;
-    let alpha = xi.atan();
-    let d = Vector2::new(alpha.sin(), -alpha.cos());
+    let d = Plant::direction_at(xi);
     let limits = LOOSE;
     let settings = PlantSettings {
         segments: 4,
         ..PlantSettings::default()
     };
     let mut plant = Plant::new(
-        &material,
-        &knife,
-        &object,
-        0.03,
-        d,
-        &settings,
-        &coarse_section(),
-        &limits,
+        PlantSpec {
+            material: &material,
+            knife: &knife,
+            object: &object,
+            z0: 0.03,
+            direction: d,
+            settings: &settings,
+            section: &coarse_section(),
+            arm_limits: &limits,
+        },
         0,
     )
     .unwrap();

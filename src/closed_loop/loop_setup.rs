@@ -6,13 +6,12 @@
 
 use std::sync::Arc;
 
-use nalgebra::Vector2;
 use shearcut_controllers::controller::{
     ConstantSlice, Controller, CutTask, ForceFeedback, ForceFeedbackGains, MotionLimits,
 };
 use shearcut_controllers::mpc::{DepthProfile, Mpc, SurrogateModel};
 use shearcut_controllers::observer::EdgeOutline;
-use shearcut_plant::{Plant, PlantError, PlantSettings};
+use shearcut_plant::{Plant, PlantError, PlantSettings, PlantSpec};
 use shearcut_sim::geometry::TriangleMesh;
 use shearcut_sim::{InvalidSetting, Knife};
 
@@ -224,19 +223,9 @@ pub fn make_plant(
     reach: f64,
     start_gap: f64,
 ) -> Result<Plant, RunError> {
-    let (z0, direction, settings) = plant_placement(s, xi, reach, start_gap);
-    Plant::new(
-        &s.material,
-        knife,
-        mesh,
-        z0,
-        direction,
-        &settings,
-        &s.section,
-        &s.control_loop.arm_limits,
-        s.seed,
-    )
-    .map_err(|e| plant_refused(s, xi, z0, e))
+    let settings = placed_settings(s, reach, start_gap);
+    let spec = plant_spec(s, knife, mesh, xi, &settings);
+    Plant::new(spec, s.seed).map_err(|e| plant_refused(s, xi, spec.z0, e))
 }
 
 /// Checks what [`make_plant`] checks before it builds a section
@@ -249,35 +238,41 @@ pub fn check_plant(
     reach: f64,
     start_gap: f64,
 ) -> Result<(), RunError> {
-    let (z0, direction, settings) = plant_placement(s, xi, reach, start_gap);
-    Plant::check(
-        &s.material,
-        knife,
-        mesh,
-        z0,
-        direction,
-        &settings,
-        &s.section,
-        &s.control_loop.arm_limits,
-    )
-    .map_err(|e| plant_refused(s, xi, z0, e))
+    let settings = placed_settings(s, reach, start_gap);
+    let spec = plant_spec(s, knife, mesh, xi, &settings);
+    Plant::check(spec).map_err(|e| plant_refused(s, xi, spec.z0, e))
 }
 
-/// The plant's z₀ (the scenario's first), its planned direction for the
-/// slice-push ratio `xi`, and its settings with `reach` and `start_gap`.
-fn plant_placement(
-    s: &Scenario,
-    xi: f64,
-    reach: f64,
-    start_gap: f64,
-) -> (f64, Vector2<f64>, PlantSettings) {
-    let z0 = s.motion.z0.first().copied().unwrap_or(0.0);
-    let settings = PlantSettings {
+/// The scenario's plant settings with `reach` (the larger of the two) and
+/// `start_gap`.
+fn placed_settings(s: &Scenario, reach: f64, start_gap: f64) -> PlantSettings {
+    PlantSettings {
         reach: s.plant.reach.max(reach),
         start_gap,
         ..s.plant
-    };
-    (z0, Plant::direction_at(xi), settings)
+    }
+}
+
+/// The loop's plant: the scenario's material, sections and arm limits, its
+/// first z₀, the direction planned for the slice-push ratio `xi`, and
+/// `settings`.
+fn plant_spec<'a>(
+    s: &'a Scenario,
+    knife: &'a Knife,
+    mesh: &'a TriangleMesh,
+    xi: f64,
+    settings: &'a PlantSettings,
+) -> PlantSpec<'a> {
+    PlantSpec {
+        material: &s.material,
+        knife,
+        object: mesh,
+        z0: s.motion.z0.first().copied().unwrap_or(0.0),
+        direction: Plant::direction_at(xi),
+        settings,
+        section: &s.section,
+        arm_limits: &s.control_loop.arm_limits,
+    }
 }
 
 fn plant_refused(s: &Scenario, xi: f64, z0: f64, e: PlantError) -> RunError {

@@ -11,7 +11,7 @@
 //!   linear velocity ramp so that the arm's jerk limit is respected.
 
 use nalgebra::Vector3;
-use shearcut_plant::{Plant, PlantError, SegmentLoad, wrench_at};
+use shearcut_plant::{Plant, PlantError, PlantSpec, SegmentLoad, wrench_at};
 use shearcut_sim::arm::{ArmStatus, KnifeCommand};
 use shearcut_sim::geometry::TriangleMesh;
 use shearcut_sim::section::{CrossSection, SectionGeometry, SectionStep};
@@ -107,6 +107,28 @@ pub fn simulate_until(
     }
 }
 
+/// The plant of one cut: the scenario's material, plant, sections and arm
+/// limits, the object at `z0` along the edge, planned at slice-push ratio
+/// `xi`.
+fn cut_plant<'a>(
+    scenario: &'a Scenario,
+    knife: &'a Knife,
+    mesh: &'a TriangleMesh,
+    xi: f64,
+    z0: f64,
+) -> PlantSpec<'a> {
+    PlantSpec {
+        material: &scenario.material,
+        knife,
+        object: mesh,
+        z0,
+        direction: Plant::direction_at(xi),
+        settings: &scenario.plant,
+        section: &scenario.section,
+        arm_limits: &scenario.control_loop.arm_limits,
+    }
+}
+
 /// Checks what [`simulate`] checks before its first cut (no section is
 /// built): the knife, the cuts' travel along the edge (single section) or
 /// each cut's plant ([`Plant::check`]). Cheap: for `shearcut check`.
@@ -122,17 +144,8 @@ pub fn check(scenario: &Scenario) -> Result<(), RunError> {
         _ => {
             let mesh = object_mesh(scenario)?;
             for (i, (xi, z0)) in scenario.motion.cuts().into_iter().enumerate() {
-                Plant::check(
-                    &scenario.material,
-                    &knife,
-                    &mesh,
-                    z0,
-                    Plant::direction_at(xi),
-                    &scenario.plant,
-                    &scenario.section,
-                    &scenario.control_loop.arm_limits,
-                )
-                .map_err(|e| plant_refused(scenario, i, xi, z0, e))?;
+                Plant::check(cut_plant(scenario, &knife, &mesh, xi, z0))
+                    .map_err(|e| plant_refused(scenario, i, xi, z0, e))?;
             }
             Ok(())
         }
@@ -344,19 +357,8 @@ fn simulate_plant(
     for (i, (xi, z0)) in cuts.into_iter().enumerate() {
         bar.inc(1);
         let alpha = xi.atan();
-        let direction = Plant::direction_at(xi);
-        let mut plant = Plant::new(
-            &scenario.material,
-            knife,
-            &mesh,
-            z0,
-            direction,
-            &scenario.plant,
-            &scenario.section,
-            &scenario.control_loop.arm_limits,
-            scenario.seed,
-        )
-        .map_err(|e| plant_refused(scenario, i, xi, z0, e))?;
+        let mut plant = Plant::new(cut_plant(scenario, knife, &mesh, xi, z0), scenario.seed)
+            .map_err(|e| plant_refused(scenario, i, xi, z0, e))?;
         let start = plant.position();
         let v_full = Vector3::new(0.0, -alpha.cos(), alpha.sin()) * scenario.motion.speed;
         let first = samples.len();

@@ -3,10 +3,10 @@
 //! baselines move, on coarse sections so that a test takes seconds.
 #![allow(dead_code)] // Each test binary uses a part.
 
-use nalgebra::{Vector2, Vector3};
+use nalgebra::Vector3;
 use shearcut_controllers::controller::{MotionLimits, VelocityShaper};
 use shearcut_controllers::observer::{CutObserver, CutObserverSettings, CutTarget};
-use shearcut_plant::{FtSensorSettings, Plant, PlantSettings, PlantStep as Measurement};
+use shearcut_plant::{FtSensorSettings, Plant, PlantSettings, PlantSpec, PlantStep as Measurement};
 use shearcut_sim::arm::ArmLimits;
 use shearcut_sim::geometry::{Polygon, TriangleMesh};
 use shearcut_sim::knife_plane::knife_plane_silhouette;
@@ -88,7 +88,6 @@ impl Cut {
     pub fn drive(&self, xi: f64, speed: f64, ticks: usize) -> Vec<Measurement> {
         let arm = ArmLimits::default();
         let limits = MotionLimits::within_arm(0.05, 0.1, arm.acceleration, arm.jerk, 0.9);
-        let alpha = xi.atan();
         let settings = PlantSettings {
             segments: self.segments,
             reach: 0.02,
@@ -100,14 +99,16 @@ impl Cut {
             ..SectionSettings::default()
         };
         let mut plant = Plant::new(
-            &self.material.material(),
-            &self.knife,
-            &self.mesh,
-            self.z0,
-            Vector2::new(alpha.sin(), -alpha.cos()),
-            &settings,
-            &section,
-            &arm,
+            PlantSpec {
+                material: &self.material.material(),
+                knife: &self.knife,
+                object: &self.mesh,
+                z0: self.z0,
+                direction: Plant::direction_at(xi),
+                settings: &settings,
+                section: &section,
+                arm_limits: &arm,
+            },
             0,
         )
         .unwrap();
