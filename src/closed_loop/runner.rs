@@ -11,6 +11,7 @@ use super::cut_story::CutStory;
 use super::plant_link::{LinkError, PlantLink};
 use super::series_stream::{LoopRecorder, NoRecorder};
 use crate::cut_record::CutSample;
+use crate::error::RunError;
 use crate::transport::StopSignal;
 use shearcut_sim::resource_budget::SERIES_ROWS_BUDGET;
 
@@ -58,6 +59,25 @@ impl LoopEnd {
             LoopEnd::Failed(why) => format!("failed: {why}"),
             LoopEnd::Stopped(StopSignal::Sigint) => "stopped: sigint".to_string(),
             LoopEnd::Stopped(StopSignal::Sigterm) => "stopped: sigterm".to_string(),
+        }
+    }
+
+    /// What a command that wrote the loop's results into `dir` exits with:
+    /// the signal's stop ([`RunError::Stopped`], exit 128 + the signal's
+    /// number) for a stopped loop, a failure naming the partial results for
+    /// a failed one (exit 1), success for any other end (an algorithmic
+    /// outcome, written in the results).
+    pub fn exit(&self, dir: &std::path::Path) -> Result<(), RunError> {
+        match self {
+            LoopEnd::Stopped(signal) => Err(RunError::Stopped {
+                signal: *signal,
+                dir: dir.display().to_string(),
+            }),
+            LoopEnd::Failed(why) => Err(RunError::Loop(format!(
+                "the loop failed: {why} (partial results in {}/)",
+                dir.display()
+            ))),
+            LoopEnd::Completed | LoopEnd::ControllerDone | LoopEnd::TimedOut => Ok(()),
         }
     }
 }

@@ -202,17 +202,5 @@ fn serve(
         "results: {}/ (timeseries.csv, controller.csv, summary.json, loop_stats.json, scenario.toml, forces_work.svg/.png, controller.svg/.png)",
         dir.display()
     )?;
-    if let LoopEnd::Stopped(signal) = run.output.end {
-        return Err(RunError::Stopped {
-            signal,
-            dir: dir.display().to_string(),
-        });
-    }
-    if let LoopEnd::Failed(why) = &run.output.end {
-        return Err(RunError::Loop(format!(
-            "the run was aborted: {why} (partial results in {}/)",
-            dir.display()
-        )));
-    }
-    Ok(())
+    run.output.end.exit(dir)
 }

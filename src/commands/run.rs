@@ -102,19 +102,7 @@ pub fn run(
         "results: {}/ (timeseries.csv, controller.csv, summary.json, scenario.toml, forces_work.svg/.png, controller.svg/.png)",
         dir.display()
     )?;
-    if let LoopEnd::Stopped(signal) = run.output.end {
-        return Err(RunError::Stopped {
-            signal,
-            dir: dir.display().to_string(),
-        });
-    }
-    if let LoopEnd::Failed(why) = &run.output.end {
-        return Err(RunError::Loop(format!(
-            "the loop failed: {why} (partial results in {}/)",
-            dir.display()
-        )));
-    }
-    Ok(())
+    run.output.end.exit(&dir)
 }
 
 /// Writes a run's results into `dir` after its loop: the summary and the
