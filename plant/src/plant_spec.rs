@@ -23,8 +23,8 @@ pub struct PlantSpec<'a> {
     pub material: &'a Material,
     /// The knife: its edge, blade and the F/T sensor's place on it.
     pub knife: &'a Knife,
-    /// The object's surface, world frame (x across the blade, y up, z along
-    /// the edge), m, as it lies on the board.
+    /// The object's surface, world frame (x across the knife plane, y up, z
+    /// towards the knife's tip), m.
     pub object: &'a TriangleMesh,
     /// Where the object lies along the edge, m: the knife's origin starts at
     /// z = (the object's least z) − z₀, so that the piece is z₀ from the heel
