@@ -116,6 +116,7 @@ fn main() {
                 before_fracture: false,
                 onset: [0.0; 3],
                 entering: Default::default(),
+                edge_descent_slope: 0.0,
             };
         }
         let budget = 0.03 * (1.0 - (i % 200) as f64 / 250.0);

@@ -24,6 +24,7 @@ fn stage(xi_bar: f64, contact_length: f64, depth_step: f64) -> StageData {
         before_fracture: false,
         onset: [0.0; 3],
         entering: Default::default(),
+        edge_descent_slope: 0.0,
     }
 }
 
@@ -50,7 +51,7 @@ fn brute_force(stages: &[StageData], l: &QpLimits, prev: f64, blade: f64) -> f64
     let mut best = f64::INFINITY;
     for &x0 in &xis {
         for &x1 in &xis {
-            if stages[0].depth_step * x0 + stages[1].depth_step * x1 > blade {
+            if stages[0].blade(x0) + stages[1].blade(x1) > blade {
                 continue;
             }
             for &v0 in &speeds {
@@ -75,7 +76,7 @@ fn check_against_brute_force(stages: &[StageData], l: &QpLimits, prev: f64, blad
     assert_eq!(qp.solve(stages, l, prev, blade), QpStatus::Solved);
     let (xi, tau) = (qp.xi().to_vec(), qp.tau().to_vec());
     // Hard constraints hold.
-    let travel: f64 = stages.iter().zip(&xi).map(|(s, x)| s.depth_step * x).sum();
+    let travel: f64 = stages.iter().zip(&xi).map(|(s, x)| s.blade(*x)).sum();
     assert!(
         travel <= blade * (1.0 + 1e-7) + 1e-12,
         "travel {travel} > {blade}"
@@ -112,6 +113,35 @@ fn a_short_blade_is_spent_where_more_edge_is_in_contact() {
     // With the budget binding, d(work)/dξ per unit travel is equalised:
     // L₀ w'(ξ₀) = L₁ w'(ξ₁), so the longer contact gets the larger ratio.
     assert!(qp.xi()[1] > qp.xi()[0], "{:?}", qp.xi());
+}
+
+#[test]
+fn an_edge_that_deepens_as_it_slides_needs_less_blade_per_depth() {
+    // A rising edge (κ_d = 0.4 at the deepest point) deepens at 1 + κ_d ξ
+    // times the knife's descent: a stage of edge depth Δd at ξ̄ = 0.5 takes
+    // Δd/1.2 of descent and ξ times that of blade.
+    let level = [stage(0.5, 0.02, 0.005), stage(0.5, 0.06, 0.005)];
+    let rising = level.map(|s| StageData {
+        edge_descent_slope: 0.4,
+        ..s
+    });
+    assert!((rising[0].knife_descent() - 0.005 / 1.2).abs() < 1e-15);
+    assert!((rising[0].blade(0.5) - 0.5 * 0.005 / 1.2).abs() < 1e-15);
+    let l = limits(f64::INFINITY);
+    check_against_brute_force(&rising, &l, 0.5, 0.004);
+    // With the blade binding, the same blade buys larger ratios.
+    let mut qp = DepthQp::new(2, 50);
+    qp.solve(&level, &l, 0.5, 0.004);
+    let on_level: f64 = qp.xi().iter().sum();
+    qp.solve(&rising, &l, 0.5, 0.004);
+    let on_rise: f64 = qp.xi().iter().sum();
+    let used: f64 = rising.iter().zip(qp.xi()).map(|(s, x)| s.blade(*x)).sum();
+    assert!((used - 0.004).abs() < 1e-6, "the blade row binds: {used}");
+    // Σξ·Δd/1.2 = 0.004 against Σξ·Δd = 0.004.
+    assert!(
+        (on_rise / on_level - 1.2).abs() < 1e-3,
+        "{on_rise} against {on_level}"
+    );
 }
 
 #[test]

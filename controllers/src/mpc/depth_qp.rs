@@ -11,19 +11,22 @@
 //!          + W'_0 (ξ_0 − ξ̄_0) + ½ W''⁺_0 (ξ_0 − ξ̄_0)²          work to fracture
 //!          + w_D L_0 δ'_0 ξ_0   (both before the first fracture)     deformation
 //!          + w_D Σ_k ΔL_k δ*'_k ξ_k                                   deformation
-//!          + w_T Σ_k Δd_k τ_k                                         time
+//!          + w_T Σ_k Δz_k τ_k                                         time
 //!          + w_S [(ξ_0 − ξ_prev)² + Σ_k (ξ_k − ξ_{k−1})²]             smoothness
 //!          + w_F Σ_k σ_k                                              force excess
 //! subject to 0 ≤ ξ_k ≤ ξ_max,  |ξ_k − ξ̄_k| ≤ ρ                        (trust region)
 //!            ξ_k ≤ v_t,max τ_k,  τ_k ≥ 1/v_n,max                      (speeds)
-//!            Σ_k Δd_k ξ_k ≤ S                                         (blade left)
+//!            Σ_k Δz_k ξ_k ≤ S                                         (blade left)
 //!            L_k (f_k + f'_k (ξ_k − ξ̄_k)) − σ_k ≤ F_max,  σ_k ≥ 0     (force, soft)
 //!
 //! with h_k = max(w''(ξ̄_k), h_min) so the program is convex, W_0 the cost
 //! of reaching the first fracture for the whole edge (the indentation and
 //! the catch-up span after it, each depth weighted by the edge in contact
 //! there: [`SliceModel::onset_cost`](super::SliceModel::onset_cost)), L_k the
-//! length of edge in contact at the stage, ΔL_k the length of edge that
+//! length of edge in contact at the stage, Δz_k = Δd_k/(1 + κ_d,k ξ̄_k) the
+//! knife's descent over it (the edge's depth grows at 1 + κ_d ξ times the
+//! knife's descent where the edge in contact is inclined, κ_d its slope at
+//! the deepest point; Δz_k = Δd_k for a level edge), ΔL_k the length of edge that
 //! comes into contact during it (intact material it indents until it
 //! fractures), and δ*'_k the slope in ξ of the surface deflection at which
 //! intact material fractures (the deflection terms are linearised like
@@ -59,6 +62,27 @@ pub struct StageData {
     /// Edge that comes into contact during the stage and is indented from
     /// intact until it fractures, with the deflection it reaches then.
     pub entering: EnteringEdge,
+    /// κ_d: the edge's slope at its deepest point along the knife's motion
+    /// (0 for a level edge). The edge's depth grows at 1 + κ_d·ξ times the
+    /// knife's descent, so a stage of edge depth Δd takes Δd/(1 + κ_d ξ) of
+    /// descent and ξΔd/(1 + κ_d ξ) of blade (seed 000 §IV, Fig. 4(a)).
+    pub edge_descent_slope: f64,
+}
+
+impl StageData {
+    /// The knife's descent over the stage at ξ̄, m: Δd/(1 + κ_d ξ̄). The
+    /// stage takes τ times it (τ the time per unit of the knife's descent).
+    pub fn knife_descent(&self) -> f64 {
+        self.depth_step / (1.0 + self.edge_descent_slope * self.xi_bar)
+    }
+
+    /// The blade the stage uses at ratio `xi`, m: ξ times the knife's
+    /// descent at ξ̄, the secant of ξΔd/(1 + κ_d ξ) through ξ = 0 and ξ̄
+    /// (exact for a level edge and at ξ̄). The subproblem's blade row holds
+    /// the same line, so ξ = 0 always fits.
+    pub fn blade(&self, xi: f64) -> f64 {
+        xi * self.knife_descent()
+    }
 }
 
 /// Intact edge that a stage brings into contact: a whole object's outline
@@ -311,7 +335,7 @@ impl DepthQp {
             }
             let e = &s.entering;
             j += limits.deformation_weight * e.length * (e.deflection + e.deflection_slope * dx);
-            j += limits.time_weight * s.depth_step * tau[k];
+            j += limits.time_weight * s.knife_descent() * tau[k];
             j += limits.smoothness_weight * (xi[k] - prev) * (xi[k] - prev);
             prev = xi[k];
             if limits.max_force.is_finite() {
@@ -370,10 +394,10 @@ impl DepthQp {
                 self.p.nzval[self.p_diag[k - 1]] += 2.0 * ws;
                 self.p.nzval[self.p_super[k - 1]] = -2.0 * ws;
             }
-            self.q[n + k] = limits.time_weight * dd;
+            self.q[n + k] = limits.time_weight * s.knife_descent();
             self.q[2 * n + k] = limits.force_penalty;
             // Rows.
-            self.a.nzval[self.a_budget[k]] = dd;
+            self.a.nzval[self.a_budget[k]] = s.knife_descent();
             let slope = l * s.cost.force_normal_slope;
             self.a.nzval[self.a_force[k]] = slope;
             self.a.nzval[self.a_speed[k]] = -limits.tangential_speed;

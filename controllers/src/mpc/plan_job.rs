@@ -248,16 +248,6 @@ impl<M: SliceModel> MpcPlanJob<M> {
                 (self.profile.contact_length(start + dd) - self.profile.contact_length(start))
                     .max(0.0)
             };
-            let entering = if entering_length > 0.0 && self.limits.deformation_weight > 0.0 {
-                let (deflection, deflection_slope) = self.model.onset_deflection(xi_bar, &state);
-                EnteringEdge {
-                    length: entering_length,
-                    deflection,
-                    deflection_slope,
-                }
-            } else {
-                EnteringEdge::default()
-            };
             let slopes = if self.settings.edge_inclination {
                 let z = r.knife_z + r.direction * (slide + 0.5 * xi_bar * dd);
                 contact_slopes(&self.outline, z, edge, r.direction)
@@ -266,6 +256,24 @@ impl<M: SliceModel> MpcPlanJob<M> {
             };
             let profile = &self.profile;
             let model = &self.model;
+            // The edge entering contact is at the contact's two ends, each
+            // indented at its own local ratio.
+            let entering = if entering_length > 0.0 && self.limits.deformation_weight > 0.0 {
+                let deflection_at = |xi: f64| {
+                    let (deflection, slope) = model.onset_deflection(xi, &state);
+                    [deflection, slope, 0.0]
+                };
+                let [deflection, deflection_slope, _] = slopes
+                    .and_then(|s| s.mean_at_ends(xi_bar, deflection_at))
+                    .unwrap_or_else(|| deflection_at(xi_bar));
+                EnteringEdge {
+                    length: entering_length,
+                    deflection,
+                    deflection_slope,
+                }
+            } else {
+                EnteringEdge::default()
+            };
             let onset_at =
                 |xi: f64| model.onset_cost(xi, &state, |d| profile.contact_at_section_depth(d));
             let onset = if !before_fracture {
@@ -284,10 +292,26 @@ impl<M: SliceModel> MpcPlanJob<M> {
                     c.work_per_depth_curvature,
                 ]
             };
-            if let Some([w, g, h]) = slopes.and_then(|s| s.mean(xi_bar, true, rates)) {
+            let mut edge_descent_slope = 0.0;
+            if let Some(s) = slopes
+                && let Some([w, g, h]) = s.mean(xi_bar, true, rates)
+            {
                 cost.work_per_depth = w;
                 cost.work_per_depth_slope = g;
                 cost.work_per_depth_curvature = h;
+                edge_descent_slope = s.deepest;
+                if before_fracture {
+                    // The whole contact is indented, each share at its own
+                    // local ratio.
+                    let indentation = |xi: f64| {
+                        let c = model.stage(xi, &state);
+                        [c.deformation, c.deformation_slope, 0.0]
+                    };
+                    if let Some([d, d1, _]) = s.mean(xi_bar, false, indentation) {
+                        cost.deformation = d;
+                        cost.deformation_slope = d1;
+                    }
+                }
             }
             slide += xi_bar * dd;
             self.stages[k] = StageData {
@@ -298,6 +322,7 @@ impl<M: SliceModel> MpcPlanJob<M> {
                 before_fracture,
                 onset,
                 entering,
+                edge_descent_slope,
             };
         }
         let l = self.motion;
@@ -364,7 +389,7 @@ impl<M: SliceModel> MpcPlanJob<M> {
         if fraction <= 0.0 {
             return false;
         }
-        let demand: f64 = self.stages.iter().map(|s| s.depth_step * previous).sum();
+        let demand: f64 = self.stages.iter().map(|s| s.blade(previous)).sum();
         if demand > blade {
             return false;
         }
@@ -408,7 +433,7 @@ impl<M: SliceModel> MpcPlanJob<M> {
     /// solver.
     fn sawing_pays(&mut self, r: &PlanRequest, previous: f64, blade: f64, within: bool) -> bool {
         let demand = |stages: &[StageData], xi: &[f64]| -> f64 {
-            stages.iter().zip(xi).map(|(s, x)| s.depth_step * x).sum()
+            stages.iter().zip(xi).map(|(s, x)| s.blade(*x)).sum()
         };
         if within && demand(&self.stages, &self.stroke_xi) < blade * (1.0 - 1e-6) {
             return false;
@@ -488,37 +513,57 @@ impl Slopes {
     /// material at `xi` (1 + κξ ≤ 0).
     fn mean<F: Fn(f64) -> [f64; 3]>(&self, xi: f64, per_depth: bool, f: F) -> Option<[f64; 3]> {
         let kd = if per_depth { self.deepest } else { 0.0 };
-        let qd = 1.0 + kd * xi;
-        if qd <= 0.0 {
+        mean_over(&self.shares, kd, xi, per_depth, f)
+    }
+
+    /// [`Self::mean`] of a cost per unit length over the contact's first
+    /// and last shares, where the contact's ends lie (the edge that comes
+    /// into contact as the edge deepens).
+    fn mean_at_ends<F: Fn(f64) -> [f64; 3]>(&self, xi: f64, f: F) -> Option<[f64; 3]> {
+        let ends = [self.shares[0], self.shares[INCLINATION_BINS - 1]];
+        mean_over(&ends, 0.0, xi, false, f)
+    }
+}
+
+/// [`Slopes::mean`] over the slopes `shares` (equal shares of some length
+/// of edge), `kd` the slope at the deepest point.
+fn mean_over<F: Fn(f64) -> [f64; 3]>(
+    shares: &[f64],
+    kd: f64,
+    xi: f64,
+    per_depth: bool,
+    f: F,
+) -> Option<[f64; 3]> {
+    let qd = 1.0 + kd * xi;
+    if qd <= 0.0 {
+        return None;
+    }
+    let mut sum = [0.0; 3];
+    for &k in shares {
+        let q = 1.0 + k * xi;
+        if q <= 0.0 {
             return None;
         }
-        let mut sum = [0.0; 3];
-        for k in self.shares {
-            let q = 1.0 + k * xi;
-            if q <= 0.0 {
-                return None;
-            }
-            let x = (xi - k) / q;
-            let sign = if x < 0.0 { -1.0 } else { 1.0 };
-            let [w, w1, w2] = f(x.abs());
-            let w1 = sign * w1;
-            let x1 = (1.0 + k * k) / (q * q);
-            let x2 = -2.0 * k * (1.0 + k * k) / (q * q * q);
-            let (m, m1, m2) = if per_depth {
-                (
-                    q / qd,
-                    (k - kd) / (qd * qd),
-                    -2.0 * kd * (k - kd) / (qd * qd * qd),
-                )
-            } else {
-                (1.0, 0.0, 0.0)
-            };
-            sum[0] += m * w;
-            sum[1] += m1 * w + m * w1 * x1;
-            sum[2] += m2 * w + 2.0 * m1 * w1 * x1 + m * (w2 * x1 * x1 + w1 * x2);
-        }
-        Some(sum.map(|v| v / INCLINATION_BINS as f64))
+        let x = (xi - k) / q;
+        let sign = if x < 0.0 { -1.0 } else { 1.0 };
+        let [w, w1, w2] = f(x.abs());
+        let w1 = sign * w1;
+        let x1 = (1.0 + k * k) / (q * q);
+        let x2 = -2.0 * k * (1.0 + k * k) / (q * q * q);
+        let (m, m1, m2) = if per_depth {
+            (
+                q / qd,
+                (k - kd) / (qd * qd),
+                -2.0 * kd * (k - kd) / (qd * qd * qd),
+            )
+        } else {
+            (1.0, 0.0, 0.0)
+        };
+        sum[0] += m * w;
+        sum[1] += m1 * w + m * w1 * x1;
+        sum[2] += m2 * w + 2.0 * m1 * w1 * x1 + m * (w2 * x1 * x1 + w1 * x2);
     }
+    Some(sum.map(|v| v / shares.len() as f64))
 }
 
 /// The fallback's plan: the last solved plan shifted to the edge's depth
@@ -613,6 +658,11 @@ mod tests {
                 "ξ = {xi}: {c} against {c_fd}"
             );
         }
+        // The contact's ends (its first and last shares) are indented at
+        // their own local ratios.
+        let [e0, _, _] = inclined.mean_at_ends(0.0, law).unwrap();
+        let ends = 0.5 * (law(0.05)[0] + law(0.35)[0]);
+        assert!((e0 - ends).abs() < 1e-12, "{e0} against {ends}");
         // A share that would move out of the material is refused.
         let steep = Slopes {
             shares: [-2.0; INCLINATION_BINS],

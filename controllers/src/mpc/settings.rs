@@ -98,8 +98,12 @@ pub struct MpcSettings {
     /// edge's depth is then the mean over the contact of
     /// (1 + κξ)·w((ξ − κ)/(1 + κξ)) / (1 + κ_d ξ), from the task's edge and
     /// outline at the knife's pose, the slide the plan makes before the
-    /// stage included. With false every point is cut at ξ, as under a
-    /// straight horizontal edge. Measured in docs/heldout.md.
+    /// stage included; the indentation before the first fracture and the
+    /// edge entering contact at the contact's ends deflect the material at
+    /// their local ratios, and a stage's time and blade count the knife's
+    /// descent, 1/(1 + κ_d ξ) of the edge's. With false every point is cut
+    /// at ξ, as under a straight horizontal edge. Measured in
+    /// docs/heldout.md.
     pub edge_inclination: bool,
     /// Smallest predicted saving for which a plan changes the ratio, as a
     /// fraction of the plan's predicted cost of the rest of the cut
