@@ -394,10 +394,11 @@ impl DepthQp {
                 self.p.nzval[self.p_diag[k - 1]] += 2.0 * ws;
                 self.p.nzval[self.p_super[k - 1]] = -2.0 * ws;
             }
-            self.q[n + k] = limits.time_weight * s.knife_descent();
+            let descent = s.knife_descent();
+            self.q[n + k] = limits.time_weight * descent;
             self.q[2 * n + k] = limits.force_penalty;
             // Rows.
-            self.a.nzval[self.a_budget[k]] = s.knife_descent();
+            self.a.nzval[self.a_budget[k]] = descent;
             let slope = l * s.cost.force_normal_slope;
             self.a.nzval[self.a_force[k]] = slope;
             self.a.nzval[self.a_speed[k]] = -limits.tangential_speed;

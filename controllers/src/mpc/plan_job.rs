@@ -512,8 +512,7 @@ impl Slopes {
     /// `None` if a share, or the deepest point, does not move into the
     /// material at `xi` (1 + κξ ≤ 0).
     fn mean<F: Fn(f64) -> [f64; 3]>(&self, xi: f64, per_depth: bool, f: F) -> Option<[f64; 3]> {
-        let kd = if per_depth { self.deepest } else { 0.0 };
-        mean_over(&self.shares, kd, xi, per_depth, f)
+        mean_over(&self.shares, per_depth.then_some(self.deepest), xi, f)
     }
 
     /// [`Self::mean`] of a cost per unit length over the contact's first
@@ -521,19 +520,21 @@ impl Slopes {
     /// into contact as the edge deepens).
     fn mean_at_ends<F: Fn(f64) -> [f64; 3]>(&self, xi: f64, f: F) -> Option<[f64; 3]> {
         let ends = [self.shares[0], self.shares[INCLINATION_BINS - 1]];
-        mean_over(&ends, 0.0, xi, false, f)
+        mean_over(&ends, None, xi, f)
     }
 }
 
 /// [`Slopes::mean`] over the slopes `shares` (equal shares of some length
-/// of edge), `kd` the slope at the deepest point.
+/// of edge): a rate per unit of the edge's depth with `deepest` the slope
+/// κ_d at the deepest point, a cost per unit length with `None`.
 fn mean_over<F: Fn(f64) -> [f64; 3]>(
     shares: &[f64],
-    kd: f64,
+    deepest: Option<f64>,
     xi: f64,
-    per_depth: bool,
     f: F,
 ) -> Option<[f64; 3]> {
+    let per_depth = deepest.is_some();
+    let kd = deepest.unwrap_or(0.0);
     let qd = 1.0 + kd * xi;
     if qd <= 0.0 {
         return None;
