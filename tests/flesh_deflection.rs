@@ -25,9 +25,9 @@ fn potato_with_a_long_blade() -> Scenario {
 /// runs through the flesh and stands between its jumps, falls with ξ as the
 /// surrogate's onset deflection δ*(ξ) of intact material does (for the
 /// object's equivalent section): their ratio stays within 5 % over
-/// ξ = 0.5–1.12 while both fall by about half. The MPC prices δ* only at
-/// the first fracture and where edge enters contact, not where the
-/// maximum is set.
+/// ξ = 0.5–1.12 while both fall by about half. The MPC's deformation term
+/// sums δ* at the first fracture and over the edge entering contact; it has
+/// no term for the cut's largest deflection.
 #[test]
 fn the_half_potatos_largest_deflection_follows_the_onset_deflection_of_its_flesh() {
     let s = potato_with_a_long_blade();
