@@ -7,18 +7,23 @@ use shearcut::controller_choice::ControllerChoice;
 use shearcut::object_profile::surrogate_profile;
 use shearcut::scenario::Scenario;
 use shearcut::surrogates::surrogate_for;
+use shearcut::tune::perturbation::Perturbation;
 use shearcut_controllers::mpc::{SliceModel, StageState, SurrogateModel};
 
-/// `loop-potato-whole-realtime` placed at z0 40 mm with 30 mm of blade (the
-/// held-out variant), so that constant ratios up to 1.2 fit its 25 mm.
+/// `loop-potato-whole-realtime` at z0 40 mm with 30 mm of blade, the
+/// held-out variant as `config/sweeps/mpc-heldout.toml` builds it, so that
+/// constant ratios up to 1.2 fit its 25 mm.
 fn potato_with_a_long_blade() -> Scenario {
-    let text = include_str!("../config/scenarios/loop-potato-whole-realtime.toml")
-        .replace("z0 = 0.02", "z0 = 0.04")
-        .replace(
-            "blade_budget = 0.015",
-            "blade_budget = 0.03\nmax_duration = 6.0",
-        );
-    Scenario::parse(&text, "potato-b30", "potato-b30").unwrap()
+    let variant = Perturbation {
+        z0: Some(0.04),
+        blade_budget: Some(0.03),
+        ..Perturbation::default()
+    };
+    let mut s = variant
+        .apply(&Scenario::load("loop-potato-whole-realtime").unwrap())
+        .unwrap();
+    s.controller.max_duration = 6.0;
+    s
 }
 
 /// At constant ratios the plant's largest deflection, reached as the crack
@@ -42,7 +47,7 @@ fn the_half_potatos_largest_deflection_follows_the_onset_deflection_of_its_flesh
         fractured: false,
         travel_since_fracture: 0.0,
     };
-    let mut ratios = Vec::new();
+    let mut deflections = Vec::new();
     for xi in [0.5, 0.84, 1.12] {
         let run = run_closed_loop(&s, ControllerChoice::Slice(xi)).unwrap();
         assert!(run.summary.completed, "ξ = {xi}");
@@ -54,15 +59,18 @@ fn the_half_potatos_largest_deflection_follows_the_onset_deflection_of_its_flesh
             onset * 1e3,
             plant / onset
         );
-        ratios.push((plant, onset));
+        deflections.push((plant, onset));
     }
-    let (first, last) = (ratios[0], ratios[ratios.len() - 1]);
+    let (first, last) = (deflections[0], deflections[deflections.len() - 1]);
     assert!(
         first.0 / last.0 > 1.8,
-        "the plant's falls by about half: {ratios:?}"
+        "the plant's falls by about half: {deflections:?}"
     );
-    assert!(first.1 / last.1 > 1.8, "δ* falls by about half: {ratios:?}");
-    let r: Vec<f64> = ratios.iter().map(|(p, d)| p / d).collect();
+    assert!(
+        first.1 / last.1 > 1.8,
+        "δ* falls by about half: {deflections:?}"
+    );
+    let r: Vec<f64> = deflections.iter().map(|(p, d)| p / d).collect();
     let (lo, hi) = r
         .iter()
         .fold((f64::MAX, 0.0f64), |(l, h), &x| (l.min(x), h.max(x)));
