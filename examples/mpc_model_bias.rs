@@ -2,7 +2,7 @@
 //! each scenario and variant of a sweep (default: the held-out evaluation,
 //! `config/sweeps/mpc-heldout.toml`, with each scenario as given first),
 //! run the plant in closed loop along a few motions — the MPC's own cut,
-//! and constant slice-push ratios at 0, ½ and 1 of the variant's cap (the
+//! and constant slice-push ratios at 0, ½ and 1 (or `--fractions`) of the variant's cap (the
 //! largest constant ratio its blade budget allows over its depth) — and
 //! replay each executed motion through the model the MPC plans with: the
 //! scenario's nominal surrogate ([`SurrogateModel`], as
@@ -29,8 +29,10 @@
 //! systematic; replicas move the work by about 1 %).
 //!
 //! ```sh
-//! cargo run --release --example mpc_model_bias -- [SWEEP.toml] [--jobs N]
+//! cargo run --release --example mpc_model_bias -- [SWEEP.toml] [--jobs N] [--fractions 0,0.5,1]
 //! ```
+//!
+//! `--fractions` lists the constant ratios run, as fractions of the cap.
 //!
 //! Prints the tables in markdown: the bias per object and variant (the
 //! mean over the motions), the bias per motion, and the work against the
@@ -55,7 +57,8 @@ use shearcut::tune::sweep_file::Sweep;
 use shearcut_controllers::mpc::{DepthProfile, SliceModel, StageState, SurrogateModel};
 use shearcut_sim::surrogate::{CutState, ScaleFactors, Surrogate};
 
-/// Fractions of the variant's ratio cap run at a constant ratio.
+/// Fractions of the variant's ratio cap run at a constant ratio, unless
+/// `--fractions` gives others.
 const CONSTANT_FRACTIONS: [f64; 3] = [0.0, 0.5, 1.0];
 
 /// Quarters of the target depth the biases are given over.
@@ -397,6 +400,7 @@ fn main() {
     let mut args = std::env::args().skip(1);
     let mut sweep_path = PathBuf::from("config/sweeps/mpc-heldout.toml");
     let mut threads = 2;
+    let mut fractions = CONSTANT_FRACTIONS.to_vec();
     while let Some(a) = args.next() {
         match a.as_str() {
             "--jobs" => {
@@ -405,6 +409,19 @@ fn main() {
                     .and_then(|n| n.parse().ok())
                     .filter(|n| *n >= 1)
                     .unwrap_or_else(|| fail("`--jobs` takes a number >= 1"));
+            }
+            "--fractions" => {
+                fractions = args
+                    .next()
+                    .and_then(|list| {
+                        list.split(',')
+                            .map(|f| f.trim().parse::<f64>().ok())
+                            .collect::<Option<Vec<_>>>()
+                    })
+                    .filter(|f| !f.is_empty() && f.iter().all(|x| (0.0..=1.0).contains(x)))
+                    .unwrap_or_else(|| {
+                        fail("`--fractions` takes fractions of the cap in [0, 1], comma-separated")
+                    });
             }
             other => sweep_path = PathBuf::from(other),
         }
@@ -436,11 +453,7 @@ fn main() {
                 .task;
             let cap = ratio_cap(&task, s.controller.mpc.max_slice_push_ratio);
             let mut choices = vec![ControllerChoice::Mpc];
-            choices.extend(
-                CONSTANT_FRACTIONS
-                    .iter()
-                    .map(|f| constant_choice(round3(cap * f))),
-            );
+            choices.extend(fractions.iter().map(|f| constant_choice(round3(cap * f))));
             for choice in choices {
                 jobs.push(Job {
                     object,
@@ -491,8 +504,13 @@ fn main() {
             variants[r.variant].label(),
         )
     };
+    let fraction_list = fractions
+        .iter()
+        .map(|f| f.to_string())
+        .collect::<Vec<_>>()
+        .join(", ");
     println!(
-        "# The MPC's model against the plant ({})\n\nBias = predicted / measured − 1, per cent; quarters of the target depth by the edge's depth; means over the motions (the MPC's cut and constant ratios at 0, ½ and 1 of the cap).\n",
+        "# The MPC's model against the plant ({})\n\nBias = predicted / measured − 1, per cent; quarters of the target depth by the edge's depth; means over the motions (the MPC's cut and constant ratios at {fraction_list} of the cap).\n",
         sweep_path.display()
     );
     println!(
@@ -550,7 +568,7 @@ fn main() {
         );
     }
     println!(
-        "\n## Work against the constant ratio: the plant's and the model's\n\nWork to the target depth (J, by the edge's depth) at constant ratios 0, ½ and 1 of the cap: the plant's, the model's along the plant's motion, and the planner's for that ratio from rest (its stages' work terms); the plant's work to the target by its crack front in brackets; the least of each and the saving from pressing to it: the plant's by the edge's depth and [by the crack front], the model's, the planner's.\n\n| object | variant | ratios | plant (J) | model (J) | planner (J) | best: plant [crack] / model / planner | saving: plant [crack] / model / planner |\n|---|---|---|---|---|---|---|---|"
+        "\n## Work against the constant ratio: the plant's and the model's\n\nWork to the target depth (J, by the edge's depth) at constant ratios {fraction_list} of the cap: the plant's, the model's along the plant's motion, and the planner's for that ratio from rest (its stages' work terms); the plant's work to the target by its crack front in brackets; the least of each and the saving from pressing to it: the plant's by the edge's depth and [by the crack front], the model's, the planner's.\n\n| object | variant | ratios | plant (J) | model (J) | planner (J) | best: plant [crack] / model / planner | saving: plant [crack] / model / planner |\n|---|---|---|---|---|---|---|---|"
     );
     for (object, _) in sweep.scenarios.iter().enumerate() {
         for (vi, _) in variants.iter().enumerate() {
