@@ -381,32 +381,37 @@ impl Scenario {
         Ok([hi.x - lo.x, hi.y - lo.y, hi.z - lo.z])
     }
 
-    /// Checks the object's extent (a mesh's bounding box against the
-    /// object size range, the depth against its height) and the resource
-    /// estimate against its budget.
+    /// Checks the object's extent and the resource estimate, naming
+    /// `origin` in the error ([`check_budget`](Self::check_budget)).
     fn check_extent_and_resources(&self, origin: &str) -> Result<(), ConfigError> {
-        let invalid = |setting| ConfigError::Invalid {
+        self.check_budget().map_err(|setting| ConfigError::Invalid {
             path: origin.to_string(),
             setting,
-        };
-        let extent = self.object_extent().map_err(invalid)?;
+        })
+    }
+
+    /// Checks the object's extent (a mesh's bounding box against the
+    /// object size range, the depth against its height) and the resource
+    /// estimate against its budget: what loading a scenario file checks
+    /// after resolving it, and what a scenario built from another (a
+    /// sweep's variant and controller setting) must pass too.
+    pub fn check_budget(&self) -> Result<(), InvalidSetting> {
+        let extent = self.object_extent()?;
         if self.object.nominal_extent().is_none() {
             for (axis, v) in ["x", "y", "z"].into_iter().zip(extent) {
-                OBJECT_SIZE
-                    .check(&format!("object.path (bounding box along {axis})"), v)
-                    .map_err(invalid)?;
+                OBJECT_SIZE.check(&format!("object.path (bounding box along {axis})"), v)?;
             }
             if let Some(d) = self.motion.depth
                 && d >= extent[1]
             {
-                return Err(invalid(InvalidSetting::new(
+                return Err(InvalidSetting::new(
                     "motion.depth",
                     d,
                     format!("must be below the mesh's height {} m", extent[1]),
-                )));
+                ));
             }
         }
-        self.resources(extent).check().map_err(invalid)
+        self.resources(extent).check()
     }
 
     /// Whether `shearcut simulate` cuts this scenario as one section × the
@@ -503,13 +508,7 @@ impl ScenarioFile {
             check_planner_keeps_the_clock(&self.control_loop, &self.controller)?;
         }
         let name = self.name.unwrap_or_else(|| default_name.to_string());
-        if name.is_empty() || name.contains(['/', '\\']) {
-            return Err(InvalidSetting::new(
-                "name",
-                format!("{name:?}"),
-                "must be non-empty and contain no path separators",
-            ));
-        }
+        check_name(&name)?;
         Ok(Scenario {
             name,
             description: self.description.unwrap_or_default(),
@@ -804,6 +803,19 @@ pub fn check_controller_kind(key: &str, kind: ControllerChoice) -> Result<(), In
         ControllerChoice::Force(f) => FORCE.check(&format!("{key} (force setpoint)"), f),
         ControllerChoice::Mpc | ControllerChoice::Press => Ok(()),
     }
+}
+
+/// A scenario's `name`, which names its default result directory under
+/// `runs/`: non-empty, with no path separators.
+fn check_name(name: &str) -> Result<(), InvalidSetting> {
+    if name.is_empty() || name.contains(['/', '\\']) {
+        return Err(InvalidSetting::new(
+            "name",
+            format!("{name:?}"),
+            "must be non-empty and contain no path separators",
+        ));
+    }
+    Ok(())
 }
 
 /// Looks up a preset by `name`; the error lists the allowed `names`.
@@ -1113,6 +1125,7 @@ impl WireSlabScenario {
             path: origin.clone(),
             setting,
         };
+        check_name(&s.name).map_err(invalid)?;
         s.slab.validate().map_err(|e| invalid(e.prefixed("slab")))?;
         s.sweep.validate().map_err(invalid)?;
         Ok(Some(s))

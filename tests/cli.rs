@@ -356,3 +356,27 @@ fn a_wire_slab_scenario_is_sent_to_simulate() {
         assert!(e.contains("shearcut simulate"), "{e}");
     }
 }
+
+/// A wire scenario's name, which names its result directory under `runs/`,
+/// is checked as the cutting model's is: no path separators.
+#[test]
+fn a_wire_slab_scenario_named_with_a_path_is_refused() {
+    let dir = std::env::temp_dir().join(format!("shearcut-cli-wire-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let text = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/config/scenarios/seed001-agar-wire.toml"
+    ))
+    .unwrap()
+    .replace("name = \"seed001-agar-wire\"", "name = \"../outside\"");
+    let file = dir.join("wire.toml");
+    std::fs::write(&file, text).unwrap();
+    for command in ["check", "simulate"] {
+        let o = shearcut(&[command, file.to_str().unwrap()]);
+        assert_eq!(o.status.code(), Some(2), "{command}: {}", stderr(&o));
+        let e = stderr(&o);
+        assert_eq!(e.lines().count(), 1, "{e}");
+        assert!(e.contains("name") && e.contains("path separators"), "{e}");
+    }
+    std::fs::remove_dir_all(dir).ok();
+}

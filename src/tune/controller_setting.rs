@@ -49,9 +49,10 @@ impl ControllerSetting {
 
     /// The scenario `s` run under this setting: `[controller] kind` is the
     /// choice (a grid point's ratio on `s`) and every override is set, then
-    /// the scenario is read and validated as a file would be. Errors name
-    /// the key below `controller.` (a single override's when one alone is
-    /// wrong).
+    /// the scenario is read and validated as a file would be, its object's
+    /// extent and resource budgets included ([`Scenario::check_budget`]).
+    /// Errors name the key below `controller.` (a single override's when
+    /// one alone is wrong).
     pub fn apply(&self, s: &Scenario) -> Result<Scenario, InvalidSetting> {
         let choice = match &self.grid_point {
             Some(g) => g.choice_on(s)?,
@@ -83,7 +84,9 @@ impl ControllerSetting {
                 _ => InvalidSetting::new(format!("controller.{{{}}}", keys()), "", message),
             }
         })?;
-        file.resolve(&s.name)
+        let resolved = file.resolve(&s.name)?;
+        resolved.check_budget()?;
+        Ok(resolved)
     }
 }
 

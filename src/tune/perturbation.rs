@@ -175,7 +175,9 @@ impl Perturbation {
 
     /// The scenario `base` under this variant. The MPC's surrogate is
     /// pinned to the nominal material's (see the module doc); the result is
-    /// validated again by the caller when it re-reads the scenario.
+    /// validated again, budgets included, when a controller setting is
+    /// applied to it ([`ControllerSetting::apply`](super::controller_setting::ControllerSetting::apply)),
+    /// as every sweep and `compare` job is.
     pub fn apply(&self, base: &Scenario) -> Result<Scenario, InvalidSetting> {
         let mut s = base.clone();
         if let Some(name) = &self.knife {

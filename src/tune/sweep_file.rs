@@ -268,6 +268,20 @@ impl Sweep {
             }
             scenarios.push(s);
         }
+        // The cap on the sweep's size, counted from its lists' lengths
+        // before any list is expanded: a few long grids multiply out to
+        // more points than memory holds.
+        let planned = [
+            scenarios.len(),
+            variant_count(&file),
+            setting_count(&file.controllers),
+            replicas as usize,
+        ]
+        .into_iter()
+        .fold(1usize, usize::saturating_mul);
+        if planned > MAX_JOBS {
+            return Err(invalid(too_many_jobs(planned)));
+        }
         let variants = expand_variants(&file).map_err(invalid)?;
         let settings = expand_settings(&file.controllers).map_err(invalid)?;
         // Every variant and every setting alone, on every scenario: the
@@ -314,11 +328,7 @@ impl Sweep {
         }
         let jobs = scenarios.len() * variants.len() * settings.len() * replicas as usize;
         if jobs > MAX_JOBS {
-            return Err(invalid(InvalidSetting::new(
-                "(the sweep)",
-                format!("{jobs} jobs"),
-                format!("at most {MAX_JOBS}: shrink the grids"),
-            )));
+            return Err(invalid(too_many_jobs(jobs)));
         }
         Ok(Self {
             name,
@@ -331,6 +341,75 @@ impl Sweep {
             weightings,
         })
     }
+}
+
+/// A sweep of `jobs` runs, over [`MAX_JOBS`].
+fn too_many_jobs(jobs: usize) -> InvalidSetting {
+    let count = if jobs == usize::MAX {
+        "more than 2^64 jobs".to_string()
+    } else {
+        format!("{jobs} jobs")
+    };
+    InvalidSetting::new(
+        "(the sweep)",
+        count,
+        format!("at most {MAX_JOBS}: shrink the grids"),
+    )
+}
+
+/// How many variants [`expand_variants`] makes, saturating, without making
+/// them: the listed ones, or the product of the grid's list lengths.
+fn variant_count(file: &SweepFile) -> usize {
+    if !file.variant.is_empty() {
+        return file.variant.len();
+    }
+    let Some(g) = &file.variants else { return 1 };
+    fn n<T>(v: &OneOrMany<T>) -> usize {
+        match v {
+            OneOrMany::One(_) => 1,
+            OneOrMany::Many(v) => v.len().max(1),
+        }
+    }
+    [
+        n(&g.youngs_modulus_scale),
+        n(&g.fracture_toughness_scale),
+        n(&g.friction_scale),
+        n(&g.size_scale),
+        n(&g.knife),
+        n(&g.force_noise),
+        g.force_bias.len().max(1),
+        n(&g.seed),
+        n(&g.z0),
+        n(&g.blade_budget),
+    ]
+    .into_iter()
+    .fold(1, usize::saturating_mul)
+}
+
+/// How many settings [`expand_settings`] makes, saturating, without making
+/// them: per entry, its kinds (or a `best-constant` grid's points) times
+/// its sets or the product of its grid's list lengths.
+fn setting_count(entries: &[ControllerSweep]) -> usize {
+    entries
+        .iter()
+        .map(|entry| {
+            let points = if entry.sets.is_empty() {
+                grid_axes(&entry.grid)
+                    .iter()
+                    .map(|(_, values)| values.len().max(1))
+                    .fold(1, usize::saturating_mul)
+            } else {
+                entry.sets.len()
+            };
+            let kinds = entry.kind.to_vec();
+            let per_point = if kinds.iter().any(|k| k == BEST_CONSTANT_KIND) {
+                entry.points.unwrap_or(SEARCH_POINTS)
+            } else {
+                kinds.len()
+            };
+            per_point.saturating_mul(points)
+        })
+        .fold(0, usize::saturating_add)
 }
 
 /// The variants: the listed ones, the grid's cross product, or the
@@ -696,6 +775,86 @@ mod tests {
             ]
         );
         assert_eq!(s.weightings.len(), 5);
+    }
+
+    #[test]
+    fn the_counts_before_expanding_are_the_expanded_lengths() {
+        for text in [
+            SWEEP,
+            r#"
+            scenarios = ["loop-potato-cuboid"]
+            [[variant]]
+            size_scale = 0.9
+            [[variant]]
+            z0 = 0.03
+            [[controllers]]
+            kind = "best-constant"
+            points = 4
+            sets = [{ max_duration = 6.0 }, { max_duration = 5.0 }]
+            [[controllers]]
+            kind = ["mpc", "press"]
+            grid = { max_duration = [4.0, 5.0, 6.0] }
+        "#,
+        ] {
+            let file: SweepFile = toml::from_str(text).unwrap();
+            let s = parse(text).unwrap();
+            assert_eq!(variant_count(&file), s.variants.len());
+            assert_eq!(setting_count(&file.controllers), s.settings.len());
+        }
+    }
+
+    #[test]
+    fn a_grid_too_large_to_expand_is_refused_before_it_is_expanded() {
+        // 12⁸ ≈ 4.3e8 settings times 12⁴ variants: far more than memory
+        // holds if expanded first.
+        let twelve = "[0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0, 1.1, 1.2]";
+        let text = format!(
+            r#"
+            scenarios = ["loop-potato-cuboid"]
+            [variants]
+            youngs_modulus_scale = {twelve}
+            fracture_toughness_scale = {twelve}
+            friction_scale = {twelve}
+            size_scale = {twelve}
+            [[controllers]]
+            kind = "mpc"
+            [controllers.grid.mpc]
+            time_weight = {twelve}
+            smoothness_weight = {twelve}
+            deformation_weight = {twelve}
+            trust_region = {twelve}
+            min_saving = {twelve}
+            forgetting = {twelve}
+            force_penalty = {twelve}
+            max_slice_push_ratio = {twelve}
+        "#
+        );
+        let e = parse(&text).unwrap_err().to_string();
+        assert!(
+            e.contains("(the sweep)") && e.contains("shrink the grids"),
+            "{e}"
+        );
+        assert!(!e.contains('\n'), "{e}");
+    }
+
+    #[test]
+    fn a_setting_over_the_scenario_budgets_is_refused_as_the_file_would_be() {
+        // An hour of closed loop at 1 kHz: 3.6e6 rows of series, over the
+        // budget a scenario file with this duration is refused for.
+        let e = parse(
+            r#"
+            scenarios = ["loop-potato-cuboid"]
+            [[controllers]]
+            kind = "press"
+            grid = { max_duration = 3600.0 }
+        "#,
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            e.contains("controllers[0]") && e.contains("resources.series"),
+            "{e}"
+        );
     }
 
     #[test]
