@@ -126,6 +126,66 @@ pub struct JobList {
     pub catalog: JobCatalog,
 }
 
+impl JobCatalog {
+    /// Checks what the tables and `tune merge` rely on in a catalogue read
+    /// back from `jobs.json` (a file anyone may edit): the sweep's name is
+    /// one a sweep file allows, every job's index is its place, its
+    /// scenario, setting and variant index into the catalogue's lists, its
+    /// cells match the columns, and its id is a job id (16 hexadecimal
+    /// digits: it names the job's row file). The error says which job and
+    /// what is wrong.
+    pub fn check(&self) -> Result<(), String> {
+        let name_ok = |n: &str| {
+            !n.is_empty()
+                && n.chars()
+                    .all(|c| c.is_ascii_alphanumeric() || "-_.".contains(c))
+        };
+        if !name_ok(&self.sweep) {
+            return Err(format!(
+                "sweep {:?}: a name of letters, digits, '-', '_', '.'",
+                self.sweep
+            ));
+        }
+        if self.settings.len() != self.scenarios.len() {
+            return Err(format!(
+                "{} settings lists for {} scenarios",
+                self.settings.len(),
+                self.scenarios.len()
+            ));
+        }
+        for (i, j) in self.jobs.iter().enumerate() {
+            let wrong = |what: String| Err(format!("job {i}: {what}"));
+            if j.index != i {
+                return wrong(format!("index {} at place {i}", j.index));
+            }
+            if j.id.len() != 16 || !j.id.chars().all(|c| c.is_ascii_hexdigit()) {
+                return wrong(format!("id {:?} is not 16 hexadecimal digits", j.id));
+            }
+            let Some(settings) = self.settings.get(j.scenario) else {
+                return wrong(format!(
+                    "scenario {} of {}",
+                    j.scenario,
+                    self.scenarios.len()
+                ));
+            };
+            if j.setting >= settings.len() {
+                return wrong(format!("setting {} of {}", j.setting, settings.len()));
+            }
+            if j.variant >= self.variants.len().max(1) {
+                return wrong(format!("variant {} of {}", j.variant, self.variants.len()));
+            }
+            if j.cells.len() != self.setting_columns.len() {
+                return wrong(format!(
+                    "{} cells for {} columns",
+                    j.cells.len(),
+                    self.setting_columns.len()
+                ));
+            }
+        }
+        Ok(())
+    }
+}
+
 impl JobList {
     /// Expands `sweep` into its jobs; `origin` names the sweep in errors.
     pub fn new(sweep: &Sweep, origin: &str) -> Result<Self, ConfigError> {
@@ -277,6 +337,31 @@ mod tests {
         [[controllers]]
         kind = "press"
     "#;
+
+    #[test]
+    fn a_catalogue_read_back_is_checked_before_anything_indexes_with_it() {
+        let catalog = list_of(SWEEP).catalog;
+        assert_eq!(catalog.check(), Ok(()));
+        let broken = |edit: &dyn Fn(&mut JobCatalog)| {
+            let mut c = catalog.clone();
+            edit(&mut c);
+            c.check().unwrap_err()
+        };
+        let e = broken(&|c| c.jobs[3].setting = 7);
+        assert!(e.starts_with("job 3: setting 7 of 3"), "{e}");
+        let e = broken(&|c| c.jobs[0].scenario = 2);
+        assert!(e.starts_with("job 0: scenario 2 of 2"), "{e}");
+        let e = broken(&|c| c.jobs[1].variant = 5);
+        assert!(e.starts_with("job 1: variant 5 of 2"), "{e}");
+        let e = broken(&|c| c.jobs[2].id = "../../outside".to_string());
+        assert!(e.contains("not 16 hexadecimal digits"), "{e}");
+        let e = broken(&|c| c.jobs[2].index = 9);
+        assert!(e.starts_with("job 2: index 9"), "{e}");
+        let e = broken(&|c| c.jobs[4].cells.pop().map_or((), drop));
+        assert!(e.contains("cells for"), "{e}");
+        let e = broken(&|c| c.sweep = "../x/y".to_string());
+        assert!(e.starts_with("sweep"), "{e}");
+    }
 
     #[test]
     fn a_grid_point_runs_its_share_of_each_variants_cap() {

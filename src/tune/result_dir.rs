@@ -54,6 +54,9 @@ pub fn read_catalog(dir: &Path) -> Result<(JobCatalog, String), ConfigError> {
         .map_err(|e| not_a_result(format!("{}: {e}", path.display())))?;
     let catalog: JobCatalog = serde_json::from_str(&text)
         .map_err(|e| not_a_result(format!("{}: {e}", path.display())))?;
+    catalog
+        .check()
+        .map_err(|e| not_a_result(format!("{}: {e}", path.display())))?;
     let sweep = std::fs::read_to_string(dir.join("sweep.toml")).unwrap_or_default();
     Ok((catalog, sweep))
 }
