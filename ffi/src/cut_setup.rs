@@ -13,7 +13,7 @@ use shearcut::closed_loop::LoopCut;
 use shearcut::closed_loop::LoopSetup;
 use shearcut::controller_choice::ControllerChoice;
 use shearcut::error::RunError;
-use shearcut::scenario::Scenario;
+use shearcut::scenario::{Scenario, check_controller_kind};
 use shearcut_controllers::controller::{Controller, CutTask};
 
 use crate::simulated_plant::SimulatedPlant;
@@ -64,6 +64,7 @@ impl CutSetup {
         let choice = match controller {
             Some(text) => text
                 .parse::<ControllerChoice>()
+                .and_then(|c| check_controller_kind("controller", c).map(|()| c))
                 .map_err(|e| EmbedError::Config(e.to_string()))?,
             None => scenario.controller.kind,
         };

@@ -60,6 +60,17 @@ fn a_bad_controller_is_a_config_status_listing_the_choices() {
         ShearcutStatus::Config
     );
     assert!(last_error().contains("slice:XI"), "{}", last_error());
+    // A ratio or setpoint the command line refuses is refused here too.
+    for (text, named) in [
+        ("slice:1e6", "slice ratio"),
+        ("force:1e9", "force setpoint"),
+    ] {
+        assert_eq!(
+            setup("loop-potato-cuboid", Some(text)).unwrap_err(),
+            ShearcutStatus::Config
+        );
+        assert!(last_error().contains(named), "{}", last_error());
+    }
 }
 
 #[test]

@@ -9,7 +9,7 @@ use shearcut::closed_loop::ControlSample;
 use shearcut::closed_loop::run_closed_loop;
 use shearcut::controller_choice::ControllerChoice;
 use shearcut::cut_record::CutSample;
-use shearcut::scenario::Scenario as ScenarioFile;
+use shearcut::scenario::{Scenario as ScenarioFile, check_controller_kind};
 use shearcut_ffi::CutSetup;
 
 use crate::errors::to_py;
@@ -60,6 +60,7 @@ pub(crate) fn run<'py>(
             Some(c) => (
                 s.setup.scenario().clone(),
                 c.parse::<ControllerChoice>()
+                    .and_then(|c| check_controller_kind("controller", c).map(|()| c))
                     .map_err(|e| PyValueError::new_err(e.to_string()))?,
             ),
             None => (s.setup.scenario().clone(), s.setup.choice()),

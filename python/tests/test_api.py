@@ -21,6 +21,13 @@ def test_an_unknown_controller_is_a_value_error_listing_the_choices():
         shearcut.Scenario(CUBOID, controller="pid")
 
 
+def test_a_ratio_or_setpoint_out_of_range_is_a_value_error_naming_it():
+    with pytest.raises(ValueError, match="slice ratio"):
+        shearcut.Scenario(CUBOID, controller="slice:1e6")
+    with pytest.raises(ValueError, match="force setpoint"):
+        shearcut.run(shearcut.Scenario(CUBOID), controller="force:1e9")
+
+
 def test_a_reading_refuses_an_unknown_status():
     with pytest.raises(ValueError, match="jerk_limit"):
         shearcut.Reading(0.0, (0, 0, 0), (0, 0, 0), (0,) * 6, status="tired")
