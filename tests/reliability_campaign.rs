@@ -225,6 +225,26 @@ fn issue_27_sensor_rate_1e300_is_refused() {
 }
 
 #[test]
+fn an_mpc_iteration_cap_past_a_time_budget_is_refused() {
+    check_refuses(
+        "iterations",
+        &with_table(LOOP_CUBOID, "[controller.mpc]\nmax_iterations = 4000000000"),
+        &[
+            "`controller.mpc.max_iterations` = 4000000000",
+            "in 1..=1000",
+        ],
+    );
+    check_refuses(
+        "reversals",
+        &with_table(LOOP_CUBOID, "[controller.mpc]\nmax_reversals = 4000000000"),
+        &[
+            "`controller.mpc.max_reversals` = 4000000000",
+            "in 0..=10000",
+        ],
+    );
+}
+
+#[test]
 fn issue_27_arm_jerk_1e300_is_refused() {
     check_refuses(
         "jerk",

@@ -9,6 +9,15 @@ use crate::planner::PlannerSettings;
 /// Most depth stages a plan may have ([`MpcSettings::stages`]).
 pub const MAX_STAGES: usize = 200;
 
+/// Most interior-point iterations a plan may take
+/// ([`MpcSettings::max_iterations`]): the iteration cap is the plan's
+/// deterministic time budget, and a bound keeps it one.
+pub const MAX_ITERATIONS: u32 = 1000;
+
+/// Most reversals of the stroke a cut may make
+/// ([`MpcSettings::max_reversals`]).
+pub const MAX_REVERSALS: u32 = 10_000;
+
 /// Planning rate, Hz: at most the servo rate of an arm's loop.
 const RATE: PhysicalRange = PhysicalRange::new(0.1, 1000.0, "Hz");
 /// Largest planned slice-push ratio and the trust region (> 0, at most the
@@ -194,8 +203,19 @@ impl MpcSettings {
                 "in (0, 1]",
             ));
         }
-        if self.max_iterations == 0 {
-            return Err(InvalidSetting::new("max_iterations", 0, "at least 1"));
+        if !(1..=MAX_ITERATIONS).contains(&self.max_iterations) {
+            return Err(InvalidSetting::new(
+                "max_iterations",
+                self.max_iterations,
+                format!("in 1..={MAX_ITERATIONS} (the plan's time budget)"),
+            ));
+        }
+        if self.max_reversals > MAX_REVERSALS {
+            return Err(InvalidSetting::new(
+                "max_reversals",
+                self.max_reversals,
+                format!("in 0..={MAX_REVERSALS}"),
+            ));
         }
         if let Some(f) = self.max_force {
             MAX_FORCE.check("max_force", f)?;
