@@ -805,14 +805,20 @@ pub fn check_controller_kind(key: &str, kind: ControllerChoice) -> Result<(), In
     }
 }
 
+/// Longest scenario name, bytes of UTF-8: it names result directories,
+/// with a time stamp or a sweep's prefix added, and file names are at most
+/// 255 bytes.
+pub const MAX_NAME_BYTES: usize = 100;
+
 /// A scenario's `name`, which names its default result directory under
-/// `runs/`: non-empty, with no path separators.
+/// `runs/`: non-empty, at most [`MAX_NAME_BYTES`] long, with no path
+/// separators.
 fn check_name(name: &str) -> Result<(), InvalidSetting> {
-    if name.is_empty() || name.contains(['/', '\\']) {
+    if name.is_empty() || name.len() > MAX_NAME_BYTES || name.contains(['/', '\\']) {
         return Err(InvalidSetting::new(
             "name",
             format!("{name:?}"),
-            "must be non-empty and contain no path separators",
+            format!("must be non-empty, at most {MAX_NAME_BYTES} bytes, with no path separators"),
         ));
     }
     Ok(())

@@ -137,6 +137,24 @@ fn trajectory_cases_from_jsonl() {
     assert!(lines[1].get("error").is_some(), "{}", lines[1]);
     let missing = shearcut(&["trajectory", "--cases", "/nonexistent.jsonl"]);
     assert_eq!(missing.status.code(), Some(2));
+    // The cases file as its own output is refused before it is emptied.
+    let before = std::fs::read(&cases).unwrap();
+    let onto = dir.join(".").join("cases.jsonl");
+    let o = shearcut(&[
+        "trajectory",
+        "--cases",
+        cases.to_str().unwrap(),
+        "--out",
+        onto.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert_eq!(stderr(&o).lines().count(), 1, "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("a file other than --cases"),
+        "{}",
+        stderr(&o)
+    );
+    assert_eq!(std::fs::read(&cases).unwrap(), before);
     std::fs::remove_dir_all(dir).ok();
 }
 
@@ -357,10 +375,11 @@ fn a_wire_slab_scenario_is_sent_to_simulate() {
     }
 }
 
-/// A wire scenario's name, which names its result directory under `runs/`,
-/// is checked as the cutting model's is: no path separators.
+/// A scenario's name names its result directory under `runs/`: a wire
+/// scenario's is checked as the cutting model's is (no path separators),
+/// and neither may be longer than a directory's name allows.
 #[test]
-fn a_wire_slab_scenario_named_with_a_path_is_refused() {
+fn a_scenario_named_with_a_path_or_too_long_a_name_is_refused() {
     let dir = std::env::temp_dir().join(format!("shearcut-cli-wire-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let text = std::fs::read_to_string(concat!(
@@ -378,5 +397,20 @@ fn a_wire_slab_scenario_named_with_a_path_is_refused() {
         assert_eq!(e.lines().count(), 1, "{e}");
         assert!(e.contains("name") && e.contains("path separators"), "{e}");
     }
+    // A name too long for a directory's name is refused before a run.
+    let long = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/config/scenarios/loop-potato-cuboid.toml"
+    ))
+    .unwrap()
+    .replace(
+        "name = \"loop-potato-cuboid\"",
+        &format!("name = \"{}\"", "a".repeat(300)),
+    );
+    let file = dir.join("long.toml");
+    std::fs::write(&file, long).unwrap();
+    let o = shearcut(&["check", file.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    assert!(stderr(&o).contains("at most 100 bytes"), "{}", stderr(&o));
     std::fs::remove_dir_all(dir).ok();
 }

@@ -22,6 +22,15 @@ pub fn run(cases: &Path, out: Option<&Path>) -> Result<(), RunError> {
     };
     let report = match out {
         Some(path) => {
+            if same_file(path, cases) {
+                return Err(RunError::Config(ConfigError::Argument(
+                    shearcut_sim::InvalidSetting::new(
+                        "--out",
+                        path.display(),
+                        "a file other than --cases (writing would empty the cases before they are read)",
+                    ),
+                )));
+            }
             let file = std::fs::File::create(path).map_err(|e| {
                 unusable_output("--out", path, path, &e, "a file this process can create")
             })?;
@@ -46,6 +55,20 @@ pub fn run(cases: &Path, out: Option<&Path>) -> Result<(), RunError> {
     };
     report_counts(&report);
     Ok(())
+}
+
+/// Whether `a` and `b` name one existing file (by any path or link to it).
+fn same_file(a: &Path, b: &Path) -> bool {
+    match (std::fs::metadata(a), std::fs::metadata(b)) {
+        #[cfg(unix)]
+        (Ok(x), Ok(y)) => {
+            use std::os::unix::fs::MetadataExt;
+            (x.dev(), x.ino()) == (y.dev(), y.ino())
+        }
+        #[cfg(not(unix))]
+        (Ok(_), Ok(_)) => std::fs::canonicalize(a).ok() == std::fs::canonicalize(b).ok(),
+        _ => false,
+    }
 }
 
 /// The counts line on stderr (a closed stderr is ignored).

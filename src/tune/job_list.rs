@@ -135,12 +135,7 @@ impl JobCatalog {
     /// digits: it names the job's row file). The error says which job and
     /// what is wrong.
     pub fn check(&self) -> Result<(), String> {
-        let name_ok = |n: &str| {
-            !n.is_empty()
-                && n.chars()
-                    .all(|c| c.is_ascii_alphanumeric() || "-_.".contains(c))
-        };
-        if !name_ok(&self.sweep) {
+        if !crate::tune::sweep_file::is_plain_name(&self.sweep) {
             return Err(format!(
                 "sweep {:?}: a name of letters, digits, '-', '_', '.'",
                 self.sweep

@@ -14,6 +14,8 @@ use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 
+use shearcut_sim::capped_read::read_capped_text;
+
 use crate::closed_loop::RunOutput;
 use crate::error::RunError;
 
@@ -269,13 +271,18 @@ impl JobRow {
     }
 
     /// Reads job `id`'s row under `dir`; `None` if there is none, or it is
-    /// unreadable or of another job (it is then run again).
+    /// unreadable (not a regular file, over [`ROW_BYTES`]) or of another
+    /// job (it is then run again).
     pub fn read(dir: &Path, id: &str) -> Option<Self> {
-        let text = std::fs::read_to_string(Self::path(dir, id)).ok()?;
+        let text = read_capped_text(&Self::path(dir, id), ROW_BYTES).ok()?;
         let row: Self = serde_json::from_str(&text).ok()?;
         (row.id == id).then_some(row)
     }
 }
+
+/// Largest row file read back, bytes: a row is a few kilobytes; a device,
+/// a pipe or a file grown past this is not a row.
+pub const ROW_BYTES: u64 = 1 << 20;
 
 /// An `f64` in JSON: a number when finite, else the string `NaN`, `inf`
 /// or `-inf` (JSON has no such numbers; a run that could not be set up has
@@ -337,6 +344,13 @@ mod tests {
         assert!(back.outcome.max_deformation_m.is_nan());
         assert_eq!(back.timing, row.timing);
         assert!(JobRow::read(&dir, "other").is_none());
+        // An endless file in a row's place is not read whole: no row.
+        #[cfg(unix)]
+        {
+            std::os::unix::fs::symlink("/dev/zero", JobRow::path(&dir, "endless")).unwrap();
+            assert!(JobRow::read(&dir, "endless").is_none());
+            std::fs::remove_file(JobRow::path(&dir, "endless")).unwrap();
+        }
 
         // A row that cannot be put in place (here a directory holds its
         // name, as a full device fails a write) is an error and leaves no

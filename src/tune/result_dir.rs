@@ -10,11 +10,17 @@
 use std::path::Path;
 
 use shearcut_sim::InvalidSetting;
+use shearcut_sim::capped_read::read_capped_text;
 
 use crate::error::{ConfigError, RunError};
 use crate::tune::job_list::JobCatalog;
 use crate::tune::job_outcome::JobRow;
 use crate::tune::result_table::write_tables;
+
+/// Largest `jobs.json` read back, bytes: the catalogue of the largest
+/// sweep allowed ([`crate::tune::sweep_file::MAX_JOBS`] jobs) is well
+/// below it; a device or a pipe in its place is refused.
+pub const CATALOG_BYTES: u64 = 256 << 20;
 
 /// Writes `sweep.toml` and `jobs.json` under `dir` (created if needed).
 ///
@@ -50,14 +56,18 @@ pub fn read_catalog(dir: &Path) -> Result<(JobCatalog, String), ConfigError> {
         ))
     };
     let path = dir.join("jobs.json");
-    let text = std::fs::read_to_string(&path)
+    let text = read_capped_text(&path, CATALOG_BYTES)
         .map_err(|e| not_a_result(format!("{}: {e}", path.display())))?;
     let catalog: JobCatalog = serde_json::from_str(&text)
         .map_err(|e| not_a_result(format!("{}: {e}", path.display())))?;
     catalog
         .check()
         .map_err(|e| not_a_result(format!("{}: {e}", path.display())))?;
-    let sweep = std::fs::read_to_string(dir.join("sweep.toml")).unwrap_or_default();
+    let sweep = read_capped_text(
+        &dir.join("sweep.toml"),
+        shearcut_sim::resource_budget::CONFIG_FILE_BYTES,
+    )
+    .unwrap_or_default();
     Ok((catalog, sweep))
 }
 

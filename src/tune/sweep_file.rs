@@ -215,15 +215,13 @@ impl Sweep {
             refuse_empty_lists(&table).map_err(invalid)?;
         }
         let name = file.name.clone().unwrap_or_else(|| stem.to_string());
-        if name.is_empty()
-            || !name
-                .chars()
-                .all(|c| c.is_ascii_alphanumeric() || "-_.".contains(c))
-        {
+        if !is_plain_name(&name) {
             return Err(invalid(InvalidSetting::new(
                 "name",
                 format!("{name:?}"),
-                "must be non-empty: letters, digits, '-', '_', '.'",
+                format!(
+                    "must be non-empty, at most {MAX_NAME_CHARS} of letters, digits, '-', '_', '.'"
+                ),
             )));
         }
         let replicas = file.replicas.unwrap_or(1);
@@ -323,6 +321,14 @@ impl Sweep {
             )));
         }
         for (name, w) in &weightings {
+            // A weighting names its recommendation's file.
+            if !is_plain_name(name) {
+                return Err(invalid(InvalidSetting::new(
+                    "weightings",
+                    format!("{name:?}"),
+                    format!("names of at most {MAX_NAME_CHARS} letters, digits, '-', '_', '.'"),
+                )));
+            }
             w.validate()
                 .map_err(|e| invalid(e.prefixed(&format!("weightings.{name}"))))?;
         }
@@ -342,6 +348,21 @@ impl Sweep {
         })
     }
 }
+
+/// Whether `name` may name a sweep or a weighting, which name files and
+/// directories: non-empty, of ASCII letters, digits, '-', '_' and '.', and
+/// at most [`MAX_NAME_CHARS`] long.
+pub(crate) fn is_plain_name(name: &str) -> bool {
+    !name.is_empty()
+        && name.len() <= MAX_NAME_CHARS
+        && name
+            .chars()
+            .all(|c| c.is_ascii_alphanumeric() || "-_.".contains(c))
+}
+
+/// Longest sweep or weighting name, characters (file names are at most
+/// 255 bytes; the result files add a prefix and a suffix).
+pub const MAX_NAME_CHARS: usize = 100;
 
 /// A sweep of `jobs` runs, over [`MAX_JOBS`].
 fn too_many_jobs(jobs: usize) -> InvalidSetting {
@@ -1006,6 +1027,11 @@ mod tests {
         assert!(e.contains("`controllers` = []"), "{e}");
         let e = error(&(SWEEP.to_string() + "[weightings.odd]\nwork = -1.0\n"));
         assert!(e.contains("`weightings.odd.work` = -1"), "{e}");
+        // A weighting names its recommendation's file.
+        let e = error(&(SWEEP.to_string() + "[weightings.\"a/b\"]\nwork = 1.0\n"));
+        assert!(e.contains("`weightings` = \"a/b\": names of"), "{e}");
+        let e = error(&format!("name = \"{}\"\n{SWEEP}", "a".repeat(101)));
+        assert!(e.contains("`name` = ") && e.contains("at most 100"), "{e}");
         let e = error(&SWEEP.replace(
             "kind = [\"press\", \"slice:0.5\"]",
             "kind = [\"press\", \"press\"]",
