@@ -8,7 +8,7 @@ use shearcut_sim::InvalidSetting;
 use crate::controller_choice::ControllerChoice;
 use crate::scenario::{Scenario, ScenarioFile};
 use crate::tune::constant_grid::ConstantGridPoint;
-use crate::tune::perturbation::float_cell;
+use crate::tune::perturbation::{check_on_edge, float_cell};
 
 /// A controller with settings: what a row of the results is "a setting" of.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -86,6 +86,14 @@ impl ControllerSetting {
         })?;
         let resolved = file.resolve(&s.name)?;
         resolved.check_budget()?;
+        // A blade budget set here moves the object along the edge as a
+        // variant's does: it must stay on the edge the same way.
+        if self.overrides.iter().any(|(k, _)| k == "blade_budget") {
+            check_on_edge(&resolved).map_err(|e| InvalidSetting {
+                key: "z0 (with controller.blade_budget)".into(),
+                ..e
+            })?;
+        }
         Ok(resolved)
     }
 }

@@ -302,7 +302,7 @@ impl Perturbation {
 /// L long along the edge, moves towards the heel by up to the blade budget
 /// B; z0 ∈ [B, edge length − L] keeps it between heel and tip throughout.
 /// The error's key is `z0` (the caller renames it), its value z0, m.
-fn check_on_edge(s: &Scenario) -> Result<(), InvalidSetting> {
+pub(crate) fn check_on_edge(s: &Scenario) -> Result<(), InvalidSetting> {
     let z0 = s.motion.z0.first().copied().unwrap_or(0.0);
     let knife = Knife::new(&s.knife).map_err(|e| e.prefixed("knife"))?;
     let mesh = s

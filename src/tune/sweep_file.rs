@@ -213,6 +213,7 @@ impl Sweep {
         };
         if let Ok(table) = toml::from_str::<toml::Table>(text) {
             refuse_empty_lists(&table).map_err(invalid)?;
+            refuse_bias_lengths(&table).map_err(invalid)?;
         }
         let name = file.name.clone().unwrap_or_else(|| stem.to_string());
         if !is_plain_name(&name) {
@@ -656,6 +657,37 @@ fn refuse_empty_lists(table: &toml::Table) -> Result<(), InvalidSetting> {
     Ok(())
 }
 
+/// A force bias is three components, [fx, fy, fz]: a longer list would
+/// be read as its first three (as a scenario's `force_bias` is refused,
+/// a sweep's is).
+fn refuse_bias_lengths(table: &toml::Table) -> Result<(), InvalidSetting> {
+    let refuse = |key: String, v: &toml::Value| {
+        Err(InvalidSetting::new(
+            key,
+            v,
+            "must be three components [fx, fy, fz], N",
+        ))
+    };
+    let grid = table
+        .get("variants")
+        .and_then(|v| v.get("force_bias"))
+        .and_then(toml::Value::as_array);
+    for (i, bias) in grid.into_iter().flatten().enumerate() {
+        if bias.as_array().is_some_and(|b| b.len() != 3) {
+            return refuse(format!("variants.force_bias[{i}]"), bias);
+        }
+    }
+    let listed = table.get("variant").and_then(toml::Value::as_array);
+    for (i, v) in listed.into_iter().flatten().enumerate() {
+        if let Some(bias) = v.get("force_bias")
+            && bias.as_array().is_some_and(|b| b.len() != 3)
+        {
+            return refuse(format!("variant[{i}].force_bias"), bias);
+        }
+    }
+    Ok(())
+}
+
 /// The sets of keys an entry (index `i`) lists: its grid's cross product,
 /// or its sets (not both); one empty set for neither.
 fn override_points(
@@ -1027,6 +1059,28 @@ mod tests {
         assert!(e.contains("`controllers` = []"), "{e}");
         let e = error(&(SWEEP.to_string() + "[weightings.odd]\nwork = -1.0\n"));
         assert!(e.contains("`weightings.odd.work` = -1"), "{e}");
+        for bias in [
+            "[variants]\nforce_bias = [[1.0, 2.0, 3.0, 4.0]]",
+            "[[variant]]\nforce_bias = [1.0, 2.0, 3.0, 4.0]",
+        ] {
+            let text = format!(
+                "scenarios = [\"loop-potato-cuboid\"]\n[[controllers]]\nkind = \"press\"\n{bias}\n"
+            );
+            let e = error(&text);
+            assert!(
+                e.contains("force_bias") && e.contains("three components"),
+                "{e}"
+            );
+        }
+        // A blade budget from a controller's grid keeps the object on the
+        // edge as a variant's does.
+        let e = error(
+            "scenarios = [\"loop-potato-whole\"]\n[variants]\nz0 = 0.02\n[[controllers]]\nkind = \"slice:1.5\"\ngrid = { blade_budget = 0.03 }\n",
+        );
+        assert!(
+            e.contains("z0 (with controller.blade_budget)") && e.contains("stays on the"),
+            "{e}"
+        );
         // A weighting names its recommendation's file.
         let e = error(&(SWEEP.to_string() + "[weightings.\"a/b\"]\nwork = 1.0\n"));
         assert!(e.contains("`weightings` = \"a/b\": names of"), "{e}");
