@@ -624,6 +624,10 @@ impl KnifeSpec {
     }
 }
 
+/// Shallowest target depth, m: a tenth of a millimetre (a shallower
+/// target is no cut).
+pub const MIN_DEPTH: f64 = 1e-4;
+
 impl MotionSettings {
     /// Checks speed, ratios, z₀, step and depth against their physical
     /// ranges, an object of height `object_height` (when known before
@@ -648,11 +652,13 @@ impl MotionSettings {
         SLICE_PUSH_RATIO.check_each("slice_push_ratios", &self.slice_push_ratios)?;
         EDGE_OFFSET.check_each("z0", &self.z0)?;
         let (nx, nz) = (self.slice_push_ratios.len(), self.z0.len());
-        if nz == 0 || (nx != nz && nx != 1 && nz != 1) {
+        if nz == 0 || nz > MAX_CUTS as usize || (nx != nz && nx != 1 && nz != 1) {
             return Err(InvalidSetting::new(
                 "z0",
                 format!("{nz} value(s)"),
-                format!("must be one value or as many as slice_push_ratios ({nx})"),
+                format!(
+                    "must be one value, as many as slice_push_ratios ({nx}), or up to {MAX_CUTS} with one ratio"
+                ),
             ));
         }
         MOTION_STEP
@@ -660,11 +666,11 @@ impl MotionSettings {
             .check("step", self.step)?;
         if let Some(d) = self.depth {
             let h = object_height.unwrap_or(OBJECT_SIZE.max);
-            if !(d.is_finite() && d > 0.0 && d < h) {
+            if !(d.is_finite() && d >= MIN_DEPTH && d < h) {
                 return Err(InvalidSetting::new(
                     "depth",
                     d,
-                    format!("must be in (0, {h}) m, the object's height"),
+                    format!("must be in [{MIN_DEPTH}, {h}) m, up to the object's height"),
                 ));
             }
         }

@@ -225,6 +225,15 @@ fn issue_27_sensor_rate_1e300_is_refused() {
 }
 
 #[test]
+fn a_blade_table_given_with_a_wire_is_checked_too() {
+    check_refuses(
+        "wire-blade",
+        &with_table(AGAR_SECTION, "[knife.blade]\nthickness = nan"),
+        &["`knife.blade.thickness` = NaN"],
+    );
+}
+
+#[test]
 fn an_mpc_iteration_cap_past_a_time_budget_is_refused() {
     check_refuses(
         "iterations",

@@ -147,9 +147,10 @@ impl KnifeSettings {
     /// Checks every field; the error names the key (e.g. `edge.length`).
     pub fn validate(&self) -> Result<(), InvalidSetting> {
         self.edge.validate().map_err(|e| e.prefixed("edge"))?;
-        if !matches!(self.edge, EdgeShape::Wire { .. }) {
-            self.blade.validate().map_err(|e| e.prefixed("blade"))?;
-        }
+        // A wire's section is its circle (`Knife::new`), not this blade;
+        // the table is checked all the same, so that no value it holds is
+        // out of range unseen.
+        self.blade.validate().map_err(|e| e.prefixed("blade"))?;
         KNIFE_COORDINATE.check_each("sensor.position", &self.sensor.position)
     }
 }
