@@ -32,7 +32,8 @@
 //! cargo run --release --example mpc_model_bias -- [SWEEP.toml] [--jobs N] [--fractions 0,0.5,1]
 //! ```
 //!
-//! `--fractions` lists the constant ratios run, as fractions of the cap.
+//! `--fractions` lists the constant ratios run, as fractions of the cap,
+//! pressing (0) first: the savings are from it.
 //!
 //! Prints the tables in markdown: the bias per object and variant (the
 //! mean over the motions), the bias per motion, and the work against the
@@ -418,9 +419,9 @@ fn main() {
                             .map(|f| f.trim().parse::<f64>().ok())
                             .collect::<Option<Vec<_>>>()
                     })
-                    .filter(|f| !f.is_empty() && f.iter().all(|x| (0.0..=1.0).contains(x)))
+                    .filter(|f| f.first() == Some(&0.0) && f.iter().all(|x| (0.0..=1.0).contains(x)))
                     .unwrap_or_else(|| {
-                        fail("`--fractions` takes fractions of the cap in [0, 1], comma-separated")
+                        fail("`--fractions` takes fractions of the cap in [0, 1], comma-separated, pressing (0) first")
                     });
             }
             other => sweep_path = PathBuf::from(other),

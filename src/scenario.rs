@@ -14,7 +14,7 @@
 //! (`shearcut_sim::resource_budget`). A scenario file is read with a size
 //! cap and only as UTF-8 TOML; a mesh it names is read and checked too.
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 use shearcut_plant::PlantSettings;
@@ -368,9 +368,24 @@ impl Scenario {
     }
 
     /// The object's bounding-box extent [x, y, z], m: from the shape, or
-    /// read from its mesh file.
+    /// read from its mesh file (once per path and process: a sweep checks
+    /// every job's scenario, [`check_budget`](Self::check_budget), and a
+    /// variant cannot rescale a mesh).
     pub fn object_extent(&self) -> Result<[f64; 3], InvalidSetting> {
+        static MESH_EXTENTS: std::sync::Mutex<Vec<(PathBuf, [f64; 3])>> =
+            std::sync::Mutex::new(Vec::new());
         if let Some(e) = self.object.nominal_extent() {
+            return Ok(e);
+        }
+        let path = match &self.object {
+            ObjectShape::Mesh { path } => Some(path.clone()),
+            _ => None,
+        };
+        let known = |p: &PathBuf| {
+            let extents = MESH_EXTENTS.lock().unwrap_or_else(|e| e.into_inner());
+            extents.iter().find(|(q, _)| q == p).map(|(_, e)| *e)
+        };
+        if let Some(e) = path.as_ref().and_then(known) {
             return Ok(e);
         }
         let mesh = self
@@ -378,7 +393,14 @@ impl Scenario {
             .mesh()
             .map_err(|e| InvalidSetting::new("object.path", "(mesh)", e.to_string()))?;
         let (lo, hi) = mesh.bounds();
-        Ok([hi.x - lo.x, hi.y - lo.y, hi.z - lo.z])
+        let extent = [hi.x - lo.x, hi.y - lo.y, hi.z - lo.z];
+        if let Some(p) = path {
+            MESH_EXTENTS
+                .lock()
+                .unwrap_or_else(|e| e.into_inner())
+                .push((p, extent));
+        }
+        Ok(extent)
     }
 
     /// Checks the object's extent and the resource estimate, naming
@@ -819,7 +841,7 @@ pub const MAX_NAME_BYTES: usize = 100;
 /// A scenario's `name`, which names its default result directory under
 /// `runs/`: non-empty, at most [`MAX_NAME_BYTES`] long, with no path
 /// separators.
-fn check_name(name: &str) -> Result<(), InvalidSetting> {
+pub(crate) fn check_name(name: &str) -> Result<(), InvalidSetting> {
     if name.is_empty() || name.len() > MAX_NAME_BYTES || name.contains(['/', '\\']) {
         return Err(InvalidSetting::new(
             "name",

@@ -8,7 +8,7 @@ use shearcut_sim::InvalidSetting;
 use crate::controller_choice::ControllerChoice;
 use crate::scenario::{Scenario, ScenarioFile};
 use crate::tune::constant_grid::ConstantGridPoint;
-use crate::tune::perturbation::{check_on_edge, float_cell};
+use crate::tune::perturbation::float_cell;
 
 /// A controller with settings: what a row of the results is "a setting" of.
 #[derive(Debug, Clone, PartialEq, Serialize)]
@@ -52,7 +52,8 @@ impl ControllerSetting {
     /// the scenario is read and validated as a file would be, its object's
     /// extent and resource budgets included ([`Scenario::check_budget`]).
     /// Errors name the key below `controller.` (a single override's when
-    /// one alone is wrong).
+    /// one alone is wrong), or the budget's (`resources.*`, `motion.depth`,
+    /// `object.path`).
     pub fn apply(&self, s: &Scenario) -> Result<Scenario, InvalidSetting> {
         let choice = match &self.grid_point {
             Some(g) => g.choice_on(s)?,
@@ -86,15 +87,14 @@ impl ControllerSetting {
         })?;
         let resolved = file.resolve(&s.name)?;
         resolved.check_budget()?;
-        // A blade budget set here moves the object along the edge as a
-        // variant's does: it must stay on the edge the same way.
-        if self.overrides.iter().any(|(k, _)| k == "blade_budget") {
-            check_on_edge(&resolved).map_err(|e| InvalidSetting {
-                key: "z0 (with controller.blade_budget)".into(),
-                ..e
-            })?;
-        }
         Ok(resolved)
+    }
+
+    /// Whether the setting sets the blade budget, which moves the object
+    /// along the edge as a variant's does (`perturbation::check_on_edge`: a job's
+    /// scenario, its variant applied, must keep the object on the edge).
+    pub fn sets_blade_budget(&self) -> bool {
+        self.overrides.iter().any(|(k, _)| k == "blade_budget")
     }
 }
 

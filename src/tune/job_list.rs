@@ -24,7 +24,7 @@ use crate::run_replica::RunReplica;
 use crate::scenario::Scenario;
 use crate::surrogates::surrogate_named;
 use crate::tune::controller_setting::{ControllerSetting, controller_cells, value_cell};
-use crate::tune::perturbation::{Perturbation, VARIANT_COLUMNS};
+use crate::tune::perturbation::{Perturbation, VARIANT_COLUMNS, check_on_edge};
 use crate::tune::sweep_file::Sweep;
 
 /// Columns naming a job, first in every results table.
@@ -137,9 +137,19 @@ impl JobCatalog {
     pub fn check(&self) -> Result<(), String> {
         if !crate::tune::sweep_file::is_plain_name(&self.sweep) {
             return Err(format!(
-                "sweep {:?}: a name of letters, digits, '-', '_', '.'",
-                self.sweep
+                "sweep {:?}: a name of at most {} letters, digits, '-', '_', '.'",
+                self.sweep,
+                crate::tune::sweep_file::MAX_NAME_CHARS
             ));
+        }
+        // Scenario and weighting names name the analysis' files.
+        for name in &self.scenarios {
+            crate::scenario::check_name(name).map_err(|e| format!("scenario {e}"))?;
+        }
+        for name in self.weightings.keys() {
+            if !crate::tune::sweep_file::is_plain_name(name) {
+                return Err(format!("weighting {name:?}: a plain name"));
+            }
         }
         if self.settings.len() != self.scenarios.len() {
             return Err(format!(
@@ -166,7 +176,8 @@ impl JobCatalog {
             if j.setting >= settings.len() {
                 return wrong(format!("setting {} of {}", j.setting, settings.len()));
             }
-            if j.variant >= self.variants.len().max(1) {
+            // A catalogue without its variants' names has none to index.
+            if !self.variants.is_empty() && j.variant >= self.variants.len() {
                 return wrong(format!("variant {} of {}", j.variant, self.variants.len()));
             }
             if j.cells.len() != self.setting_columns.len() {
@@ -212,6 +223,14 @@ impl JobList {
                         let specimen = sweep.specimens.specimen_of(variant, r);
                         let perturbed = specimen.apply(base).map_err(at)?;
                         let scenario = setting.apply(&perturbed).map_err(at)?;
+                        if setting.sets_blade_budget() {
+                            check_on_edge(&scenario).map_err(|e| {
+                                at(InvalidSetting {
+                                    key: format!("z0 of variant {vi}, with its blade_budget"),
+                                    ..e
+                                })
+                            })?;
+                        }
                         let mut cells: Vec<(String, String)> = VARIANT_COLUMNS
                             .iter()
                             .map(|c| c.to_string())
@@ -334,6 +353,24 @@ mod tests {
     "#;
 
     #[test]
+    fn a_blade_budget_from_a_grid_keeps_each_jobs_object_on_the_edge() {
+        // The half potato with 30 mm of blade: z0 must be at least 30 mm.
+        let text = |z0: &str| {
+            format!(
+                "scenarios = [\"loop-potato-whole\"]\n[variants]\nz0 = {z0}\n[[controllers]]\nkind = \"slice:1.5\"\ngrid = {{ blade_budget = 0.03 }}\n"
+            )
+        };
+        let sweep = Sweep::parse(&text("[0.04, 0.06]"), "s.toml", "s", None).unwrap();
+        assert_eq!(JobList::new(&sweep, "s.toml").unwrap().jobs.len(), 2);
+        let sweep = Sweep::parse(&text("[0.04, 0.02]"), "s.toml", "s", None).unwrap();
+        let e = JobList::new(&sweep, "s.toml").unwrap_err().to_string();
+        assert!(
+            e.contains("z0 of variant 1, with its blade_budget") && e.contains("stays on the"),
+            "{e}"
+        );
+    }
+
+    #[test]
     fn a_catalogue_read_back_is_checked_before_anything_indexes_with_it() {
         let catalog = list_of(SWEEP).catalog;
         assert_eq!(catalog.check(), Ok(()));
@@ -356,6 +393,21 @@ mod tests {
         assert!(e.contains("cells for"), "{e}");
         let e = broken(&|c| c.sweep = "../x/y".to_string());
         assert!(e.starts_with("sweep"), "{e}");
+        let e = broken(&|c| c.scenarios[1] = "../../x".to_string());
+        assert!(
+            e.starts_with("scenario") && e.contains("path separators"),
+            "{e}"
+        );
+        let e = broken(&|c| {
+            let w = *c.weightings.values().next().unwrap();
+            c.weightings.insert("../y".to_string(), w);
+        });
+        assert!(e.starts_with("weighting \"../y\""), "{e}");
+        // Without its variants' names (an older catalogue) a job's
+        // variant index is not checked against them.
+        let mut c = catalog.clone();
+        c.variants.clear();
+        assert_eq!(c.check(), Ok(()));
     }
 
     #[test]

@@ -280,8 +280,8 @@ impl JobRow {
     }
 }
 
-/// Largest row file read back, bytes: a row is a few kilobytes; a device,
-/// a pipe or a file grown past this is not a row.
+/// Largest row file read back, bytes: a row is a few kilobytes; a pipe,
+/// or an endless device or a file past this size, is not read as a row.
 pub const ROW_BYTES: u64 = 1 << 20;
 
 /// An `f64` in JSON: a number when finite, else the string `NaN`, `inf`

@@ -19,7 +19,8 @@ use crate::tune::result_table::write_tables;
 
 /// Largest `jobs.json` read back, bytes: the catalogue of the largest
 /// sweep allowed ([`crate::tune::sweep_file::MAX_JOBS`] jobs) is well
-/// below it; a device or a pipe in its place is refused.
+/// below it; a pipe in its place is refused at once, an endless device
+/// after this many bytes.
 pub const CATALOG_BYTES: u64 = 256 << 20;
 
 /// Writes `sweep.toml` and `jobs.json` under `dir` (created if needed).

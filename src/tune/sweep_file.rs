@@ -281,8 +281,8 @@ impl Sweep {
         if planned > MAX_JOBS {
             return Err(invalid(too_many_jobs(planned)));
         }
-        let variants = expand_variants(&file).map_err(invalid)?;
         let settings = expand_settings(&file.controllers).map_err(invalid)?;
+        let variants = expand_variants(&file).map_err(invalid)?;
         // Every variant and every setting alone, on every scenario: the
         // error names the sweep's own key.
         for s in &scenarios {
@@ -327,7 +327,9 @@ impl Sweep {
                 return Err(invalid(InvalidSetting::new(
                     "weightings",
                     format!("{name:?}"),
-                    format!("names of at most {MAX_NAME_CHARS} letters, digits, '-', '_', '.'"),
+                    format!(
+                        "names must be non-empty, at most {MAX_NAME_CHARS} of letters, digits, '-', '_', '.'"
+                    ),
                 )));
             }
             w.validate()
@@ -368,7 +370,7 @@ pub const MAX_NAME_CHARS: usize = 100;
 /// A sweep of `jobs` runs, over [`MAX_JOBS`].
 fn too_many_jobs(jobs: usize) -> InvalidSetting {
     let count = if jobs == usize::MAX {
-        "more than 2^64 jobs".to_string()
+        format!("over {} jobs", usize::MAX)
     } else {
         format!("{jobs} jobs")
     };
@@ -424,14 +426,18 @@ fn setting_count(entries: &[ControllerSweep]) -> usize {
                 entry.sets.len()
             };
             let kinds = entry.kind.to_vec();
+            // An entry that expands to nothing (no kind, a points count
+            // out of range) is refused when expanded; counted as one it
+            // cannot hide another list's length.
             let per_point = if kinds.iter().any(|k| k == BEST_CONSTANT_KIND) {
-                entry.points.unwrap_or(SEARCH_POINTS)
+                entry.points.unwrap_or(SEARCH_POINTS).clamp(1, MAX_POINTS)
             } else {
-                kinds.len()
+                kinds.len().max(1)
             };
             per_point.saturating_mul(points)
         })
         .fold(0, usize::saturating_add)
+        .max(1)
 }
 
 /// The variants: the listed ones, the grid's cross product, or the
@@ -891,6 +897,26 @@ mod tests {
     }
 
     #[test]
+    fn an_entry_that_expands_to_nothing_does_not_hide_a_large_grid() {
+        let twelve = "[0.5, 0.6, 0.7, 0.8, 0.9, 1.0, 1.1, 1.2, 1.3, 1.4, 1.5, 1.6]";
+        let text = format!(
+            r#"
+            scenarios = ["loop-potato-cuboid"]
+            [variants]
+            youngs_modulus_scale = {twelve}
+            fracture_toughness_scale = {twelve}
+            friction_scale = {twelve}
+            size_scale = {twelve}
+            force_noise = {twelve}
+            [[controllers]]
+            grid = {{ max_duration = 6.0 }}
+        "#
+        );
+        let e = parse(&text).unwrap_err().to_string();
+        assert!(e.contains("(the sweep)"), "{e}");
+    }
+
+    #[test]
     fn a_setting_over_the_scenario_budgets_is_refused_as_the_file_would_be() {
         // An hour of closed loop at 1 kHz: 3.6e6 rows of series, over the
         // budget a scenario file with this duration is refused for.
@@ -1072,18 +1098,9 @@ mod tests {
                 "{e}"
             );
         }
-        // A blade budget from a controller's grid keeps the object on the
-        // edge as a variant's does.
-        let e = error(
-            "scenarios = [\"loop-potato-whole\"]\n[variants]\nz0 = 0.02\n[[controllers]]\nkind = \"slice:1.5\"\ngrid = { blade_budget = 0.03 }\n",
-        );
-        assert!(
-            e.contains("z0 (with controller.blade_budget)") && e.contains("stays on the"),
-            "{e}"
-        );
         // A weighting names its recommendation's file.
         let e = error(&(SWEEP.to_string() + "[weightings.\"a/b\"]\nwork = 1.0\n"));
-        assert!(e.contains("`weightings` = \"a/b\": names of"), "{e}");
+        assert!(e.contains("`weightings` = \"a/b\": names must be"), "{e}");
         let e = error(&format!("name = \"{}\"\n{SWEEP}", "a".repeat(101)));
         assert!(e.contains("`name` = ") && e.contains("at most 100"), "{e}");
         let e = error(&SWEEP.replace(
