@@ -862,58 +862,33 @@ mod tests {
         }
     }
 
-    #[test]
-    fn a_grid_too_large_to_expand_is_refused_before_it_is_expanded() {
-        // 12⁸ ≈ 4.3e8 settings times 12⁴ variants: far more than memory
-        // holds if expanded first.
-        let twelve = "[0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 1.0, 1.1, 1.2]";
-        let text = format!(
-            r#"
-            scenarios = ["loop-potato-cuboid"]
-            [variants]
-            youngs_modulus_scale = {twelve}
-            fracture_toughness_scale = {twelve}
-            friction_scale = {twelve}
-            size_scale = {twelve}
-            [[controllers]]
-            kind = "mpc"
-            [controllers.grid.mpc]
-            time_weight = {twelve}
-            smoothness_weight = {twelve}
-            deformation_weight = {twelve}
-            trust_region = {twelve}
-            min_saving = {twelve}
-            forgetting = {twelve}
-            force_penalty = {twelve}
-            max_slice_push_ratio = {twelve}
-        "#
-        );
-        let e = parse(&text).unwrap_err().to_string();
-        assert!(
-            e.contains("(the sweep)") && e.contains("shrink the grids"),
-            "{e}"
-        );
-        assert!(!e.contains('\n'), "{e}");
+    /// A sweep of 12⁵ variants of the cuboid with `controllers` (its
+    /// `[[controllers]]` tables, `{twelve}` standing for a list of twelve
+    /// values).
+    fn twelve_fold(controllers: &str) -> String {
+        let twelve = "[0.5, 0.6, 0.7, 0.8, 0.9, 1.0, 1.1, 1.2, 1.3, 1.4, 1.5, 1.6]";
+        format!(
+            "scenarios = [\"loop-potato-cuboid\"]\n[variants]\nyoungs_modulus_scale = {twelve}\nfracture_toughness_scale = {twelve}\nfriction_scale = {twelve}\nsize_scale = {twelve}\nforce_noise = {twelve}\n{}",
+            controllers.replace("{twelve}", twelve)
+        )
     }
 
     #[test]
-    fn an_entry_that_expands_to_nothing_does_not_hide_a_large_grid() {
-        let twelve = "[0.5, 0.6, 0.7, 0.8, 0.9, 1.0, 1.1, 1.2, 1.3, 1.4, 1.5, 1.6]";
-        let text = format!(
-            r#"
-            scenarios = ["loop-potato-cuboid"]
-            [variants]
-            youngs_modulus_scale = {twelve}
-            fracture_toughness_scale = {twelve}
-            friction_scale = {twelve}
-            size_scale = {twelve}
-            force_noise = {twelve}
-            [[controllers]]
-            grid = {{ max_duration = 6.0 }}
-        "#
-        );
-        let e = parse(&text).unwrap_err().to_string();
-        assert!(e.contains("(the sweep)"), "{e}");
+    fn a_grid_too_large_to_expand_is_refused_before_it_is_expanded() {
+        // 12⁸ ≈ 4.3e8 settings times 12⁵ variants: far more than memory
+        // holds if expanded first; and an entry that expands to nothing
+        // (no kind) does not hide the variants' 12⁵ from the cap.
+        for controllers in [
+            "[[controllers]]\nkind = \"mpc\"\n[controllers.grid.mpc]\ntime_weight = {twelve}\nsmoothness_weight = {twelve}\ndeformation_weight = {twelve}\ntrust_region = {twelve}\nmin_saving = {twelve}\nforgetting = {twelve}\nforce_penalty = {twelve}\nmax_slice_push_ratio = {twelve}\n",
+            "[[controllers]]\ngrid = { max_duration = 6.0 }\n",
+        ] {
+            let e = parse(&twelve_fold(controllers)).unwrap_err().to_string();
+            assert!(
+                e.contains("(the sweep)") && e.contains("shrink the grids"),
+                "{e}"
+            );
+            assert!(!e.contains('\n'), "{e}");
+        }
     }
 
     #[test]
