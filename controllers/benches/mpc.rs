@@ -117,6 +117,7 @@ fn main() {
                 onset: [0.0; 3],
                 entering: Default::default(),
                 edge_descent_slope: 0.0,
+                finish_slope: 0.0,
             };
         }
         let budget = 0.03 * (1.0 - (i % 200) as f64 / 250.0);

@@ -6,12 +6,18 @@
 
 mod synthetic_arm;
 
-use shearcut_controllers::controller::{Controller, CutPhase, StrokePhase};
+use std::sync::Arc;
+
+use nalgebra::Vector2;
+use shearcut_controllers::controller::{Controller, CutPhase, CutTask, StrokePhase};
 use shearcut_controllers::mpc::{
     DepthProfile, Mpc, MpcSettings, SliceModel, StageCost, StageState,
 };
+use shearcut_controllers::observer::EdgeOutline;
 use shearcut_controllers::planner::{LatencyMode, PlannerSettings};
 use shearcut_sim::arm::ArmStatus;
+use shearcut_sim::geometry::Polygon;
+use shearcut_sim::{Knife, KnifePreset};
 use synthetic_arm::{QuadraticModel, SyntheticArm, task};
 
 fn run<M: SliceModel + Clone + Send + 'static>(
@@ -463,4 +469,71 @@ fn fallbacks_on_a_short_blade_stay_within_it() {
     assert_eq!(arm.refused, 0);
     assert!(mpc.stats().fallbacks >= 5, "{:?}", mpc.stats());
     assert!(arm.position.z <= budget, "travel {}", arm.position.z);
+}
+
+/// [`QuadraticModel`] with its slope reversed and flattened:
+/// w(ξ) = 150 + 0.6ξ + 0.225ξ² N/m, least at pressing.
+#[derive(Debug, Clone, Copy)]
+struct PressingModel;
+
+impl SliceModel for PressingModel {
+    fn stage(&self, xi: f64, state: &StageState) -> StageCost {
+        StageCost {
+            work_per_depth: 150.0 + 0.6 * xi + 0.225 * xi * xi,
+            work_per_depth_slope: 0.6 + 0.45 * xi,
+            work_per_depth_curvature: 0.45,
+            ..QuadraticModel.stage(xi, state)
+        }
+    }
+}
+
+/// A 60 mm block (top at y = 0) under 100–160 mm of the chef's edge with
+/// the knife frame origin at z = 0: wholly under its rise, where sliding
+/// towards the tip brings the lower part of the edge over the block.
+fn block_under_the_rise() -> Arc<EdgeOutline> {
+    let chef = Knife::new(&KnifePreset::Chef.settings()).unwrap();
+    let block = Polygon::new(vec![
+        Vector2::new(0.1, -0.05),
+        Vector2::new(0.16, -0.05),
+        Vector2::new(0.16, 0.0),
+        Vector2::new(0.1, 0.0),
+    ]);
+    Arc::new(EdgeOutline::new(chef.edge(), &block))
+}
+
+/// `finish_gap`: under a chef's rise the sections' mean depth lags the
+/// edge's deepest point by a gap that sliding towards the tip narrows, so
+/// pricing it slices where the work law alone presses; over a straight
+/// edge the gap never moves and the cut is the same to the bit.
+#[test]
+fn pricing_the_finish_slices_under_a_rise_and_changes_nothing_under_a_straight_edge() {
+    let cut = |outline: Arc<EdgeOutline>, finish_gap: bool| {
+        let task = CutTask {
+            outline,
+            ..task(0.02, 0.01)
+        };
+        let settings = MpcSettings {
+            finish_gap,
+            ..MpcSettings::default()
+        };
+        let profile = DepthProfile::uniform(0.03, 0.03, 0.015).unwrap();
+        let mut mpc = Mpc::new(&task, &settings, PressingModel, profile, 0.0).unwrap();
+        let (arm, trace) = run(&mut mpc, 20_000);
+        assert_eq!(arm.refused, 0);
+        assert_eq!(mpc.telemetry().phase, CutPhase::Done);
+        (arm.position.z, trace)
+    };
+    let (slide_off, trace_off) = cut(block_under_the_rise(), false);
+    let (slide_on, trace_on) = cut(block_under_the_rise(), true);
+    let xi_max = |t: &[(f64, f64)]| t.iter().map(|(_, xi)| *xi).fold(0.0, f64::max);
+    assert!(xi_max(&trace_off) < 0.01, "presses: {}", xi_max(&trace_off));
+    // The finish's price per unit ξ and descent, L·w·g′ with g′ the rise's
+    // mean slope over the block (0.18–0.36), dwarfs the law's L·w′ = 0.018
+    // N: the plan spends the blade (10 mm).
+    assert!(slide_off < 1e-4, "{slide_off}");
+    assert!(slide_on > 0.009 && slide_on <= 0.01, "{slide_on}");
+    assert!(xi_max(&trace_on) > 0.3, "slices: {}", xi_max(&trace_on));
+    let (_, straight_off) = cut(synthetic_arm::flat_outline(), false);
+    let (_, straight_on) = cut(synthetic_arm::flat_outline(), true);
+    assert_eq!(straight_off, straight_on);
 }

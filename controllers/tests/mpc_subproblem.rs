@@ -25,6 +25,7 @@ fn stage(xi_bar: f64, contact_length: f64, depth_step: f64) -> StageData {
         onset: [0.0; 3],
         entering: Default::default(),
         edge_descent_slope: 0.0,
+        finish_slope: 0.0,
     }
 }
 

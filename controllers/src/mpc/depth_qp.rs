@@ -13,6 +13,7 @@
 //!          + w_D Σ_k ΔL_k δ*'_k ξ_k                                   deformation
 //!          + w_T Σ_k Δz_k τ_k                                         time
 //!          + w_S [(ξ_0 − ξ_prev)² + Σ_k (ξ_k − ξ_{k−1})²]             smoothness
+//!          + Σ_k c_k (ξ_k − ξ̄_k)                                       finish
 //!          + w_F Σ_k σ_k                                              force excess
 //! subject to 0 ≤ ξ_k ≤ ξ_max,  |ξ_k − ξ̄_k| ≤ ρ                        (trust region)
 //!            ξ_k ≤ v_t,max τ_k,  τ_k ≥ 1/v_n,max                      (speeds)
@@ -30,7 +31,8 @@
 //! comes into contact during it (intact material it indents until it
 //! fractures), and δ*'_k the slope in ξ of the surface deflection at which
 //! intact material fractures (the deflection terms are linearised like
-//! the force: δ(ξ) ≈ δ(ξ̄) + δ'(ξ̄)(ξ − ξ̄)). The program is always feasible
+//! the force: δ(ξ) ≈ δ(ξ̄) + δ'(ξ̄)(ξ − ξ̄)), and c_k the finish's cost per
+//! unit of ξ_k ([`StageData::finish_slope`]). The program is always feasible
 //! (ξ = 0 at the slowest allowed τ satisfies every hard row). Its sparsity
 //! pattern never changes: each plan only updates the values of P, q, A and b
 //! (no re-allocation, no symbolic refactorisation).
@@ -67,6 +69,13 @@ pub struct StageData {
     /// knife's descent, so a stage of edge depth Δd takes Δd/(1 + κ_d ξ) of
     /// descent and ξΔd/(1 + κ_d ξ) of blade (seed 000 §IV, Fig. 4(a)).
     pub edge_descent_slope: f64,
+    /// The cost of the cut's finish per unit of ξ at this stage, J: the
+    /// slide the stage makes moves the object along the edge, which changes
+    /// how far past the horizon's end the edge must go for the sections'
+    /// mean depth to reach the target (the finishing gap of
+    /// [`MpcSettings::finish_gap`](super::MpcSettings::finish_gap)). A
+    /// linear term of the objective; 0 when not priced.
+    pub finish_slope: f64,
 }
 
 impl StageData {
@@ -335,6 +344,7 @@ impl DepthQp {
             }
             let e = &s.entering;
             j += limits.deformation_weight * e.length * (e.deflection + e.deflection_slope * dx);
+            j += s.finish_slope * dx;
             j += limits.time_weight * s.knife_descent() * tau[k];
             j += limits.smoothness_weight * (xi[k] - prev) * (xi[k] - prev);
             prev = xi[k];
@@ -383,9 +393,11 @@ impl DepthQp {
                 self.q[0] += g0 - h0 * s.xi_bar;
                 self.q[0] += limits.deformation_weight * l * s.cost.deformation_slope;
             }
-            // Deflection of the edge entering contact, linear in ξ.
+            // Deflection of the edge entering contact, and the finish:
+            // linear in ξ.
             self.q[k] +=
-                limits.deformation_weight * s.entering.length * s.entering.deflection_slope;
+                limits.deformation_weight * s.entering.length * s.entering.deflection_slope
+                    + s.finish_slope;
             // Smoothness (ξ_k − ξ_{k−1})², and (ξ_0 − ξ_prev)².
             self.p.nzval[self.p_diag[k]] += 2.0 * ws;
             if k == 0 {

@@ -137,6 +137,9 @@ pub struct MpcPlanJob<M: SliceModel> {
     /// The plan within the current stroke while the sawing plan is solved.
     stroke_xi: Vec<f64>,
     stroke_tau: Vec<f64>,
+    /// The finish's price per unit of each stage's slide this plan, J/m
+    /// ([`Self::price_finish`]; 0 when not priced).
+    finish_rate: f64,
 }
 
 impl<M: SliceModel> MpcPlanJob<M> {
@@ -175,6 +178,7 @@ impl<M: SliceModel> MpcPlanJob<M> {
             last: MpcPlan::initial(n, initial_xi.clamp(0.0, settings.max_slice_push_ratio)),
             stroke_xi: vec![0.0; n],
             stroke_tau: vec![0.0; n],
+            finish_rate: 0.0,
         }
     }
 
@@ -323,7 +327,12 @@ impl<M: SliceModel> MpcPlanJob<M> {
                 onset,
                 entering,
                 edge_descent_slope,
+                finish_slope: 0.0,
             };
+        }
+        self.finish_rate = 0.0;
+        if self.settings.finish_gap {
+            self.price_finish(r.knife_z, r.direction, d0 + remaining);
         }
         let l = self.motion;
         // Keep what stopping at the current tangential speed needs.
@@ -376,6 +385,48 @@ impl<M: SliceModel> MpcPlanJob<M> {
                 (1.0 / plan.tau[0]).min(r.normal_limit)
             };
             plan.tangential_speed = (plan.xi[0] * plan.normal_speed).min(l.tangential_speed);
+        }
+    }
+
+    /// Sets each stage's [`StageData::finish_slope`]
+    /// ([`MpcSettings::finish_gap`]): with the knife frame origin at world
+    /// z = `knife_z` now, sliding along `direction`, and the horizon ending
+    /// at the edge's depth `end_depth` (m), the plan's slide at ξ̄ puts the
+    /// knife at z_e = `knife_z` + direction·Σ_k ξ̄_k Δz_k there. The
+    /// sections' mean depth then falls short of the edge's by the gap
+    /// g(z_e) = `end_depth` − [`EdgeOutline::mean_cut_depth`], which the edge
+    /// travels on past the horizon at the last stage's price p = L·w per
+    /// unit of its depth. Linearised: stage k's ratio costs
+    /// p·g′(z_e)·direction·Δz_k per unit (g′ by central differences over
+    /// ±[`FINISH_PROBE`]); 0 where the gap is not defined.
+    fn price_finish(&mut self, knife_z: f64, direction: f64, end_depth: f64) {
+        let slide: f64 = self
+            .stages
+            .iter()
+            .map(|s| s.xi_bar * s.knife_descent())
+            .sum();
+        let z_end = knife_z + direction * slide;
+        let outline = &self.outline;
+        let gap = |z: f64| {
+            let y = outline.touch_height(z)? - end_depth;
+            Some(end_depth - outline.mean_cut_depth(z, y)?)
+        };
+        let slope = match (gap(z_end + FINISH_PROBE), gap(z_end - FINISH_PROBE)) {
+            (Some(ahead), Some(behind)) => (ahead - behind) / (2.0 * FINISH_PROBE),
+            _ => return,
+        };
+        let last = &self.stages[self.stages.len() - 1];
+        let price = last.contact_length * last.cost.work_per_depth;
+        self.set_finish(price * slope * direction);
+    }
+
+    /// Sets each stage's finish slope to `rate` (J per m of the knife's
+    /// travel along z, signed with the direction of motion) times its
+    /// descent, and keeps `rate`.
+    fn set_finish(&mut self, rate: f64) {
+        self.finish_rate = rate;
+        for s in &mut self.stages {
+            s.finish_slope = rate * s.knife_descent();
         }
     }
 
@@ -432,6 +483,33 @@ impl<M: SliceModel> MpcPlanJob<M> {
     /// each reversal it needs loses. True leaves the sawing plan in the
     /// solver.
     fn sawing_pays(&mut self, r: &PlanRequest, previous: f64, blade: f64, within: bool) -> bool {
+        // Strokes go back and forth: a sawing plan does not move the object
+        // along the edge for good, so the finish's price
+        // ([`Self::price_finish`]) is not its to claim.
+        let within_cost = DepthQp::objective(
+            &self.stages,
+            &self.limits,
+            previous,
+            &self.stroke_xi,
+            &self.stroke_tau,
+        );
+        let finish = self.finish_rate;
+        self.set_finish(0.0);
+        let pays = self.sawing_beats(r, previous, blade, within, within_cost);
+        self.set_finish(finish);
+        pays
+    }
+
+    /// [`Self::sawing_pays`] with the stages as the sawing plan prices
+    /// them, against the within-stroke plan's objective `within_cost`.
+    fn sawing_beats(
+        &mut self,
+        r: &PlanRequest,
+        previous: f64,
+        blade: f64,
+        within: bool,
+        within_cost: f64,
+    ) -> bool {
         let demand = |stages: &[StageData], xi: &[f64]| -> f64 {
             stages.iter().zip(xi).map(|(s, x)| s.blade(*x)).sum()
         };
@@ -462,15 +540,8 @@ impl<M: SliceModel> MpcPlanJob<M> {
         let l = &self.motion;
         let speed = r.normal_speed.hypot(r.tangential_speed).max(l.normal_speed);
         let reversal = self.limits.time_weight * stopping_duration(speed, l.acceleration, l.jerk);
-        let within = DepthQp::objective(
-            &self.stages,
-            &self.limits,
-            previous,
-            &self.stroke_xi,
-            &self.stroke_tau,
-        );
         let sawing = DepthQp::objective(&self.stages, &self.limits, previous, xi, self.qp.tau());
-        sawing + needed * reversal < within
+        sawing + needed * reversal < within_cost
     }
 }
 
@@ -493,6 +564,11 @@ fn contact_slopes(
         deepest: direction * inclination.deepest,
     })
 }
+
+/// Half the span over which [`MpcPlanJob::price_finish`] differentiates the
+/// finishing gap along z, m: wide against the edge's 0.5 mm samples and the
+/// outline's columns, narrow against a chef's rise (140 mm).
+const FINISH_PROBE: f64 = 1e-3;
 
 /// The contact's slopes along the direction of motion ([`contact_slopes`]).
 #[derive(Debug, Clone, Copy)]

@@ -129,6 +129,19 @@ pub struct MpcSettings {
     /// outline, as a straight horizontal edge presses it. Measured in
     /// docs/heldout.md.
     pub edge_contact: bool,
+    /// Price the cut's finish (default false): a run ends when the
+    /// sections' mean depth reaches the target, and along a curved edge
+    /// (a chef's rise over the object) the sections under its higher part
+    /// lag the edge's deepest point, by a gap that depends on where the
+    /// object lies along the edge. The slide a plan makes moves the object
+    /// along the edge, so it changes that gap: the plan pays for the edge
+    /// travel past its horizon's end that the gap needs, at the last
+    /// stage's price per unit of the edge's depth, linearised in each
+    /// stage's ratio ([`EdgeOutline::mean_cut_depth`](crate::observer::EdgeOutline::mean_cut_depth)
+    /// at the plan's predicted end pose). Under a straight edge, or over
+    /// the flat of a chef's, the gap does not move and nothing changes.
+    /// Measured in docs/heldout.md.
+    pub finish_gap: bool,
     /// How plans reach the servo tick (`[controller.mpc.planner]`; default
     /// lockstep, one tick after their request).
     pub planner: PlannerSettings,
@@ -154,6 +167,7 @@ impl Default for MpcSettings {
             edge_inclination: false,
             min_saving: 0.0,
             edge_contact: false,
+            finish_gap: false,
             planner: PlannerSettings::default(),
         }
     }

@@ -163,6 +163,35 @@ impl EdgeOutline {
         Self::penetration(self.clearance(z, y))
     }
 
+    /// The sections' mean depth with the knife frame origin at world (`z`,
+    /// `y`) and each section cut to the edge, m: below the outline's
+    /// highest point, the mean over the edge's length along z over the
+    /// outline of the lower of the edge and the outline's top (a section the
+    /// edge has not reached stands at its top). What a plant reports as its
+    /// crack front's depth when the crack is at the edge; under a straight
+    /// horizontal edge below the whole top it is the edge's
+    /// [`depth`](Self::depth). None when no edge is over the outline.
+    pub fn mean_cut_depth(&self, z: f64, y: f64) -> Option<f64> {
+        let summit = self.top();
+        let height = |p: &[f64; 2]| self.top_at(z + p[0]).map(|t| t.min(y + p[1]));
+        let (mut area, mut span) = (0.0, 0.0);
+        for pair in self.edge.windows(2) {
+            let dz = (pair[1][0] - pair[0][0]).abs();
+            let (over, mean) = match (height(&pair[0]), height(&pair[1])) {
+                (Some(a), Some(b)) => (dz, 0.5 * (a + b)),
+                // The chord leaves the outline's extent: the part over it,
+                // at the height of its end over it.
+                (Some(a), None) | (None, Some(a)) => {
+                    (dz * self.fraction_over(z + pair[0][0], z + pair[1][0]), a)
+                }
+                (None, None) => continue,
+            };
+            area += over * (summit - mean);
+            span += over;
+        }
+        (span > 0.0).then(|| area / span)
+    }
+
     /// The depth of an edge whose [`clearance`](Self::clearance) is
     /// `clearance` (m): `−clearance`, 0 above the outline or beside it.
     pub fn penetration(clearance: f64) -> f64 {
@@ -531,5 +560,51 @@ mod tests {
         assert_eq!(o.depth(0.05, touch(0.05) + 1e-4), 0.0);
         assert_eq!(o.depth(1.0, 0.0), 0.0);
         assert_eq!(o.touch_height(1.0), None);
+    }
+
+    #[test]
+    fn the_sections_mean_depth_under_a_straight_and_a_rising_edge() {
+        // A straight edge below the whole block: every section at the edge.
+        let o = EdgeOutline::new(straight().edge(), &block());
+        let d = o.mean_cut_depth(0.0, 0.01).unwrap();
+        assert!((d - 0.015).abs() < 1e-12, "{d}");
+        // Above part of a triangle's slopes, the untouched sections stand at
+        // their tops: apex 20 mm at z = 0.1, base 0.08–0.12, the edge 10 mm
+        // down covers the middle half at the edge's height (mean depth 10
+        // mm) and the outer halves at the slopes' (mean 15 mm): 12.5 mm.
+        let tri = Polygon::new(vec![
+            Vector2::new(0.08, 0.0),
+            Vector2::new(0.12, 0.0),
+            Vector2::new(0.1, 0.02),
+        ]);
+        let o = EdgeOutline::new(straight().edge(), &tri);
+        let d = o.mean_cut_depth(0.0, 0.01).unwrap();
+        assert!((d - 0.0125).abs() < 2e-5, "{d}");
+        assert_eq!(o.mean_cut_depth(1.0, 0.0), None);
+        // The chef's rise over the block (100–130 mm of the edge, origin at
+        // z = −0.08), the edge 2 mm below the top at the heel-side end: the
+        // mean depth is 2 mm less the parabola's mean rise over the block,
+        // so sliding the block towards the flat heel deepens the mean.
+        let chef = Knife::new(&KnifePreset::Chef.settings()).unwrap();
+        let o = EdgeOutline::new(chef.edge(), &block());
+        let rise = |s: f64| 0.035 * ((s - 0.06) / 0.14).max(0.0).powi(2);
+        let y = 0.025 - 0.002 - rise(0.1);
+        // Mean of max(0, 2 mm − (rise(s) − rise(0.1))) over s in 0.1–0.13.
+        let n = 3000;
+        let expect = (0..n)
+            .map(|i| {
+                let s = 0.1 + 0.03 * (i as f64 + 0.5) / n as f64;
+                (0.002 - (rise(s) - rise(0.1))).max(0.0)
+            })
+            .sum::<f64>()
+            / n as f64;
+        // Tolerance: trapezoids over the edge's 0.5 mm samples of a
+        // parabola (curvature 3.6/m: 0.1 µm at most), the kink where the
+        // edge leaves the top and the block's corners rounded over one 15 µm
+        // column each (under 0.1 µm on the mean).
+        let d = o.mean_cut_depth(-0.08, y).unwrap();
+        assert!((d - expect).abs() < 2e-7, "{d} against {expect}");
+        assert!(d < 0.002 - 1e-4, "{d}");
+        assert!(o.mean_cut_depth(-0.07, y).unwrap() > d + 1e-4);
     }
 }
