@@ -368,24 +368,26 @@ impl Scenario {
     }
 
     /// The object's bounding-box extent [x, y, z], m: from the shape, or
-    /// read from its mesh file (once per path and process: a sweep checks
+    /// read from its mesh file (once per file and process: a sweep checks
     /// every job's scenario, [`check_budget`](Self::check_budget), and a
-    /// variant cannot rescale a mesh).
+    /// variant cannot rescale a mesh). A file is known by its path, length
+    /// and modification time, so a mesh rewritten in a long-lived process
+    /// (Python, the C ABI) is read again.
     pub fn object_extent(&self) -> Result<[f64; 3], InvalidSetting> {
-        static MESH_EXTENTS: std::sync::Mutex<Vec<(PathBuf, [f64; 3])>> =
+        static MESH_EXTENTS: std::sync::Mutex<Vec<(MeshFile, [f64; 3])>> =
             std::sync::Mutex::new(Vec::new());
         if let Some(e) = self.object.nominal_extent() {
             return Ok(e);
         }
-        let path = match &self.object {
-            ObjectShape::Mesh { path } => Some(path.clone()),
+        let file = match &self.object {
+            ObjectShape::Mesh { path } => MeshFile::of(path),
             _ => None,
         };
-        let known = |p: &PathBuf| {
+        let known = |f: &MeshFile| {
             let extents = MESH_EXTENTS.lock().unwrap_or_else(|e| e.into_inner());
-            extents.iter().find(|(q, _)| q == p).map(|(_, e)| *e)
+            extents.iter().find(|(g, _)| g == f).map(|(_, e)| *e)
         };
-        if let Some(e) = path.as_ref().and_then(known) {
+        if let Some(e) = file.as_ref().and_then(known) {
             return Ok(e);
         }
         let mesh = self
@@ -394,11 +396,10 @@ impl Scenario {
             .map_err(|e| InvalidSetting::new("object.path", "(mesh)", e.to_string()))?;
         let (lo, hi) = mesh.bounds();
         let extent = [hi.x - lo.x, hi.y - lo.y, hi.z - lo.z];
-        if let Some(p) = path {
-            MESH_EXTENTS
-                .lock()
-                .unwrap_or_else(|e| e.into_inner())
-                .push((p, extent));
+        if let Some(f) = file {
+            let mut extents = MESH_EXTENTS.lock().unwrap_or_else(|e| e.into_inner());
+            extents.retain(|(g, _)| g.path != f.path);
+            extents.push((f, extent));
         }
         Ok(extent)
     }
@@ -867,6 +868,28 @@ fn find_preset<P, const N: usize>(
     })
 }
 
+/// A mesh file as [`Scenario::object_extent`] remembers it: its path, length
+/// (bytes) and modification time.
+#[derive(Debug, Clone, PartialEq)]
+struct MeshFile {
+    path: PathBuf,
+    length: u64,
+    modified: Option<std::time::SystemTime>,
+}
+
+impl MeshFile {
+    /// The file at `path` now; None if it cannot be read (the mesh reader
+    /// then reports why).
+    fn of(path: &Path) -> Option<Self> {
+        let meta = std::fs::metadata(path).ok()?;
+        Some(Self {
+            path: path.to_path_buf(),
+            length: meta.len(),
+            modified: meta.modified().ok(),
+        })
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -882,6 +905,38 @@ mod tests {
         height = 0.03
         length = 0.04
     "#;
+
+    /// A mesh file rewritten at the same path is measured again: the
+    /// extent's memo knows a file by its length and modification time too.
+    #[test]
+    fn a_mesh_rewritten_at_its_path_is_measured_again() {
+        let dir = std::env::temp_dir().join(format!("shearcut-extent-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let mesh = dir.join("tetrahedron.obj");
+        // A closed tetrahedron with legs `a` along x, y and z.
+        let tetrahedron = |a: &str| {
+            format!(
+                "v 0 0 0\nv {a} 0 0\nv 0 {a} 0\nv 0 0 {a}\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\n"
+            )
+        };
+        std::fs::write(&mesh, tetrahedron("0.03")).unwrap();
+        let text = MINIMAL.replace(
+            "kind = \"cuboid\"\n        width = 0.03\n        height = 0.03\n        length = 0.04",
+            &format!("kind = \"mesh\"\npath = \"{}\"", mesh.display()),
+        );
+        assert!(text.contains("tetrahedron.obj"));
+        let s = Scenario::parse(&text, "t", "t").unwrap();
+        let extent = |s: &Scenario| s.object_extent().unwrap();
+        // The reader keeps single-precision coordinates: 0.03 to 1e-9.
+        for e in extent(&s) {
+            assert!((e - 0.03).abs() < 1e-8, "{e}");
+        }
+        std::fs::write(&mesh, tetrahedron("0.045")).unwrap();
+        for e in extent(&s) {
+            assert!((e - 0.045).abs() < 1e-8, "{e}");
+        }
+        std::fs::remove_dir_all(dir).ok();
+    }
 
     #[test]
     fn built_in_scenarios_resolve() {
