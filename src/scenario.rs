@@ -368,7 +368,8 @@ impl Scenario {
     }
 
     /// The object's bounding-box extent [x, y, z], m: from the shape, or
-    /// read from its mesh file (once per file and process: a sweep checks
+    /// read from its mesh file (once per file and process, for the last
+    /// [`MESH_EXTENTS_KEPT`] files: a sweep checks
     /// every job's scenario, [`check_budget`](Self::check_budget), and a
     /// variant cannot rescale a mesh). A file is known by its path, length
     /// and modification time, so a mesh rewritten in a long-lived process
@@ -399,6 +400,9 @@ impl Scenario {
         if let Some(f) = file {
             let mut extents = MESH_EXTENTS.lock().unwrap_or_else(|e| e.into_inner());
             extents.retain(|(g, _)| g.path != f.path);
+            if extents.len() >= MESH_EXTENTS_KEPT {
+                extents.remove(0);
+            }
             extents.push((f, extent));
         }
         Ok(extent)
@@ -868,24 +872,29 @@ fn find_preset<P, const N: usize>(
     })
 }
 
+/// Most mesh files [`Scenario::object_extent`] remembers (the oldest is
+/// forgotten first).
+const MESH_EXTENTS_KEPT: usize = 64;
+
 /// A mesh file as [`Scenario::object_extent`] remembers it: its path, length
 /// (bytes) and modification time.
 #[derive(Debug, Clone, PartialEq)]
 struct MeshFile {
     path: PathBuf,
     length: u64,
-    modified: Option<std::time::SystemTime>,
+    modified: std::time::SystemTime,
 }
 
 impl MeshFile {
-    /// The file at `path` now; None if it cannot be read (the mesh reader
-    /// then reports why).
+    /// The file at `path` now; None if its length or modification time
+    /// cannot be read (the extent is then read every time, and the mesh
+    /// reader reports why a file cannot be read).
     fn of(path: &Path) -> Option<Self> {
         let meta = std::fs::metadata(path).ok()?;
         Some(Self {
             path: path.to_path_buf(),
             length: meta.len(),
-            modified: meta.modified().ok(),
+            modified: meta.modified().ok()?,
         })
     }
 }

@@ -95,12 +95,14 @@ fn controller_ticks_allocate_nothing() {
     assert_eq!(in_plans, 0, "{solves} solves off the tick");
 
     // The plan itself, made on the tick (inline) with every check a plan
-    // makes (sawing, and holding the ratio, `min_saving`), and copied into
+    // makes (sawing, holding the ratio, `min_saving`, and the finish's price,
+    // `finish_gap`), and copied into
     // the planner's slot (`MpcPlan::clone_from` reuses its buffers):
     // nothing in our code, one block per solve inside clarabel.
     use shearcut_controllers::planner::{LatencyMode, PlannerSettings};
     let settings = MpcSettings {
         min_saving: 0.005,
+        finish_gap: true,
         planner: PlannerSettings {
             latency: LatencyMode::Inline,
             ..PlannerSettings::default()

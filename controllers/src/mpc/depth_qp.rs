@@ -344,7 +344,9 @@ impl DepthQp {
             }
             let e = &s.entering;
             j += limits.deformation_weight * e.length * (e.deflection + e.deflection_slope * dx);
-            j += s.finish_slope * dx;
+            if s.finish_slope != 0.0 {
+                j += s.finish_slope * dx;
+            }
             j += limits.time_weight * s.knife_descent() * tau[k];
             j += limits.smoothness_weight * (xi[k] - prev) * (xi[k] - prev);
             prev = xi[k];
@@ -394,10 +396,13 @@ impl DepthQp {
                 self.q[0] += limits.deformation_weight * l * s.cost.deformation_slope;
             }
             // Deflection of the edge entering contact, and the finish:
-            // linear in ξ.
+            // linear in ξ (the finish only where priced, so that a plan
+            // without it is the same to the bit).
             self.q[k] +=
-                limits.deformation_weight * s.entering.length * s.entering.deflection_slope
-                    + s.finish_slope;
+                limits.deformation_weight * s.entering.length * s.entering.deflection_slope;
+            if s.finish_slope != 0.0 {
+                self.q[k] += s.finish_slope;
+            }
             // Smoothness (ξ_k − ξ_{k−1})², and (ξ_0 − ξ_prev)².
             self.p.nzval[self.p_diag[k]] += 2.0 * ws;
             if k == 0 {

@@ -332,7 +332,7 @@ impl<M: SliceModel> MpcPlanJob<M> {
         }
         self.finish_rate = 0.0;
         if self.settings.finish_gap {
-            self.price_finish(r.knife_z, r.direction, d0 + remaining);
+            self.price_finish(r.knife_z, r.direction, d0 + remaining, r.blade_left);
         }
         let l = self.motion;
         // Keep what stopping at the current tangential speed needs.
@@ -392,19 +392,21 @@ impl<M: SliceModel> MpcPlanJob<M> {
     /// ([`MpcSettings::finish_gap`]): with the knife frame origin at world
     /// z = `knife_z` now, sliding along `direction`, and the horizon ending
     /// at the edge's depth `end_depth` (m), the plan's slide at ξ̄ puts the
-    /// knife at z_e = `knife_z` + direction·Σ_k ξ̄_k Δz_k there. The
+    /// knife at z_e = `knife_z` + direction·Σ_k ξ̄_k Δz_k there (at most the
+    /// `blade` m left in the stroke). The
     /// sections' mean depth then falls short of the edge's by the gap
     /// g(z_e) = `end_depth` − [`EdgeOutline::mean_cut_depth`], which the edge
     /// travels on past the horizon at the last stage's price p = L·w per
     /// unit of its depth. Linearised: stage k's ratio costs
     /// p·g′(z_e)·direction·Δz_k per unit (g′ by central differences over
     /// ±[`FINISH_PROBE`]); 0 where the gap is not defined.
-    fn price_finish(&mut self, knife_z: f64, direction: f64, end_depth: f64) {
-        let slide: f64 = self
+    fn price_finish(&mut self, knife_z: f64, direction: f64, end_depth: f64, blade: f64) {
+        let planned: f64 = self
             .stages
             .iter()
             .map(|s| s.xi_bar * s.knife_descent())
             .sum();
+        let slide = planned.min(blade.max(0.0));
         let z_end = knife_z + direction * slide;
         let outline = &self.outline;
         let gap = |z: f64| {
@@ -485,31 +487,20 @@ impl<M: SliceModel> MpcPlanJob<M> {
     fn sawing_pays(&mut self, r: &PlanRequest, previous: f64, blade: f64, within: bool) -> bool {
         // Strokes go back and forth: a sawing plan does not move the object
         // along the edge for good, so the finish's price
-        // ([`Self::price_finish`]) is not its to claim.
-        let within_cost = DepthQp::objective(
-            &self.stages,
-            &self.limits,
-            previous,
-            &self.stroke_xi,
-            &self.stroke_tau,
-        );
+        // ([`Self::price_finish`]) is not its to claim, and both plans are
+        // compared without it.
         let finish = self.finish_rate;
+        if finish == 0.0 {
+            return self.sawing_beats(r, previous, blade, within);
+        }
         self.set_finish(0.0);
-        let pays = self.sawing_beats(r, previous, blade, within, within_cost);
+        let pays = self.sawing_beats(r, previous, blade, within);
         self.set_finish(finish);
         pays
     }
 
-    /// [`Self::sawing_pays`] with the stages as the sawing plan prices
-    /// them, against the within-stroke plan's objective `within_cost`.
-    fn sawing_beats(
-        &mut self,
-        r: &PlanRequest,
-        previous: f64,
-        blade: f64,
-        within: bool,
-        within_cost: f64,
-    ) -> bool {
+    /// [`Self::sawing_pays`] with the stages as they stand.
+    fn sawing_beats(&mut self, r: &PlanRequest, previous: f64, blade: f64, within: bool) -> bool {
         let demand = |stages: &[StageData], xi: &[f64]| -> f64 {
             stages.iter().zip(xi).map(|(s, x)| s.blade(*x)).sum()
         };
@@ -540,8 +531,15 @@ impl<M: SliceModel> MpcPlanJob<M> {
         let l = &self.motion;
         let speed = r.normal_speed.hypot(r.tangential_speed).max(l.normal_speed);
         let reversal = self.limits.time_weight * stopping_duration(speed, l.acceleration, l.jerk);
+        let within = DepthQp::objective(
+            &self.stages,
+            &self.limits,
+            previous,
+            &self.stroke_xi,
+            &self.stroke_tau,
+        );
         let sawing = DepthQp::objective(&self.stages, &self.limits, previous, xi, self.qp.tau());
-        sawing + needed * reversal < within_cost
+        sawing + needed * reversal < within
     }
 }
 
@@ -566,9 +564,11 @@ fn contact_slopes(
 }
 
 /// Half the span over which [`MpcPlanJob::price_finish`] differentiates the
-/// finishing gap along z, m: wide against the edge's 0.5 mm samples and the
-/// outline's columns, narrow against a chef's rise (140 mm).
-const FINISH_PROBE: f64 = 1e-3;
+/// finishing gap along z, m: wide against the edge's 0.5 mm samples (the
+/// touch height is the deepest sample's, so the gap steps by up to a few
+/// hundredths of a millimetre as a sample crosses the outline's end), narrow
+/// against a chef's rise (140 mm).
+const FINISH_PROBE: f64 = 5e-3;
 
 /// The contact's slopes along the direction of motion ([`contact_slopes`]).
 #[derive(Debug, Clone, Copy)]

@@ -138,8 +138,9 @@ pub struct MpcSettings {
     /// travel past its horizon's end that the gap needs, at the last
     /// stage's price per unit of the edge's depth, linearised in each
     /// stage's ratio ([`EdgeOutline::mean_cut_depth`](crate::observer::EdgeOutline::mean_cut_depth)
-    /// at the plan's predicted end pose). Under a straight edge, or over
-    /// the flat of a chef's, the gap does not move and nothing changes.
+    /// at the plan's predicted end pose). Where the slide does not move
+    /// the gap (a straight edge below a level top, the flat of a chef's
+    /// edge) the price is zero.
     /// Measured in docs/heldout.md.
     pub finish_gap: bool,
     /// How plans reach the servo tick (`[controller.mpc.planner]`; default
