@@ -401,11 +401,7 @@ impl<M: SliceModel> MpcPlanJob<M> {
     /// p·g′(z_e)·direction·Δz_k per unit (g′ by central differences over
     /// ±[`FINISH_PROBE`]); 0 where the gap is not defined.
     fn price_finish(&mut self, knife_z: f64, direction: f64, end_depth: f64, blade: f64) {
-        let planned: f64 = self
-            .stages
-            .iter()
-            .map(|s| s.xi_bar * s.knife_descent())
-            .sum();
+        let planned: f64 = self.stages.iter().map(|s| s.blade(s.xi_bar)).sum();
         let slide = planned.min(blade.max(0.0));
         let z_end = knife_z + direction * slide;
         let outline = &self.outline;
