@@ -378,6 +378,15 @@ fn check_opens_the_mesh_and_refuses_an_open_surface() {
         &shearcut(&["check", &path]),
         &["`object.path`", "not closed"],
     );
+    // The file now holds a closed tetrahedron with one face reversed.
+    d.file(
+        "open.obj",
+        "v 0 0 0\nv 0.05 0 0\nv 0 0.05 0\nv 0 0 0.05\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 4 3\n",
+    );
+    assert_refused(
+        &shearcut(&["check", &path]),
+        &["`object.path`", "not consistently wound"],
+    );
 }
 
 #[test]

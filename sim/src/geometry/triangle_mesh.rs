@@ -33,12 +33,18 @@ pub enum MeshError {
     #[error("mesh has no triangles")]
     Empty,
     /// A coordinate is NaN or infinite.
-    #[error("mesh vertex {vertex} has a non-finite coordinate")]
+    #[error(
+        "mesh vertex ({}, {}, {}) has a non-finite coordinate",
+        .position[0],
+        .position[1],
+        .position[2]
+    )]
     NonFinite {
-        /// Index of the vertex.
-        vertex: usize,
+        /// The vertex's coordinates as given, m.
+        position: [f64; 3],
     },
-    /// A triangle refers to a vertex that does not exist.
+    /// A triangle refers to a vertex that does not exist (indices count
+    /// from 0, as in [`TriangleMesh::new`]'s arguments).
     #[error(
         "mesh triangle {triangle} refers to vertex {vertex}, but there are only {count} vertices"
     )]
@@ -52,15 +58,30 @@ pub enum MeshError {
     },
     /// The surface is not closed: an edge belongs to other than two triangles.
     #[error(
-        "mesh is not closed: the edge between vertices {a} and {b} belongs to {count} triangle(s), a closed surface needs exactly 2"
+        "mesh is not closed: the edge from {} to {} belongs to {count} triangle(s), a closed surface needs exactly 2",
+        Point(.a),
+        Point(.b)
     )]
     NotClosed {
-        /// First vertex of the edge.
-        a: usize,
-        /// Second vertex of the edge.
-        b: usize,
+        /// One end of the edge, m.
+        a: [f64; 3],
+        /// The other end, m.
+        b: [f64; 3],
         /// How many triangles share it.
         count: usize,
+    },
+    /// The two triangles that share an edge run along it the same way: one
+    /// of them is wound backwards, so the surface has no consistent outside.
+    #[error(
+        "mesh is not consistently wound: both triangles on the edge from {} to {} run along it the same way (one face is reversed; recompute the mesh's normals)",
+        Point(.a),
+        Point(.b)
+    )]
+    InconsistentWinding {
+        /// One end of the edge, m.
+        a: [f64; 3],
+        /// The other end, m.
+        b: [f64; 3],
     },
     /// The enclosed volume is zero (flat or degenerate mesh).
     #[error("mesh encloses no volume")]
@@ -78,17 +99,17 @@ pub struct TriangleMesh {
 impl TriangleMesh {
     /// A mesh from vertices and triangles, after checking that it is a closed
     /// surface (every edge shared by exactly two triangles, after merging
-    /// vertices that coincide to 1e-9 of the mesh size), finite, and encloses a
-    /// volume.
+    /// vertices that coincide to 1e-9 of the mesh size) wound consistently
+    /// (the two triangles on an edge run along it in opposite directions;
+    /// all inwards or all outwards), finite, and encloses a volume.
     pub fn new(vertices: Vec<Vector3<f64>>, triangles: Vec<[usize; 3]>) -> Result<Self, MeshError> {
         if triangles.is_empty() {
             return Err(MeshError::Empty);
         }
-        if let Some(v) = vertices
-            .iter()
-            .position(|p| !p.iter().all(|c| c.is_finite()))
-        {
-            return Err(MeshError::NonFinite { vertex: v });
+        if let Some(p) = vertices.iter().find(|p| !p.iter().all(|c| c.is_finite())) {
+            return Err(MeshError::NonFinite {
+                position: (*p).into(),
+            });
         }
         for (t, tri) in triangles.iter().enumerate() {
             if let Some(&v) = tri.iter().find(|&&v| v >= vertices.len()) {
@@ -100,17 +121,28 @@ impl TriangleMesh {
             }
         }
         let (vertices, triangles) = weld(vertices, triangles);
-        let mut edges: HashMap<(usize, usize), usize> = HashMap::new();
+        // Per undirected edge: how many triangles run along it from its lower
+        // to its higher vertex index, and how many the other way.
+        let mut edges: HashMap<(usize, usize), [usize; 2]> = HashMap::new();
         for tri in &triangles {
             for k in 0..3 {
                 let (a, b) = (tri[k], tri[(k + 1) % 3]);
-                *edges.entry((a.min(b), a.max(b))).or_insert(0) += 1;
+                edges.entry((a.min(b), a.max(b))).or_default()[usize::from(a > b)] += 1;
             }
         }
-        let mut bad: Vec<_> = edges.into_iter().filter(|&(_, c)| c != 2).collect();
-        bad.sort_unstable();
-        if let Some(&((a, b), count)) = bad.first() {
-            return Err(MeshError::NotClosed { a, b, count });
+        let mut edges: Vec<_> = edges.into_iter().collect();
+        edges.sort_unstable();
+        let at = |i: usize| -> [f64; 3] { vertices[i].into() };
+        if let Some(&((a, b), [up, down])) = edges.iter().find(|(_, [u, d])| u + d != 2) {
+            let count = up + down;
+            return Err(MeshError::NotClosed {
+                a: at(a),
+                b: at(b),
+                count,
+            });
+        }
+        if let Some(&((a, b), _)) = edges.iter().find(|(_, [u, d])| u != d) {
+            return Err(MeshError::InconsistentWinding { a: at(a), b: at(b) });
         }
         let mesh = Self {
             vertices,
@@ -149,8 +181,8 @@ impl TriangleMesh {
         (hi - lo).norm()
     }
 
-    /// Enclosed volume by the divergence theorem, m³ (absolute value: the
-    /// orientation of the triangles is not assumed).
+    /// Enclosed volume by the divergence theorem, m³ (absolute value: a
+    /// consistently wound mesh may face inwards or outwards).
     pub fn volume(&self) -> f64 {
         self.triangles
             .iter()
@@ -191,6 +223,16 @@ impl TriangleMesh {
             [3, 7, 5], // x = max
         ];
         Self::new(vertices, triangles).expect("a box is closed")
+    }
+}
+
+/// A point in an error message: its coordinates in metres, as given.
+struct Point<'a>(&'a [f64; 3]);
+
+impl std::fmt::Display for Point<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let [x, y, z] = self.0;
+        write!(f, "({x}, {y}, {z}) m")
     }
 }
 
@@ -253,11 +295,33 @@ mod tests {
     }
 
     #[test]
+    fn a_reversed_face_is_refused_naming_its_edge() {
+        let m = TriangleMesh::cuboid(Vector3::zeros(), Vector3::repeat(1.0));
+        let mut tris = m.triangles().to_vec();
+        tris[0].swap(1, 2);
+        let e = TriangleMesh::new(m.vertices().to_vec(), tris.clone()).unwrap_err();
+        let MeshError::InconsistentWinding { a, b } = e else {
+            panic!("{e}")
+        };
+        // The edge lies on the reversed triangle [0, 1, 2] of the box's floor.
+        let corners = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+        assert!(corners.contains(&a) && corners.contains(&b) && a != b);
+        // Every face reversed is a consistent surface, wound inwards.
+        for t in &mut tris {
+            t.swap(1, 2);
+        }
+        tris[0].swap(1, 2);
+        let inward = TriangleMesh::new(m.vertices().to_vec(), tris).unwrap();
+        assert_eq!(inward.volume(), m.volume());
+    }
+
+    #[test]
     fn bad_index_and_nan_are_refused() {
         let e = TriangleMesh::new(vec![Vector3::zeros(); 3], vec![[0, 1, 5]]).unwrap_err();
         assert!(matches!(e, MeshError::BadIndex { vertex: 5, .. }));
         let e = TriangleMesh::new(vec![Vector3::new(f64::NAN, 0.0, 0.0); 3], vec![[0, 1, 2]])
             .unwrap_err();
-        assert!(matches!(e, MeshError::NonFinite { vertex: 0 }));
+        assert!(matches!(e, MeshError::NonFinite { .. }), "{e}");
+        assert!(e.to_string().contains("(NaN, 0, 0)"), "{e}");
     }
 }
