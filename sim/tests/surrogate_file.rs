@@ -107,17 +107,22 @@ fn unknown_field_is_refused_and_named() {
     assert!(e.to_string().contains("split_typo"), "{e}");
 }
 
+/// The shipped potato surrogate with the first coefficient of the array
+/// `key` (the first line `key = [`) written as `value`; and that
+/// coefficient as shipped.
+fn potato_with_first(key: &str, value: &str) -> (String, f64) {
+    let text = potato_text();
+    let start = format!("{key} = [");
+    let line = text.lines().find(|l| l.starts_with(&start)).unwrap();
+    let first = line.trim_start_matches(&start).split(',').next().unwrap();
+    let shipped = first.trim().parse().unwrap();
+    (text.replace(line, &line.replacen(first, value, 1)), shipped)
+}
+
 #[test]
 fn non_finite_coefficient_is_refused_and_named() {
-    let text = potato_text();
-    let line = text.lines().find(|l| l.starts_with("split = [")).unwrap();
-    let first = line
-        .trim_start_matches("split = [")
-        .split(',')
-        .next()
-        .unwrap();
     for bad in ["nan", "inf", "-inf"] {
-        let t = text.replace(line, &line.replacen(first, bad, 1));
+        let (t, _) = potato_with_first("split", bad);
         let e = Surrogate::from_toml_str(&t).unwrap_err();
         match &e {
             SurrogateFileError::BadValue { key, value, .. } => {
@@ -128,6 +133,26 @@ fn non_finite_coefficient_is_refused_and_named() {
         }
         assert!(e.to_string().contains("post_fracture.split[0]"), "{e}");
     }
+}
+
+#[test]
+fn a_finite_coefficient_whose_prediction_overflows_is_refused() {
+    let (t, shipped) = potato_with_first("drag", "1e308");
+    let e = Surrogate::from_toml_str(&t).unwrap_err();
+    assert!(
+        matches!(
+            e,
+            SurrogateFileError::NonFinitePrediction {
+                fractured: true,
+                ..
+            }
+        ),
+        "{e}"
+    );
+    assert!(e.to_string().contains("refit with `shearcut fit`"), "{e}");
+    // The same coefficient within a fit's scale (×10) is accepted.
+    let (t, _) = potato_with_first("drag", &(10.0 * shipped).to_string());
+    assert!(Surrogate::from_toml_str(&t).is_ok());
 }
 
 #[test]

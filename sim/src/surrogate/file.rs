@@ -10,6 +10,7 @@ use crate::resource_budget::CONFIG_FILE_BYTES;
 use crate::toml_error::one_line;
 
 use super::model::{OLDEST_READ_FORMAT_VERSION, SURROGATE_FORMAT_VERSION, Surrogate};
+use super::state::{CutState, ScaleFactors};
 
 /// Why a surrogate file was refused. Each message names the key or value.
 #[derive(Debug, thiserror::Error)]
@@ -50,6 +51,26 @@ pub enum SurrogateFileError {
     /// A material or blade constant is out of its range.
     #[error("surrogate file: {0}")]
     Invalid(InvalidSetting),
+    /// Every coefficient is finite, but one prediction within the fitted
+    /// range is not (a coefficient out of any fit's scale overflows).
+    #[error(
+        "surrogate file: its prediction `{output}` is not finite at ξ = {xi}, section height {height} m, half width {half_width} m, depth {depth} m ({}): a coefficient is out of scale; refit with `shearcut fit`",
+        if *.fractured { "after the first fracture" } else { "before the first fracture" }
+    )]
+    NonFinitePrediction {
+        /// The output, e.g. `force_normal`.
+        output: &'static str,
+        /// Slice-push ratio.
+        xi: f64,
+        /// Section height, m.
+        height: f64,
+        /// Section half width, m.
+        half_width: f64,
+        /// Depth of the edge below the top, m.
+        depth: f64,
+        /// Whether after the first fracture.
+        fractured: bool,
+    },
     /// A number is not finite (or a physical constant not positive).
     #[error("surrogate file: `{key}` = {value} {allowed}")]
     BadValue {
@@ -111,7 +132,60 @@ impl Surrogate {
         check_array_lengths(&toml::Value::Table(table), &read)
             .map_err(SurrogateFileError::Invalid)?;
         s.validate()?;
+        s.check_predictions()?;
         Ok(s)
+    }
+
+    /// Checks that every output and slope is finite at the corners and
+    /// middles of the fitted range: ξ at 0, ¼, ½, ¾ and 1 of `xi_max`, the
+    /// smallest, middle and largest height and half width, depths of 10,
+    /// 50 and 90 % of the height, before the first fracture and after it
+    /// (travel since it half the depth), at nominal material. 270
+    /// evaluations, about 0.1 ms.
+    fn check_predictions(&self) -> Result<(), SurrogateFileError> {
+        let r = &self.range;
+        let thirds = |[lo, hi]: [f64; 2]| [lo, 0.5 * (lo + hi), hi];
+        for xi in [0.0, 0.25, 0.5, 0.75, 1.0].map(|f| f * r.xi_max) {
+            for height in thirds(r.height) {
+                for half_width in thirds(r.half_width) {
+                    for depth in [0.1, 0.5, 0.9].map(|f| f * height) {
+                        for fractured in [false, true] {
+                            let state = CutState {
+                                depth,
+                                height,
+                                half_width,
+                                fractured,
+                                travel_since_fracture: 0.5 * depth,
+                            };
+                            let o = self.evaluate(xi, &state, &ScaleFactors::default());
+                            let outputs = [
+                                ("force_normal", o.force_normal),
+                                ("force_tangential", o.force_tangential),
+                                ("work_per_depth", o.work_per_depth),
+                                ("deformation", o.deformation),
+                                ("fracture_onset_depth", o.fracture_onset_depth),
+                                ("force_normal_slope", o.force_normal_slope),
+                                ("force_tangential_slope", o.force_tangential_slope),
+                                ("work_per_depth_slope", o.work_per_depth_slope),
+                                ("work_per_depth_curvature", o.work_per_depth_curvature),
+                            ];
+                            if let Some(&(output, _)) = outputs.iter().find(|(_, v)| !v.is_finite())
+                            {
+                                return Err(SurrogateFileError::NonFinitePrediction {
+                                    output,
+                                    xi,
+                                    height,
+                                    half_width,
+                                    depth,
+                                    fractured,
+                                });
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        Ok(())
     }
 
     /// The surrogate as TOML.
