@@ -344,6 +344,35 @@ fn issue_27_surrogate_etc_passwd_is_described_never_echoed() {
 }
 
 #[test]
+fn a_surrogate_whose_prediction_overflows_is_refused() {
+    let d = Dir::new("overflow");
+    let shipped = include_str!("../config/surrogates/potato-cuboid-straight.toml");
+    let drag = shipped.lines().find(|l| l.starts_with("drag = [")).unwrap();
+    let first = drag
+        .trim_start_matches("drag = [")
+        .split(',')
+        .next()
+        .unwrap();
+    let file = d.file(
+        "overflow.toml",
+        &shipped.replace(drag, &drag.replacen(first, "1e308", 1)),
+    );
+    let text = LOOP_CUBOID.replace(
+        "kind = \"mpc\"",
+        &format!("kind = \"mpc\"\nsurrogate = \"{file}\""),
+    );
+    let path = d.file("s.toml", &text);
+    assert_refused(
+        &shearcut(&["check", &path]),
+        &[
+            "`controller.surrogate`",
+            "its prediction `force_normal_slope` is not finite at ξ = 0",
+            "refit with `shearcut fit`",
+        ],
+    );
+}
+
+#[test]
 fn issue_27_check_dev_zero_is_refused_by_the_size_cap() {
     assert_refused(
         &shearcut(&["check", "/dev/zero"]),
@@ -378,14 +407,20 @@ fn check_opens_the_mesh_and_refuses_an_open_surface() {
         &shearcut(&["check", &path]),
         &["`object.path`", "not closed"],
     );
-    // The file now holds a closed tetrahedron with one face reversed.
+    // A closed tetrahedron with one face reversed.
     d.file(
-        "open.obj",
+        "reversed.obj",
         "v 0 0 0\nv 0.05 0 0\nv 0 0.05 0\nv 0 0 0.05\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 4 3\n",
     );
+    let path = d.file("reversed.toml", &text.replace("open.obj", "reversed.obj"));
     assert_refused(
         &shearcut(&["check", &path]),
-        &["`object.path`", "not consistently wound"],
+        &[
+            "`object.path`",
+            "not consistently wound",
+            // The file's coordinates as written (read as f32).
+            "run from (0, 0.05, 0) m to (0.05, 0, 0) m",
+        ],
     );
 }
 

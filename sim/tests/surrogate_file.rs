@@ -141,15 +141,36 @@ fn a_finite_coefficient_whose_prediction_overflows_is_refused() {
     let e = Surrogate::from_toml_str(&t).unwrap_err();
     assert!(
         matches!(
-            e,
+            &e,
             SurrogateFileError::NonFinitePrediction {
+                output,
+                xi: 0.0,
                 fractured: true,
+                stiffness: 1.0,
                 ..
-            }
+            } if output == "force_normal_slope"
         ),
         "{e}"
     );
-    assert!(e.to_string().contains("refit with `shearcut fit`"), "{e}");
+    let line = e.to_string();
+    assert!(
+        line.contains("`force_normal_slope` is not finite at ξ = 0, section height 0.02 m")
+            && line.ends_with("refit with `shearcut fit`")
+            && line.lines().count() == 1,
+        "{e}"
+    );
+    // A correction for the stiffness-to-toughness ratio out of scale: it
+    // vanishes at the nominal material, but its slope in ln(S/T) does not.
+    let (t, _) = potato_with_first("face_reaction_linear", "1e308");
+    let e = Surrogate::from_toml_str(&t).unwrap_err();
+    assert!(
+        matches!(
+            &e,
+            SurrogateFileError::NonFinitePrediction { output, .. }
+                if output.ends_with("_log_ratio_slope")
+        ),
+        "{e}"
+    );
     // The same coefficient within a fit's scale (×10) is accepted.
     let (t, _) = potato_with_first("drag", &(10.0 * shipped).to_string());
     assert!(Surrogate::from_toml_str(&t).is_ok());

@@ -4,6 +4,8 @@ use std::collections::HashMap;
 
 use nalgebra::Vector3;
 
+use crate::physical_range::number_text;
+
 /// Why a mesh cannot be used as a solid object.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum MeshError {
@@ -33,12 +35,7 @@ pub enum MeshError {
     #[error("mesh has no triangles")]
     Empty,
     /// A coordinate is NaN or infinite.
-    #[error(
-        "mesh vertex ({}, {}, {}) has a non-finite coordinate",
-        .position[0],
-        .position[1],
-        .position[2]
-    )]
+    #[error("mesh vertex {} has a non-finite coordinate", Point(.position))]
     NonFinite {
         /// The vertex's coordinates as given, m.
         position: [f64; 3],
@@ -71,17 +68,18 @@ pub enum MeshError {
         count: usize,
     },
     /// The two triangles that share an edge run along it the same way: one
-    /// of them is wound backwards, so the surface has no consistent outside.
+    /// side of the edge (a face or a region of faces) is wound backwards,
+    /// so the surface has no consistent outside.
     #[error(
-        "mesh is not consistently wound: both triangles on the edge from {} to {} run along it the same way (one face is reversed; recompute the mesh's normals)",
-        Point(.a),
-        Point(.b)
+        "mesh is not consistently wound: both triangles on the edge run from {} to {} (faces on one side of it are reversed; reorient the faces consistently, e.g. Blender's Recalculate Outside)",
+        Point(.from),
+        Point(.to)
     )]
     InconsistentWinding {
-        /// One end of the edge, m.
-        a: [f64; 3],
-        /// The other end, m.
-        b: [f64; 3],
+        /// Where both triangles' edge starts, m.
+        from: [f64; 3],
+        /// Where it ends, m.
+        to: [f64; 3],
     },
     /// The enclosed volume is zero (flat or degenerate mesh).
     #[error("mesh encloses no volume")]
@@ -100,8 +98,9 @@ impl TriangleMesh {
     /// A mesh from vertices and triangles, after checking that it is a closed
     /// surface (every edge shared by exactly two triangles, after merging
     /// vertices that coincide to 1e-9 of the mesh size) wound consistently
-    /// (the two triangles on an edge run along it in opposite directions;
-    /// all inwards or all outwards), finite, and encloses a volume.
+    /// (the two triangles on an edge run along it in opposite directions:
+    /// each closed shell faces all inwards or all outwards), finite, and
+    /// encloses a volume.
     pub fn new(vertices: Vec<Vector3<f64>>, triangles: Vec<[usize; 3]>) -> Result<Self, MeshError> {
         if triangles.is_empty() {
             return Err(MeshError::Empty);
@@ -130,19 +129,30 @@ impl TriangleMesh {
                 edges.entry((a.min(b), a.max(b))).or_default()[usize::from(a > b)] += 1;
             }
         }
-        let mut edges: Vec<_> = edges.into_iter().collect();
-        edges.sort_unstable();
+        // The first bad edge by vertex index, so that the error is the same
+        // from run to run.
+        let first_edge = |bad: fn(&[usize; 2]) -> bool| {
+            edges
+                .iter()
+                .filter(|(_, counts)| bad(counts))
+                .min_by_key(|(edge, _)| **edge)
+                .map(|(&edge, &counts)| (edge, counts))
+        };
         let at = |i: usize| -> [f64; 3] { vertices[i].into() };
-        if let Some(&((a, b), [up, down])) = edges.iter().find(|(_, [u, d])| u + d != 2) {
-            let count = up + down;
+        if let Some(((a, b), [up, down])) = first_edge(|[u, d]| u + d != 2) {
             return Err(MeshError::NotClosed {
                 a: at(a),
                 b: at(b),
-                count,
+                count: up + down,
             });
         }
-        if let Some(&((a, b), _)) = edges.iter().find(|(_, [u, d])| u != d) {
-            return Err(MeshError::InconsistentWinding { a: at(a), b: at(b) });
+        if let Some(((a, b), [up, _])) = first_edge(|[u, d]| u != d) {
+            // Both run from the lower index to the higher one, or both back.
+            let (from, to) = if up == 2 { (a, b) } else { (b, a) };
+            return Err(MeshError::InconsistentWinding {
+                from: at(from),
+                to: at(to),
+            });
         }
         let mesh = Self {
             vertices,
@@ -226,12 +236,23 @@ impl TriangleMesh {
     }
 }
 
-/// A point in an error message: its coordinates in metres, as given.
+/// A point in an error message: its coordinates in metres as the file
+/// wrote them. OBJ and STL coordinates are read as f32, so a coordinate
+/// that is an f32 is printed as the shortest f32 (0.05, not
+/// 0.05000000074505806); any other as [`number_text`] prints it.
 struct Point<'a>(&'a [f64; 3]);
 
 impl std::fmt::Display for Point<'_> {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let [x, y, z] = self.0;
+        let text = |c: f64| {
+            let single = c as f32;
+            if f64::from(single) == c {
+                single.to_string()
+            } else {
+                number_text(c)
+            }
+        };
+        let [x, y, z] = self.0.map(text);
         write!(f, "({x}, {y}, {z}) m")
     }
 }
@@ -299,19 +320,17 @@ mod tests {
         let m = TriangleMesh::cuboid(Vector3::zeros(), Vector3::repeat(1.0));
         let mut tris = m.triangles().to_vec();
         tris[0].swap(1, 2);
-        let e = TriangleMesh::new(m.vertices().to_vec(), tris.clone()).unwrap_err();
-        let MeshError::InconsistentWinding { a, b } = e else {
+        let e = TriangleMesh::new(m.vertices().to_vec(), tris).unwrap_err();
+        let MeshError::InconsistentWinding { from, to } = e else {
             panic!("{e}")
         };
-        // The edge lies on the reversed triangle [0, 1, 2] of the box's floor.
-        let corners = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
-        assert!(corners.contains(&a) && corners.contains(&b) && a != b);
+        // The floor's triangle [0, 2, 1] reversed is [0, 1, 2]: it runs from
+        // corner 0 to corner 1 as the triangle [0, 1, 4] of the face y = min
+        // does; (0, 1) is the first of its three edges by index.
+        assert_eq!((from, to), ([0.0, 0.0, 0.0], [1.0, 0.0, 0.0]), "{e}");
         // Every face reversed is a consistent surface, wound inwards.
-        for t in &mut tris {
-            t.swap(1, 2);
-        }
-        tris[0].swap(1, 2);
-        let inward = TriangleMesh::new(m.vertices().to_vec(), tris).unwrap();
+        let inward: Vec<[usize; 3]> = m.triangles().iter().map(|&[a, b, c]| [a, c, b]).collect();
+        let inward = TriangleMesh::new(m.vertices().to_vec(), inward).unwrap();
         assert_eq!(inward.volume(), m.volume());
     }
 

@@ -5,6 +5,7 @@
 //! with and without the corrections).
 
 use super::accuracy::{AccuracyReport, RatioAccuracy, RunComparison, compare_run};
+use super::file::SurrogateFileError;
 use super::fit::{FitError, ScaledSweep, fit_ratio_correction, fit_surrogate};
 use super::model::Surrogate;
 use super::sweep::{
@@ -45,6 +46,10 @@ pub enum FitCampaignError {
     /// A least-squares problem failed.
     #[error("surrogate fit: {0}")]
     Fit(#[from] FitError),
+    /// The fitted surrogate fails the checks a file of it would be read
+    /// with (a prediction within the range is not finite).
+    #[error("the fitted surrogate would be refused on reading: {0}")]
+    Refused(#[from] SurrogateFileError),
 }
 
 /// What a fit produced.
@@ -142,6 +147,7 @@ pub fn fit_campaign(
         })
         .collect();
     surrogate.ratio = fit_ratio_correction(&surrogate, &sweeps)?;
+    surrogate.validate()?;
     let comparisons: Vec<RunComparison> = held_out
         .iter()
         .map(|r| compare_run(&surrogate, r))

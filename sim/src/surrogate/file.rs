@@ -9,8 +9,10 @@ use crate::resource_budget::CONFIG_FILE_BYTES;
 
 use crate::toml_error::one_line;
 
+use super::campaign::RATIO_STIFFNESS_FACTORS;
 use super::model::{OLDEST_READ_FORMAT_VERSION, SURROGATE_FORMAT_VERSION, Surrogate};
 use super::state::{CutState, ScaleFactors};
+use crate::physical_range::number_text;
 
 /// Why a surrogate file was refused. Each message names the key or value.
 #[derive(Debug, thiserror::Error)]
@@ -51,15 +53,20 @@ pub enum SurrogateFileError {
     /// A material or blade constant is out of its range.
     #[error("surrogate file: {0}")]
     Invalid(InvalidSetting),
-    /// Every coefficient is finite, but one prediction within the fitted
-    /// range is not (a coefficient out of any fit's scale overflows).
+    /// Every number is finite, but a prediction within the fitted range is
+    /// not (a coefficient, range or blade out of any fit's scale).
     #[error(
-        "surrogate file: its prediction `{output}` is not finite at ξ = {xi}, section height {height} m, half width {half_width} m, depth {depth} m ({}): a coefficient is out of scale; refit with `shearcut fit`",
-        if *.fractured { "after the first fracture" } else { "before the first fracture" }
+        "surrogate file: its prediction `{output}` is not finite at ξ = {}, section height {} m, half width {} m, depth {} m, {}, E × {}: a coefficient, the range or the blade is out of scale; refit with `shearcut fit`",
+        number_text(*.xi),
+        number_text(*.height),
+        number_text(*.half_width),
+        number_text(*.depth),
+        if *.fractured { "after the first fracture" } else { "before the first fracture" },
+        number_text(*.stiffness)
     )]
     NonFinitePrediction {
-        /// The output, e.g. `force_normal`.
-        output: &'static str,
+        /// The output, e.g. `force_normal` or `work_per_depth_parts.by_stiffness`.
+        output: String,
         /// Slice-push ratio.
         xi: f64,
         /// Section height, m.
@@ -70,6 +77,8 @@ pub enum SurrogateFileError {
         depth: f64,
         /// Whether after the first fracture.
         fractured: bool,
+        /// The stiffness factor (1: the nominal material).
+        stiffness: f64,
     },
     /// A number is not finite (or a physical constant not positive).
     #[error("surrogate file: `{key}` = {value} {allowed}")]
@@ -132,54 +141,51 @@ impl Surrogate {
         check_array_lengths(&toml::Value::Table(table), &read)
             .map_err(SurrogateFileError::Invalid)?;
         s.validate()?;
-        s.check_predictions()?;
         Ok(s)
     }
 
-    /// Checks that every output and slope is finite at the corners and
-    /// middles of the fitted range: ξ at 0, ¼, ½, ¾ and 1 of `xi_max`, the
-    /// smallest, middle and largest height and half width, depths of 10,
-    /// 50 and 90 % of the height, before the first fracture and after it
-    /// (travel since it half the depth), at nominal material. 270
-    /// evaluations, about 0.1 ms.
+    /// Checks that every output, slope and part is finite at the ends and
+    /// middles of the fitted range: ξ at 0, ¼, ½, ¾ and 1 of `xi_max`; the
+    /// smallest, middle and largest height and half width; depths of 10,
+    /// 50 and 90 % of the height; before the first fracture and after it
+    /// (the travel since it half the depth); at the nominal material and
+    /// at the stiffness factors of the ratio correction's fit
+    /// ([`RATIO_STIFFNESS_FACTORS`]). 810 evaluations, about 0.3 ms.
     fn check_predictions(&self) -> Result<(), SurrogateFileError> {
         let r = &self.range;
-        let thirds = |[lo, hi]: [f64; 2]| [lo, 0.5 * (lo + hi), hi];
-        for xi in [0.0, 0.25, 0.5, 0.75, 1.0].map(|f| f * r.xi_max) {
-            for height in thirds(r.height) {
-                for half_width in thirds(r.half_width) {
-                    for depth in [0.1, 0.5, 0.9].map(|f| f * height) {
-                        for fractured in [false, true] {
-                            let state = CutState {
-                                depth,
+        let ends_and_middle = |[lo, hi]: [f64; 2]| [lo, 0.5 * (lo + hi), hi];
+        let stiffnesses = std::iter::once(1.0).chain(RATIO_STIFFNESS_FACTORS);
+        for stiffness in stiffnesses {
+            let scale = ScaleFactors {
+                stiffness,
+                ..ScaleFactors::default()
+            };
+            for xi in [0.0, 0.25, 0.5, 0.75, 1.0].map(|f| f * r.xi_max) {
+                for (height, half_width) in ends_and_middle(r.height)
+                    .into_iter()
+                    .flat_map(|h| ends_and_middle(r.half_width).map(|w| (h, w)))
+                {
+                    for (depth, fractured) in [0.1, 0.5, 0.9]
+                        .into_iter()
+                        .flat_map(|f| [(f * height, false), (f * height, true)])
+                    {
+                        let state = CutState {
+                            depth,
+                            height,
+                            half_width,
+                            fractured,
+                            travel_since_fracture: 0.5 * depth,
+                        };
+                        if let Some(output) = self.evaluate(xi, &state, &scale).first_non_finite() {
+                            return Err(SurrogateFileError::NonFinitePrediction {
+                                output,
+                                xi,
                                 height,
                                 half_width,
+                                depth,
                                 fractured,
-                                travel_since_fracture: 0.5 * depth,
-                            };
-                            let o = self.evaluate(xi, &state, &ScaleFactors::default());
-                            let outputs = [
-                                ("force_normal", o.force_normal),
-                                ("force_tangential", o.force_tangential),
-                                ("work_per_depth", o.work_per_depth),
-                                ("deformation", o.deformation),
-                                ("fracture_onset_depth", o.fracture_onset_depth),
-                                ("force_normal_slope", o.force_normal_slope),
-                                ("force_tangential_slope", o.force_tangential_slope),
-                                ("work_per_depth_slope", o.work_per_depth_slope),
-                                ("work_per_depth_curvature", o.work_per_depth_curvature),
-                            ];
-                            if let Some(&(output, _)) = outputs.iter().find(|(_, v)| !v.is_finite())
-                            {
-                                return Err(SurrogateFileError::NonFinitePrediction {
-                                    output,
-                                    xi,
-                                    height,
-                                    half_width,
-                                    depth,
-                                    fractured,
-                                });
-                            }
+                                stiffness,
+                            });
                         }
                     }
                 }
@@ -283,7 +289,9 @@ impl Surrogate {
         v
     }
 
-    /// Checks that every number is finite and the physical constants valid.
+    /// Checks that every number is finite, the physical constants valid,
+    /// and every prediction within the fitted range finite (see
+    /// `check_predictions`).
     pub fn validate(&self) -> Result<(), SurrogateFileError> {
         for (key, value) in self.named_values() {
             if !value.is_finite() {
@@ -372,6 +380,6 @@ impl Surrogate {
             .section()
             .validate()
             .map_err(|e| SurrogateFileError::Invalid(e.prefixed("blade")))?;
-        Ok(())
+        self.check_predictions()
     }
 }

@@ -42,6 +42,27 @@ pub struct ScaledParts {
 }
 
 impl ScaledParts {
+    /// Each part and slope with its field's name.
+    fn named(&self) -> [(&'static str, f64); 6] {
+        [
+            ("by_toughness", self.by_toughness),
+            ("by_stiffness", self.by_stiffness),
+            ("by_friction_stiffness", self.by_friction_stiffness),
+            (
+                "by_toughness_log_ratio_slope",
+                self.by_toughness_log_ratio_slope,
+            ),
+            (
+                "by_stiffness_log_ratio_slope",
+                self.by_stiffness_log_ratio_slope,
+            ),
+            (
+                "by_friction_stiffness_log_ratio_slope",
+                self.by_friction_stiffness_log_ratio_slope,
+            ),
+        ]
+    }
+
     /// The output for the given factors, with the parts as evaluated (exact
     /// at the factors of the evaluation; elsewhere the linearisation that
     /// holds ρ's effect fixed).
@@ -158,4 +179,43 @@ pub struct SurrogateOutput {
     pub force_tangential_parts: ScaledParts,
     /// Work per depth split by scale factor.
     pub work_per_depth_parts: ScaledParts,
+}
+
+impl SurrogateOutput {
+    /// The name of the first output, slope or part that is not finite
+    /// (NaN or infinite), in field order; parts as `force_normal_parts.by_stiffness`.
+    pub fn first_non_finite(&self) -> Option<String> {
+        let scalars = [
+            ("force_normal", self.force_normal),
+            ("force_tangential", self.force_tangential),
+            ("work_per_depth", self.work_per_depth),
+            ("fracture", self.fracture),
+            ("strain", self.strain),
+            ("friction", self.friction),
+            ("deformation", self.deformation),
+            ("fracture_onset_depth", self.fracture_onset_depth),
+            ("force_normal_slope", self.force_normal_slope),
+            ("force_tangential_slope", self.force_tangential_slope),
+            ("work_per_depth_slope", self.work_per_depth_slope),
+            ("work_per_depth_curvature", self.work_per_depth_curvature),
+            ("toughness_ratio", self.toughness_ratio),
+            ("toughness_ratio_slope", self.toughness_ratio_slope),
+        ];
+        if let Some((name, _)) = scalars.iter().find(|(_, v)| !v.is_finite()) {
+            return Some((*name).to_string());
+        }
+        [
+            ("force_normal_parts", &self.force_normal_parts),
+            ("force_tangential_parts", &self.force_tangential_parts),
+            ("work_per_depth_parts", &self.work_per_depth_parts),
+        ]
+        .into_iter()
+        .find_map(|(output, parts)| {
+            parts
+                .named()
+                .into_iter()
+                .find(|(_, v)| !v.is_finite())
+                .map(|(part, _)| format!("{output}.{part}"))
+        })
+    }
 }
