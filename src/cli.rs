@@ -44,7 +44,10 @@ pub enum Command {
     /// Print the slice-push toughness law r(ξ,ν) (seed 000 eq. 6) and, with
     /// --plot, draw seed 000 Fig. 3 and write its CSV.
     Toughness {
-        /// Poisson's ratio ν, in (0, 0.5).
+        /// Poisson's ratio ν, in (0, 0.5): the law is finite on the open
+        /// interval and falls to 0 for ξ > 0 as ν → 0.5 (Fig. 3's right edge).
+        /// A scenario's `poisson_ratio` stops at 0.49, where its plane-strain
+        /// elements lock.
         #[arg(long, allow_negative_numbers = true)]
         nu: f64,
         /// Slice-push ratio ξ = tan α, in [0, 20].

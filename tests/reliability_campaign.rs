@@ -171,6 +171,16 @@ fn issue_27_huge_or_tiny_object_sizes_are_refused_not_a_panic() {
 }
 
 #[test]
+fn an_object_value_of_the_wrong_type_is_named_by_its_key() {
+    let text = LOOP_CUBOID.replacen("width = ", "width = \"wide\"\n# was ", 1);
+    check_refuses(
+        "object-type",
+        &text,
+        &["`width`: invalid type: string \"wide\", expected f64"],
+    );
+}
+
+#[test]
 fn issue_27_row_spacing_1e_300_is_refused() {
     check_refuses(
         "rows",

@@ -16,9 +16,15 @@ use crate::geometry::{MeshError, TriangleMesh, read_mesh};
 use crate::invalid_setting::InvalidSetting;
 use crate::physical_range::OBJECT_SIZE;
 
+mod table;
+
 /// An object's shape and size, as written in config (`object = { kind = … }`).
+///
+/// Read through a TOML table (`object/table.rs`) so that an error names its
+/// key.
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
-#[serde(tag = "kind", rename_all = "kebab-case", deny_unknown_fields)]
+#[serde(tag = "kind", rename_all = "kebab-case")]
+#[serde(try_from = "toml::Table")]
 pub enum ObjectShape {
     /// A cuboid piece (seed 000 §V.A–B), centred on x = 0, base on the board.
     Cuboid(Cuboid),
