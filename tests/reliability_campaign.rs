@@ -432,6 +432,20 @@ fn check_opens_the_mesh_and_refuses_an_open_surface() {
             "run from (0, 0.05, 0) m to (0.05, 0, 0) m",
         ],
     );
+    // Two separate tetrahedra, each consistent, the smaller wound inwards.
+    d.file(
+        "two.obj",
+        "v 0 0 0\nv 0.05 0 0\nv 0 0.05 0\nv 0 0 0.05\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n\
+         v 0.1 0 0\nv 0.12 0 0\nv 0.1 0.02 0\nv 0.1 0 0.02\nf 5 6 7\nf 5 8 6\nf 5 7 8\nf 6 8 7\n",
+    );
+    let path = d.file("two.toml", &text.replace("open.obj", "two.obj"));
+    assert_refused(
+        &shearcut(&["check", &path]),
+        &[
+            "`object.path`",
+            "the closed shell through (0.1, 0, 0) m faces the other way from the largest shell",
+        ],
+    );
 }
 
 #[test]

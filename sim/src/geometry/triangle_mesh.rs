@@ -81,6 +81,18 @@ pub enum MeshError {
         /// Where it ends, m.
         to: [f64; 3],
     },
+    /// Two closed shells face opposite ways and one lies outside the other:
+    /// a shell that nothing encloses is the outside of a piece, so it must
+    /// face the way the largest shell faces (a shell facing the other way
+    /// is a cavity, and lies within another).
+    #[error(
+        "mesh is not consistently wound: the closed shell through {} faces the other way from the largest shell and lies outside every other shell (reverse that shell's faces, e.g. Blender's Recalculate Outside)",
+        Point(.vertex)
+    )]
+    InsideOutShell {
+        /// A vertex of that shell, m.
+        vertex: [f64; 3],
+    },
     /// The enclosed volume is zero (flat or degenerate mesh).
     #[error("mesh encloses no volume")]
     NoVolume,
@@ -153,6 +165,9 @@ impl TriangleMesh {
                 from: at(from),
                 to: at(to),
             });
+        }
+        if let Some(v) = inside_out_shell(&vertices, &triangles) {
+            return Err(MeshError::InsideOutShell { vertex: at(v) });
         }
         let mesh = Self {
             vertices,
@@ -257,6 +272,71 @@ impl std::fmt::Display for Point<'_> {
     }
 }
 
+/// The first vertex of the first closed shell (by its first vertex) that
+/// faces the other way from the shell enclosing the largest volume while its
+/// bounding box meets no other shell's, if any. Nothing can enclose such a
+/// shell, so it is the outside of a piece and must face as the largest
+/// (which nothing encloses either) does. Shells whose boxes meet are left
+/// alone: one may be a cavity of the other, which faces the other way.
+fn inside_out_shell(vertices: &[Vector3<f64>], triangles: &[[usize; 3]]) -> Option<usize> {
+    // Shells: the vertices joined by triangles (union-find).
+    let mut parent: Vec<usize> = (0..vertices.len()).collect();
+    let root = |parent: &mut Vec<usize>, mut v: usize| {
+        while parent[v] != v {
+            parent[v] = parent[parent[v]];
+            v = parent[v];
+        }
+        v
+    };
+    for t in triangles {
+        let r = root(&mut parent, t[0]);
+        for &v in &t[1..] {
+            let other = root(&mut parent, v);
+            parent[other] = r;
+        }
+    }
+    struct Shell {
+        first: usize,
+        signed_volume: f64,
+        lo: Vector3<f64>,
+        hi: Vector3<f64>,
+    }
+    let mut shells: HashMap<usize, Shell> = HashMap::new();
+    for t in triangles {
+        let shell = shells.entry(root(&mut parent, t[0])).or_insert(Shell {
+            first: t[0],
+            signed_volume: 0.0,
+            lo: vertices[t[0]],
+            hi: vertices[t[0]],
+        });
+        let [a, b, c] = t.map(|v| vertices[v]);
+        shell.signed_volume += a.dot(&b.cross(&c)) / 6.0;
+        for &v in t {
+            shell.first = shell.first.min(v);
+            shell.lo = shell.lo.inf(&vertices[v]);
+            shell.hi = shell.hi.sup(&vertices[v]);
+        }
+    }
+    if shells.len() < 2 {
+        return None;
+    }
+    let shells: Vec<Shell> = shells.into_values().collect();
+    let largest = shells
+        .iter()
+        .max_by(|a, b| a.signed_volume.abs().total_cmp(&b.signed_volume.abs()))?;
+    let meet = |a: &Shell, b: &Shell| (0..3).all(|k| a.lo[k] <= b.hi[k] && b.lo[k] <= a.hi[k]);
+    shells
+        .iter()
+        .filter(|s| s.signed_volume * largest.signed_volume < 0.0)
+        .filter(|s| {
+            !shells
+                .iter()
+                .any(|other| other.first != s.first && meet(s, other))
+        })
+        .map(|s| s.first)
+        .min()
+}
+
 /// Merges vertices closer than 1e-9 × the bounding-box diagonal (STL stores
 /// each triangle's corners separately), drops triangles that collapse.
 fn weld(
@@ -332,6 +412,43 @@ mod tests {
         let inward: Vec<[usize; 3]> = m.triangles().iter().map(|&[a, b, c]| [a, c, b]).collect();
         let inward = TriangleMesh::new(m.vertices().to_vec(), inward).unwrap();
         assert_eq!(inward.volume(), m.volume());
+    }
+
+    /// Two boxes side by side, the second's faces reversed or not, and a box
+    /// with a reversed box inside it (a cavity).
+    #[test]
+    fn a_separate_shell_facing_inwards_is_refused_a_cavity_is_not() {
+        let unit = TriangleMesh::cuboid(Vector3::zeros(), Vector3::repeat(1.0));
+        let two = |second: TriangleMesh, reversed: bool| {
+            let mut vertices = unit.vertices().to_vec();
+            let mut triangles = unit.triangles().to_vec();
+            let n = vertices.len();
+            vertices.extend_from_slice(second.vertices());
+            triangles.extend(second.triangles().iter().map(|&[a, b, c]| {
+                if reversed {
+                    [a + n, c + n, b + n]
+                } else {
+                    [a + n, b + n, c + n]
+                }
+            }));
+            TriangleMesh::new(vertices, triangles)
+        };
+        let beside =
+            || TriangleMesh::cuboid(Vector3::new(2.0, 0.0, 0.0), Vector3::new(2.5, 0.5, 0.5));
+        let pair = two(beside(), false).unwrap();
+        assert!((pair.volume() - 1.125).abs() < 1e-12);
+        let e = two(beside(), true).unwrap_err();
+        // The second box's first vertex is its corner (2, 0, 0).
+        assert_eq!(
+            e,
+            MeshError::InsideOutShell {
+                vertex: [2.0, 0.0, 0.0]
+            },
+            "{e}"
+        );
+        let inner = || TriangleMesh::cuboid(Vector3::repeat(0.25), Vector3::repeat(0.75));
+        let hollow = two(inner(), true).unwrap();
+        assert!((hollow.volume() - (1.0 - 0.125)).abs() < 1e-12);
     }
 
     #[test]
