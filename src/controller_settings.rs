@@ -36,9 +36,11 @@ pub struct ControllerSettings {
     pub max_tangential_speed: f64,
     /// Setpoint of the force loop in `shearcut compare`, N (default 20).
     pub force_setpoint: f64,
-    /// Tangential blade travel available, m (default: the edge's length
-    /// along z minus z₀ minus the object's length along the edge, i.e. what
-    /// keeps the whole contact on the blade).
+    /// Tangential blade travel available towards the tip, m (default: z₀:
+    /// the object moves towards the heel as the knife slides, and z₀ is the
+    /// room there). A run needs z₀ in [blade_budget, the edge's length
+    /// minus the object's length along it], which keeps the whole object on
+    /// the blade (`closed_loop::check_on_edge`).
     pub blade_budget: Option<f64>,
     /// Edge travel past the target depth before a controller ends its cut,
     /// m (default 0.004, at most 0.01): the crack front can lag the edge,

@@ -189,7 +189,8 @@ fn a_plant_reach_setting_is_validated_on_load() {
 /// `[controller.mpc] edge_contact` reads the contact under the chef's own
 /// edge. The half potato (90 mm along the edge) at z0 = 0 lies on the flat
 /// heel but for its last 30 mm (slopes up to 0.11): its contact is the
-/// outline's chord within 2 %. At z0 95 mm it lies wholly on the rise
+/// outline's chord within 2 %. (The profile does not depend on the blade
+/// budget; none is given, so that z0 = 0 lies on the usable edge.) At z0 95 mm it lies wholly on the rise
 /// (slopes 0.13 to 0.45): the edge meets it off its top and takes in at
 /// least 5 % less of it at every depth.
 #[test]
@@ -197,6 +198,7 @@ fn edge_contact_reads_the_contact_under_the_knife_edge() {
     let profile = |z0: f64, edge_contact: bool| {
         let mut s = Scenario::load("loop-potato-whole-realtime").expect("a built-in scenario");
         s.motion.z0 = vec![z0];
+        s.controller.blade_budget = Some(0.0);
         s.controller.mpc.edge_contact = edge_contact;
         LoopSetup::new(&s, ControllerChoice::Mpc)
             .expect("a valid scenario")

@@ -92,8 +92,9 @@ fn readiness(o: &Output, command: &str) -> String {
 
 /// `check` says which command refuses a scenario and why, in the words
 /// that command refuses it with: a fig. 7 cut at ξ = 20 runs its blade off
-/// the edge (simulate), seed 001's agar section asks the loop's plant for
-/// more edge segments than it has (run).
+/// the edge (simulate), seed 001's agar section with 75 mm of blade asks
+/// the loop's plant for more edge segments than it has (run), a cuboid 5 mm
+/// from the heel with 12 mm of blade would leave the edge (run).
 #[test]
 fn check_says_which_command_refuses_a_scenario_in_its_words() {
     let d = Dir::new("readiness");
@@ -104,6 +105,17 @@ fn check_says_which_command_refuses_a_scenario_in_its_words() {
             "slice_push_ratios = [0.0, 0.33, 0.75, 20.0]",
         ),
     );
+    let agar_long_stroke = d.file(
+        "agar-long-stroke.toml",
+        &with_table(
+            &AGAR_SECTION.replacen("z0 = 0.02 ", "z0 = 0.08 ", 1),
+            "[controller]\nblade_budget = 0.075",
+        ),
+    );
+    let cuboid_near_heel = d.file(
+        "near-heel.toml",
+        &LOOP_CUBOID.replacen("z0 = 0.02", "z0 = 0.005", 1),
+    );
     for (scenario, refusing, ready, reason) in [
         (
             xi20.as_str(),
@@ -112,10 +124,19 @@ fn check_says_which_command_refuses_a_scenario_in_its_words() {
             "`motion.slice_push_ratios[3]` = 20: the blade would travel 0.4000 m along the edge",
         ),
         (
-            "seed001-agar-section",
+            // 75 mm of blade: the plant's edge segments over the stroke.
+            agar_long_stroke.as_str(),
             "run",
             "simulate",
-            "gives 402 segments of the edge (segments = 20), at most 256 are allowed",
+            "gives 382 segments of the edge (segments = 20), at most 256 are allowed",
+        ),
+        (
+            // 5 mm from the heel, with 12 mm of blade towards the tip: the
+            // object would leave the edge at the heel.
+            cuboid_near_heel.as_str(),
+            "run",
+            "simulate",
+            "`motion.z0` = 0.005: must be in [0.0120, 0.1700] m: the object (30.0 mm along the edge) stays on the 200 mm edge over a 12.0 mm stroke towards the heel",
         ),
     ] {
         let o = shearcut(&["check", scenario]);
@@ -145,7 +166,7 @@ fn check_refuses_a_scenario_no_command_can_use() {
         &[
             "neither simulate nor run can use it",
             "simulate: `motion.slice_push_ratios[0]` = 0: the blade would travel 0.0000 m along the edge; z0 + piece length + travel = 0.2050 m exceeds the edge's 0.1000 m",
-            "run: `motion` = xi = 0.75, z0 = 0.2: the knife moving along the planned direction never touches the object",
+            "run: `motion.z0` = 0.2: must be at most 0.0950 m: the object (5.0 mm along the edge) reaches past the tip of the 100 mm edge",
         ],
     );
 }

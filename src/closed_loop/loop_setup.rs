@@ -48,16 +48,9 @@ pub fn cut_task(
 ) -> Result<CutTask, InvalidSetting> {
     let (lo, hi) = mesh.bounds();
     let z0 = s.motion.z0.first().copied().unwrap_or(0.0);
-    let edge = knife.edge().vertices();
-    let (z_min, z_max) = edge
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
-            (a.min(p.x), b.max(p.x))
-        });
-    let budget = s
-        .controller
-        .blade_budget
-        .unwrap_or(((z_max - z_min) - z0 - (hi.z - lo.z)).max(0.0));
+    // The knife slides towards its tip, so the object moves towards the
+    // heel: z0 is the room there.
+    let budget = s.controller.blade_budget.unwrap_or(z0.max(0.0));
     let outline = EdgeOutline::of_object(knife.edge(), mesh)?;
     let arm = &s.control_loop.arm_limits;
     Ok(CutTask {
@@ -74,6 +67,50 @@ pub fn cut_task(
             ARM_MARGIN,
         ),
     })
+}
+
+/// Checks that the object stays on the knife's edge over the cut: the
+/// knife slides towards its tip ([`Plant::direction_at`]), so the object,
+/// its near face `z0` from the heel and L long along the edge, moves towards
+/// the heel by up to the task's blade budget B; z0 ∈ [B, edge length − L]
+/// keeps it between heel and tip throughout. A part beyond the tip would go
+/// uncut, and the run would report the work of the rest as the cut's. The
+/// error's key is `z0`, its value z0, m.
+pub fn check_on_edge(
+    knife: &Knife,
+    mesh: &TriangleMesh,
+    task: &CutTask,
+    z0: f64,
+) -> Result<(), InvalidSetting> {
+    let (lo, hi) = mesh.bounds();
+    let length = hi.z - lo.z;
+    let (z_min, z_max) = knife
+        .edge()
+        .vertices()
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+            (a.min(p.x), b.max(p.x))
+        });
+    let budget = task.blade_budget;
+    let (first, last) = (budget, (z_max - z_min) - length);
+    let (length_mm, edge_mm, budget_mm) = (1e3 * length, 1e3 * (z_max - z_min), 1e3 * budget);
+    let allowed = if first <= last {
+        if (first..=last).contains(&z0) {
+            return Ok(());
+        }
+        format!(
+            "must be in [{first:.4}, {last:.4}] m: the object ({length_mm:.1} mm along the edge) stays on the {edge_mm:.0} mm edge over a {budget_mm:.1} mm stroke towards the heel"
+        )
+    } else if z0 > last {
+        format!(
+            "must be at most {last:.4} m: the object ({length_mm:.1} mm along the edge) reaches past the tip of the {edge_mm:.0} mm edge"
+        )
+    } else {
+        format!(
+            "leaves the object no place: a {budget_mm:.1} mm stroke towards the heel (the blade budget) and the object's {length_mm:.1} mm along the edge need more than the {edge_mm:.0} mm edge"
+        )
+    };
+    Err(InvalidSetting::new("z0", z0, allowed))
 }
 
 /// The ratio the MPC's first plan starts from: what spreads the blade
@@ -323,6 +360,8 @@ impl LoopSetup {
             .mesh()
             .map_err(|e| invalid(s, InvalidSetting::new("object", "mesh", e.to_string())))?;
         let task = cut_task(s, &knife, &mesh).map_err(|e| invalid(s, e))?;
+        let z0 = s.motion.z0.first().copied().unwrap_or(0.0);
+        check_on_edge(&knife, &mesh, &task, z0).map_err(|e| invalid(s, e.prefixed("motion")))?;
         if choice == ControllerChoice::Mpc {
             check_planner_keeps_the_clock(&s.control_loop, &s.controller)
                 .map_err(|e| invalid(s, e))?;
@@ -332,7 +371,6 @@ impl LoopSetup {
             _ => None,
         };
         let start_gap = replica.start_gap(s.plant.start_gap);
-        let z0 = s.motion.z0.first().copied().unwrap_or(0.0);
         let xi = match &profile {
             Some(p) => {
                 let start_z = Plant::start_position(&knife, &mesh, z0, start_gap).z;

@@ -20,7 +20,8 @@ pub use control_record::{ControlSample, TickTimes};
 pub use cut_story::CutStory;
 pub use in_process::InProcessPlant;
 pub use loop_setup::{
-    LoopSetup, cut_task, make_controller, make_plant, mpc_cutting_ratio, mpc_profile, mpc_start,
+    LoopSetup, check_on_edge, cut_task, make_controller, make_plant, mpc_cutting_ratio,
+    mpc_profile, mpc_start,
 };
 pub use plant_link::{LinkAnswer, LinkError, PlantLink};
 pub use runner::{

@@ -296,12 +296,9 @@ impl Perturbation {
     }
 }
 
-/// Checks that the object of `s` stays on its knife's edge over the cut:
-/// the knife slides towards its tip (`BladeBudget`: the budget is travel
-/// towards the tip), so the object, its near face `z0` from the heel and
-/// L long along the edge, moves towards the heel by up to the blade budget
-/// B; z0 ∈ [B, edge length − L] keeps it between heel and tip throughout.
-/// The error's key is `z0` (the caller renames it), its value z0, m.
+/// Checks that the object of `s` stays on its knife's edge over the cut
+/// ([`check_on_edge`](crate::closed_loop::check_on_edge)). The error's key
+/// is `z0` (the caller renames it), its value z0, m.
 pub(crate) fn check_on_edge(s: &Scenario) -> Result<(), InvalidSetting> {
     let z0 = s.motion.z0.first().copied().unwrap_or(0.0);
     let knife = Knife::new(&s.knife).map_err(|e| e.prefixed("knife"))?;
@@ -309,29 +306,8 @@ pub(crate) fn check_on_edge(s: &Scenario) -> Result<(), InvalidSetting> {
         .object
         .mesh()
         .map_err(|e| InvalidSetting::new("object", "mesh", e.to_string()))?;
-    let (lo, hi) = mesh.bounds();
-    let length = hi.z - lo.z;
-    let edge = knife.edge().vertices();
-    let (z_min, z_max) = edge
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
-            (a.min(p.x), b.max(p.x))
-        });
-    let budget = cut_task(s, &knife, &mesh)?.blade_budget;
-    let (first, last) = (budget, (z_max - z_min) - length);
-    if !(first..=last).contains(&z0) {
-        return Err(InvalidSetting::new(
-            "z0",
-            z0,
-            format!(
-                "must be in [{first:.4}, {last:.4}] m: the object ({:.1} mm along the edge) stays on the {:.0} mm edge over a {:.1} mm stroke towards the heel",
-                1e3 * length,
-                1e3 * (z_max - z_min),
-                1e3 * budget
-            ),
-        ));
-    }
-    Ok(())
+    let task = cut_task(s, &knife, &mesh)?;
+    crate::closed_loop::check_on_edge(&knife, &mesh, &task, z0)
 }
 
 /// A number as a result cell: the shortest text that reads back to the same
