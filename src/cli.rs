@@ -82,7 +82,7 @@ pub enum Command {
         transport: crate::commands::run::Transport,
         /// Run replica K of the scenario: the knife starts K·5 µm higher
         /// above the object (as `compare --replicas` does; in-process only).
-        #[arg(long, value_name = "K", default_value_t = 0,
+        #[arg(long, value_name = "K", default_value_t = 0, allow_negative_numbers = true,
               value_parser = clap::value_parser!(u32).range(0..=crate::commands::compare::MAX_REPLICAS as i64 - 1))]
         replica: u32,
         /// Where the results go.
@@ -99,12 +99,13 @@ pub enum Command {
         /// the MPC and the best constant ratio's candidates run on: their
         /// rows are the means, with the work's range; 1 runs the scenario
         /// as given only.
-        #[arg(long, default_value_t = crate::commands::compare::DEFAULT_REPLICAS,
+        #[arg(long, default_value_t = crate::commands::compare::DEFAULT_REPLICAS, allow_negative_numbers = true,
               value_parser = clap::value_parser!(u64).range(1..=crate::commands::compare::MAX_REPLICAS))]
         replicas: u64,
         /// Runs at a time (default: the machine's cores); the results do
         /// not depend on it.
-        #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
+        #[arg(long, value_name = "N", allow_negative_numbers = true,
+              value_parser = clap::value_parser!(u32).range(1..=1024))]
         jobs: Option<u32>,
         /// Where the results go.
         #[command(flatten)]
@@ -152,11 +153,21 @@ pub enum Command {
         /// comma-separated (e.g. 65x95,50x60): for objects whose equivalent
         /// section lies beyond the default 20–45 mm high, 10–30 mm half
         /// width (docs/surrogates.md).
-        #[arg(long, value_name = "HxW", value_delimiter = ',')]
+        #[arg(
+            long,
+            value_name = "HxW",
+            value_delimiter = ',',
+            allow_hyphen_values = true
+        )]
         extra_sizes: Vec<String>,
         /// Section sizes added to the held-out runs of the accuracy report
         /// (as --extra-sizes; none of them a fitted size).
-        #[arg(long, value_name = "HxW", value_delimiter = ',')]
+        #[arg(
+            long,
+            value_name = "HxW",
+            value_delimiter = ',',
+            allow_hyphen_values = true
+        )]
         extra_held_out_sizes: Vec<String>,
     },
     /// The plant process of the arm-style loop: serve the scenario's plant

@@ -1,5 +1,7 @@
 //! Logging through `tracing`, filtered like `RUST_LOG`.
 
+use std::io::IsTerminal;
+
 use tracing_subscriber::EnvFilter;
 
 /// Default filter: warnings and errors only (a run is quiet unless
@@ -13,7 +15,8 @@ const ICEORYX2_QUIET: &str = "iceoryx2_bb_loggers::tracing=error";
 
 /// Installs a stderr subscriber honouring `RUST_LOG` (falls back to
 /// [`DEFAULT_FILTER`]; an unparsable `RUST_LOG` also falls back). Safe to call
-/// more than once: later calls do nothing.
+/// more than once: later calls do nothing. Colours only when stderr is a
+/// terminal: a log piped to a file or a supervisor stays plain text.
 pub fn init() {
     let from_env = std::env::var("RUST_LOG").ok().and_then(|v| {
         let filter = EnvFilter::try_new(&v).ok()?;
@@ -27,6 +30,7 @@ pub fn init() {
     let _ = tracing_subscriber::fmt()
         .with_env_filter(filter)
         .with_writer(std::io::stderr)
+        .with_ansi(std::io::stderr().is_terminal())
         .with_target(false)
         .try_init();
 }

@@ -326,12 +326,16 @@ impl Scenario {
             .unwrap_or("scenario");
         let origin = path.display().to_string();
         let mut scenario = Self::parse_resolved(&text, &origin, stem)?;
-        // A mesh path is relative to the scenario file, not to the working directory.
+        // A mesh path is relative to the scenario file, not to the working
+        // directory; it is kept absolute, so that the scenario as a run
+        // writes it (`scenario.toml` in its result directory) reads back
+        // from anywhere.
         if let ObjectShape::Mesh { path: mesh } = &mut scenario.object
             && mesh.is_relative()
             && let Some(dir) = path.parent()
         {
-            *mesh = dir.join(&*mesh);
+            let joined = dir.join(&*mesh);
+            *mesh = std::path::absolute(&joined).unwrap_or(joined);
         }
         scenario.check_extent_and_resources(&origin)?;
         Ok(scenario)
@@ -844,14 +848,21 @@ pub fn check_controller_kind(key: &str, kind: ControllerChoice) -> Result<(), In
 pub const MAX_NAME_BYTES: usize = 100;
 
 /// A scenario's `name`, which names its default result directory under
-/// `runs/`: non-empty, at most [`MAX_NAME_BYTES`] long, with no path
-/// separators.
+/// `runs/`: not blank, at most [`MAX_NAME_BYTES`] long, with no path
+/// separators and no control characters (a NUL cannot be in a file name;
+/// a newline would split every line that prints the directory).
 pub(crate) fn check_name(name: &str) -> Result<(), InvalidSetting> {
-    if name.is_empty() || name.len() > MAX_NAME_BYTES || name.contains(['/', '\\']) {
+    if name.trim().is_empty()
+        || name.len() > MAX_NAME_BYTES
+        || name.contains(['/', '\\'])
+        || name.chars().any(char::is_control)
+    {
         return Err(InvalidSetting::new(
             "name",
             format!("{name:?}"),
-            format!("must be non-empty, at most {MAX_NAME_BYTES} bytes, with no path separators"),
+            format!(
+                "must be non-blank, at most {MAX_NAME_BYTES} bytes, with no path separators or control characters"
+            ),
         ));
     }
     Ok(())
@@ -945,6 +956,20 @@ mod tests {
             assert!((e - 0.045).abs() < 1e-8, "{e}");
         }
         std::fs::remove_dir_all(dir).ok();
+    }
+
+    /// A name that could not name a directory, or would split the line
+    /// that prints it, is refused naming `name`; ordinary text is not.
+    #[test]
+    fn a_name_with_control_characters_or_blank_is_refused() {
+        for bad in ["a\u{0}b", "a\nb", "tab\there", " ", "", "a/b"] {
+            let e = check_name(bad).unwrap_err();
+            assert_eq!(e.key, "name", "{bad:?}");
+            assert!(e.allowed.contains("control characters"), "{e}");
+        }
+        for good in ["loop-potato-cuboid", "pomme de terre", "ナス"] {
+            assert!(check_name(good).is_ok(), "{good:?}");
+        }
     }
 
     #[test]

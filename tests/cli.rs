@@ -287,6 +287,8 @@ fn a_file_named_like_a_built_in_scenario_is_read_and_said_to_be() {
         "{}",
         stderr(&o)
     );
+    // stderr is a pipe here: the warning is plain text, no colour codes.
+    assert!(!stderr(&o).contains('\x1b'), "{:?}", stderr(&o));
     // The file's values, not the built-in's.
     assert!(stdout(&o).contains("depth = 0.006"), "{}", stdout(&o));
     // Elsewhere the name is the built-in scenario, without a word.
@@ -356,6 +358,101 @@ fn output_paths_under_a_file_are_refused_in_one_line() {
         assert!(stdout(&o).is_empty(), "{args:?}: {}", stdout(&o));
     }
     std::fs::remove_dir_all(dir).ok();
+}
+
+/// `toughness --plot` claims its table's path (the plot's with `.csv`) as
+/// well as the plot's before it draws: a directory there is refused, and no
+/// plot is left behind.
+#[test]
+fn a_plot_whose_table_cannot_be_written_is_refused_before_drawing() {
+    let dir = binary_run::scratch("plot-table");
+    std::fs::create_dir_all(dir.join("fig3.csv")).unwrap();
+    let svg = dir.join("fig3.svg");
+    let plot = svg.to_str().unwrap();
+    let o = shearcut(&["toughness", "--nu", "0.4", "--xi", "0.5", "--plot", plot]);
+    assert_eq!(o.status.code(), Some(2), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert_eq!(e.lines().count(), 1, "{e}");
+    assert!(
+        e.contains("`--plot (its table)`") && e.contains("fig3.csv"),
+        "{e}"
+    );
+    assert!(!svg.exists() && stdout(&o).is_empty(), "{}", stdout(&o));
+    std::fs::remove_dir_all(dir).ok();
+}
+
+/// A mesh path is relative to the scenario file; the scenario as resolved
+/// (what `check` prints and a run writes to `scenario.toml`) names the
+/// mesh so that it reads back from another directory.
+#[test]
+fn a_resolved_mesh_scenario_reads_back_from_another_directory() {
+    let dir = binary_run::scratch("mesh-resolved");
+    std::fs::create_dir_all(dir.join("c")).unwrap();
+    std::fs::create_dir_all(dir.join("w")).unwrap();
+    std::fs::write(
+        dir.join("c/tetrahedron.obj"),
+        "v 0 0 0\nv 0.05 0 0\nv 0 0.05 0\nv 0 0 0.05\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n",
+    )
+    .unwrap();
+    let text = include_str!("../config/scenarios/fig7-potato.toml")
+        .replace(
+            "kind = \"cuboid\"\nwidth = 0.03    # m, across the cut (world x)\nheight = 0.025  # m, above the board (world y)\nlength = 0.03   # m, along the edge (world z)",
+            "kind = \"mesh\"\npath = \"tetrahedron.obj\"",
+        )
+        .replace("depth = 0.02", "depth = 0.01");
+    assert!(
+        text.contains("tetrahedron.obj"),
+        "the fixture replaced the object"
+    );
+    std::fs::write(dir.join("c/s.toml"), text).unwrap();
+    let check = |scenario: &str| {
+        std::process::Command::new(env!("CARGO_BIN_EXE_shearcut"))
+            .args(["check", scenario])
+            .current_dir(&dir)
+            .output()
+            .expect("the shearcut binary runs")
+    };
+    let o = check("c/s.toml");
+    binary_run::assert_success(&o);
+    std::fs::write(dir.join("w/scenario.toml"), stdout(&o)).unwrap();
+    let again = check("w/scenario.toml");
+    binary_run::assert_success(&again);
+    std::fs::remove_dir_all(dir).ok();
+}
+
+/// A negative count given to a flag is refused naming the flag, not as a
+/// stray argument.
+#[test]
+fn a_negative_count_is_refused_naming_its_flag() {
+    let sweep = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/config/sweeps/mpc-heldout.toml"
+    );
+    for (args, flag) in [
+        (
+            vec!["compare", "loop-potato-cuboid", "--replicas", "-1"],
+            "--replicas",
+        ),
+        (
+            vec!["compare", "loop-potato-cuboid", "--jobs", "-2"],
+            "--jobs",
+        ),
+        (
+            vec!["run", "loop-potato-cuboid", "--replica", "-1"],
+            "--replica",
+        ),
+        (vec!["tune", sweep, "--shard", "-1/2"], "--shard"),
+        (vec!["tune", sweep, "--jobs", "-1"], "--jobs"),
+    ] {
+        let o = shearcut(&args);
+        assert_eq!(o.status.code(), Some(2), "{args:?}: {}", stderr(&o));
+        let e = stderr(&o);
+        assert_eq!(e.trim_end().lines().count(), 1, "{args:?}: {e}");
+        assert!(
+            e.contains(flag) && !e.contains("unexpected argument"),
+            "{e}"
+        );
+    }
 }
 
 /// A finite-strain wire scenario given to the cutting model's commands is

@@ -355,6 +355,22 @@ fn shards_merge_to_the_local_table_bit_for_bit() {
     let o = tune(&[s(&sweep), "--out", s(&busy)], &[]);
     assert_eq!(o.status.code(), Some(2));
     assert_eq!(std::fs::read_dir(&busy).unwrap().count(), 1);
+    // Nor is one whose jobs.json is not a sweep's catalogue: it is kept.
+    std::fs::write(busy.join("jobs.json"), "{\"my\": \"data\"}").unwrap();
+    let o = tune(&[s(&sweep), "--out", s(&busy)], &[]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = String::from_utf8_lossy(&o.stderr);
+    assert_eq!(e.trim_end().lines().count(), 1, "{e}");
+    assert!(
+        e.contains("is not a `shearcut tune` result directory"),
+        "{e}"
+    );
+    assert_eq!(
+        std::fs::read_to_string(busy.join("jobs.json")).unwrap(),
+        "{\"my\": \"data\"}"
+    );
+    assert_eq!(std::fs::read_dir(&busy).unwrap().count(), 2);
+    std::fs::remove_file(busy.join("jobs.json")).unwrap();
     let mut args = vec!["merge"];
     args.extend(shards.iter().map(|d| s(d)));
     args.extend(["--out", s(&merged)]);

@@ -65,12 +65,14 @@ pub fn run(nu: f64, xi: f64, plot: Option<&Path>) -> Result<(), RunError> {
     Ok(())
 }
 
-/// Checks that `--plot` = `path` names an image this process can write
-/// ([`claim_output_file`]), before anything is printed: the path is the
-/// user's, so one that cannot be created is bad input (exit 2).
+/// Checks that `--plot` = `path` names an image this process can write,
+/// and that its table beside it (extension `.csv`) can be written too
+/// ([`claim_output_file`]), before anything is printed or drawn: the paths
+/// are the user's, so one that cannot be created is bad input (exit 2).
 fn claim_plot(path: &Path) -> Result<(), RunError> {
     crate::plot::ImageFormat::from_path(path)?;
-    claim_output_file("--plot", path)
+    claim_output_file("--plot", path)?;
+    claim_output_file("--plot (its table)", &path.with_extension("csv"))
 }
 
 /// Draws Fig. 3 to `path` (claimed by [`claim_plot`]) and its table to the

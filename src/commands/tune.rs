@@ -28,12 +28,13 @@ pub struct TuneArgs {
     #[arg(required = true, value_name = "SWEEP.toml")]
     pub sweep: Option<PathBuf>,
     /// Runs at a time (default: the machine's cores).
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
+    #[arg(long, value_name = "N", allow_negative_numbers = true,
+          value_parser = clap::value_parser!(u32).range(1..=1024))]
     pub jobs: Option<u32>,
     /// Run shard I of N of the job list (jobs I, I+N, I+2N, …); default:
     /// the Slurm array task or Kubernetes completion index from the
     /// environment, else the whole list.
-    #[arg(long, value_name = "I/N")]
+    #[arg(long, value_name = "I/N", allow_hyphen_values = true)]
     pub shard: Option<String>,
     /// Result directory (default: runs/tune-<sweep name>; a shard writes
     /// into its `shard-I-of-N/` below it). Re-running into it skips the

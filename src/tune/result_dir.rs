@@ -27,13 +27,24 @@ pub const CATALOG_BYTES: u64 = 256 << 20;
 ///
 /// # Errors
 /// `dir` holds files but is not a sweep's result directory (no
-/// `jobs.json`: a sweep's tables would be written among another command's
-/// files), or cannot be created (exit 2).
+/// `jobs.json`, or one that is not a sweep's catalogue: a sweep's tables
+/// would be written among another command's files, over its `jobs.json`),
+/// or cannot be created (exit 2).
 pub fn write_catalog(dir: &Path, catalog: &JobCatalog, sweep_text: &str) -> Result<(), RunError> {
-    if dir.is_dir() && !dir.join("jobs.json").is_file() && crate::run_dir::holds_files(dir)? {
+    const ALLOWED: &str =
+        "a new or empty directory, or a `shearcut tune` result directory to resume";
+    if dir.join("jobs.json").is_file() {
+        if let Err(e) = read_catalog(dir) {
+            let why = match e {
+                ConfigError::Argument(e) => e.allowed,
+                other => other.to_string(),
+            };
+            return Err(crate::run_dir::refused(dir, format!("{ALLOWED} ({why})")));
+        }
+    } else if dir.is_dir() && crate::run_dir::holds_files(dir)? {
         return Err(crate::run_dir::refused(
             dir,
-            "a new or empty directory, or a `shearcut tune` result directory to resume (it holds files and no jobs.json)",
+            format!("{ALLOWED} (it holds files and no jobs.json)"),
         ));
     }
     // The directory is the user's `--out`: one that cannot be created is

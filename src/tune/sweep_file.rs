@@ -583,7 +583,8 @@ fn expand_settings(entries: &[ControllerSweep]) -> Result<Vec<ControllerSetting>
 /// The settings of a `best-constant` entry (index `i` in the sweep): one
 /// per grid point and set of other keys (its `grid` or `sets`, e.g. the
 /// `overtravel` every controller of the sweep gets; the point slowest). It
-/// stands alone: no other kind, and the ratio is the grid's (no `kind` key).
+/// stands alone: no other kind, and the ratio is the grid's (no `kind` key,
+/// as for every entry).
 fn best_constant_grid(
     entry: &ControllerSweep,
     i: usize,
@@ -596,14 +597,8 @@ fn best_constant_grid(
             "stands alone in its [[controllers]] table: no other kind",
         ));
     }
+    // No `kind` key: refused by `override_points` for every entry.
     let others = override_points(entry, i)?;
-    if let Some((key, _)) = others.iter().flatten().find(|(k, _)| k == "kind") {
-        return Err(InvalidSetting::new(
-            at(key),
-            BEST_CONSTANT_KIND,
-            "the grid sets the ratio: no `kind` key",
-        ));
-    }
     let points = entry.points.unwrap_or(SEARCH_POINTS);
     if !(2..=MAX_POINTS).contains(&points) {
         return Err(InvalidSetting::new(
@@ -707,6 +702,39 @@ fn override_points(
             format!("{} listed", entry.sets.len()),
             "give either a grid or sets, not both",
         ));
+    }
+    // Each set's keys, and the grid's, in sorted order.
+    let key_lists: Vec<Vec<String>> = if entry.sets.is_empty() {
+        vec![grid_axes(&entry.grid).into_iter().map(|(k, _)| k).collect()]
+    } else {
+        entry
+            .sets
+            .iter()
+            .map(|set| flat_keys(set).into_iter().map(|(k, _)| k).collect())
+            .collect()
+    };
+    let table = if entry.sets.is_empty() {
+        "grid"
+    } else {
+        "sets"
+    };
+    for keys in &key_lists {
+        // The controller is the entry's `kind`: a key that replaced it would
+        // run another controller under this entry's label.
+        if keys.iter().any(|k| k == "kind") {
+            return Err(InvalidSetting::new(
+                at(table),
+                "kind",
+                "the controller is the entry's `kind`: give another [[controllers]] entry instead",
+            ));
+        }
+        if let Some(twice) = keys.windows(2).find(|w| w[0] == w[1]) {
+            return Err(InvalidSetting::new(
+                at(table),
+                &twice[0],
+                "is given twice (as a dotted key and as a sub-table's): give it once",
+            ));
+        }
     }
     if !entry.sets.is_empty() {
         return Ok(entry.sets.iter().map(flat_keys).collect());
@@ -834,6 +862,34 @@ mod tests {
             ]
         );
         assert_eq!(s.weightings.len(), 5);
+    }
+
+    /// A grid or set that names a key twice (dotted and as a sub-table's),
+    /// or replaces the entry's controller, is refused: either would run
+    /// other settings than the tables say.
+    #[test]
+    fn a_key_given_twice_or_the_controller_in_a_grid_is_refused() {
+        let base = "scenarios = [\"loop-potato-cuboid\"]\n[[controllers]]\nkind = \"mpc\"\n";
+        for (table, key, expected) in [
+            (
+                "[controllers.grid]\n\"mpc.stages\" = [5]\nmpc = { stages = [10] }\n",
+                "`controllers[0].grid` = mpc.stages",
+                "is given twice",
+            ),
+            (
+                "[[controllers.sets]]\n\"mpc.stages\" = 5\nmpc = { stages = 10 }\n",
+                "`controllers[0].sets` = mpc.stages",
+                "is given twice",
+            ),
+            (
+                "[controllers.grid]\nkind = [\"press\"]\n",
+                "`controllers[0].grid` = kind",
+                "give another [[controllers]] entry",
+            ),
+        ] {
+            let e = parse(&format!("{base}{table}")).unwrap_err().to_string();
+            assert!(e.contains(key) && e.contains(expected), "{e}");
+        }
     }
 
     #[test]
@@ -989,7 +1045,7 @@ mod tests {
         ));
         assert!(e.contains("stands alone"), "{e}");
         let e = error(&base.replace("points = 4", "grid = { kind = \"press\" }"));
-        assert!(e.contains("no `kind` key"), "{e}");
+        assert!(e.contains("give another [[controllers]] entry"), "{e}");
         // Other keys cross the points, the point slowest.
         let s = parse(&base.replace(
             "points = 4",
