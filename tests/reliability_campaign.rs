@@ -93,8 +93,9 @@ fn readiness(o: &Output, command: &str) -> String {
 /// `check` says which command refuses a scenario and why, in the words
 /// that command refuses it with: a fig. 7 cut at ξ = 20 runs its blade off
 /// the edge (simulate), seed 001's agar section with 75 mm of blade asks
-/// the loop's plant for more edge segments than it has (run), a cuboid 5 mm
-/// from the heel with 12 mm of blade would leave the edge (run).
+/// the loop's plant for more edge segments than it has (run), a knife that
+/// is no preset has no surrogate for the MPC (run), a cuboid 5 mm from the
+/// heel with 12 mm of blade would leave the edge (run).
 #[test]
 fn check_says_which_command_refuses_a_scenario_in_its_words() {
     let d = Dir::new("readiness");
@@ -110,6 +111,14 @@ fn check_says_which_command_refuses_a_scenario_in_its_words() {
         &with_table(
             &AGAR_SECTION.replacen("z0 = 0.02 ", "z0 = 0.08 ", 1),
             "[controller]\nblade_budget = 0.075",
+        ),
+    );
+    let no_surrogate = d.file(
+        "no-surrogate.toml",
+        &LOOP_CUBOID.replacen(
+            "preset = \"straight\"",
+            "preset = \"straight\"\nblade = { thickness = 0.003 }",
+            1,
         ),
     );
     let cuboid_near_heel = d.file(
@@ -129,6 +138,14 @@ fn check_says_which_command_refuses_a_scenario_in_its_words() {
             "run",
             "simulate",
             "gives 382 segments of the edge (segments = 20), at most 256 are allowed",
+        ),
+        (
+            // A knife that is no preset: no built-in surrogate for the
+            // scenario's MPC (`run --controller slice:0.5` runs it).
+            no_surrogate.as_str(),
+            "run",
+            "simulate",
+            "`controller.surrogate` = (none): the material or knife is not a preset",
         ),
         (
             // 5 mm from the heel, with 12 mm of blade towards the tip: the

@@ -2,7 +2,8 @@
 //!
 //! Checks everything a run would refuse before it starts: every value in
 //! its physical range, the object's mesh file (read and checked as a closed
-//! surface), the surrogate the MPC would plan with (read and checked), the
+//! surface), the surrogate the scenario names (read and checked; the one
+//! its MPC would look up is part of `run`'s readiness), the
 //! resource estimate against its budget, and the geometry each command
 //! builds before its first step: `simulate`'s cuts along the edge and
 //! `run`'s cut task, plant and controller (docs/reliability.md). A scenario
@@ -14,14 +15,13 @@ use shearcut_sim::resource_budget::{PLANT_NODES_BUDGET, SECTION_NODES_BUDGET, SE
 use crate::cli::print;
 use crate::closed_loop::LoopSetup;
 use crate::commands::simulate;
-use crate::controller_choice::ControllerChoice;
 use crate::error::{ConfigError, RunError};
 use crate::scenario::{Scenario, WireSlabScenario};
 use crate::surrogates::surrogate_for;
 
 /// Loads and validates `scenario` (a path or a built-in name), opens the
-/// surrogate its MPC would use (when the controller is the MPC or a
-/// surrogate is named), checks what `simulate` and `run` would build, and
+/// surrogate it names (the one its MPC would look up otherwise is `run`'s
+/// readiness), checks what `simulate` and `run` would build, and
 /// prints the resolved values as TOML with the resource estimate and each
 /// command's readiness as comments.
 ///
@@ -43,7 +43,10 @@ pub fn run(scenario: &str) -> Result<(), RunError> {
             setting,
         })
     };
-    if s.controller.kind == ControllerChoice::Mpc || s.controller.surrogate.is_some() {
+    // A surrogate the scenario names is part of it: a bad one is bad input.
+    // One the MPC would look up (none named) is `run`'s to find: a scenario
+    // without one is still one `simulate` cuts, and `run --controller` runs.
+    if s.controller.surrogate.is_some() {
         surrogate_for(&s).map_err(invalid)?;
     }
     let r = s.resources(s.object_extent().map_err(invalid)?);
