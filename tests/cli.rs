@@ -10,6 +10,14 @@ fn toughness_prints_the_issue_value() {
     let o = shearcut(&["toughness", "--nu", "0.4", "--xi", "0.75"]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stdout(&o).contains("= 0.6224"), "{}", stdout(&o));
+    // A tiny ν is echoed short, not as its 300 digits.
+    let o = shearcut(&["toughness", "--nu", "1e-300", "--xi", "1"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stdout(&o).starts_with("r(xi=1, nu=1e-300) = "),
+        "{}",
+        stdout(&o)
+    );
 }
 
 #[test]

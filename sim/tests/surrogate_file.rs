@@ -135,6 +135,20 @@ fn non_finite_coefficient_is_refused_and_named() {
     }
 }
 
+/// A value out of its range is written short in the message (1e300, not
+/// its 301 digits).
+#[test]
+fn a_huge_catch_up_exponent_is_refused_in_a_short_line() {
+    let text = potato_text();
+    assert!(text.contains("catch_up_exponent = 1.0\n"));
+    let t = text.replace("catch_up_exponent = 1.0\n", "catch_up_exponent = 1e300\n");
+    let e = Surrogate::from_toml_str(&t).unwrap_err().to_string();
+    assert_eq!(
+        e,
+        "surrogate file: `ratio.catch_up_exponent` = 1e300 must be in [0, 4] (fit writes 1)"
+    );
+}
+
 #[test]
 fn a_finite_coefficient_whose_prediction_overflows_is_refused() {
     let (t, shipped) = potato_with_first("drag", "1e308");

@@ -4,7 +4,7 @@ use std::path::{Path, PathBuf};
 
 use shearcut_sim::InvalidSetting;
 use shearcut_sim::mechanics::{force_ratio, normal_force_ratio, toughness_ratio};
-use shearcut_sim::physical_range::SLICE_PUSH_RATIO;
+use shearcut_sim::physical_range::{SLICE_PUSH_RATIO, number_text};
 
 use crate::cli::print;
 use crate::error::{ConfigError, RunError};
@@ -56,7 +56,11 @@ pub fn run(nu: f64, xi: f64, plot: Option<&Path>) -> Result<(), RunError> {
     }
     print(&format!(
         "r(xi={}, nu={}) = {:.4}\nF_t/F_n         = {:.4}\nf_n^s/f_n^p     = {:.4}\n",
-        r.xi, r.nu, r.toughness_ratio, r.force_ratio, r.normal_force_ratio
+        number_text(r.xi),
+        number_text(r.nu),
+        r.toughness_ratio,
+        r.force_ratio,
+        r.normal_force_ratio
     ))?;
     if let Some(path) = plot {
         let csv = write_fig3(path)?;

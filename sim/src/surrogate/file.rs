@@ -81,7 +81,7 @@ pub enum SurrogateFileError {
         stiffness: f64,
     },
     /// A number is not finite (or a physical constant not positive).
-    #[error("surrogate file: `{key}` = {value} {allowed}")]
+    #[error("surrogate file: `{key}` = {} {allowed}", number_text(*.value))]
     BadValue {
         /// The key, e.g. `post_fracture.split[1]`.
         key: String,
