@@ -422,6 +422,13 @@ fn a_resolved_mesh_scenario_reads_back_from_another_directory() {
     };
     let o = check("c/s.toml");
     binary_run::assert_success(&o);
+    // The mesh named by its absolute path.
+    let mesh = dir.join("c/tetrahedron.obj");
+    assert!(
+        stdout(&o).contains(&format!("path = \"{}\"", mesh.display())),
+        "{}",
+        stdout(&o)
+    );
     std::fs::write(dir.join("w/scenario.toml"), stdout(&o)).unwrap();
     let again = check("w/scenario.toml");
     binary_run::assert_success(&again);

@@ -183,7 +183,7 @@ fn check_refuses_a_scenario_no_command_can_use() {
         &[
             "neither simulate nor run can use it",
             "simulate: `motion.slice_push_ratios[0]` = 0: the blade would travel 0.0000 m along the edge; z0 + piece length + travel = 0.2050 m exceeds the edge's 0.1000 m",
-            "run: `motion.z0` = 0.2: must be at most 0.0950 m: the object (5.0 mm along the edge) reaches past the tip of the 100 mm edge",
+            "run: `motion.z0` = 0.2: must be at most 0.0950 m, with a blade budget of at most 0.0950 m: the object (5.0 mm along the edge) and a 200.0 mm stroke towards the heel need more than the 100 mm edge",
         ],
     );
 }

@@ -49,8 +49,9 @@ pub fn cut_task(
     let (lo, hi) = mesh.bounds();
     let z0 = s.motion.z0.first().copied().unwrap_or(0.0);
     // The knife slides towards its tip, so the object moves towards the
-    // heel: z0 is the room there.
-    let budget = s.controller.blade_budget.unwrap_or(z0.max(0.0));
+    // heel: the room there, z0 past the heel, is the default.
+    let (heel, _) = edge_ends(knife);
+    let budget = s.controller.blade_budget.unwrap_or((z0 - heel).max(0.0));
     let outline = EdgeOutline::of_object(knife.edge(), mesh)?;
     let arm = &s.control_loop.arm_limits;
     Ok(CutTask {
@@ -69,13 +70,25 @@ pub fn cut_task(
     })
 }
 
+/// The knife frame's z of the edge's heel and tip, m.
+fn edge_ends(knife: &Knife) -> (f64, f64) {
+    knife
+        .edge()
+        .vertices()
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+            (a.min(p.x), b.max(p.x))
+        })
+}
+
 /// Checks that the object stays on the knife's edge over the cut: the
 /// knife slides towards its tip ([`Plant::direction_at`]), so the object,
-/// its near face `z0` from the heel and L long along the edge, moves towards
-/// the heel by up to the task's blade budget B; z0 ∈ [B, edge length − L]
-/// keeps it between heel and tip throughout. A part beyond the tip would go
-/// uncut, and the run would report the work of the rest as the cut's. The
-/// error's key is `z0`, its value z0, m.
+/// its near face at knife-frame z = `z0` ([`Plant::start_position`]) and L
+/// long along the edge, moves towards the heel by up to the task's blade
+/// budget B; z0 ∈ [heel + B, tip − L] keeps it between heel and tip
+/// throughout (heel at z = 0 on every preset). A part beyond the tip would
+/// go uncut, and the run would report the work of the rest as the cut's.
+/// The error's key is `z0`, its value z0, m.
 pub fn check_on_edge(
     knife: &Knife,
     mesh: &TriangleMesh,
@@ -84,30 +97,23 @@ pub fn check_on_edge(
 ) -> Result<(), InvalidSetting> {
     let (lo, hi) = mesh.bounds();
     let length = hi.z - lo.z;
-    let (z_min, z_max) = knife
-        .edge()
-        .vertices()
-        .iter()
-        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
-            (a.min(p.x), b.max(p.x))
-        });
+    let (heel, tip) = edge_ends(knife);
     let budget = task.blade_budget;
-    let (first, last) = (budget, (z_max - z_min) - length);
-    let (length_mm, edge_mm, budget_mm) = (1e3 * length, 1e3 * (z_max - z_min), 1e3 * budget);
+    let (first, last) = (heel + budget, tip - length);
+    if (first..=last).contains(&z0) {
+        return Ok(());
+    }
+    let (length_mm, edge_mm, budget_mm) = (1e3 * length, 1e3 * (tip - heel), 1e3 * budget);
     let allowed = if first <= last {
-        if (first..=last).contains(&z0) {
-            return Ok(());
-        }
         format!(
             "must be in [{first:.4}, {last:.4}] m: the object ({length_mm:.1} mm along the edge) stays on the {edge_mm:.0} mm edge over a {budget_mm:.1} mm stroke towards the heel"
         )
-    } else if z0 > last {
-        format!(
-            "must be at most {last:.4} m: the object ({length_mm:.1} mm along the edge) reaches past the tip of the {edge_mm:.0} mm edge"
-        )
     } else {
+        // No z0 fits this budget: both bounds, so that following the
+        // message leads to a place.
         format!(
-            "leaves the object no place: a {budget_mm:.1} mm stroke towards the heel (the blade budget) and the object's {length_mm:.1} mm along the edge need more than the {edge_mm:.0} mm edge"
+            "must be at most {last:.4} m, with a blade budget of at most {:.4} m: the object ({length_mm:.1} mm along the edge) and a {budget_mm:.1} mm stroke towards the heel need more than the {edge_mm:.0} mm edge",
+            last - heel
         )
     };
     Err(InvalidSetting::new("z0", z0, allowed))
@@ -435,5 +441,41 @@ impl LoopSetup {
             target_depth: self.task.target_depth,
             max_duration: s.controller.max_duration,
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The usable edge's ends are inclusive; past either, and with a budget
+    /// that leaves no place, the message says what to change.
+    #[test]
+    fn the_object_must_stay_on_the_edge_over_the_stroke() {
+        // A 30 mm cuboid on the straight 200 mm edge, 12 mm of blade.
+        let s = Scenario::load("loop-potato-cuboid").unwrap();
+        let knife = Knife::new(&s.knife).unwrap();
+        let mesh = s.object.mesh().unwrap();
+        let task = cut_task(&s, &knife, &mesh).unwrap();
+        let on_edge = |task: &CutTask, z0: f64| check_on_edge(&knife, &mesh, task, z0);
+        assert!(on_edge(&task, 0.012).is_ok() && on_edge(&task, 0.17).is_ok());
+        for z0 in [0.0119, 0.1701] {
+            let e = on_edge(&task, z0).unwrap_err().to_string();
+            assert!(e.contains("must be in [0.0120, 0.1700] m"), "{e}");
+        }
+        let long = CutTask {
+            blade_budget: 0.2,
+            ..task.clone()
+        };
+        let e = on_edge(&long, 0.1).unwrap_err().to_string();
+        assert!(
+            e.contains("must be at most 0.1700 m, with a blade budget of at most 0.1700 m"),
+            "{e}"
+        );
+        // Without a budget the room towards the heel, z0, is the budget.
+        let mut free = s.clone();
+        free.controller.blade_budget = None;
+        free.motion.z0 = vec![0.05];
+        assert_eq!(cut_task(&free, &knife, &mesh).unwrap().blade_budget, 0.05);
     }
 }

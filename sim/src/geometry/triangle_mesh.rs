@@ -321,9 +321,10 @@ fn inside_out_shell(vertices: &[Vector3<f64>], triangles: &[[usize; 3]]) -> Opti
         return None;
     }
     let shells: Vec<Shell> = shells.into_values().collect();
-    let largest = shells
-        .iter()
-        .max_by(|a, b| a.signed_volume.abs().total_cmp(&b.signed_volume.abs()))?;
+    // Ties by the first vertex: the same shell from run to run.
+    let largest = shells.iter().max_by(|a, b| {
+        (a.signed_volume.abs().total_cmp(&b.signed_volume.abs())).then(b.first.cmp(&a.first))
+    })?;
     let meet = |a: &Shell, b: &Shell| (0..3).all(|k| a.lo[k] <= b.hi[k] && b.lo[k] <= a.hi[k]);
     shells
         .iter()
