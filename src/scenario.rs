@@ -127,6 +127,14 @@ pub struct MotionSettings {
     pub step: f64,
 }
 
+impl MotionSettings {
+    /// The object's place along the edge in a closed-loop run, m: the first
+    /// of `z0` (a loop cuts once; validation keeps the list non-empty).
+    pub fn loop_z0(&self) -> f64 {
+        self.z0[0]
+    }
+}
+
 impl Default for MotionSettings {
     fn default() -> Self {
         Self {

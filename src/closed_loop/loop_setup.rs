@@ -47,7 +47,7 @@ pub fn cut_task(
     mesh: &TriangleMesh,
 ) -> Result<CutTask, InvalidSetting> {
     let (lo, hi) = mesh.bounds();
-    let z0 = s.motion.z0.first().copied().unwrap_or(0.0);
+    let z0 = s.motion.loop_z0();
     // The knife slides towards its tip, so the object moves towards the
     // heel: the room there, z0 past the heel, is the default.
     let (heel, _) = edge_ends(knife);
@@ -183,7 +183,7 @@ pub fn mpc_profile(
         surrogate_profile(s, &surrogate, mesh, task.target_depth).map_err(|e| invalid(s, e))?;
     if s.controller.mpc.edge_contact {
         let knife = Knife::new(&s.knife).map_err(|e| invalid(s, e.prefixed("knife")))?;
-        let z0 = s.motion.z0.first().copied().unwrap_or(0.0);
+        let z0 = s.motion.loop_z0();
         let start_z = Plant::start_position(&knife, mesh, z0, s.plant.start_gap).z;
         profile = profile
             .under_edge(&task.outline, start_z)
@@ -310,7 +310,7 @@ fn plant_spec<'a>(
         material: &s.material,
         knife,
         object: mesh,
-        z0: s.motion.z0.first().copied().unwrap_or(0.0),
+        z0: s.motion.loop_z0(),
         direction: Plant::direction_at(xi),
         settings,
         section: &s.section,
@@ -366,7 +366,7 @@ impl LoopSetup {
             .mesh()
             .map_err(|e| invalid(s, InvalidSetting::new("object", "mesh", e.to_string())))?;
         let task = cut_task(s, &knife, &mesh).map_err(|e| invalid(s, e))?;
-        let z0 = s.motion.z0.first().copied().unwrap_or(0.0);
+        let z0 = s.motion.loop_z0();
         check_on_edge(&knife, &mesh, &task, z0).map_err(|e| invalid(s, e.prefixed("motion")))?;
         if choice == ControllerChoice::Mpc {
             check_planner_keeps_the_clock(&s.control_loop, &s.controller)
@@ -432,7 +432,7 @@ impl LoopSetup {
     /// the plant puts it ([`Plant::start_position`]: no plant is built, so
     /// a controller process does not build one of its own).
     pub fn cut(&self, s: &Scenario) -> LoopCut {
-        let z0 = s.motion.z0.first().copied().unwrap_or(0.0);
+        let z0 = s.motion.loop_z0();
         LoopCut {
             xi_label: self.xi,
             z0,

@@ -212,16 +212,22 @@ impl Perturbation {
         if let Some(b) = self.blade_budget {
             s.controller.blade_budget = Some(b);
         }
-        if self.z0.is_some() || self.blade_budget.is_some() {
-            let key = if self.z0.is_some() {
-                "z0"
-            } else {
-                "blade_budget"
+        // A variant that moves the object along the edge, changes its
+        // length along it, the blade it may use or the knife is checked
+        // here, before any run. The error's value is z0; its key says which
+        // of the variant's keys made the scenario's z0 wrong.
+        let moves = [
+            ("blade_budget", self.blade_budget.is_some()),
+            ("size_scale", self.size_scale != 1.0),
+            ("knife", self.knife.is_some()),
+        ];
+        let changed = moves.iter().find(|(_, set)| *set).map(|(key, _)| *key);
+        if self.z0.is_some() || changed.is_some() {
+            let key = match (self.z0, changed) {
+                (None, Some(key)) => format!("z0, with {key}"),
+                _ => "z0".into(),
             };
-            check_on_edge(&s).map_err(|e| InvalidSetting {
-                key: key.into(),
-                ..e
-            })?;
+            check_on_edge(&s).map_err(|e| InvalidSetting { key, ..e })?;
         }
         Ok(s)
     }
@@ -300,7 +306,7 @@ impl Perturbation {
 /// ([`check_on_edge`](crate::closed_loop::check_on_edge)). The error's key
 /// is `z0` (the caller renames it), its value z0, m.
 pub(crate) fn check_on_edge(s: &Scenario) -> Result<(), InvalidSetting> {
-    let z0 = s.motion.z0.first().copied().unwrap_or(0.0);
+    let z0 = s.motion.loop_z0();
     let knife = Knife::new(&s.knife).map_err(|e| e.prefixed("knife"))?;
     let mesh = s
         .object
@@ -456,7 +462,7 @@ mod tests {
         assert_eq!(v.controller.blade_budget, Some(0.015));
         let v = at(Some(0.04), Some(0.03)).unwrap();
         assert_eq!(
-            (v.motion.z0[0], v.controller.blade_budget),
+            (v.motion.loop_z0(), v.controller.blade_budget),
             (0.04, Some(0.03))
         );
         let p = Perturbation {
@@ -478,7 +484,7 @@ mod tests {
         );
         assert_eq!(at(Some(0.01), None).unwrap_err().key, "z0");
         let e = at(None, Some(0.03)).unwrap_err();
-        assert_eq!(e.key, "blade_budget");
+        assert_eq!(e.key, "z0, with blade_budget");
         assert!(e.to_string().contains("30.0 mm stroke"), "{e}");
         let e = at(None, Some(0.04)).unwrap_err();
         assert_eq!(
@@ -494,6 +500,17 @@ mod tests {
             ..Perturbation::default()
         };
         assert_eq!(p.apply(&s).unwrap_err().key, "z0");
+        // Another knife: at the scenario's z0 (20 mm) the 90 mm potato
+        // runs past the end of the 100 mm wire.
+        let p = Perturbation {
+            knife: Some("wire".into()),
+            ..Perturbation::default()
+        };
+        let e = p.apply(&s).unwrap_err();
+        assert!(
+            e.to_string().starts_with("`z0, with knife` = 0.02: "),
+            "{e}"
+        );
     }
 
     #[test]
