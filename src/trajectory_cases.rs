@@ -27,7 +27,7 @@ use shearcut_controllers::trajectory::{
     TrajectoryInput, TrajectorySettings, TrajectoryStatus,
 };
 use shearcut_sim::capped_read::{CappedReadError, read_capped};
-use shearcut_sim::physical_range::CYCLE_TIME;
+use shearcut_sim::physical_range::{CYCLE_TIME, number_text};
 
 /// Largest DoF count the runner accepts.
 pub const MAX_CASE_DOFS: usize = 8;
@@ -145,7 +145,8 @@ fn run_n<const N: usize>(c: &Case) -> Result<Value, String> {
     traj.at_time(t, &mut p, &mut v, &mut a);
     if !(t.is_finite() && p.iter().chain(&v).chain(&a).all(|x| x.is_finite())) {
         return Err(format!(
-            "the generator returned a non-finite result (duration {t}): the limits or states are out of its numeric range"
+            "the generator returned a non-finite result (duration {} s): the limits or states are out of its numeric range",
+            number_text(t)
         ));
     }
     let ext = traj.extrema();
@@ -328,6 +329,32 @@ mod tests {
         );
         assert!(lines[3]["error"].as_str().unwrap().contains("max_velocity"));
         assert_eq!(lines[4]["status"], json!("working"));
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+
+    #[test]
+    fn a_result_out_of_the_numeric_range_is_an_error_line_with_its_duration_short() {
+        // Reaching 1e300 m/s at 1 m/s² takes 1e300 s, over which the
+        // position overflows.
+        let dir = std::env::temp_dir().join(format!("shearcut-range-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("cases.jsonl");
+        std::fs::write(
+            &path,
+            "{\"current_position\":[0],\"target_position\":[1],\"target_velocity\":[1e300],\"max_velocity\":[1e300],\"max_acceleration\":[1],\"max_jerk\":[1],\"control_interface\":\"velocity\"}\n",
+        )
+        .unwrap();
+        let mut out = Vec::new();
+        let r = run_cases(&path, &mut out).unwrap();
+        assert_eq!(r.errors, 1);
+        let line: Value = serde_json::from_slice(&out).unwrap();
+        assert_eq!(
+            line["error"],
+            json!(
+                "the generator returned a non-finite result (duration 1e300 s): \
+                 the limits or states are out of its numeric range"
+            )
+        );
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }
