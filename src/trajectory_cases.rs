@@ -288,23 +288,37 @@ pub fn run_cases(input: &Path, output: &mut dyn Write) -> Result<CasesReport, Ca
 mod tests {
     use super::*;
 
-    #[test]
-    fn bad_lines_get_errors_and_the_rest_runs() {
-        let dir = std::env::temp_dir().join(format!("shearcut-cases-{}", std::process::id()));
+    /// Runs the cases of `text` from a file; the report and the result lines.
+    fn run_text(text: &str) -> (CasesReport, Vec<Value>) {
+        let dir = std::env::temp_dir().join(format!(
+            "shearcut-cases-{}-{}",
+            std::process::id(),
+            text.len()
+        ));
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join("cases.jsonl");
-        std::fs::write(
-            &path,
+        std::fs::write(&path, text).unwrap();
+        let mut out = Vec::new();
+        let r = run_cases(&path, &mut out).unwrap();
+        std::fs::remove_dir_all(&dir).unwrap();
+        let lines = String::from_utf8(out)
+            .unwrap()
+            .lines()
+            .map(|l| serde_json::from_str(l).unwrap())
+            .collect();
+        (r, lines)
+    }
+
+    #[test]
+    fn bad_lines_get_errors_and_the_rest_runs() {
+        let (r, lines) = run_text(
             "{\"current_position\":[0],\"target_position\":[1],\"max_velocity\":[1],\"max_acceleration\":[1],\"max_jerk\":[1],\"id\":7}\n\
              not json\n\
              \n\
              {\"current_position\":[0,0],\"target_position\":[1],\"max_velocity\":[1],\"max_acceleration\":[1],\"max_jerk\":[1]}\n\
              {\"current_position\":[0],\"target_position\":[1],\"max_velocity\":[-1],\"max_acceleration\":[1],\"max_jerk\":[1]}\n\
              {\"current_position\":[0,0],\"target_position\":[1,2],\"max_velocity\":[1,1],\"max_acceleration\":[1,1],\"max_jerk\":[1,1],\"synchronization\":\"phase\"}\n",
-        )
-        .unwrap();
-        let mut out = Vec::new();
-        let r = run_cases(&path, &mut out).unwrap();
+        );
         assert_eq!(
             r,
             CasesReport {
@@ -313,11 +327,6 @@ mod tests {
                 errors: 3
             }
         );
-        let lines: Vec<Value> = String::from_utf8(out)
-            .unwrap()
-            .lines()
-            .map(|l| serde_json::from_str(l).unwrap())
-            .collect();
         assert_eq!(lines[0]["id"], json!(7));
         assert!((lines[0]["duration"].as_f64().unwrap() - 3.174_802_103_9).abs() < 1e-9);
         assert!(lines[1]["error"].as_str().unwrap().starts_with("malformed"));
@@ -329,32 +338,22 @@ mod tests {
         );
         assert!(lines[3]["error"].as_str().unwrap().contains("max_velocity"));
         assert_eq!(lines[4]["status"], json!("working"));
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]
     fn a_result_out_of_the_numeric_range_is_an_error_line_with_its_duration_short() {
         // Reaching 1e300 m/s at 1 m/s² takes 1e300 s, over which the
         // position overflows.
-        let dir = std::env::temp_dir().join(format!("shearcut-range-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
-        let path = dir.join("cases.jsonl");
-        std::fs::write(
-            &path,
+        let (r, lines) = run_text(
             "{\"current_position\":[0],\"target_position\":[1],\"target_velocity\":[1e300],\"max_velocity\":[1e300],\"max_acceleration\":[1],\"max_jerk\":[1],\"control_interface\":\"velocity\"}\n",
-        )
-        .unwrap();
-        let mut out = Vec::new();
-        let r = run_cases(&path, &mut out).unwrap();
+        );
         assert_eq!(r.errors, 1);
-        let line: Value = serde_json::from_slice(&out).unwrap();
         assert_eq!(
-            line["error"],
+            lines[0]["error"],
             json!(
                 "the generator returned a non-finite result (duration 1e300 s): \
                  the limits or states are out of its numeric range"
             )
         );
-        std::fs::remove_dir_all(&dir).unwrap();
     }
 }
