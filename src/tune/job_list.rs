@@ -10,12 +10,19 @@
 //!
 //! A job's id is the first 16 hex digits of the SHA-1 of shearcut's version,
 //! the job's fully resolved scenario (variant and setting applied: TOML,
-//! every number in its exact shortest form, including the noise seed) and
-//! its replica. Equal ids are equal runs: a re-run finds a job's result
-//! under its id whatever else the sweep file gained or lost.
+//! every number in its exact shortest form, including the noise seed; a
+//! mesh object by the digest of its file's bytes, not its path) and its
+//! replica. Equal ids are equal runs: a re-run finds a job's result under its
+//! id whatever else the sweep file gained or lost, and wherever the checkout
+//! and its meshes lie.
+
+use std::collections::HashMap;
+use std::path::PathBuf;
 
 use serde::{Deserialize, Serialize};
-use shearcut_sim::InvalidSetting;
+use shearcut_sim::capped_read::read_capped;
+use shearcut_sim::resource_budget::MESH_FILE_BYTES;
+use shearcut_sim::{InvalidSetting, ObjectShape};
 
 use crate::commands::check::resolved_toml;
 use crate::controller_choice::ControllerChoice;
@@ -200,6 +207,7 @@ impl JobList {
             setting,
         };
         let mut jobs = Vec::new();
+        let mut mesh_digests = HashMap::new();
         let mut settings = Vec::new();
         let mut columns: Vec<String> = VARIANT_COLUMNS.iter().map(|c| c.to_string()).collect();
         let mut job_cells: Vec<Vec<(String, String)>> = Vec::new();
@@ -243,7 +251,7 @@ impl JobList {
                             }
                         }
                         let index = jobs.len();
-                        let id = job_id(&resolved_toml(&scenario), r);
+                        let id = job_id(&identity_toml(&scenario, &mut mesh_digests), r);
                         jobs.push(Job {
                             record: JobRecord {
                                 index,
@@ -320,6 +328,33 @@ fn setting_record(setting: &ControllerSetting, applied: &Scenario) -> SettingRec
     }
 }
 
+/// The text a job's id hashes: the resolved scenario, with a mesh object's
+/// path replaced by a digest of the file's bytes (`sha1:…`), so that the id
+/// follows the mesh, not where the checkout or the shared file system puts
+/// it. A file that cannot be read keeps its path (its runs end with the
+/// error). `digests` holds the digest of each path read.
+fn identity_toml(s: &Scenario, digests: &mut HashMap<PathBuf, String>) -> String {
+    let ObjectShape::Mesh { path } = &s.object else {
+        return resolved_toml(s);
+    };
+    let digest = match digests.get(path) {
+        Some(d) => d.clone(),
+        None => match read_capped(path, MESH_FILE_BYTES) {
+            Ok(bytes) => {
+                let d = format!("sha1:{}", sha1_smol::Sha1::from(bytes).digest());
+                digests.insert(path.clone(), d.clone());
+                d
+            }
+            Err(_) => return resolved_toml(s),
+        },
+    };
+    let mut by_content = s.clone();
+    by_content.object = ObjectShape::Mesh {
+        path: PathBuf::from(digest),
+    };
+    resolved_toml(&by_content)
+}
+
 /// The id of the run of resolved scenario `resolved` as replica `replica`.
 pub fn job_id(resolved: &str, replica: u32) -> String {
     let mut h = sha1_smol::Sha1::new();
@@ -351,6 +386,40 @@ mod tests {
         [[controllers]]
         kind = "press"
     "#;
+
+    /// A mesh object's job is named by the mesh's bytes: the same file in
+    /// another directory (a moved checkout, another node's mount) keeps the
+    /// id; other bytes at the same path change it.
+    #[test]
+    fn a_mesh_jobs_id_follows_the_files_bytes_not_its_path() {
+        let root = std::env::temp_dir().join(format!("shearcut-mesh-id-{}", std::process::id()));
+        let tetrahedron = |a: &str| {
+            format!(
+                "v 0 0 0\nv {a} 0 0\nv 0 {a} 0\nv 0 0 {a}\nf 1 3 2\nf 1 2 4\nf 2 3 4\nf 1 4 3\n"
+            )
+        };
+        let scenario_at = |dir: &str, a: &str| {
+            let d = root.join(dir);
+            std::fs::create_dir_all(&d).unwrap();
+            let mesh = d.join("tetrahedron.obj");
+            std::fs::write(&mesh, tetrahedron(a)).unwrap();
+            let text = format!(
+                "[material]\npreset = \"potato-cuboid\"\n[knife]\npreset = \"straight\"\n\
+                 [object]\nkind = \"mesh\"\npath = \"{}\"\n",
+                mesh.display()
+            );
+            Scenario::parse(&text, "t", "t").unwrap()
+        };
+        let id = |s: &Scenario| job_id(&identity_toml(s, &mut HashMap::new()), 0);
+        let (a, b) = (scenario_at("a", "0.03"), scenario_at("b", "0.03"));
+        assert_ne!(resolved_toml(&a), resolved_toml(&b));
+        assert_eq!(id(&a), id(&b));
+        let c = scenario_at("b", "0.04");
+        assert_ne!(id(&c), id(&a));
+        // Unreadable: the path names it (its runs end with the error).
+        std::fs::remove_dir_all(&root).unwrap();
+        assert_eq!(identity_toml(&c, &mut HashMap::new()), resolved_toml(&c));
+    }
 
     #[test]
     fn a_blade_budget_from_a_grid_keeps_each_jobs_object_on_the_edge() {
