@@ -10,7 +10,8 @@ use crate::error::RunError;
 
 /// Writes the file `path` through `write`, which is given a temporary name
 /// beside it (`.partial-<file name>`, the same extension), and renames it
-/// into place: readers see the whole file or none.
+/// into place: readers see the whole file or none. A failed write (a full
+/// device) removes its temporary file.
 ///
 /// # Errors
 /// `write`'s error, or the rename's.
@@ -23,7 +24,9 @@ pub fn publish(
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
     let partial = path.with_file_name(format!(".partial-{file_name}"));
-    write(&partial)?;
+    write(&partial).inspect_err(|_| {
+        let _ = std::fs::remove_file(&partial);
+    })?;
     // Make the contents durable before the name points at them.
     if let Ok(f) = File::open(&partial) {
         let _ = f.sync_all();
@@ -69,9 +72,13 @@ mod tests {
         let _ = std::fs::remove_dir_all(&d);
         std::fs::create_dir_all(&d).unwrap();
         let p = d.join("summary.json");
-        let e = publish(&p, |tmp| Err(RunError::write(tmp, "interrupted")));
+        let e = publish(&p, |tmp| {
+            std::fs::write(tmp, "{\"sum").unwrap();
+            Err(RunError::write(tmp, "device full"))
+        });
         assert!(e.is_err());
         assert!(!p.exists());
+        assert!(!d.join(".partial-summary.json").exists());
         publish(&p, |tmp| {
             std::fs::write(tmp, "{}").map_err(|e| RunError::write(tmp, e))
         })

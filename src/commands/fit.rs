@@ -22,6 +22,7 @@ use crate::error::{ConfigError, RunError};
 use crate::plot::ensure_parent;
 use crate::plot::surrogate_fit::draw_surrogate_fit;
 use crate::render_plot;
+use crate::result_file::write_text;
 use crate::run_dir::claim_output_file;
 
 /// Threads of the sweeps (the machine's cores, at most 2 by default: DESIGN
@@ -291,11 +292,10 @@ pub fn run(request: &FitRequest<'_>) -> Result<(), RunError> {
     bar.finish_and_clear();
     let output = result?;
     ensure_parent(&path)?;
-    std::fs::write(
+    write_text(
         &path,
-        surrogate_file_text(&output.surrogate, &extra, &extra_held_out),
-    )
-    .map_err(|e| RunError::write(&path, e))?;
+        &surrogate_file_text(&output.surrogate, &extra, &extra_held_out),
+    )?;
     let report_path = path.with_extension("accuracy.toml");
     let report_text = format!(
         "# Accuracy of {} against held-out full-model runs (forces: window means over {} mm after fracture).\n{}",
@@ -303,7 +303,7 @@ pub fn run(request: &FitRequest<'_>) -> Result<(), RunError> {
         shearcut_sim::surrogate::SMOOTHING_WINDOW * 1e3,
         toml::to_string(&output.report).map_err(|e| RunError::write(&report_path, e))?
     );
-    std::fs::write(&report_path, report_text).map_err(|e| RunError::write(&report_path, e))?;
+    write_text(&report_path, &report_text)?;
     let plot_path = path.with_extension("png");
     render_plot!(&plot_path, (1000, 1250), |root| draw_surrogate_fit(
         root,

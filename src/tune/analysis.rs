@@ -12,6 +12,7 @@ use std::path::Path;
 
 use crate::error::RunError;
 use crate::render_plot;
+use crate::result_file::write_text;
 use crate::tune::best_constant_pairing;
 use crate::tune::effect_plot::draw_effects;
 use crate::tune::front_plot::draw_front;
@@ -182,7 +183,7 @@ pub fn analyse(dir: &Path, catalog: &JobCatalog, rows: &[JobRow]) -> Result<Stri
         for r in recommend(&group, &catalog.weightings) {
             let path = recommended.join(format!("{name}-{}.toml", r.weighting));
             let block = settings_block(name, &r, &settings[r.stats.setting]);
-            std::fs::write(&path, block).map_err(|e| RunError::write(&path, e))?;
+            write_text(&path, &block)?;
             summary += &format!(
                 "| {} | {} | {} | {} | {:.4} | `{}` |\n",
                 r.weighting,
@@ -205,7 +206,7 @@ pub fn analyse(dir: &Path, catalog: &JobCatalog, rows: &[JobRow]) -> Result<Stri
         .flush()
         .map_err(|e| RunError::write(dir.join("effects.csv"), e))?;
     let path = dir.join("summary.md");
-    std::fs::write(&path, &summary).map_err(|e| RunError::write(&path, e))?;
+    write_text(&path, &summary)?;
     Ok(summary)
 }
 

@@ -13,6 +13,7 @@ use shearcut_sim::InvalidSetting;
 use shearcut_sim::capped_read::read_capped_text;
 
 use crate::error::{ConfigError, RunError};
+use crate::result_file::{write_json, write_text};
 use crate::tune::job_list::JobCatalog;
 use crate::tune::job_outcome::JobRow;
 use crate::tune::result_table::write_tables;
@@ -41,7 +42,7 @@ pub fn write_catalog(dir: &Path, catalog: &JobCatalog, sweep_text: &str) -> Resu
             };
             return Err(crate::run_dir::refused(dir, format!("{ALLOWED} ({why})")));
         }
-    } else if dir.is_dir() && crate::run_dir::holds_files(dir)? {
+    } else if dir.is_dir() && crate::run_dir::holds_files(dir)? && !interrupted_claim(dir) {
         return Err(crate::run_dir::refused(
             dir,
             format!("{ALLOWED} (it holds files and no jobs.json)"),
@@ -51,11 +52,26 @@ pub fn write_catalog(dir: &Path, catalog: &JobCatalog, sweep_text: &str) -> Resu
     // bad input (exit 2).
     let rows = dir.join("rows");
     std::fs::create_dir_all(&rows).map_err(|e| crate::run_dir::uncreatable(dir, &rows, &e))?;
-    let path = dir.join("sweep.toml");
-    std::fs::write(&path, sweep_text).map_err(|e| RunError::write(&path, e))?;
-    let path = dir.join("jobs.json");
-    let text = serde_json::to_string_pretty(catalog).map_err(|e| RunError::write(&path, e))?;
-    std::fs::write(&path, text + "\n").map_err(|e| RunError::write(&path, e))
+    write_text(&dir.join("sweep.toml"), sweep_text)?;
+    write_json(&dir.join("jobs.json"), catalog)
+}
+
+/// Whether `dir` holds only what [`write_catalog`] writes before
+/// `jobs.json` (an empty `rows/`, `sweep.toml`, a partly written file of
+/// its own): a sweep killed while claiming it, resumed by running it again.
+fn interrupted_claim(dir: &Path) -> bool {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return false;
+    };
+    entries.flatten().all(|e| {
+        let name = e.file_name();
+        let name = name.to_string_lossy();
+        match name.as_ref() {
+            "rows" => std::fs::read_dir(e.path()).is_ok_and(|mut r| r.next().is_none()),
+            "sweep.toml" | ".partial-sweep.toml" | ".partial-jobs.json" => true,
+            _ => false,
+        }
+    })
 }
 
 /// Reads `dir/jobs.json` and `dir/sweep.toml`.
@@ -108,4 +124,43 @@ pub fn tabulate(
         .collect();
     write_tables(dir, catalog, &finished)?;
     Ok(finished.len())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::tune::job_list::list_of;
+
+    /// A sweep killed while it claimed its directory resumes there; a
+    /// directory holding anything else is refused.
+    #[test]
+    fn a_claim_killed_before_jobs_json_resumes_and_other_files_are_refused() {
+        let dir = std::env::temp_dir().join(format!("shearcut-claim-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        let catalog =
+            list_of("scenarios = [\"loop-potato-cuboid\"]\n[[controllers]]\nkind = \"press\"\n")
+                .catalog;
+        // What a kill between sweep.toml and jobs.json leaves.
+        std::fs::create_dir_all(dir.join("rows")).unwrap();
+        std::fs::write(dir.join("sweep.toml"), "x").unwrap();
+        std::fs::write(dir.join(".partial-jobs.json"), "{\"swe").unwrap();
+        write_catalog(&dir, &catalog, "sweep").unwrap();
+        assert_eq!(
+            read_catalog(&dir).unwrap(),
+            (catalog.clone(), "sweep".into())
+        );
+        // Another command's files.
+        let other = dir.join("other");
+        std::fs::create_dir_all(other.join("rows")).unwrap();
+        std::fs::write(other.join("results.csv"), "a,b\n").unwrap();
+        let e = write_catalog(&other, &catalog, "sweep").unwrap_err();
+        assert!(e.to_string().contains("no jobs.json"), "{e}");
+        // A row: a sweep's directory whose jobs.json is gone is not
+        // silently re-claimed.
+        let ran = dir.join("ran");
+        std::fs::create_dir_all(ran.join("rows")).unwrap();
+        std::fs::write(ran.join("rows/0123.json"), "{}").unwrap();
+        assert!(write_catalog(&ran, &catalog, "sweep").is_err());
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
 }
