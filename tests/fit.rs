@@ -72,6 +72,28 @@ fn a_malformed_or_unphysical_extra_size_is_exit_2_in_one_line() {
 }
 
 #[test]
+fn an_empty_size_between_commas_is_exit_2_in_one_line() {
+    let o = fit_potato_cuboid_straight(&["--extra-sizes", "65x95,,50x60"]);
+    assert_eq!(o.status.code(), Some(2));
+    let e = stderr(&o);
+    assert_eq!(e.trim_end().lines().count(), 1, "{e}");
+    assert!(
+        e.contains("`--extra-sizes` = 65x95,,50x60") && e.contains("an item is empty"),
+        "{e}"
+    );
+    // A trailing comma, or an empty value, is no size.
+    use shearcut::commands::fit::parse_section_sizes;
+    let items = |v: &[&str]| v.iter().map(|s| s.to_string()).collect::<Vec<_>>();
+    let sizes = parse_section_sizes("--extra-sizes", &items(&["65x95", ""])).unwrap();
+    assert_eq!(sizes, [(0.065, 0.095)]);
+    assert!(
+        parse_section_sizes("--extra-sizes", &items(&[""]))
+            .unwrap()
+            .is_empty()
+    );
+}
+
+#[test]
 fn a_size_given_twice_is_exit_2_naming_its_option() {
     // 30x15 mm is a default fit size, 25x20 mm a default held-out one.
     for (args, key, value) in [

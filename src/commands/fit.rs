@@ -89,10 +89,21 @@ pub fn resolve(material: &str, knife: &str) -> Result<(MaterialPreset, KnifePres
 
 /// Section sizes given as `HEIGHTxHALF_WIDTH` in mm (`65x95`), in m,
 /// rounded to the µm (so that the command a file's header records
-/// reproduces it, and equal sizes compare equal). Empty values (a trailing
-/// comma) are skipped. The option is named `key` in the error (exit 2).
+/// reproduces it, and equal sizes compare equal). Empty values after the
+/// last size (a trailing comma) are skipped; one before a size is refused.
+/// The option is named `key` in the error (exit 2).
 pub fn parse_section_sizes(key: &str, values: &[String]) -> Result<Vec<(f64, f64)>, ConfigError> {
     let [low, high] = EXTRA_SIZE_RANGE_MM;
+    // An empty value is no size (`""`, a trailing comma); an empty item
+    // before a size (`65x95,,50x60`) is a typo.
+    let last_size = values.iter().rposition(|v| !v.trim().is_empty());
+    if last_size.is_some_and(|n| values[..n].iter().any(|v| v.trim().is_empty())) {
+        return Err(ConfigError::Argument(InvalidSetting::new(
+            key,
+            values.join(","),
+            "sizes HEIGHTxHALF_WIDTH in mm separated by single commas (an item is empty)",
+        )));
+    }
     values
         .iter()
         .filter(|v| !v.trim().is_empty())
