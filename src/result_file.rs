@@ -11,7 +11,9 @@ use crate::error::RunError;
 /// Writes the file `path` through `write`, which is given a temporary name
 /// beside it (`.partial-<file name>`, the same extension), and renames it
 /// into place: readers see the whole file or none. A failed write (a full
-/// device) removes its temporary file.
+/// device) or rename removes the temporary file; one left by a killed
+/// process is overwritten by the next write of the same file. One process
+/// writes a directory's files at a time.
 ///
 /// # Errors
 /// `write`'s error, or the rename's.
@@ -23,16 +25,22 @@ pub fn publish(
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())
         .unwrap_or_default();
-    let partial = path.with_file_name(format!(".partial-{file_name}"));
-    write(&partial).inspect_err(|_| {
+    let partial = path.with_file_name(format!("{PARTIAL_PREFIX}{file_name}"));
+    let remove_partial = |_: &RunError| {
         let _ = std::fs::remove_file(&partial);
-    })?;
+    };
+    write(&partial).inspect_err(remove_partial)?;
     // Make the contents durable before the name points at them.
     if let Ok(f) = File::open(&partial) {
         let _ = f.sync_all();
     }
-    std::fs::rename(&partial, path).map_err(|e| RunError::write(path, e))
+    std::fs::rename(&partial, path)
+        .map_err(|e| RunError::write(path, e))
+        .inspect_err(remove_partial)
 }
+
+/// How the name of a file [`publish`] has not finished begins.
+pub const PARTIAL_PREFIX: &str = ".partial-";
 
 /// Writes `rows` to `path` as CSV with a header of the field names
 /// ([`publish`]ed).
@@ -44,6 +52,25 @@ pub fn write_csv<T: Serialize>(
         let mut w = csv::Writer::from_path(tmp).map_err(|e| RunError::write(path, e))?;
         for r in rows {
             w.serialize(r).map_err(|e| RunError::write(path, e))?;
+        }
+        w.flush().map_err(|e| RunError::write(path, e))
+    })
+}
+
+/// Writes the CSV table `path`: the header `columns`, then `rows`
+/// ([`publish`]ed).
+pub fn write_table<C: AsRef<[u8]>>(
+    path: &Path,
+    columns: impl IntoIterator<Item = C>,
+    rows: impl IntoIterator<Item = Vec<String>>,
+) -> Result<(), RunError> {
+    publish(path, |tmp| {
+        let mut w = csv::Writer::from_path(tmp).map_err(|e| RunError::write(path, e))?;
+        w.write_record(columns)
+            .map_err(|e| RunError::write(path, e))?;
+        for cells in rows {
+            w.write_record(cells)
+                .map_err(|e| RunError::write(path, e))?;
         }
         w.flush().map_err(|e| RunError::write(path, e))
     })
@@ -78,13 +105,22 @@ mod tests {
         });
         assert!(e.is_err());
         assert!(!p.exists());
-        assert!(!d.join(".partial-summary.json").exists());
+        assert_eq!(std::fs::read_dir(&d).unwrap().count(), 0);
         publish(&p, |tmp| {
             std::fs::write(tmp, "{}").map_err(|e| RunError::write(tmp, e))
         })
         .unwrap();
         assert_eq!(std::fs::read_to_string(&p).unwrap(), "{}");
-        assert!(!d.join(".partial-summary.json").exists());
+        assert_eq!(std::fs::read_dir(&d).unwrap().count(), 1);
+        // A rename that fails (onto a non-empty directory) leaves no
+        // partial file either.
+        let in_the_way = d.join("in-the-way");
+        std::fs::create_dir_all(in_the_way.join("x")).unwrap();
+        let e = publish(&in_the_way, |tmp| {
+            std::fs::write(tmp, "{}").map_err(|e| RunError::write(tmp, e))
+        });
+        assert!(e.is_err());
+        assert_eq!(std::fs::read_dir(&d).unwrap().count(), 2);
         std::fs::remove_dir_all(&d).unwrap();
     }
 }

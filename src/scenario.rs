@@ -129,7 +129,11 @@ pub struct MotionSettings {
 
 impl MotionSettings {
     /// The object's place along the edge in a closed-loop run, m: the first
-    /// of `z0` (a loop cuts once; validation keeps the list non-empty).
+    /// of `z0` (a loop cuts once).
+    ///
+    /// # Panics
+    /// If `z0` is empty, which validation refuses: every [`Scenario`] is
+    /// resolved from a file or text, and code that sets `z0` sets one value.
     pub fn loop_z0(&self) -> f64 {
         self.z0[0]
     }

@@ -288,13 +288,11 @@ pub fn run_cases(input: &Path, output: &mut dyn Write) -> Result<CasesReport, Ca
 mod tests {
     use super::*;
 
-    /// Runs the cases of `text` from a file; the report and the result lines.
-    fn run_text(text: &str) -> (CasesReport, Vec<Value>) {
-        let dir = std::env::temp_dir().join(format!(
-            "shearcut-cases-{}-{}",
-            std::process::id(),
-            text.len()
-        ));
+    /// Runs the cases of `text` from a file in a directory named by
+    /// `test`; the report and the result lines.
+    fn run_text(test: &str, text: &str) -> (CasesReport, Vec<Value>) {
+        let dir =
+            std::env::temp_dir().join(format!("shearcut-cases-{test}-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join("cases.jsonl");
         std::fs::write(&path, text).unwrap();
@@ -312,6 +310,7 @@ mod tests {
     #[test]
     fn bad_lines_get_errors_and_the_rest_runs() {
         let (r, lines) = run_text(
+            "bad-lines",
             "{\"current_position\":[0],\"target_position\":[1],\"max_velocity\":[1],\"max_acceleration\":[1],\"max_jerk\":[1],\"id\":7}\n\
              not json\n\
              \n\
@@ -345,6 +344,7 @@ mod tests {
         // Reaching 1e300 m/s at 1 m/s² takes 1e300 s, over which the
         // position overflows.
         let (r, lines) = run_text(
+            "numeric-range",
             "{\"current_position\":[0],\"target_position\":[1],\"target_velocity\":[1e300],\"max_velocity\":[1e300],\"max_acceleration\":[1],\"max_jerk\":[1],\"control_interface\":\"velocity\"}\n",
         );
         assert_eq!(r.errors, 1);

@@ -303,10 +303,8 @@ pub fn run(request: &FitRequest<'_>) -> Result<(), RunError> {
     bar.finish_and_clear();
     let output = result?;
     ensure_parent(&path)?;
-    write_text(
-        &path,
-        &surrogate_file_text(&output.surrogate, &extra, &extra_held_out),
-    )?;
+    // The surrogate last: a kill leaves no new surrogate beside an old
+    // report and plot.
     let report_path = path.with_extension("accuracy.toml");
     let report_text = format!(
         "# Accuracy of {} against held-out full-model runs (forces: window means over {} mm after fracture).\n{}",
@@ -325,6 +323,10 @@ pub fn run(request: &FitRequest<'_>) -> Result<(), RunError> {
         ),
         &output.comparisons
     ))?;
+    write_text(
+        &path,
+        &surrogate_file_text(&output.surrogate, &extra, &extra_held_out),
+    )?;
     print(&format!(
         "{}wrote {}, {}, {}\n",
         output.report.table(),

@@ -10,6 +10,7 @@ use crate::cli::print;
 use crate::error::{ConfigError, RunError};
 use crate::plot::toughness_ratio::{FIG3_SLICE_PUSH_RATIOS, draw_fig3, fig3_table};
 use crate::render_plot;
+use crate::result_file::write_table;
 use crate::run_dir::claim_output_file;
 
 /// The law evaluated at one (ξ, ν).
@@ -84,18 +85,14 @@ fn claim_plot(path: &Path) -> Result<(), RunError> {
 fn write_fig3(path: &Path) -> Result<PathBuf, RunError> {
     render_plot!(path, (800, 560), draw_fig3)?;
     let csv_path = path.with_extension("csv");
-    let mut w = csv::Writer::from_path(&csv_path).map_err(|e| RunError::write(&csv_path, e))?;
     let mut header = vec!["poisson_ratio".to_string()];
     header.extend(FIG3_SLICE_PUSH_RATIOS.iter().map(|xi| format!("r_xi_{xi}")));
-    w.write_record(&header)
-        .map_err(|e| RunError::write(&csv_path, e))?;
-    for (nu, r) in fig3_table() {
+    let rows = fig3_table().into_iter().map(|(nu, r)| {
         let mut row = vec![format!("{nu}")];
         row.extend(r.iter().map(|v| format!("{v}")));
-        w.write_record(&row)
-            .map_err(|e| RunError::write(&csv_path, e))?;
-    }
-    w.flush().map_err(|e| RunError::write(&csv_path, e))?;
+        row
+    });
+    write_table(&csv_path, header, rows)?;
     Ok(csv_path)
 }
 

@@ -12,7 +12,7 @@ use std::path::Path;
 
 use crate::error::RunError;
 use crate::render_plot;
-use crate::result_file::write_text;
+use crate::result_file::{write_table, write_text};
 use crate::tune::best_constant_pairing;
 use crate::tune::effect_plot::draw_effects;
 use crate::tune::front_plot::draw_front;
@@ -107,8 +107,8 @@ pub fn front_spans(group: &[&SettingStats]) -> Vec<FrontSpan> {
 pub fn analyse(dir: &Path, catalog: &JobCatalog, rows: &[JobRow]) -> Result<String, RunError> {
     let finished: Vec<_> = catalog.jobs.iter().zip(rows).collect();
     let stats = setting_stats(&finished);
-    let mut front_rows = csv_writer(&dir.join("front.csv"))?;
-    let mut header = vec![
+    let mut front_rows: Vec<Vec<String>> = Vec::new();
+    let mut front_header = vec![
         "scenario".to_string(),
         "setting".into(),
         "controller".into(),
@@ -118,27 +118,25 @@ pub fn analyse(dir: &Path, catalog: &JobCatalog, rows: &[JobRow]) -> Result<Stri
         "pareto".into(),
     ];
     for stat in ["mean", "worst", "spread"] {
-        header.extend(
+        front_header.extend(
             Objective::ALL
                 .iter()
                 .map(|o| format!("{stat}_{}", o.column())),
         );
     }
-    write_record(&mut front_rows, &dir.join("front.csv"), header)?;
-    let mut effect_rows = csv_writer(&dir.join("effects.csv"))?;
-    let mut header = vec![
+    let mut effect_rows: Vec<Vec<String>> = Vec::new();
+    let mut effect_header = vec![
         "scenario".to_string(),
         "column".into(),
         "controller_family".into(),
         "value".into(),
         "runs".into(),
     ];
-    header.extend(
+    effect_header.extend(
         Objective::ALL
             .iter()
             .map(|o| format!("mean_{}", o.column())),
     );
-    write_record(&mut effect_rows, &dir.join("effects.csv"), header)?;
     let recommended = dir.join("recommended");
     std::fs::create_dir_all(&recommended).map_err(|e| RunError::write(&recommended, e))?;
     let mut summary = format!("# Sweep {}\n", catalog.sweep);
@@ -160,7 +158,7 @@ pub fn analyse(dir: &Path, catalog: &JobCatalog, rows: &[JobRow]) -> Result<Stri
             for v in [&s.mean, &s.worst, &s.spread] {
                 cells.extend(v.iter().map(|x| f(*x)));
             }
-            write_record(&mut front_rows, &dir.join("front.csv"), cells)?;
+            front_rows.push(cells);
         }
         let levels = effects(catalog, si, &finished);
         for l in &levels {
@@ -176,7 +174,7 @@ pub fn analyse(dir: &Path, catalog: &JobCatalog, rows: &[JobRow]) -> Result<Stri
                     .iter()
                     .map(|x| crate::tune::perturbation::float_cell(*x)),
             );
-            write_record(&mut effect_rows, &dir.join("effects.csv"), cells)?;
+            effect_rows.push(cells);
         }
         draw_group_plots(dir, name, &group, &on_front, &levels)?;
         summary += &group_summary(name, &group, &on_front, settings);
@@ -199,12 +197,8 @@ pub fn analyse(dir: &Path, catalog: &JobCatalog, rows: &[JobRow]) -> Result<Stri
     summary += &best_constant_pairing::write_pairs(dir, catalog, &pairs)?;
     let grid_pairs = uniform_constant::grid_point_pairs(catalog, &finished);
     summary += &uniform_constant::write_grid(dir, catalog, &grid_pairs)?;
-    front_rows
-        .flush()
-        .map_err(|e| RunError::write(dir.join("front.csv"), e))?;
-    effect_rows
-        .flush()
-        .map_err(|e| RunError::write(dir.join("effects.csv"), e))?;
+    write_table(&dir.join("front.csv"), front_header, front_rows)?;
+    write_table(&dir.join("effects.csv"), effect_header, effect_rows)?;
     let path = dir.join("summary.md");
     write_text(&path, &summary)?;
     Ok(summary)
@@ -290,16 +284,4 @@ fn group_summary(
     }
     t += "\nRecommended settings:\n\n| weighting | setting | controller | settings | score | block |\n|---|---|---|---|---|---|\n";
     t
-}
-
-fn csv_writer(path: &Path) -> Result<csv::Writer<std::fs::File>, RunError> {
-    csv::Writer::from_path(path).map_err(|e| RunError::write(path, e))
-}
-
-fn write_record(
-    w: &mut csv::Writer<std::fs::File>,
-    path: &Path,
-    cells: Vec<String>,
-) -> Result<(), RunError> {
-    w.write_record(cells).map_err(|e| RunError::write(path, e))
 }

@@ -19,6 +19,7 @@ use std::path::Path;
 use crate::commands::compare::PairedDifference;
 use crate::constant_ratio::{completed_mean_work, least_mean_work};
 use crate::error::RunError;
+use crate::result_file::write_table;
 use crate::tune::job_list::{JobCatalog, JobRecord};
 use crate::tune::job_outcome::JobRow;
 use crate::tune::perturbation::float_cell;
@@ -402,22 +403,6 @@ pub(crate) fn pair_cells(p: &ConstantPair) -> Vec<String> {
     cells.push(float_cell(p.constant_max_deformation_m));
     cells.extend(difference_cells(&p.deformation));
     cells
-}
-
-/// Writes the table `path`: `columns`, then `rows`.
-pub(crate) fn write_table(
-    path: &Path,
-    columns: &[&str],
-    rows: impl IntoIterator<Item = Vec<String>>,
-) -> Result<(), RunError> {
-    let mut w = csv::Writer::from_path(path).map_err(|e| RunError::write(path, e))?;
-    w.write_record(columns)
-        .map_err(|e| RunError::write(path, e))?;
-    for cells in rows {
-        w.write_record(cells)
-            .map_err(|e| RunError::write(path, e))?;
-    }
-    w.flush().map_err(|e| RunError::write(path, e))
 }
 
 /// Writes `best-constant.csv` under `dir` (deterministic: the timings are

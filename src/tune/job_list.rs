@@ -11,17 +11,17 @@
 //! A job's id is the first 16 hex digits of the SHA-1 of shearcut's version,
 //! the job's fully resolved scenario (variant and setting applied: TOML,
 //! every number in its exact shortest form, including the noise seed; a
-//! mesh object by the digest of its file's bytes, not its path) and its
-//! replica. Equal ids are equal runs: a re-run finds a job's result under its
-//! id whatever else the sweep file gained or lost, and wherever the checkout
-//! and its meshes lie.
+//! mesh object and a surrogate file by the digest of the file's bytes, not
+//! its path) and its replica. Equal ids are equal runs: a re-run finds a
+//! job's result under its id whatever else the sweep file gained or lost,
+//! and wherever the checkout and its files lie.
 
 use std::collections::HashMap;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 use serde::{Deserialize, Serialize};
 use shearcut_sim::capped_read::read_capped;
-use shearcut_sim::resource_budget::MESH_FILE_BYTES;
+use shearcut_sim::resource_budget::{CONFIG_FILE_BYTES, MESH_FILE_BYTES};
 use shearcut_sim::{InvalidSetting, ObjectShape};
 
 use crate::commands::check::resolved_toml;
@@ -29,7 +29,7 @@ use crate::controller_choice::ControllerChoice;
 use crate::error::ConfigError;
 use crate::run_replica::RunReplica;
 use crate::scenario::Scenario;
-use crate::surrogates::surrogate_named;
+use crate::surrogates::{BUILT_IN_SURROGATES, surrogate_named};
 use crate::tune::controller_setting::{ControllerSetting, controller_cells, value_cell};
 use crate::tune::perturbation::{Perturbation, VARIANT_COLUMNS, check_on_edge};
 use crate::tune::sweep_file::Sweep;
@@ -212,6 +212,23 @@ impl JobList {
         let mut columns: Vec<String> = VARIANT_COLUMNS.iter().map(|c| c.to_string()).collect();
         let mut job_cells: Vec<Vec<(String, String)>> = Vec::new();
         for (si, base) in sweep.scenarios.iter().enumerate() {
+            // Replica r's specimen of each variant (the variant itself
+            // unless the sweep spreads its specimens), applied once: the
+            // variants alone were checked when the sweep was read, so an
+            // error here is a specimen's.
+            let mut specimens = Vec::new();
+            for (vi, variant) in sweep.variants.iter().enumerate() {
+                for r in 0..sweep.replicas {
+                    let specimen = sweep.specimens.specimen_of(variant, r);
+                    let perturbed = specimen.apply(base).map_err(|e| {
+                        invalid(e.prefixed(&format!(
+                            "variant[{vi}] on {}, replica {r}'s specimen",
+                            base.name
+                        )))
+                    })?;
+                    specimens.push((vi, r, specimen, perturbed));
+                }
+            }
             let mut of_scenario = Vec::new();
             for (ki, setting) in sweep.settings.iter().enumerate() {
                 let at = |e: InvalidSetting| {
@@ -224,51 +241,46 @@ impl JobList {
                     surrogate_named(name).map_err(at)?;
                 }
                 of_scenario.push(setting_record(setting, &nominal));
-                for (vi, variant) in sweep.variants.iter().enumerate() {
-                    for r in 0..sweep.replicas {
-                        // Replica r's specimen of the variant (the variant
-                        // itself unless the sweep spreads its specimens).
-                        let specimen = sweep.specimens.specimen_of(variant, r);
-                        let perturbed = specimen.apply(base).map_err(at)?;
-                        let scenario = setting.apply(&perturbed).map_err(at)?;
-                        if setting.sets_blade_budget() {
-                            check_on_edge(&scenario).map_err(|e| {
-                                at(InvalidSetting {
-                                    key: format!("z0 of variant {vi}, with its blade_budget"),
-                                    ..e
-                                })
-                            })?;
-                        }
-                        let mut cells: Vec<(String, String)> = VARIANT_COLUMNS
-                            .iter()
-                            .map(|c| c.to_string())
-                            .zip(specimen.cells(&scenario))
-                            .collect();
-                        cells.extend(controller_cells(&scenario));
-                        for (key, _) in &cells {
-                            if !columns.contains(key) {
-                                columns.push(key.clone());
-                            }
-                        }
-                        let index = jobs.len();
-                        let id = job_id(&identity_toml(&scenario, &mut mesh_digests), r);
-                        jobs.push(Job {
-                            record: JobRecord {
-                                index,
-                                id,
-                                scenario: si,
-                                setting: ki,
-                                variant: vi,
-                                replica: r,
-                                controller: setting.label(),
-                                cells: Vec::new(),
-                            },
-                            choice: scenario.controller.kind,
-                            scenario,
-                            replica: RunReplica { index: r },
-                        });
-                        job_cells.push(cells);
+                for (vi, r, specimen, perturbed) in &specimens {
+                    let (vi, r) = (*vi, *r);
+                    let scenario = setting.apply(perturbed).map_err(at)?;
+                    if setting.sets_blade_budget() {
+                        check_on_edge(&scenario).map_err(|e| {
+                            at(InvalidSetting {
+                                key: format!("z0 of variant {vi}, with its blade_budget"),
+                                ..e
+                            })
+                        })?;
                     }
+                    let mut cells: Vec<(String, String)> = VARIANT_COLUMNS
+                        .iter()
+                        .map(|c| c.to_string())
+                        .zip(specimen.cells(&scenario))
+                        .collect();
+                    cells.extend(controller_cells(&scenario));
+                    for (key, _) in &cells {
+                        if !columns.contains(key) {
+                            columns.push(key.clone());
+                        }
+                    }
+                    let index = jobs.len();
+                    let id = job_id(&identity_toml(&scenario, &mut mesh_digests), r);
+                    jobs.push(Job {
+                        record: JobRecord {
+                            index,
+                            id,
+                            scenario: si,
+                            setting: ki,
+                            variant: vi,
+                            replica: r,
+                            controller: setting.label(),
+                            cells: Vec::new(),
+                        },
+                        choice: scenario.controller.kind,
+                        scenario,
+                        replica: RunReplica { index: r },
+                    });
+                    job_cells.push(cells);
                 }
             }
             settings.push(of_scenario);
@@ -329,30 +341,40 @@ fn setting_record(setting: &ControllerSetting, applied: &Scenario) -> SettingRec
 }
 
 /// The text a job's id hashes: the resolved scenario, with a mesh object's
-/// path replaced by a digest of the file's bytes (`sha1:…`), so that the id
-/// follows the mesh, not where the checkout or the shared file system puts
-/// it. A file that cannot be read keeps its path (its runs end with the
-/// error). `digests` holds the digest of each path read.
+/// path and a surrogate file's path (`[controller] surrogate` that is no
+/// built-in name) replaced by digests of the files' bytes (`sha1:…`), so
+/// that the id follows what the files hold, not where the checkout or the
+/// shared file system puts them: a file rewritten in place is a new run. A
+/// file that cannot be read keeps its path (its runs end with the error).
+/// `digests` holds the digest of each path read.
 fn identity_toml(s: &Scenario, digests: &mut HashMap<PathBuf, String>) -> String {
-    let ObjectShape::Mesh { path } = &s.object else {
-        return resolved_toml(s);
-    };
-    let digest = match digests.get(path) {
-        Some(d) => d.clone(),
-        None => match read_capped(path, MESH_FILE_BYTES) {
-            Ok(bytes) => {
-                let d = format!("sha1:{}", sha1_smol::Sha1::from(bytes).digest());
-                digests.insert(path.clone(), d.clone());
-                d
-            }
-            Err(_) => return resolved_toml(s),
-        },
-    };
     let mut by_content = s.clone();
-    by_content.object = ObjectShape::Mesh {
-        path: PathBuf::from(digest),
-    };
+    if let ObjectShape::Mesh { path } = &s.object
+        && let Some(d) = file_digest(path, MESH_FILE_BYTES, digests)
+    {
+        by_content.object = ObjectShape::Mesh {
+            path: PathBuf::from(d),
+        };
+    }
+    if let Some(name) = &s.controller.surrogate
+        && !BUILT_IN_SURROGATES.iter().any(|(n, _)| n == name)
+        && let Some(d) = file_digest(Path::new(name), CONFIG_FILE_BYTES, digests)
+    {
+        by_content.controller.surrogate = Some(d);
+    }
     resolved_toml(&by_content)
+}
+
+/// `sha1:<hex>` of the first `cap` bytes of the file at `path` (memoised in
+/// `digests`); None if it cannot be read.
+fn file_digest(path: &Path, cap: u64, digests: &mut HashMap<PathBuf, String>) -> Option<String> {
+    if let Some(d) = digests.get(path) {
+        return Some(d.clone());
+    }
+    let bytes = read_capped(path, cap).ok()?;
+    let d = format!("sha1:{}", sha1_smol::Sha1::from(bytes).digest());
+    digests.insert(path.to_path_buf(), d.clone());
+    Some(d)
 }
 
 /// The id of the run of resolved scenario `resolved` as replica `replica`.
@@ -391,7 +413,7 @@ mod tests {
     /// another directory (a moved checkout, another node's mount) keeps the
     /// id; other bytes at the same path change it.
     #[test]
-    fn a_mesh_jobs_id_follows_the_files_bytes_not_its_path() {
+    fn a_mesh_or_surrogate_files_job_id_follows_its_bytes_not_its_path() {
         let root = std::env::temp_dir().join(format!("shearcut-mesh-id-{}", std::process::id()));
         let tetrahedron = |a: &str| {
             format!(
@@ -416,9 +438,54 @@ mod tests {
         assert_eq!(id(&a), id(&b));
         let c = scenario_at("b", "0.04");
         assert_ne!(id(&c), id(&a));
+        // A surrogate file likewise; a built-in surrogate and a scenario
+        // with neither file hash their resolved text as it is.
+        let mut with_file = Scenario::load("loop-potato-whole").unwrap();
+        let mut built_in = with_file.clone();
+        built_in.controller.surrogate = Some("potato-whole-chef".into());
+        assert_eq!(
+            identity_toml(&built_in, &mut HashMap::new()),
+            resolved_toml(&built_in)
+        );
+        let surrogate = root.join("a").join("fit.toml");
+        std::fs::write(&surrogate, "[fit]\n").unwrap();
+        with_file.controller.surrogate = Some(surrogate.display().to_string());
+        let before = id(&with_file);
+        std::fs::write(&surrogate, "[fit]\nrefitted = true\n").unwrap();
+        assert_ne!(id(&with_file), before);
         // Unreadable: the path names it (its runs end with the error).
         std::fs::remove_dir_all(&root).unwrap();
         assert_eq!(identity_toml(&c, &mut HashMap::new()), resolved_toml(&c));
+        assert_eq!(
+            identity_toml(&with_file, &mut HashMap::new()),
+            resolved_toml(&with_file)
+        );
+    }
+
+    /// A specimen that leaves the edge refuses the sweep, naming its
+    /// variant and replica.
+    #[test]
+    fn a_specimen_off_the_edge_is_named_by_its_variant_and_replica() {
+        // The 90 mm half potato at z0 105 mm on the chef's 200 mm edge: a
+        // specimen over 1.056 times its size runs past the tip.
+        let sweep = Sweep::parse(
+            "scenarios = [\"loop-potato-whole\"]\nreplicas = 6\n[variants]\nz0 = 0.105\n\
+             [specimens]\nsize = 0.2\n[[controllers]]\nkind = \"press\"\n",
+            "s.toml",
+            "s",
+            None,
+        )
+        .unwrap();
+        let e = JobList::new(&sweep, "s.toml").unwrap_err().to_string();
+        assert!(
+            e.contains("`variant[0] on loop-potato-whole, replica ")
+                && e.contains("'s specimen.z0` = 0.105: must be"),
+            "{e}"
+        );
+        // Within the edge, every specimen runs.
+        let text = sweep.text.replace("z0 = 0.105", "z0 = 0.05");
+        let sweep = Sweep::parse(&text, "s.toml", "s", None).unwrap();
+        assert_eq!(JobList::new(&sweep, "s.toml").unwrap().jobs.len(), 6);
     }
 
     #[test]

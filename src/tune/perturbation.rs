@@ -178,6 +178,13 @@ impl Perturbation {
     /// validated again, budgets included, when a controller setting is
     /// applied to it ([`ControllerSetting::apply`](super::controller_setting::ControllerSetting::apply)),
     /// as every sweep and `compare` job is.
+    ///
+    /// # Errors
+    /// A factor the object cannot take; for a variant that sets `z0`,
+    /// `blade_budget`, `size_scale` or `knife`, an object off the knife's
+    /// usable edge ([`check_on_edge`]): key `z0` (value z0, m) when the
+    /// variant sets z0, else `z0, with <the first of those keys it sets>`;
+    /// a knife or mesh that cannot be built, under its own key.
     pub fn apply(&self, base: &Scenario) -> Result<Scenario, InvalidSetting> {
         let mut s = base.clone();
         if let Some(name) = &self.knife {
@@ -223,11 +230,13 @@ impl Perturbation {
         ];
         let changed = moves.iter().find(|(_, set)| *set).map(|(key, _)| *key);
         if self.z0.is_some() || changed.is_some() {
-            let key = match (self.z0, changed) {
-                (None, Some(key)) => format!("z0, with {key}"),
-                _ => "z0".into(),
-            };
-            check_on_edge(&s).map_err(|e| InvalidSetting { key, ..e })?;
+            check_on_edge(&s).map_err(|e| match (e.key.as_str(), self.z0, changed) {
+                ("z0", None, Some(key)) => InvalidSetting {
+                    key: format!("z0, with {key}"),
+                    ..e
+                },
+                _ => e,
+            })?;
         }
         Ok(s)
     }
@@ -500,6 +509,19 @@ mod tests {
             ..Perturbation::default()
         };
         assert_eq!(p.apply(&s).unwrap_err().key, "z0");
+        // A larger potato at the scenario's z0: 1.7 × 90 mm from 50 mm
+        // runs past the tip.
+        let mut at_50 = s.clone();
+        at_50.motion.z0 = vec![0.05];
+        let p = Perturbation {
+            size_scale: 1.7,
+            ..Perturbation::default()
+        };
+        let e = p.apply(&at_50).unwrap_err();
+        assert!(
+            e.to_string().starts_with("`z0, with size_scale` = 0.05: "),
+            "{e}"
+        );
         // Another knife: at the scenario's z0 (20 mm) the 90 mm potato
         // runs past the end of the 100 mm wire.
         let p = Perturbation {

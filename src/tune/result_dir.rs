@@ -13,7 +13,7 @@ use shearcut_sim::InvalidSetting;
 use shearcut_sim::capped_read::read_capped_text;
 
 use crate::error::{ConfigError, RunError};
-use crate::result_file::{write_json, write_text};
+use crate::result_file::{PARTIAL_PREFIX, write_json, write_text};
 use crate::tune::job_list::JobCatalog;
 use crate::tune::job_outcome::JobRow;
 use crate::tune::result_table::write_tables;
@@ -42,7 +42,10 @@ pub fn write_catalog(dir: &Path, catalog: &JobCatalog, sweep_text: &str) -> Resu
             };
             return Err(crate::run_dir::refused(dir, format!("{ALLOWED} ({why})")));
         }
-    } else if dir.is_dir() && crate::run_dir::holds_files(dir)? && !interrupted_claim(dir) {
+    } else if dir.is_dir()
+        && crate::run_dir::holds_files(dir)?
+        && !interrupted_claim(dir, sweep_text)
+    {
         return Err(crate::run_dir::refused(
             dir,
             format!("{ALLOWED} (it holds files and no jobs.json)"),
@@ -57,21 +60,29 @@ pub fn write_catalog(dir: &Path, catalog: &JobCatalog, sweep_text: &str) -> Resu
 }
 
 /// Whether `dir` holds only what [`write_catalog`] writes before
-/// `jobs.json` (an empty `rows/`, `sweep.toml`, a partly written file of
-/// its own): a sweep killed while claiming it, resumed by running it again.
-fn interrupted_claim(dir: &Path) -> bool {
+/// `jobs.json`, for the sweep `sweep_text`: an empty `rows/`, this sweep's
+/// `sweep.toml`, a partly written `sweep.toml` or `jobs.json`. That is a
+/// sweep killed while claiming its directory, resumed by running it again.
+fn interrupted_claim(dir: &Path, sweep_text: &str) -> bool {
     let Ok(entries) = std::fs::read_dir(dir) else {
         return false;
     };
-    entries.flatten().all(|e| {
+    let mut has_rows = false;
+    let all_ours = entries.flatten().all(|e| {
         let name = e.file_name();
         let name = name.to_string_lossy();
         match name.as_ref() {
-            "rows" => std::fs::read_dir(e.path()).is_ok_and(|mut r| r.next().is_none()),
-            "sweep.toml" | ".partial-sweep.toml" | ".partial-jobs.json" => true,
-            _ => false,
+            "rows" => {
+                has_rows = std::fs::read_dir(e.path()).is_ok_and(|mut r| r.next().is_none());
+                has_rows
+            }
+            "sweep.toml" => std::fs::read(e.path()).is_ok_and(|t| t == sweep_text.as_bytes()),
+            n => n
+                .strip_prefix(PARTIAL_PREFIX)
+                .is_some_and(|f| f == "sweep.toml" || f == "jobs.json"),
         }
-    })
+    });
+    all_ours && has_rows
 }
 
 /// Reads `dir/jobs.json` and `dir/sweep.toml`.
@@ -142,13 +153,22 @@ mod tests {
                 .catalog;
         // What a kill between sweep.toml and jobs.json leaves.
         std::fs::create_dir_all(dir.join("rows")).unwrap();
-        std::fs::write(dir.join("sweep.toml"), "x").unwrap();
+        std::fs::write(dir.join("sweep.toml"), "sweep").unwrap();
         std::fs::write(dir.join(".partial-jobs.json"), "{\"swe").unwrap();
         write_catalog(&dir, &catalog, "sweep").unwrap();
         assert_eq!(
             read_catalog(&dir).unwrap(),
             (catalog.clone(), "sweep".into())
         );
+        // Another sweep's file, or a sweep.toml alone (no rows/): not ours.
+        let kept = dir.join("kept");
+        std::fs::create_dir_all(kept.join("rows")).unwrap();
+        std::fs::write(kept.join("sweep.toml"), "another sweep").unwrap();
+        assert!(write_catalog(&kept, &catalog, "sweep").is_err());
+        let alone = dir.join("alone");
+        std::fs::create_dir_all(&alone).unwrap();
+        std::fs::write(alone.join("sweep.toml"), "sweep").unwrap();
+        assert!(write_catalog(&alone, &catalog, "sweep").is_err());
         // Another command's files.
         let other = dir.join("other");
         std::fs::create_dir_all(other.join("rows")).unwrap();

@@ -10,6 +10,7 @@
 use std::path::Path;
 
 use crate::error::RunError;
+use crate::result_file::write_table;
 use crate::tune::job_list::{JOB_COLUMNS, JobCatalog, JobRecord};
 use crate::tune::job_outcome::{JobRow, OUTCOME_COLUMNS, TIMING_COLUMNS};
 
@@ -23,36 +24,30 @@ pub fn write_tables(
     catalog: &JobCatalog,
     finished: &[Finished],
 ) -> Result<(), RunError> {
-    let path = dir.join("results.csv");
-    let mut w = csv::Writer::from_path(&path).map_err(|e| RunError::write(&path, e))?;
     let header = JOB_COLUMNS
         .iter()
         .map(|c| c.to_string())
         .chain(catalog.setting_columns.iter().cloned())
         .chain(OUTCOME_COLUMNS.iter().map(|c| c.to_string()));
-    w.write_record(header)
-        .map_err(|e| RunError::write(&path, e))?;
-    for (job, row) in finished {
-        let cells = job_cells(catalog, job)
+    let rows = finished.iter().map(|(job, row)| {
+        job_cells(catalog, job)
             .into_iter()
             .chain(job.cells.iter().cloned())
-            .chain(row.outcome.cells());
-        w.write_record(cells)
-            .map_err(|e| RunError::write(&path, e))?;
-    }
-    w.flush().map_err(|e| RunError::write(&path, e))?;
-    let path = dir.join("timings.csv");
-    let mut w = csv::Writer::from_path(&path).map_err(|e| RunError::write(&path, e))?;
-    w.write_record(["job", "id"].iter().chain(TIMING_COLUMNS.iter()))
-        .map_err(|e| RunError::write(&path, e))?;
-    for (job, row) in finished {
-        let cells = [job.index.to_string(), job.id.clone()]
+            .chain(row.outcome.cells())
+            .collect()
+    });
+    write_table(&dir.join("results.csv"), header, rows)?;
+    let rows = finished.iter().map(|(job, row)| {
+        [job.index.to_string(), job.id.clone()]
             .into_iter()
-            .chain(row.timing.cells());
-        w.write_record(cells)
-            .map_err(|e| RunError::write(&path, e))?;
-    }
-    w.flush().map_err(|e| RunError::write(&path, e))
+            .chain(row.timing.cells())
+            .collect()
+    });
+    write_table(
+        &dir.join("timings.csv"),
+        ["job", "id"].iter().chain(TIMING_COLUMNS.iter()),
+        rows,
+    )
 }
 
 /// The cells of [`JOB_COLUMNS`] for `job`.

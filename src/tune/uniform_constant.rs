@@ -24,9 +24,10 @@ use std::path::Path;
 
 use crate::constant_ratio::least_mean_work;
 use crate::error::RunError;
+use crate::result_file::write_table;
 use crate::tune::best_constant_pairing::{
     ConstantPair, KEY_COLUMNS, PAIR_COLUMNS, grid_mean_work, groups, key_cells, mean_or_nan,
-    pair_cells, pair_in_group, write_table,
+    pair_cells, pair_in_group,
 };
 use crate::tune::job_list::{JobCatalog, JobRecord};
 use crate::tune::job_outcome::JobRow;
