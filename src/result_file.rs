@@ -13,7 +13,8 @@ use crate::error::RunError;
 /// into place: readers see the whole file or none. A failed write (a full
 /// device) or rename removes the temporary file; one left by a killed
 /// process is overwritten by the next write of the same file. One process
-/// writes a directory's files at a time.
+/// writes a directory's files at a time (`tune` locks its directory:
+/// [`crate::tune::result_dir::DirectoryLock`]).
 ///
 /// # Errors
 /// `write`'s error, or the rename's.

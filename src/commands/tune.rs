@@ -105,7 +105,7 @@ pub fn run_sweep(
     } else {
         base.join(format!("shard-{}-of-{}", shard.index, shard.count))
     };
-    write_catalog(&dir, &list.catalog, &sweep.text)?;
+    let _held = write_catalog(&dir, &list.catalog, &sweep.text)?;
     let mine: Vec<_> = list
         .jobs
         .iter()

@@ -69,7 +69,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<Merged, RunError> {
             ));
         }
     }
-    write_catalog(out, &catalog, &sweep_text)?;
+    let _held = write_catalog(out, &catalog, &sweep_text)?;
     let mut rows = Vec::with_capacity(catalog.jobs.len());
     let mut missing = Vec::new();
     let mut unreadable = None;

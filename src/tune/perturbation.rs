@@ -182,7 +182,7 @@ impl Perturbation {
     /// # Errors
     /// A factor the object cannot take; for a variant that sets `z0`,
     /// `blade_budget`, `size_scale` or `knife`, an object off the knife's
-    /// usable edge ([`check_on_edge`]): key `z0` (value z0, m) when the
+    /// usable edge ([`crate::closed_loop::check_on_edge`]): key `z0` (value z0, m) when the
     /// variant sets z0, else `z0, with <the first of those keys it sets>`;
     /// a knife or mesh that cannot be built, under its own key.
     pub fn apply(&self, base: &Scenario) -> Result<Scenario, InvalidSetting> {

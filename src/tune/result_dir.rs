@@ -24,16 +24,55 @@ use crate::tune::result_table::write_tables;
 /// after this many bytes.
 pub const CATALOG_BYTES: u64 = 256 << 20;
 
-/// Writes `sweep.toml` and `jobs.json` under `dir` (created if needed).
+/// A result directory held by this process while it writes it: an
+/// exclusive advisory lock on the directory (none on a file system without
+/// locks), released when dropped.
+#[must_use = "the directory is held only while the lock lives"]
+#[derive(Debug)]
+pub struct DirectoryLock {
+    _file: Option<std::fs::File>,
+}
+
+/// Takes `dir`'s lock ([`DirectoryLock`]).
+///
+/// # Errors
+/// Another process holds it (exit 2).
+fn lock_directory(dir: &Path) -> Result<DirectoryLock, RunError> {
+    let Ok(file) = std::fs::File::open(dir) else {
+        return Ok(DirectoryLock { _file: None });
+    };
+    match file.try_lock() {
+        Ok(()) => Ok(DirectoryLock { _file: Some(file) }),
+        Err(std::fs::TryLockError::WouldBlock) => Err(crate::run_dir::refused(
+            dir,
+            "a directory no other `shearcut tune` is writing (one is: let it finish, or give another --out)",
+        )),
+        Err(std::fs::TryLockError::Error(_)) => Ok(DirectoryLock { _file: None }),
+    }
+}
+
+/// Takes `dir` (created if needed) for the sweep: locks it against other
+/// processes ([`DirectoryLock`], held until the returned lock is dropped)
+/// and writes `sweep.toml` and `jobs.json` under it.
 ///
 /// # Errors
 /// `dir` holds files but is not a sweep's result directory (no
 /// `jobs.json`, or one that is not a sweep's catalogue: a sweep's tables
 /// would be written among another command's files, over its `jobs.json`),
-/// or cannot be created (exit 2).
-pub fn write_catalog(dir: &Path, catalog: &JobCatalog, sweep_text: &str) -> Result<(), RunError> {
+/// another `shearcut tune` is writing it, or it cannot be created (exit 2).
+pub fn write_catalog(
+    dir: &Path,
+    catalog: &JobCatalog,
+    sweep_text: &str,
+) -> Result<DirectoryLock, RunError> {
     const ALLOWED: &str =
         "a new or empty directory, or a `shearcut tune` result directory to resume";
+    // The directory is the user's `--out`: one that cannot be created is
+    // bad input (exit 2).
+    if !dir.exists() {
+        std::fs::create_dir_all(dir).map_err(|e| crate::run_dir::uncreatable(dir, dir, &e))?;
+    }
+    let lock = lock_directory(dir)?;
     if dir.join("jobs.json").is_file() {
         if let Err(e) = read_catalog(dir) {
             let why = match e {
@@ -51,12 +90,11 @@ pub fn write_catalog(dir: &Path, catalog: &JobCatalog, sweep_text: &str) -> Resu
             format!("{ALLOWED} (it holds files and no jobs.json)"),
         ));
     }
-    // The directory is the user's `--out`: one that cannot be created is
-    // bad input (exit 2).
     let rows = dir.join("rows");
     std::fs::create_dir_all(&rows).map_err(|e| crate::run_dir::uncreatable(dir, &rows, &e))?;
     write_text(&dir.join("sweep.toml"), sweep_text)?;
-    write_json(&dir.join("jobs.json"), catalog)
+    write_json(&dir.join("jobs.json"), catalog)?;
+    Ok(lock)
 }
 
 /// Whether `dir` holds only what [`write_catalog`] writes before
@@ -155,11 +193,16 @@ mod tests {
         std::fs::create_dir_all(dir.join("rows")).unwrap();
         std::fs::write(dir.join("sweep.toml"), "sweep").unwrap();
         std::fs::write(dir.join(".partial-jobs.json"), "{\"swe").unwrap();
-        write_catalog(&dir, &catalog, "sweep").unwrap();
+        let lock = write_catalog(&dir, &catalog, "sweep").unwrap();
         assert_eq!(
             read_catalog(&dir).unwrap(),
             (catalog.clone(), "sweep".into())
         );
+        // While one holds it, no other takes it; then it resumes.
+        let e = write_catalog(&dir, &catalog, "sweep").unwrap_err();
+        assert!(e.to_string().contains("no other `shearcut tune`"), "{e}");
+        drop(lock);
+        drop(write_catalog(&dir, &catalog, "sweep").unwrap());
         // Another sweep's file, or a sweep.toml alone (no rows/): not ours.
         let kept = dir.join("kept");
         std::fs::create_dir_all(kept.join("rows")).unwrap();
