@@ -12,6 +12,7 @@ use std::path::{Path, PathBuf};
 use shearcut_sim::InvalidSetting;
 
 use crate::error::{ConfigError, RunError};
+use crate::result_file::publish;
 use crate::tune::job_list::JobCatalog;
 use crate::tune::job_outcome::JobRow;
 use crate::tune::result_dir::{read_catalog, write_catalog};
@@ -81,7 +82,12 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<Merged, RunError> {
             Some((d, row)) => {
                 let (from, to) = (JobRow::path(d, &job.id), JobRow::path(out, &job.id));
                 if from != to {
-                    std::fs::copy(&from, &to).map_err(|e| RunError::write(&to, e))?;
+                    // Whole or absent, as a shard writes its rows.
+                    publish(&to, |tmp| {
+                        std::fs::copy(&from, tmp)
+                            .map(|_| ())
+                            .map_err(|e| RunError::write(&to, e))
+                    })?;
                 }
                 rows.push(row);
             }

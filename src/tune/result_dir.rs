@@ -87,7 +87,10 @@ pub fn write_catalog(
     {
         return Err(crate::run_dir::refused(
             dir,
-            format!("{ALLOWED} (it holds files and no jobs.json)"),
+            format!(
+                "{ALLOWED} (it holds files and no jobs.json, and is not this sweep's start cut short: \
+                 an empty rows/ and this sweep's sweep.toml)"
+            ),
         ));
     }
     let rows = dir.join("rows");
