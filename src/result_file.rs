@@ -12,9 +12,10 @@ use crate::error::RunError;
 /// beside it (`.partial-<file name>`, the same extension), and renames it
 /// into place: readers see the whole file or none. A failed write (a full
 /// device) or rename removes the temporary file; one left by a killed
-/// process is overwritten by the next write of the same file. One process
-/// writes a directory's files at a time (`tune` locks its directory:
-/// [`crate::tune::result_dir::DirectoryLock`]).
+/// process is overwritten by the next write of the same file. Callers
+/// keep other processes out of the directory while they write it (`tune`
+/// and `tune merge` lock theirs: [`crate::tune::result_dir::DirectoryLock`];
+/// a run's directory is its own from its claim).
 ///
 /// # Errors
 /// `write`'s error, or the rename's.

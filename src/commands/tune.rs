@@ -193,5 +193,6 @@ pub fn run_merge(dirs: &[PathBuf], out: Option<&Path>) -> Result<(), RunError> {
         dirs.len(),
         out.display()
     )?;
+    // `merged.held` keeps the directory locked until the analysis is written.
     report(&out, &merged.catalog, &merged.rows)
 }

@@ -365,8 +365,9 @@ fn identity_toml(s: &Scenario, digests: &mut HashMap<PathBuf, String>) -> String
     resolved_toml(&by_content)
 }
 
-/// `sha1:<hex>` of the first `cap` bytes of the file at `path` (memoised in
-/// `digests`); None if it cannot be read.
+/// `sha1:<hex>` of the bytes of the file at `path` (memoised in
+/// `digests`); None if it cannot be read or holds more than `cap` bytes
+/// (its reader refuses it too).
 fn file_digest(path: &Path, cap: u64, digests: &mut HashMap<PathBuf, String>) -> Option<String> {
     if let Some(d) = digests.get(path) {
         return Some(d.clone());

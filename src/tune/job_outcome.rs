@@ -253,21 +253,11 @@ impl JobRow {
         dir.join("rows").join(format!("{id}.json"))
     }
 
-    /// Writes the row under `dir` atomically: to a temporary file, then
-    /// renamed into place. A failed write (a full device) removes its
-    /// temporary file: the rows directory holds whole rows only.
+    /// Writes the row under `dir` whole or not at all
+    /// ([`crate::result_file::publish`]): the rows directory holds whole
+    /// rows only.
     pub fn write(&self, dir: &Path) -> Result<(), RunError> {
-        let path = Self::path(dir, &self.id);
-        let tmp = dir
-            .join("rows")
-            .join(format!(".{}.{}.tmp", self.id, std::process::id()));
-        let text = serde_json::to_string_pretty(self).map_err(|e| RunError::write(&path, e))?;
-        std::fs::write(&tmp, text + "\n")
-            .map_err(|e| RunError::write(&tmp, e))
-            .and_then(|()| std::fs::rename(&tmp, &path).map_err(|e| RunError::write(&path, e)))
-            .inspect_err(|_| {
-                let _ = std::fs::remove_file(&tmp);
-            })
+        crate::result_file::write_json(&Self::path(dir, &self.id), self)
     }
 
     /// Reads job `id`'s row under `dir`; `None` if there is none, or it is
@@ -365,7 +355,12 @@ mod tests {
             .unwrap()
             .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
             .collect();
-        assert!(names.iter().all(|n| !n.ends_with(".tmp")), "{names:?}");
+        assert!(
+            names
+                .iter()
+                .all(|n| !n.starts_with(crate::result_file::PARTIAL_PREFIX)),
+            "{names:?}"
+        );
         std::fs::remove_dir_all(&dir).unwrap();
     }
 }

@@ -15,10 +15,10 @@ use crate::error::{ConfigError, RunError};
 use crate::result_file::publish;
 use crate::tune::job_list::JobCatalog;
 use crate::tune::job_outcome::JobRow;
-use crate::tune::result_dir::{read_catalog, write_catalog};
+use crate::tune::result_dir::{DirectoryLock, read_catalog, write_catalog};
 
 /// The merged sweep: its catalogue and every job's row, in job order.
-#[derive(Debug, Clone)]
+#[derive(Debug)]
 pub struct Merged {
     /// The catalogue.
     pub catalog: JobCatalog,
@@ -26,6 +26,9 @@ pub struct Merged {
     pub sweep_text: String,
     /// Every job's row.
     pub rows: Vec<JobRow>,
+    /// The output directory's lock: hold it until its tables and analysis
+    /// are written.
+    pub held: DirectoryLock,
 }
 
 /// Whether `a` and `b` are one directory (by their canonical paths).
@@ -70,7 +73,7 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<Merged, RunError> {
             ));
         }
     }
-    let _held = write_catalog(out, &catalog, &sweep_text)?;
+    let held = write_catalog(out, &catalog, &sweep_text)?;
     let mut rows = Vec::with_capacity(catalog.jobs.len());
     let mut missing = Vec::new();
     let mut unreadable = None;
@@ -129,5 +132,6 @@ pub fn merge(dirs: &[PathBuf], out: &Path) -> Result<Merged, RunError> {
         catalog,
         sweep_text,
         rows,
+        held,
     })
 }

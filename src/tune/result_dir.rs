@@ -25,8 +25,10 @@ use crate::tune::result_table::write_tables;
 pub const CATALOG_BYTES: u64 = 256 << 20;
 
 /// A result directory held by this process while it writes it: an
-/// exclusive advisory lock on the directory (none on a file system without
-/// locks), released when dropped.
+/// exclusive advisory lock on the directory (`flock`), released when
+/// dropped. It keeps out processes on the same machine; a file system
+/// without locks gets none, and a network file system may not carry it
+/// between nodes.
 #[must_use = "the directory is held only while the lock lives"]
 #[derive(Debug)]
 pub struct DirectoryLock {
