@@ -207,7 +207,7 @@ impl JobList {
             setting,
         };
         let mut jobs = Vec::new();
-        let mut mesh_digests = HashMap::new();
+        let mut file_digests = HashMap::new();
         let mut settings = Vec::new();
         let mut columns: Vec<String> = VARIANT_COLUMNS.iter().map(|c| c.to_string()).collect();
         let mut job_cells: Vec<Vec<(String, String)>> = Vec::new();
@@ -241,8 +241,7 @@ impl JobList {
                     surrogate_named(name).map_err(at)?;
                 }
                 of_scenario.push(setting_record(setting, &nominal));
-                for (vi, r, specimen, perturbed) in &specimens {
-                    let (vi, r) = (*vi, *r);
+                for &(vi, r, ref specimen, ref perturbed) in &specimens {
                     let scenario = setting.apply(perturbed).map_err(at)?;
                     if setting.sets_blade_budget() {
                         check_on_edge(&scenario).map_err(|e| {
@@ -264,7 +263,7 @@ impl JobList {
                         }
                     }
                     let index = jobs.len();
-                    let id = job_id(&identity_toml(&scenario, &mut mesh_digests), r);
+                    let id = job_id(&identity_toml(&scenario, &mut file_digests), r);
                     jobs.push(Job {
                         record: JobRecord {
                             index,

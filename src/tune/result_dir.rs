@@ -44,12 +44,14 @@ fn lock_directory(dir: &Path) -> Result<DirectoryLock, RunError> {
         return Ok(DirectoryLock { _file: None });
     };
     match file.try_lock() {
-        Ok(()) => Ok(DirectoryLock { _file: Some(file) }),
         Err(std::fs::TryLockError::WouldBlock) => Err(crate::run_dir::refused(
             dir,
             "a directory no other `shearcut tune` is writing (one is: let it finish, or give another --out)",
         )),
-        Err(std::fs::TryLockError::Error(_)) => Ok(DirectoryLock { _file: None }),
+        // Locked, or a file system without locks.
+        locked => Ok(DirectoryLock {
+            _file: locked.is_ok().then_some(file),
+        }),
     }
 }
 
