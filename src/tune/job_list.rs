@@ -220,7 +220,7 @@ impl JobList {
             for (vi, variant) in sweep.variants.iter().enumerate() {
                 for r in 0..sweep.replicas {
                     let specimen = sweep.specimens.specimen_of(variant, r);
-                    let perturbed = specimen.apply(base).map_err(|e| {
+                    let perturbed = specimen.apply_for(base, &sweep.settings).map_err(|e| {
                         invalid(e.prefixed(&format!(
                             "variant[{vi}] on {}, replica {r}'s specimen",
                             base.name
@@ -502,6 +502,22 @@ mod tests {
         let e = JobList::new(&sweep, "s.toml").unwrap_err().to_string();
         assert!(
             e.contains("z0 of variant 1, with its blade_budget") && e.contains("stays on the"),
+            "{e}"
+        );
+        // z0 10 mm is off the edge with the scenario's 15 mm of blade, on
+        // it with 5 mm: a sweep whose every setting sets 5 mm runs it; one
+        // with a setting that keeps the scenario's budget is refused.
+        let five = "scenarios = [\"loop-potato-whole\"]\n[variants]\nz0 = 0.01\n[[controllers]]\nkind = \"slice:0.2\"\ngrid = { blade_budget = 0.005 }\n";
+        let sweep = Sweep::parse(five, "s.toml", "s", None).unwrap();
+        let list = JobList::new(&sweep, "s.toml").unwrap();
+        assert_eq!(list.jobs.len(), 1);
+        assert_eq!(list.jobs[0].scenario.controller.blade_budget, Some(0.005));
+        let mixed = format!("{five}[[controllers]]\nkind = \"press\"\n");
+        let e = Sweep::parse(&mixed, "s.toml", "s", None)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            e.contains("`variants.z0` = 0.01: must be in [0.0150"),
             "{e}"
         );
     }

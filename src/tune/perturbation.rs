@@ -15,6 +15,7 @@ use shearcut_sim::{InvalidSetting, Knife, KnifePreset, MaterialPreset, ObjectSha
 use crate::closed_loop::cut_task;
 use crate::scenario::Scenario;
 use crate::surrogates::BUILT_IN_SURROGATES;
+use crate::tune::controller_setting::ControllerSetting;
 
 /// Smallest and largest material scale factor accepted.
 pub const MATERIAL_SCALE_RANGE: [f64; 2] = [0.1, 10.0];
@@ -186,6 +187,34 @@ impl Perturbation {
     /// variant sets z0, else `z0, with <the first of those keys it sets>`;
     /// a knife or mesh that cannot be built, under its own key.
     pub fn apply(&self, base: &Scenario) -> Result<Scenario, InvalidSetting> {
+        let s = self.apply_off_edge(base)?;
+        self.check_edge(&s)?;
+        Ok(s)
+    }
+
+    /// The scenario `base` under this variant for jobs run with `settings`:
+    /// [`apply`](Self::apply), but when every setting sets its own blade
+    /// budget the object's place on the edge is not checked against the
+    /// scenario's budget, which no job runs with (each job is checked with
+    /// its own: [`JobList::new`](super::job_list::JobList::new)).
+    ///
+    /// # Errors
+    /// As [`apply`](Self::apply).
+    pub fn apply_for(
+        &self,
+        base: &Scenario,
+        settings: &[ControllerSetting],
+    ) -> Result<Scenario, InvalidSetting> {
+        if !settings.is_empty() && settings.iter().all(ControllerSetting::sets_blade_budget) {
+            self.apply_off_edge(base)
+        } else {
+            self.apply(base)
+        }
+    }
+
+    /// [`apply`](Self::apply) without the check of the object's place on
+    /// the edge.
+    fn apply_off_edge(&self, base: &Scenario) -> Result<Scenario, InvalidSetting> {
         let mut s = base.clone();
         if let Some(name) = &self.knife {
             let preset = KnifePreset::from_name(name)
@@ -219,10 +248,15 @@ impl Perturbation {
         if let Some(b) = self.blade_budget {
             s.controller.blade_budget = Some(b);
         }
-        // A variant that moves the object along the edge, changes its
-        // length along it, the blade it may use or the knife is checked
-        // here, before any run. The error's value is z0; its key says which
-        // of the variant's keys made the scenario's z0 wrong.
+        Ok(s)
+    }
+
+    /// Checks the place on the edge of `s`, this variant applied: a variant
+    /// that moves the object along the edge, changes its length along it,
+    /// the blade it may use or the knife is checked before any run. The
+    /// error's value is z0; its key says which of the variant's keys made
+    /// the scenario's z0 wrong.
+    fn check_edge(&self, s: &Scenario) -> Result<(), InvalidSetting> {
         let moves = [
             ("blade_budget", self.blade_budget.is_some()),
             ("size_scale", self.size_scale != 1.0),
@@ -230,7 +264,7 @@ impl Perturbation {
         ];
         let changed = moves.iter().find(|(_, set)| *set).map(|(key, _)| *key);
         if self.z0.is_some() || changed.is_some() {
-            check_on_edge(&s).map_err(|e| match (e.key.as_str(), self.z0, changed) {
+            check_on_edge(s).map_err(|e| match (e.key.as_str(), self.z0, changed) {
                 ("z0", None, Some(key)) => InvalidSetting {
                     key: format!("z0, with {key}"),
                     ..e
@@ -238,7 +272,7 @@ impl Perturbation {
                 _ => e,
             })?;
         }
-        Ok(s)
+        Ok(())
     }
 
     /// The variant's name in tables: its changes from the scenario, e.g.

@@ -292,7 +292,9 @@ impl Sweep {
                 } else {
                     format!("variant[{i}]")
                 };
-                let applied = v.apply(s).map_err(|e| invalid(e.prefixed(&key)))?;
+                let applied = v
+                    .apply_for(s, &settings)
+                    .map_err(|e| invalid(e.prefixed(&key)))?;
                 ControllerSetting::fixed(s.controller.kind)
                     .apply(&applied)
                     .map_err(|e| invalid(e.prefixed(&format!("{key} on {}", s.name))))?;
