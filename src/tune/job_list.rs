@@ -222,7 +222,8 @@ impl JobList {
                     let specimen = sweep.specimens.specimen_of(variant, r);
                     let perturbed = specimen.apply_for(base, &sweep.settings).map_err(|e| {
                         invalid(e.prefixed(&format!(
-                            "variant[{vi}] on {}, replica {r}'s specimen",
+                            "{} on {}, replica {r}'s specimen",
+                            sweep.variant_key(vi),
                             base.name
                         )))
                     })?;
@@ -245,10 +246,17 @@ impl JobList {
                     let scenario = setting.apply(perturbed).map_err(at)?;
                     if setting.sets_blade_budget() {
                         check_on_edge(&scenario).map_err(|e| {
-                            at(InvalidSetting {
-                                key: format!("z0 of variant {vi}, with its blade_budget"),
-                                ..e
-                            })
+                            invalid(
+                                InvalidSetting {
+                                    key: "z0, with its blade_budget".to_string(),
+                                    ..e
+                                }
+                                .prefixed(&format!(
+                                    "setting {ki} on {}, {}",
+                                    base.name,
+                                    sweep.variant_key(vi)
+                                )),
+                            )
                         })?;
                     }
                     let mut cells: Vec<(String, String)> = VARIANT_COLUMNS
@@ -478,8 +486,16 @@ mod tests {
         .unwrap();
         let e = JobList::new(&sweep, "s.toml").unwrap_err().to_string();
         assert!(
-            e.contains("`variant[0] on loop-potato-whole, replica ")
+            e.contains("`variants (z0 105 mm) on loop-potato-whole, replica ")
                 && e.contains("'s specimen.z0` = 0.105: must be"),
+            "{e}"
+        );
+        // A listed variant is named by its own key.
+        let listed = sweep.text.replace("[variants]", "[[variant]]");
+        let listed = Sweep::parse(&listed, "s.toml", "s", None).unwrap();
+        let e = JobList::new(&listed, "s.toml").unwrap_err().to_string();
+        assert!(
+            e.contains("`variant[0] on loop-potato-whole, replica "),
             "{e}"
         );
         // Within the edge, every specimen runs.
@@ -501,7 +517,8 @@ mod tests {
         let sweep = Sweep::parse(&text("[0.04, 0.02]"), "s.toml", "s", None).unwrap();
         let e = JobList::new(&sweep, "s.toml").unwrap_err().to_string();
         assert!(
-            e.contains("z0 of variant 1, with its blade_budget") && e.contains("stays on the"),
+            e.contains("`setting 0 on loop-potato-whole, variants (z0 20 mm).z0, with its blade_budget` = 0.02: must be in [0.0300")
+                && e.contains("stays on the"),
             "{e}"
         );
         // z0 10 mm is off the edge with the scenario's 15 mm of blade, on

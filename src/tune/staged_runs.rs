@@ -91,6 +91,7 @@ impl<'a> StagedRuns<'a> {
             text: String::new(),
             scenarios: vec![self.scenario.clone()],
             variants: vec![Perturbation::default()],
+            variants_listed: false,
             settings,
             replicas,
             specimens: Default::default(),

@@ -171,6 +171,10 @@ pub struct Sweep {
     pub scenarios: Vec<Scenario>,
     /// The variants, in grid or list order.
     pub variants: Vec<Perturbation>,
+    /// Whether the file lists its variants one by one (`[[variant]]`)
+    /// rather than as a `[variants]` grid: how errors name a variant
+    /// ([`Sweep::variant_key`]).
+    pub variants_listed: bool,
     /// The controller settings, in the file's order.
     pub settings: Vec<ControllerSetting>,
     /// Replicas per run.
@@ -346,11 +350,29 @@ impl Sweep {
             text: text.to_string(),
             scenarios,
             variants,
+            variants_listed: !file.variant.is_empty(),
             settings,
             replicas,
             specimens,
             weightings,
         })
+    }
+
+    /// How an error names variant `i` of the expanded list: `variant[i]`,
+    /// the file's own key, for a `[[variant]]` list; `variants (<its
+    /// label>)` for a point of a `[variants]` grid, which has no key of
+    /// its own (the grid's values are named `variants.<key>` when the
+    /// file is read).
+    pub fn variant_key(&self, i: usize) -> String {
+        if self.variants_listed {
+            format!("variant[{i}]")
+        } else {
+            let label = self
+                .variants
+                .get(i)
+                .map_or_else(String::new, Perturbation::label);
+            format!("variants ({label})")
+        }
     }
 }
 
