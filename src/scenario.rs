@@ -1066,8 +1066,10 @@ mod tests {
         let e = Scenario::parse(&text, "bad.toml", "t")
             .unwrap_err()
             .to_string();
-        // toml spans the table that holds the unknown key: `[object]` on line 6.
-        assert!(e.starts_with("bad.toml:6:"), "{e}");
+        // toml spans the table that holds the unknown key, `[object]` on
+        // line 6; the error is placed on the key's own line.
+        assert_eq!(text.lines().nth(7).map(str::trim), Some("widht = 0.03"));
+        assert!(e.starts_with("bad.toml:8:"), "{e}");
         assert!(e.contains("widht") && !e.contains('\n'), "{e}");
     }
 
