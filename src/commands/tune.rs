@@ -148,14 +148,31 @@ pub fn run_sweep(
     }
     let complete: Option<Vec<JobRow>> = rows.into_iter().collect();
     match complete {
-        Some(rows) => report(&dir, &list.catalog, &rows),
+        Some(rows) => report(&dir, &list.catalog, &rows)?,
         None => {
             crate::outln!(
                 "{n} of {} runs of the sweep are here: merge the shards (`shearcut tune merge`) for the front and recommendations",
                 list.jobs.len()
             )?;
-            Ok(())
         }
+    }
+    signalled_while_writing(&stop, &dir)
+}
+
+/// A SIGINT/SIGTERM that came after the last run, while the tables and
+/// analysis were written: they are written whole (the watch keeps the
+/// signal from ending the process mid-file), and the command then exits
+/// 130/143 saying so.
+fn signalled_while_writing(stop: &StopRequest, dir: &Path) -> Result<(), RunError> {
+    match stop.poll() {
+        Some(signal) => Err(RunError::Signalled {
+            signal,
+            message: format!(
+                "{signal} came while the results were written: they are complete in {}/",
+                dir.display()
+            ),
+        }),
+        None => Ok(()),
     }
 }
 
@@ -178,6 +195,9 @@ fn report(dir: &Path, catalog: &JobCatalog, rows: &[JobRow]) -> Result<(), RunEr
 
 /// Merges the shard directories `dirs` into `out`.
 pub fn run_merge(dirs: &[PathBuf], out: Option<&Path>) -> Result<(), RunError> {
+    // SIGINT/SIGTERM wait for the merge, which writes every file whole
+    // and is short, and are then acted on (130/143).
+    let stop = StopRequest::watching(TerminationWatch::new());
     let (catalog, _) = crate::tune::result_dir::read_catalog(
         dirs.first().map_or(Path::new("."), PathBuf::as_path),
     )?;
@@ -194,5 +214,25 @@ pub fn run_merge(dirs: &[PathBuf], out: Option<&Path>) -> Result<(), RunError> {
         out.display()
     )?;
     // `merged.held` keeps the directory locked until the analysis is written.
-    report(&out, &merged.catalog, &merged.rows)
+    report(&out, &merged.catalog, &merged.rows)?;
+    signalled_while_writing(&stop, &out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::transport::StopSignal;
+
+    #[test]
+    fn a_signal_while_the_results_are_written_is_acted_on_after_them() {
+        let stop = StopRequest::never();
+        assert!(signalled_while_writing(&stop, Path::new("d")).is_ok());
+        stop.request(StopSignal::Sigterm);
+        let e = signalled_while_writing(&stop, Path::new("d")).unwrap_err();
+        assert_eq!(e.exit_code(), 143);
+        assert_eq!(
+            e.to_string(),
+            "SIGTERM came while the results were written: they are complete in d/"
+        );
+    }
 }
