@@ -74,12 +74,21 @@ pub fn surrogate_for(s: &Scenario) -> Result<Surrogate, InvalidSetting> {
     surrogate_named(&name)
 }
 
+/// The text of the built-in surrogate `name`, if `name` is one: a name in
+/// `controller.surrogate` is a built-in one first, else a file's path.
+pub fn built_in_surrogate(name: &str) -> Option<&'static str> {
+    BUILT_IN_SURROGATES
+        .iter()
+        .find(|(n, _)| *n == name)
+        .map(|(_, text)| *text)
+}
+
 /// A surrogate by `[controller] surrogate`'s rule: a built-in name
 /// ([`BUILT_IN_SURROGATES`]) first, else a file written by `shearcut fit`.
 /// Errors name the key `controller.surrogate`.
 pub fn surrogate_named(name: &str) -> Result<Surrogate, InvalidSetting> {
     let bad = |why: String| InvalidSetting::new("controller.surrogate", name, why);
-    if let Some((_, text)) = BUILT_IN_SURROGATES.iter().find(|(n, _)| *n == name) {
+    if let Some(text) = built_in_surrogate(name) {
         return Surrogate::from_toml_str(text).map_err(|e| bad(e.to_string()));
     }
     let path = Path::new(name);

@@ -29,7 +29,7 @@ use crate::controller_choice::ControllerChoice;
 use crate::error::ConfigError;
 use crate::run_replica::RunReplica;
 use crate::scenario::Scenario;
-use crate::surrogates::{BUILT_IN_SURROGATES, surrogate_named};
+use crate::surrogates::{built_in_surrogate, surrogate_named};
 use crate::tune::controller_setting::{ControllerSetting, controller_cells, value_cell};
 use crate::tune::perturbation::{Perturbation, VARIANT_COLUMNS, check_on_edge};
 use crate::tune::sweep_file::Sweep;
@@ -355,19 +355,27 @@ fn setting_record(setting: &ControllerSetting, applied: &Scenario) -> SettingRec
 /// file that cannot be read keeps its path (its runs end with the error).
 /// `digests` holds the digest of each path read.
 fn identity_toml(s: &Scenario, digests: &mut HashMap<PathBuf, String>) -> String {
+    let mesh = match &s.object {
+        ObjectShape::Mesh { path } => file_digest(path, MESH_FILE_BYTES, digests),
+        _ => None,
+    };
+    let surrogate = s
+        .controller
+        .surrogate
+        .as_deref()
+        .filter(|name| built_in_surrogate(name).is_none())
+        .and_then(|name| file_digest(Path::new(name), CONFIG_FILE_BYTES, digests));
+    if mesh.is_none() && surrogate.is_none() {
+        return resolved_toml(s);
+    }
     let mut by_content = s.clone();
-    if let ObjectShape::Mesh { path } = &s.object
-        && let Some(d) = file_digest(path, MESH_FILE_BYTES, digests)
-    {
+    if let Some(d) = mesh {
         by_content.object = ObjectShape::Mesh {
             path: PathBuf::from(d),
         };
     }
-    if let Some(name) = &s.controller.surrogate
-        && !BUILT_IN_SURROGATES.iter().any(|(n, _)| n == name)
-        && let Some(d) = file_digest(Path::new(name), CONFIG_FILE_BYTES, digests)
-    {
-        by_content.controller.surrogate = Some(d);
+    if surrogate.is_some() {
+        by_content.controller.surrogate = surrogate;
     }
     resolved_toml(&by_content)
 }

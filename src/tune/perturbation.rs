@@ -14,7 +14,7 @@ use shearcut_sim::{InvalidSetting, Knife, KnifePreset, MaterialPreset, ObjectSha
 
 use crate::closed_loop::cut_task;
 use crate::scenario::Scenario;
-use crate::surrogates::BUILT_IN_SURROGATES;
+use crate::surrogates::built_in_surrogate;
 use crate::tune::controller_setting::ControllerSetting;
 
 /// Smallest and largest material scale factor accepted.
@@ -375,10 +375,7 @@ fn nominal_surrogate(base: &Scenario, variant: &Scenario) -> Option<String> {
         .into_iter()
         .find(|p| p.settings() == variant.knife)?;
     let name = format!("{}-{}", material.name(), knife.name());
-    BUILT_IN_SURROGATES
-        .iter()
-        .any(|(n, _)| *n == name)
-        .then_some(name)
+    built_in_surrogate(&name).is_some().then_some(name)
 }
 
 /// Scales every dimension of `object` by `k`.
