@@ -224,7 +224,6 @@ fn simulate_section(
 ) -> Result<SimulationOutput, RunError> {
     let geometry = section_geometry(scenario, knife, cuboid)?;
     let depth = scenario.motion.depth.unwrap_or(0.8 * cuboid.height);
-    let cuts = scenario.motion.cuts();
     let mut section = CrossSection::new(
         &geometry,
         &scenario.material,
@@ -238,50 +237,112 @@ fn simulate_section(
         )
     })?;
     let step = scenario.motion.step;
-    let mut samples = Vec::new();
-    let mut summaries = Vec::new();
-    let bar = run_bar(cuts.len(), &format!("simulate {}", scenario.name));
-    let mut stopped = None;
-    for &(xi, z0) in &cuts {
-        bar.inc(1);
-        section.reset();
-        let v_n = scenario.motion.speed / (1.0 + xi * xi).sqrt();
-        let first = samples.len();
-        while section.state().crack_depth < depth - 1e-12
-            && section.state().knife_displacement < cuboid.height - step
-            && !section.is_cut_through()
-        {
-            let s = section.advance(step, xi * step).map_err(|e| {
-                invalid(
-                    scenario,
-                    InvalidSetting::new("section", "step", e.to_string()),
-                )
-            })?;
-            let sample = section_sample(knife, xi, z0, &s, v_n, cuboid);
-            recorder.sample(&sample)?;
-            samples.push(sample);
-            if (samples.len() - first).is_multiple_of(STOP_POLL_STEPS) {
-                stopped = stop();
-                if stopped.is_some() {
+    run_cuts(
+        scenario,
+        depth,
+        SINGLE_SECTION,
+        stop,
+        recorder,
+        |_, xi, z0, cut| {
+            section.reset();
+            let v_n = scenario.motion.speed / (1.0 + xi * xi).sqrt();
+            while section.state().crack_depth < depth - 1e-12
+                && section.state().knife_displacement < cuboid.height - step
+                && !section.is_cut_through()
+            {
+                let s = section.advance(step, xi * step).map_err(|e| {
+                    invalid(
+                        scenario,
+                        InvalidSetting::new("section", "step", e.to_string()),
+                    )
+                })?;
+                cut.record(section_sample(knife, xi, z0, &s, v_n, cuboid))?;
+                if cut.step_done() {
                     break;
                 }
             }
-        }
-        let summary = CutSummary::from_samples(&samples[first..], depth);
-        recorder.cut_done(&summary)?;
+            Ok(())
+        },
+    )
+}
+
+/// The cuts of `scenario`, one after another, each run by `run_cut(i, ξ,
+/// z0, cut)`, which records its samples through `cut` and ends early when
+/// [`Cut::step_done`] says a stop was asked. Each cut's summary is recorded
+/// as it ends; a stop ends the run after the cut in progress (summarised as
+/// it stands).
+fn run_cuts(
+    scenario: &Scenario,
+    depth: f64,
+    model: &'static str,
+    stop: StopCheck,
+    recorder: &mut dyn CutRecorder,
+    mut run_cut: impl FnMut(usize, f64, f64, &mut Cut) -> Result<(), RunError>,
+) -> Result<SimulationOutput, RunError> {
+    let cuts = scenario.motion.cuts();
+    let bar = run_bar(cuts.len(), &format!("simulate {}", scenario.name));
+    let mut cut = Cut {
+        samples: Vec::new(),
+        first: 0,
+        steps: 0,
+        recorder,
+        stop,
+        stopped: None,
+    };
+    let mut summaries = Vec::new();
+    for (i, (xi, z0)) in cuts.into_iter().enumerate() {
+        bar.inc(1);
+        cut.first = cut.samples.len();
+        cut.steps = 0;
+        run_cut(i, xi, z0, &mut cut)?;
+        let summary = CutSummary::from_samples(&cut.samples[cut.first..], depth);
+        cut.recorder.cut_done(&summary)?;
         summaries.push(summary);
-        if stopped.is_some() {
+        if cut.stopped.is_some() {
             break;
         }
     }
     bar.finish_and_clear();
     Ok(SimulationOutput {
-        samples,
+        samples: cut.samples,
         summaries,
         target_depth_m: depth,
-        model: SINGLE_SECTION,
-        stopped,
+        model,
+        stopped: cut.stopped,
     })
+}
+
+/// The cut in progress of [`run_cuts`]: where its samples go, and the stop.
+struct Cut<'a, 'r> {
+    /// Every cut's samples so far.
+    samples: Vec<CutSample>,
+    /// The first sample of the cut in progress.
+    first: usize,
+    /// Steps of the cut in progress.
+    steps: usize,
+    recorder: &'r mut dyn CutRecorder,
+    stop: StopCheck<'a>,
+    /// The signal that stopped the run, if one did.
+    stopped: Option<StopSignal>,
+}
+
+impl Cut<'_, '_> {
+    /// Records `sample` and keeps it.
+    fn record(&mut self, sample: CutSample) -> Result<(), RunError> {
+        self.recorder.sample(&sample)?;
+        self.samples.push(sample);
+        Ok(())
+    }
+
+    /// Counts a step of the cut; every [`STOP_POLL_STEPS`] steps asks
+    /// whether to stop. True: a stop was asked, end the cut.
+    fn step_done(&mut self) -> bool {
+        self.steps += 1;
+        if self.steps.is_multiple_of(STOP_POLL_STEPS) {
+            self.stopped = (self.stop)();
+        }
+        self.stopped.is_some()
+    }
 }
 
 fn section_sample(
@@ -349,73 +410,53 @@ fn simulate_plant(
     let depth = scenario.motion.depth.unwrap_or(0.8 * height);
     let dt = 1.0 / scenario.control_loop.rate_hz;
     let gap = scenario.plant.start_gap;
-    let mut samples = Vec::new();
-    let mut summaries = Vec::new();
-    let cuts = scenario.motion.cuts();
-    let bar = run_bar(cuts.len(), &format!("simulate {}", scenario.name));
-    let mut stopped = None;
-    for (i, (xi, z0)) in cuts.into_iter().enumerate() {
-        bar.inc(1);
-        let alpha = xi.atan();
-        let mut plant = Plant::new(cut_plant(scenario, knife, &mesh, xi, z0), scenario.seed)
-            .map_err(|e| plant_refused(scenario, i, xi, z0, e))?;
-        let start = plant.position();
-        let v_full = Vector3::new(0.0, -alpha.cos(), alpha.sin()) * scenario.motion.speed;
-        let first = samples.len();
-        // Stop at the target depth, through the object, or after the knife has
-        // travelled twice the object's height (a cut that does not progress).
-        let max_ticks =
-            ((2.0 * height + gap) / (scenario.motion.speed * alpha.cos() * dt)).ceil() as usize;
-        for tick in 1..=max_ticks {
-            let t = tick as f64 * dt;
-            let v = v_full * (t / RAMP_S).min(1.0);
-            let step = plant.step(&KnifeCommand { velocity: v }, dt).map_err(|e| {
-                invalid(
-                    scenario,
-                    InvalidSetting::new("section", "step", e.to_string()),
-                )
-            })?;
-            if let ArmStatus::LimitViolation(why) = step.reading.status {
-                return Err(invalid(
-                    scenario,
-                    InvalidSetting::new(
-                        "loop.arm_limits",
-                        why.to_string(),
-                        "the prescribed motion must respect the arm limits",
-                    ),
-                ));
-            }
-            if let Some(sample) =
-                CutSample::from_plant(&step.reading, &step.truth, xi, z0, &start, gap)
-            {
-                recorder.sample(&sample)?;
-                samples.push(sample);
-            }
-            if step.truth.crack_depth >= depth {
-                break;
-            }
-            if tick.is_multiple_of(STOP_POLL_STEPS) {
-                stopped = stop();
-                if stopped.is_some() {
+    run_cuts(
+        scenario,
+        depth,
+        MULTI_SECTION,
+        stop,
+        recorder,
+        |i, xi, z0, cut| {
+            let alpha = xi.atan();
+            let mut plant = Plant::new(cut_plant(scenario, knife, &mesh, xi, z0), scenario.seed)
+                .map_err(|e| plant_refused(scenario, i, xi, z0, e))?;
+            let start = plant.position();
+            let v_full = Vector3::new(0.0, -alpha.cos(), alpha.sin()) * scenario.motion.speed;
+            // Stop at the target depth, through the object, or after the knife has
+            // travelled twice the object's height (a cut that does not progress).
+            let max_ticks =
+                ((2.0 * height + gap) / (scenario.motion.speed * alpha.cos() * dt)).ceil() as usize;
+            for tick in 1..=max_ticks {
+                let t = tick as f64 * dt;
+                let v = v_full * (t / RAMP_S).min(1.0);
+                let step = plant.step(&KnifeCommand { velocity: v }, dt).map_err(|e| {
+                    invalid(
+                        scenario,
+                        InvalidSetting::new("section", "step", e.to_string()),
+                    )
+                })?;
+                if let ArmStatus::LimitViolation(why) = step.reading.status {
+                    return Err(invalid(
+                        scenario,
+                        InvalidSetting::new(
+                            "loop.arm_limits",
+                            why.to_string(),
+                            "the prescribed motion must respect the arm limits",
+                        ),
+                    ));
+                }
+                if let Some(sample) =
+                    CutSample::from_plant(&step.reading, &step.truth, xi, z0, &start, gap)
+                {
+                    cut.record(sample)?;
+                }
+                if step.truth.crack_depth >= depth || cut.step_done() {
                     break;
                 }
             }
-        }
-        let summary = CutSummary::from_samples(&samples[first..], depth);
-        recorder.cut_done(&summary)?;
-        summaries.push(summary);
-        if stopped.is_some() {
-            break;
-        }
-    }
-    bar.finish_and_clear();
-    Ok(SimulationOutput {
-        samples,
-        summaries,
-        target_depth_m: depth,
-        model: MULTI_SECTION,
-        stopped,
-    })
+            Ok(())
+        },
+    )
 }
 
 /// Runs the subcommand: simulate, write the results into `out` (or a fresh
