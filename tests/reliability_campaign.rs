@@ -484,6 +484,22 @@ fn check_opens_the_mesh_and_refuses_an_open_surface() {
             "the closed shell through (0.1, 0, 0) m faces the other way from the largest shell",
         ],
     );
+    // A tetrahedron with a smaller one inside it wound as it is: a cavity
+    // must face the other way.
+    d.file(
+        "cavity.obj",
+        "v 0 0 0\nv 0.05 0 0\nv 0 0.05 0\nv 0 0 0.05\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n\
+         v 0.005 0.005 0.005\nv 0.015 0.005 0.005\nv 0.005 0.015 0.005\nv 0.005 0.005 0.015\n\
+         f 5 7 6\nf 5 6 8\nf 5 8 7\nf 6 7 8\n",
+    );
+    let path = d.file("cavity.toml", &text.replace("open.obj", "cavity.obj"));
+    assert_refused(
+        &shearcut(&["check", &path]),
+        &[
+            "`object.path`",
+            "the closed shell through (0.005, 0.005, 0.005) m lies within a piece's material, so it is a cavity's wall",
+        ],
+    );
 }
 
 #[test]

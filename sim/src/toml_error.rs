@@ -98,7 +98,8 @@ fn key_at(text: &str, e: &toml::de::Error) -> Option<String> {
 }
 
 /// The parser's message on one line, at most [`MAX_MESSAGE_CHARS`]
-/// characters, after the key assigned on the error's line when there is one.
+/// characters, after the key assigned on the error's line when there is
+/// one and the parser's message does not already name it.
 pub fn message(text: &str, e: &toml::de::Error) -> String {
     let parser = e.message().split_whitespace().collect::<Vec<_>>().join(" ");
     let one_line = match key_at(text, e) {

@@ -168,7 +168,7 @@ fn signalled_while_writing(stop: &StopRequest, dir: &Path) -> Result<(), RunErro
         Some(signal) => Err(RunError::Signalled {
             signal,
             message: format!(
-                "{signal} came while the results were written: they are complete in {}/",
+                "{signal} came while the results were written: every file is written whole in {}/",
                 dir.display()
             ),
         }),
@@ -232,7 +232,7 @@ mod tests {
         assert_eq!(e.exit_code(), 143);
         assert_eq!(
             e.to_string(),
-            "SIGTERM came while the results were written: they are complete in d/"
+            "SIGTERM came while the results were written: every file is written whole in d/"
         );
     }
 }

@@ -246,13 +246,19 @@ impl JobList {
                     let scenario = setting.apply(perturbed).map_err(at)?;
                     if setting.sets_blade_budget() {
                         check_on_edge(&scenario).map_err(|e| {
+                            // Replica r's specimen, where it is not its variant.
+                            let replica = if *specimen == sweep.variants[vi] {
+                                String::new()
+                            } else {
+                                format!(", replica {r}'s specimen")
+                            };
                             invalid(
                                 InvalidSetting {
                                     key: "z0, with its blade_budget".to_string(),
                                     ..e
                                 }
                                 .prefixed(&format!(
-                                    "setting {ki} on {}, {}",
+                                    "setting {ki} on {}, {}{replica}",
                                     base.name,
                                     sweep.variant_key(vi)
                                 )),
@@ -543,6 +549,14 @@ mod tests {
             .to_string();
         assert!(
             e.contains("`variants.z0` = 0.01: must be in [0.0150"),
+            "{e}"
+        );
+        // Without variants, the scenario as given: z0 20 mm with 30 mm of blade.
+        let none = "scenarios = [\"loop-potato-whole\"]\n[[controllers]]\nkind = \"slice:1.5\"\ngrid = { blade_budget = 0.03 }\n";
+        let sweep = Sweep::parse(none, "s.toml", "s", None).unwrap();
+        let e = JobList::new(&sweep, "s.toml").unwrap_err().to_string();
+        assert!(
+            e.contains("`setting 0 on loop-potato-whole, the scenario as given.z0, with its blade_budget` = 0.02"),
             "{e}"
         );
     }

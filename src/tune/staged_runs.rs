@@ -22,7 +22,7 @@ use crate::tune::job_outcome::JobRow;
 use crate::tune::perturbation::Perturbation;
 use crate::tune::run_log::RunLog;
 use crate::tune::stop_request::StopRequest;
-use crate::tune::sweep_file::Sweep;
+use crate::tune::sweep_file::{Sweep, VariantSource};
 
 /// One finished run of a stage.
 #[derive(Debug, Clone)]
@@ -91,7 +91,7 @@ impl<'a> StagedRuns<'a> {
             text: String::new(),
             scenarios: vec![self.scenario.clone()],
             variants: vec![Perturbation::default()],
-            variants_listed: false,
+            variants_from: VariantSource::Scenario,
             settings,
             replicas,
             specimens: Default::default(),

@@ -171,10 +171,9 @@ pub struct Sweep {
     pub scenarios: Vec<Scenario>,
     /// The variants, in grid or list order.
     pub variants: Vec<Perturbation>,
-    /// Whether the file lists its variants one by one (`[[variant]]`)
-    /// rather than as a `[variants]` grid: how errors name a variant
+    /// How the file gives its variants: how errors name a variant
     /// ([`Sweep::variant_key`]).
-    pub variants_listed: bool,
+    pub variants_from: VariantSource,
     /// The controller settings, in the file's order.
     pub settings: Vec<ControllerSetting>,
     /// Replicas per run.
@@ -350,7 +349,13 @@ impl Sweep {
             text: text.to_string(),
             scenarios,
             variants,
-            variants_listed: !file.variant.is_empty(),
+            variants_from: if !file.variant.is_empty() {
+                VariantSource::List
+            } else if file.variants.is_some() {
+                VariantSource::Grid
+            } else {
+                VariantSource::Scenario
+            },
             settings,
             replicas,
             specimens,
@@ -362,18 +367,31 @@ impl Sweep {
     /// the file's own key, for a `[[variant]]` list; `variants (<its
     /// label>)` for a point of a `[variants]` grid, which has no key of
     /// its own (the grid's values are named `variants.<key>` when the
-    /// file is read).
+    /// file is read); `the scenario as given` when the file has neither.
     pub fn variant_key(&self, i: usize) -> String {
-        if self.variants_listed {
-            format!("variant[{i}]")
-        } else {
-            let label = self
-                .variants
-                .get(i)
-                .map_or_else(String::new, Perturbation::label);
-            format!("variants ({label})")
+        match self.variants_from {
+            VariantSource::List => format!("variant[{i}]"),
+            VariantSource::Grid => {
+                let label = self
+                    .variants
+                    .get(i)
+                    .map_or_else(String::new, Perturbation::label);
+                format!("variants ({label})")
+            }
+            VariantSource::Scenario => "the scenario as given".to_string(),
         }
     }
+}
+
+/// Where a sweep's variants come from.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum VariantSource {
+    /// Neither table: the one variant is the scenario as given.
+    Scenario,
+    /// A `[variants]` grid.
+    Grid,
+    /// A `[[variant]]` list.
+    List,
 }
 
 /// Whether `name` may name a sweep or a weighting, which name files and

@@ -297,9 +297,9 @@ impl std::fmt::Display for Point<'_> {
 /// the largest shell's orientation: 0 in no material, 1 within one piece's.
 /// A shell where that number is neither (pieces that overlap, or shells
 /// that touch) is left alone, and so are the shells from the first whose
-/// check would bring the bounding-box tests and solid angles taken to more
-/// than [`WINDING_CHECK_BUDGET`] (thousands of shells, or hundreds
-/// nested in one another's bounding boxes).
+/// check would bring the bounding-box tests past [`BOX_TEST_BUDGET`] or
+/// the triangles' solid angles past [`SOLID_ANGLE_BUDGET`] (over ten
+/// thousand shells, or hundreds nested in one another's bounding boxes).
 fn inside_out_shell(vertices: &[Vector3<f64>], triangles: &[[usize; 3]]) -> Option<(usize, bool)> {
     // Shells: the vertices joined by triangles (union-find).
     let mut parent: Vec<usize> = (0..vertices.len()).collect();
@@ -340,10 +340,14 @@ fn inside_out_shell(vertices: &[Vector3<f64>], triangles: &[[usize; 3]]) -> Opti
             shell.lo = shell.lo.inf(&vertices[v]);
             shell.hi = shell.hi.sup(&vertices[v]);
         }
-        shell.triangles.push(*t);
     }
     if shells.len() < 2 {
         return None;
+    }
+    for t in triangles {
+        if let Some(shell) = shells.get_mut(&root(&mut parent, t[0])) {
+            shell.triangles.push(*t);
+        }
     }
     let mut shells: Vec<Shell> = shells.into_values().collect();
     // In the order of their first vertices: the same error from run to run.
@@ -352,18 +356,18 @@ fn inside_out_shell(vertices: &[Vector3<f64>], triangles: &[[usize; 3]]) -> Opti
         (a.signed_volume.abs().total_cmp(&b.signed_volume.abs())).then(b.first.cmp(&a.first))
     })?;
     let outward = largest.signed_volume.signum();
-    let mut budget = WINDING_CHECK_BUDGET;
+    let (mut box_tests, mut solid_angles) = (BOX_TEST_BUDGET, SOLID_ANGLE_BUDGET);
     for s in &shells {
         // A point outside a closed shell's bounding box winds 0 times
         // about it.
         let p = vertices[s.first];
-        budget = budget.checked_sub(shells.len())?;
+        box_tests = box_tests.checked_sub(shells.len())?;
         let around: Vec<&Shell> = shells
             .iter()
             .filter(|o| o.first != s.first)
             .filter(|o| (0..3).all(|k| o.lo[k] <= p[k] && p[k] <= o.hi[k]))
             .collect();
-        budget = budget.checked_sub(around.iter().map(|o| o.triangles.len()).sum())?;
+        solid_angles = solid_angles.checked_sub(around.iter().map(|o| o.triangles.len()).sum())?;
         let depth: f64 = outward
             * around
                 .iter()
@@ -380,11 +384,14 @@ fn inside_out_shell(vertices: &[Vector3<f64>], triangles: &[[usize; 3]]) -> Opti
     None
 }
 
-/// Most bounding-box tests and triangle solid angles [`inside_out_shell`]
-/// takes for one mesh (about a third of a second of work); a mesh of the
-/// largest size read, 500 000 triangles, in a few shells needs a tenth
-/// of it.
-const WINDING_CHECK_BUDGET: usize = 5_000_000;
+/// Most bounding-box tests [`inside_out_shell`] makes for one mesh: every
+/// shell of 14 000 against every other (under half a second of work).
+const BOX_TEST_BUDGET: usize = 200_000_000;
+
+/// Most triangles whose solid angles [`inside_out_shell`] takes for one
+/// mesh (about a third of a second of work); a mesh of the largest size
+/// read, 500 000 triangles, in a few shells needs a tenth of it.
+const SOLID_ANGLE_BUDGET: usize = 5_000_000;
 
 /// The winding number of the closed surface `triangles` about the point
 /// `p` off it: the solid angle its triangles subtend at p over 4π (Van
@@ -505,7 +512,7 @@ mod tests {
         let inner = || TriangleMesh::cuboid(Vector3::repeat(0.25), Vector3::repeat(0.75));
         let hollow = two(inner(), true).unwrap();
         assert!((hollow.volume() - (1.0 - 0.125)).abs() < 1e-12);
-        // A cavity wound as the outside is is refused.
+        // A cavity wound as the outside is refused.
         let e = two(inner(), false).unwrap_err();
         assert_eq!(
             e,
