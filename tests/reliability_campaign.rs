@@ -214,7 +214,9 @@ fn an_object_value_of_the_wrong_type_is_named_by_its_key() {
     check_refuses(
         "object-type",
         &text,
-        &["`width`: invalid type: string \"wide\", expected f64"],
+        // On the key's own line (18 of loop-potato-cuboid.toml), not the
+        // table's header.
+        &[":18:1: `width`: invalid type: string \"wide\", expected f64"],
     );
 }
 

@@ -504,6 +504,20 @@ mod tests {
                 && e.contains("'s specimen.z0` = 0.105: must be"),
             "{e}"
         );
+        // With a blade budget in every setting, each job is checked with
+        // it: replica 0 (the variant as given) fits the edge, a larger
+        // specimen is named by its replica.
+        let budgeted = sweep.text.replace(
+            "kind = \"press\"",
+            "kind = \"slice:1.5\"\ngrid = { blade_budget = 0.03 }",
+        );
+        let budgeted = Sweep::parse(&budgeted, "s.toml", "s", None).unwrap();
+        let e = JobList::new(&budgeted, "s.toml").unwrap_err().to_string();
+        assert!(
+            e.contains("`setting 0 on loop-potato-whole, variants (z0 105 mm), replica ")
+                && e.contains("'s specimen.z0, with its blade_budget` = 0.105: must be in [0.0300"),
+            "{e}"
+        );
         // A listed variant is named by its own key.
         let listed = sweep.text.replace("[variants]", "[[variant]]");
         let listed = Sweep::parse(&listed, "s.toml", "s", None).unwrap();

@@ -290,10 +290,12 @@ impl Sweep {
         // error names the sweep's own key.
         for s in &scenarios {
             for (i, v) in variants.iter().enumerate() {
-                let key = if file.variant.is_empty() {
+                let key = if !file.variant.is_empty() {
+                    format!("variant[{i}]")
+                } else if file.variants.is_some() {
                     "variants".to_string()
                 } else {
-                    format!("variant[{i}]")
+                    "the scenario as given".to_string()
                 };
                 let applied = v
                     .apply_for(s, &settings)
